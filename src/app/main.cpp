@@ -1,1 +1,23 @@
-int main() { return 0; }
+// sixway: the command line (DESIGN.md §5). Every failure ends in one line on stderr and exit 1.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+
+#include "app/info_command.h"
+#include "app/planned_commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app("sixway: real-time smoke rendering with neural six-way lightmaps");
+  app.require_subcommand(1);
+  sixway::app::addInfoCommand(app);
+  sixway::app::addPlannedCommands(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "sixway: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,76 @@
+#include "app/planned_commands.h"
+
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "app/options.h"
+
+namespace sixway::app {
+namespace {
+
+// The options are parsed and checked like a real command's, then the command refuses to run.
+struct PlannedOptions {
+  CommonOptions common;
+  std::filesystem::path scene, out, report, config;
+  std::vector<std::filesystem::path> vdb;
+  int steps = 0, frames = 0;
+  std::string mode, shard;
+  bool force = false, multipleScattering = false;
+};
+
+CLI::App* planned(CLI::App& app, const char* name, const char* description, const char* issue,
+                  std::shared_ptr<PlannedOptions> options) {
+  CLI::App* command = app.add_subcommand(name, description);
+  options->common.addTo(*command);
+  command->callback([name, issue] {
+    throw std::runtime_error(std::string("'sixway ") + name + "' is not built yet: it arrives with issue " + issue);
+  });
+  return command;
+}
+
+}  // namespace
+
+void addPlannedCommands(CLI::App& app) {
+  auto o = std::make_shared<PlannedOptions>();
+  CLI::App* sim = planned(app, "sim", "Run the smoke simulation (LBM + advection)", "#3 (smoke simulation)", o);
+  sim->add_option("--scene", o->scene, "Scene JSON")->required();
+  sim->add_option("--steps", o->steps, "Lattice steps")->required()->check(CLI::PositiveNumber);
+  sim->add_option("--vdb-out", o->out, "Write density/temperature per frame as OpenVDB into this directory");
+  sim->add_option("--report", o->report, "JSON report: forces, mass, max velocity, MLUPs, watchdog");
+
+  CLI::App* bake = planned(app, "bake", "Reference six-way lightmaps and a Unity-packed flipbook",
+                           "#4 (reference volume rendering)", o);
+  auto* sceneOption = bake->add_option("--scene", o->scene, "Scene JSON");
+  bake->add_option("--vdb", o->vdb, "OpenVDB files, one per frame")->excludes(sceneOption);
+  bake->add_option("--out", o->out, "Output directory")->required();
+  bake->add_flag("--multiple-scattering", o->multipleScattering, "Path-traced multiple scattering");
+  bake->add_flag("--force", o->force, "Overwrite an existing output directory");
+
+  CLI::App* render = planned(app, "render", "Headless frame capture", "#5 (real-time renderer)", o);
+  render->add_option("--scene", o->scene, "Scene JSON")->required();
+  render->add_option("--frames", o->frames, "Frames")->required()->check(CLI::PositiveNumber);
+  render->add_option("--out", o->out, "Output directory")->required();
+  render->add_option("--mode", o->mode, "neural | reference | traditional | guide | pathtrace")
+      ->check(CLI::IsMember({"neural", "reference", "traditional", "guide", "pathtrace"}));
+  render->add_flag("--force", o->force, "Overwrite an existing output directory");
+
+  CLI::App* dataset = planned(app, "dataset", "Training pairs: guiding map → reference lightmaps",
+                              "#7 (training data and weights)", o);
+  dataset->add_option("--config", o->config, "Dataset config JSON")->required();
+  dataset->add_option("--out", o->out, "Output directory")->required();
+  dataset->add_option("--shard", o->shard, "I/N: this job's share of the work");
+
+  CLI::App* eval = planned(app, "eval", "PSNR/MSE against the references, timings per stage",
+                           "#9 (evaluation and benchmarks)", o);
+  eval->add_option("--scene", o->scene, "Scene JSON")->required();
+  eval->add_option("--frames", o->frames, "Frames")->required()->check(CLI::PositiveNumber);
+  eval->add_option("--report", o->report, "JSON report")->required();
+
+  CLI::App* bench = planned(app, "bench", "Per-stage GPU timings at fixed sizes", "#9 (evaluation and benchmarks)", o);
+  bench->add_option("--report", o->report, "JSON report");
+}
+
+}  // namespace sixway::app

@@ -1,0 +1,118 @@
+#include "gpu/buffer.h"
+
+#include <cstring>
+#include <utility>
+
+#include "gpu/check.h"
+#include "gpu/context.h"
+#include "gpu/one_shot.h"
+
+namespace sixway::gpu {
+
+Buffer::Buffer(const Context& context, uint64_t bytes, VkBufferUsageFlags usage, MemoryKind kind, std::string name)
+    : context_(&context), size_(bytes), name_(std::move(name)) {
+  if (bytes == 0) throw GpuError(name_ + ": a buffer cannot be empty");
+  if (usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) context.requireStorageBufferFits(bytes, name_);
+
+  VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  info.size = bytes;
+  info.usage = usage;
+  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  SIXWAY_VK(vkCreateBuffer(context.device(), &info, nullptr, &buffer_));
+
+  VkMemoryRequirements requirements;
+  vkGetBufferMemoryRequirements(context.device(), buffer_, &requirements);
+  VkMemoryPropertyFlags properties = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+  if (kind == MemoryKind::HostUpload)
+    properties = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  if (kind == MemoryKind::HostReadback)
+    properties = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT |
+                 VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
+  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  alloc.allocationSize = requirements.size;
+  try {
+    alloc.memoryTypeIndex = context.findMemoryType(requirements.memoryTypeBits, properties);
+  } catch (const GpuError&) {  // cached host memory is a preference, coherent host memory a must
+    if (kind != MemoryKind::HostReadback) throw;
+    alloc.memoryTypeIndex = context.findMemoryType(
+        requirements.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+  }
+  VkResult result = vkAllocateMemory(context.device(), &alloc, nullptr, &memory_);
+  if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY) {
+    release();
+    throw GpuError(name_ + ": out of device memory allocating " + formatBytes(bytes) + "; reduce its size");
+  }
+  SIXWAY_VK(result);
+  SIXWAY_VK(vkBindBufferMemory(context.device(), buffer_, memory_, 0));
+  if (kind != MemoryKind::Device) SIXWAY_VK(vkMapMemory(context.device(), memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
+}
+
+Buffer Buffer::storage(const Context& context, uint64_t bytes, std::string name) {
+  return Buffer(context, bytes,
+                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                    VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                MemoryKind::Device, std::move(name));
+}
+
+Buffer::~Buffer() { release(); }
+
+Buffer::Buffer(Buffer&& other) noexcept { *this = std::move(other); }
+
+Buffer& Buffer::operator=(Buffer&& other) noexcept {
+  if (this != &other) {
+    release();
+    context_ = std::exchange(other.context_, nullptr);
+    buffer_ = std::exchange(other.buffer_, VK_NULL_HANDLE);
+    memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
+    size_ = std::exchange(other.size_, 0);
+    mapped_ = std::exchange(other.mapped_, nullptr);
+    name_ = std::move(other.name_);
+  }
+  return *this;
+}
+
+void Buffer::release() {
+  if (!context_) return;
+  if (buffer_) vkDestroyBuffer(context_->device(), buffer_, nullptr);
+  if (memory_) vkFreeMemory(context_->device(), memory_, nullptr);
+  buffer_ = VK_NULL_HANDLE;
+  memory_ = VK_NULL_HANDLE;
+  mapped_ = nullptr;
+}
+
+void Buffer::upload(std::span<const std::byte> data, uint64_t offset) {
+  if (offset + data.size() > size_)
+    throw GpuError(name_ + ": upload of " + std::to_string(data.size()) + " bytes at offset " +
+                   std::to_string(offset) + " exceeds its " + std::to_string(size_) + " bytes");
+  if (data.empty()) return;
+  if (mapped_) {
+    std::memcpy(static_cast<std::byte*>(mapped_) + offset, data.data(), data.size());
+    return;
+  }
+  Buffer staging(*context_, data.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryKind::HostUpload, name_ + " (staging)");
+  std::memcpy(staging.mapped(), data.data(), data.size());
+  submitOnce(*context_, [&](VkCommandBuffer cmd) {
+    VkBufferCopy region{0, offset, data.size()};
+    vkCmdCopyBuffer(cmd, staging.handle(), buffer_, 1, &region);
+  });
+}
+
+void Buffer::download(std::span<std::byte> data, uint64_t offset) const {
+  if (offset + data.size() > size_)
+    throw GpuError(name_ + ": download of " + std::to_string(data.size()) + " bytes at offset " +
+                   std::to_string(offset) + " exceeds its " + std::to_string(size_) + " bytes");
+  if (data.empty()) return;
+  if (mapped_) {
+    std::memcpy(data.data(), static_cast<const std::byte*>(mapped_) + offset, data.size());
+    return;
+  }
+  Buffer staging(*context_, data.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryKind::HostReadback,
+                 name_ + " (readback)");
+  submitOnce(*context_, [&](VkCommandBuffer cmd) {
+    VkBufferCopy region{offset, 0, data.size()};
+    vkCmdCopyBuffer(cmd, buffer_, staging.handle(), 1, &region);
+  });
+  std::memcpy(data.data(), staging.mapped(), data.size());
+}
+
+}  // namespace sixway::gpu

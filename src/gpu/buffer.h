@@ -1,0 +1,59 @@
+#pragma once
+// A VkBuffer with its own memory. Device buffers are filled and read through staging copies;
+// host buffers stay mapped.
+#include <vulkan/vulkan.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace sixway::gpu {
+
+class Context;
+
+enum class MemoryKind { Device, HostUpload, HostReadback };
+
+class Buffer {
+ public:
+  Buffer() = default;
+  // `name` appears in errors (e.g. when the size exceeds what the device can bind).
+  Buffer(const Context& context, uint64_t bytes, VkBufferUsageFlags usage, MemoryKind kind, std::string name);
+  // A device-local storage buffer that can also be copied to and from.
+  static Buffer storage(const Context& context, uint64_t bytes, std::string name);
+  ~Buffer();
+  Buffer(Buffer&& other) noexcept;
+  Buffer& operator=(Buffer&& other) noexcept;
+
+  VkBuffer handle() const { return buffer_; }
+  uint64_t size() const { return size_; }
+  const std::string& name() const { return name_; }
+  void* mapped() const { return mapped_; }
+
+  void upload(std::span<const std::byte> data, uint64_t offset = 0);
+  void download(std::span<std::byte> data, uint64_t offset = 0) const;
+
+  template <typename T>
+  void upload(const std::vector<T>& values) {
+    upload(std::as_bytes(std::span(values)));
+  }
+  template <typename T>
+  std::vector<T> download() const {
+    std::vector<T> values(size_ / sizeof(T));
+    download(std::as_writable_bytes(std::span(values)));
+    return values;
+  }
+
+ private:
+  void release();
+
+  const Context* context_ = nullptr;
+  VkBuffer buffer_ = VK_NULL_HANDLE;
+  VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  uint64_t size_ = 0;
+  void* mapped_ = nullptr;
+  std::string name_;
+};
+
+}  // namespace sixway::gpu

@@ -1,0 +1,99 @@
+#pragma once
+// The Vulkan instance, the chosen physical device, the logical device and its one queue.
+// Headless by default; pass the window system's instance extensions (GLFW) to present.
+#include <vulkan/vulkan.h>
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sixway::gpu {
+
+struct ContextOptions {
+  bool validate = false;                   // Khronos validation layer; every message is counted
+  std::optional<int> deviceIndex;          // --device N; otherwise SIXWAY_DEVICE, then the best device
+  std::vector<std::string> instanceExtensions;  // e.g. from glfwGetRequiredInstanceExtensions
+  bool presentation = false;               // enable VK_KHR_swapchain on the device
+};
+
+// What the stages need to know about the device to size their work.
+struct DeviceCapabilities {
+  bool shaderFloat16 = false;     // fp16 arithmetic in shaders
+  bool storage16Bit = false;      // 16-bit values in storage buffers
+  bool timestamps = false;        // timestamps on the compute/graphics queue
+  double timestampPeriodNs = 1.0;
+  uint32_t timestampValidBits = 64;
+  uint32_t subgroupSize = 1;
+  uint64_t deviceLocalHeapBytes = 0;
+};
+
+// Counts the messages of the validation layer (and prints them, prefixed "validation:").
+class ValidationLog {
+ public:
+  void add(const char* message);
+  uint32_t count() const { return count_.load(); }
+  std::vector<std::string> messages() const;
+  void clear();
+
+ private:
+  std::atomic<uint32_t> count_{0};
+  mutable std::mutex mutex_;
+  std::vector<std::string> messages_;
+};
+
+class Context {
+ public:
+  explicit Context(const ContextOptions& options = {});
+  ~Context();
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  VkInstance instance() const { return instance_; }
+  VkPhysicalDevice physicalDevice() const { return physicalDevice_; }
+  VkDevice device() const { return device_; }
+  VkQueue queue() const { return queue_; }
+  uint32_t queueFamily() const { return queueFamily_; }
+  const VkPhysicalDeviceProperties& properties() const { return properties_; }
+  const VkPhysicalDeviceLimits& limits() const { return properties_.limits; }
+  const VkPhysicalDeviceDriverProperties& driver() const { return driver_; }
+  const DeviceCapabilities& capabilities() const { return capabilities_; }
+  bool validationEnabled() const { return validation_ != nullptr; }
+  // Messages seen so far (zero when validation is off).
+  uint32_t validationMessageCount() const { return validation_ ? validation_->count() : 0; }
+  ValidationLog* validationLog() const { return validation_.get(); }
+
+  // VK_KHR_push_descriptor entry point: every dispatch pushes its bindings, so no descriptor pools.
+  PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
+
+  uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required) const;
+  // Throws a GpuError that says what to reduce when a storage buffer of `bytes` cannot be bound.
+  void requireStorageBufferFits(uint64_t bytes, const std::string& what) const;
+
+ private:
+  void createInstance(const ContextOptions& options);
+  void pickPhysicalDevice(const ContextOptions& options);
+  void createDevice(const ContextOptions& options);
+
+  std::unique_ptr<ValidationLog> validation_;
+  VkInstance instance_ = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  uint32_t queueFamily_ = 0;
+  VkPhysicalDeviceProperties properties_{};
+  VkPhysicalDeviceDriverProperties driver_{};
+  VkPhysicalDeviceMemoryProperties memory_{};
+  DeviceCapabilities capabilities_{};
+};
+
+// One line per physical device: "index: name (type)", for --device and `sixway info`.
+std::vector<std::string> listPhysicalDevices(VkInstance instance);
+const char* deviceTypeName(VkPhysicalDeviceType type);
+std::string formatBytes(uint64_t bytes);
+
+}  // namespace sixway::gpu

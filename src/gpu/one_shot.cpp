@@ -1,0 +1,45 @@
+#include "gpu/one_shot.h"
+
+#include "gpu/check.h"
+#include "gpu/context.h"
+
+namespace sixway::gpu {
+
+void submitOnce(const Context& context, const std::function<void(VkCommandBuffer)>& record) {
+  VkDevice device = context.device();
+  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+  poolInfo.queueFamilyIndex = context.queueFamily();
+  VkCommandPool pool;
+  SIXWAY_VK(vkCreateCommandPool(device, &poolInfo, nullptr, &pool));
+  VkFence fence = VK_NULL_HANDLE;
+  try {
+    VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    allocInfo.commandPool = pool;
+    allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    allocInfo.commandBufferCount = 1;
+    VkCommandBuffer cmd;
+    SIXWAY_VK(vkAllocateCommandBuffers(device, &allocInfo, &cmd));
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    SIXWAY_VK(vkBeginCommandBuffer(cmd, &begin));
+    record(cmd);
+    SIXWAY_VK(vkEndCommandBuffer(cmd));
+
+    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    SIXWAY_VK(vkCreateFence(device, &fenceInfo, nullptr, &fence));
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cmd;
+    SIXWAY_VK(vkQueueSubmit(context.queue(), 1, &submit, fence));
+    SIXWAY_VK(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX));
+  } catch (...) {
+    if (fence) vkDestroyFence(device, fence, nullptr);
+    vkDestroyCommandPool(device, pool, nullptr);
+    throw;
+  }
+  vkDestroyFence(device, fence, nullptr);
+  vkDestroyCommandPool(device, pool, nullptr);
+}
+
+}  // namespace sixway::gpu

@@ -1,0 +1,278 @@
+#include "gpu/pipeline.h"
+
+#include <bit>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <unistd.h>
+#include <sixway/shader_registry.h>
+
+#include "gpu/check.h"
+#include "gpu/context.h"
+
+namespace sixway::gpu {
+namespace {
+
+VkDescriptorType descriptorType(BindingType type) {
+  switch (type) {
+    case BindingType::StorageBuffer: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    case BindingType::UniformBuffer: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    case BindingType::StorageImage: return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    case BindingType::SampledImage: return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  }
+  return VK_DESCRIPTOR_TYPE_MAX_ENUM;
+}
+
+// A shader module that lives as long as pipeline creation needs it.
+class ShaderModule {
+ public:
+  ShaderModule(VkDevice device, const std::string& shader) : device_(device) {
+    auto words = shaders::spirv(shader);
+    VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    info.codeSize = words.size_bytes();
+    info.pCode = words.data();
+    SIXWAY_VK(vkCreateShaderModule(device, &info, nullptr, &module_));
+  }
+  ~ShaderModule() { vkDestroyShaderModule(device_, module_, nullptr); }
+  ShaderModule(const ShaderModule&) = delete;
+  ShaderModule& operator=(const ShaderModule&) = delete;
+  VkShaderModule handle() const { return module_; }
+
+ private:
+  VkDevice device_;
+  VkShaderModule module_ = VK_NULL_HANDLE;
+};
+
+std::vector<char> readWholeFile(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return {};
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+}  // namespace
+
+SpecConstants& SpecConstants::setWord(uint32_t id, uint32_t word) {
+  entries_.push_back({id, static_cast<uint32_t>(words_.size() * sizeof(uint32_t)), sizeof(uint32_t)});
+  words_.push_back(word);
+  return *this;
+}
+SpecConstants& SpecConstants::set(uint32_t id, uint32_t value) { return setWord(id, value); }
+SpecConstants& SpecConstants::set(uint32_t id, int32_t value) { return setWord(id, std::bit_cast<uint32_t>(value)); }
+SpecConstants& SpecConstants::set(uint32_t id, float value) { return setWord(id, std::bit_cast<uint32_t>(value)); }
+SpecConstants& SpecConstants::set(uint32_t id, bool value) { return setWord(id, value ? 1u : 0u); }
+
+VkSpecializationInfo SpecConstants::info() const {
+  VkSpecializationInfo info{};
+  info.mapEntryCount = static_cast<uint32_t>(entries_.size());
+  info.pMapEntries = entries_.data();
+  info.dataSize = words_.size() * sizeof(uint32_t);
+  info.pData = words_.data();
+  return info;
+}
+
+std::filesystem::path defaultPipelineCacheFile(const Context& context) {
+  std::filesystem::path base;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) base = xdg;
+  else if (const char* home = std::getenv("HOME"); home && *home) base = std::filesystem::path(home) / ".cache";
+  else return {};
+  char uuid[2 * VK_UUID_SIZE + 1];
+  for (uint32_t i = 0; i < VK_UUID_SIZE; ++i)
+    std::snprintf(uuid + 2 * i, 3, "%02x", context.properties().pipelineCacheUUID[i]);
+  return base / "sixway" / ("pipelines-" + std::string(uuid) + ".bin");
+}
+
+PipelineCache::PipelineCache(const Context& context, std::filesystem::path file)
+    : context_(&context), file_(std::move(file)) {
+  // The driver checks the header (vendor, device, cache UUID) and ignores data that does not match.
+  std::vector<char> data = file_.empty() ? std::vector<char>{} : readWholeFile(file_);
+  VkPipelineCacheCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
+  info.initialDataSize = data.size();
+  info.pInitialData = data.empty() ? nullptr : data.data();
+  if (vkCreatePipelineCache(context.device(), &info, nullptr, &cache_) != VK_SUCCESS) {
+    info.initialDataSize = 0;  // a corrupt cache file is not an error: start empty
+    info.pInitialData = nullptr;
+    SIXWAY_VK(vkCreatePipelineCache(context.device(), &info, nullptr, &cache_));
+  }
+}
+
+PipelineCache::~PipelineCache() {
+  try {
+    save();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "sixway: note: pipeline cache not saved: %s\n", e.what());
+  }
+  vkDestroyPipelineCache(context_->device(), cache_, nullptr);
+}
+
+void PipelineCache::save() const {
+  if (file_.empty()) return;
+  size_t size = 0;
+  SIXWAY_VK(vkGetPipelineCacheData(context_->device(), cache_, &size, nullptr));
+  std::vector<char> data(size);
+  SIXWAY_VK(vkGetPipelineCacheData(context_->device(), cache_, &size, data.data()));
+  std::filesystem::create_directories(file_.parent_path());
+  // Written under a temporary name, then renamed: a concurrent reader never sees half a file.
+  std::filesystem::path temporary = file_;
+  temporary += ".tmp" + std::to_string(::getpid());
+  {
+    std::ofstream out(temporary, std::ios::binary);
+    out.write(data.data(), static_cast<std::streamsize>(size));
+    if (!out) throw GpuError("cannot write " + temporary.string());
+  }
+  std::filesystem::rename(temporary, file_);
+}
+
+void Pipeline::createOrRelease(VkResult result) {
+  if (result == VK_SUCCESS) return;
+  release();  // the destructor does not run when a constructor throws
+  throwOnFailure(result, ("creating the pipeline of " + name_).c_str());
+}
+
+void Pipeline::release() {
+  VkDevice device = context_->device();
+  if (pipeline_) vkDestroyPipeline(device, pipeline_, nullptr);
+  if (layout_) vkDestroyPipelineLayout(device, layout_, nullptr);
+  if (setLayout_) vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
+  pipeline_ = VK_NULL_HANDLE;
+  layout_ = VK_NULL_HANDLE;
+  setLayout_ = VK_NULL_HANDLE;
+}
+
+void Pipeline::createLayout(const std::vector<BindingType>& bindings, uint32_t pushConstantBytes) {
+  const VkPhysicalDeviceLimits& limits = context_->limits();
+  if (pushConstantBytes > limits.maxPushConstantsSize)
+    throw GpuError(name_ + ": " + std::to_string(pushConstantBytes) + " bytes of push constants, the device allows " +
+                   std::to_string(limits.maxPushConstantsSize));
+  std::vector<VkDescriptorSetLayoutBinding> layoutBindings;
+  for (uint32_t i = 0; i < bindings.size(); ++i)
+    layoutBindings.push_back({i, descriptorType(bindings[i]), 1, stages_, nullptr});
+  VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  setInfo.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
+  setInfo.bindingCount = static_cast<uint32_t>(layoutBindings.size());
+  setInfo.pBindings = layoutBindings.data();
+  SIXWAY_VK(vkCreateDescriptorSetLayout(context_->device(), &setInfo, nullptr, &setLayout_));
+
+  VkPushConstantRange range{stages_, 0, pushConstantBytes};
+  VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  layoutInfo.setLayoutCount = 1;
+  layoutInfo.pSetLayouts = &setLayout_;
+  layoutInfo.pushConstantRangeCount = pushConstantBytes ? 1 : 0;
+  layoutInfo.pPushConstantRanges = &range;
+  createOrRelease(vkCreatePipelineLayout(context_->device(), &layoutInfo, nullptr, &layout_));
+}
+
+Pipeline::Pipeline(const Context& context, const PipelineCache& cache, const ComputePipelineDesc& desc)
+    : context_(&context),
+      name_(desc.shader),
+      bindPoint_(VK_PIPELINE_BIND_POINT_COMPUTE),
+      stages_(VK_SHADER_STAGE_COMPUTE_BIT),
+      bindings_(desc.bindings),
+      pushConstantBytes_(desc.pushConstantBytes) {
+  ShaderModule module(context.device(), desc.shader);
+  createLayout(desc.bindings, desc.pushConstantBytes);
+  VkSpecializationInfo spec = desc.spec.info();
+  VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  info.stage.module = module.handle();
+  info.stage.pName = "main";
+  info.stage.pSpecializationInfo = desc.spec.empty() ? nullptr : &spec;
+  info.layout = layout_;
+  createOrRelease(vkCreateComputePipelines(context.device(), cache.handle(), 1, &info, nullptr, &pipeline_));
+}
+
+Pipeline::Pipeline(const Context& context, const PipelineCache& cache, const GraphicsPipelineDesc& desc)
+    : context_(&context),
+      name_(desc.vertexShader + "+" + desc.fragmentShader),
+      bindPoint_(VK_PIPELINE_BIND_POINT_GRAPHICS),
+      stages_(VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT),
+      bindings_(desc.bindings),
+      pushConstantBytes_(desc.pushConstantBytes) {
+  ShaderModule vertex(context.device(), desc.vertexShader);
+  ShaderModule fragment(context.device(), desc.fragmentShader);
+  createLayout(desc.bindings, desc.pushConstantBytes);
+  VkSpecializationInfo spec = desc.spec.info();
+  VkPipelineShaderStageCreateInfo shaderStages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
+                                                     {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
+  shaderStages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+  shaderStages[0].module = vertex.handle();
+  shaderStages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+  shaderStages[1].module = fragment.handle();
+  for (auto& stage : shaderStages) {
+    stage.pName = "main";
+    stage.pSpecializationInfo = desc.spec.empty() ? nullptr : &spec;
+  }
+
+  VkVertexInputBindingDescription vertexBinding{0, desc.vertexStride, VK_VERTEX_INPUT_RATE_VERTEX};
+  std::vector<VkVertexInputAttributeDescription> attributes;
+  for (const VertexAttribute& a : desc.attributes) attributes.push_back({a.location, 0, a.format, a.offset});
+  VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  vertexInput.vertexBindingDescriptionCount = desc.vertexStride ? 1 : 0;
+  vertexInput.pVertexBindingDescriptions = &vertexBinding;
+  vertexInput.vertexAttributeDescriptionCount = static_cast<uint32_t>(attributes.size());
+  vertexInput.pVertexAttributeDescriptions = attributes.data();
+
+  VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+  assembly.topology = desc.topology;
+  VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+  viewport.viewportCount = 1;
+  viewport.scissorCount = 1;
+  VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+  raster.polygonMode = VK_POLYGON_MODE_FILL;
+  raster.cullMode = desc.cull;
+  raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+  raster.lineWidth = 1.0f;
+  VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+  multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+  depth.depthTestEnable = desc.depthTest;
+  depth.depthWriteEnable = desc.depthWrite;
+  depth.depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
+
+  VkPipelineColorBlendAttachmentState blend{};
+  blend.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
+                         VK_COLOR_COMPONENT_A_BIT;
+  if (desc.blend != Blend::None) {
+    // Premultiplied "over": dst = src + (1 - src.a) dst (DESIGN.md §3); additive: dst = src + dst.
+    blend.blendEnable = VK_TRUE;
+    blend.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
+    blend.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+    blend.dstColorBlendFactor =
+        desc.blend == Blend::Additive ? VK_BLEND_FACTOR_ONE : VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+    blend.dstAlphaBlendFactor = blend.dstColorBlendFactor;
+    blend.colorBlendOp = blend.alphaBlendOp = VK_BLEND_OP_ADD;
+  }
+  std::vector<VkPipelineColorBlendAttachmentState> blends(desc.colorFormats.size(), blend);
+  VkPipelineColorBlendStateCreateInfo colorBlend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  colorBlend.attachmentCount = static_cast<uint32_t>(blends.size());
+  colorBlend.pAttachments = blends.data();
+
+  VkDynamicState dynamicStates[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+  VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+  dynamic.dynamicStateCount = 2;
+  dynamic.pDynamicStates = dynamicStates;
+
+  VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+  rendering.colorAttachmentCount = static_cast<uint32_t>(desc.colorFormats.size());
+  rendering.pColorAttachmentFormats = desc.colorFormats.data();
+  rendering.depthAttachmentFormat = desc.depthFormat;
+
+  VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};
+  info.stageCount = 2;
+  info.pStages = shaderStages;
+  info.pVertexInputState = &vertexInput;
+  info.pInputAssemblyState = &assembly;
+  info.pViewportState = &viewport;
+  info.pRasterizationState = &raster;
+  info.pMultisampleState = &multisample;
+  info.pDepthStencilState = &depth;
+  info.pColorBlendState = &colorBlend;
+  info.pDynamicState = &dynamic;
+  info.layout = layout_;
+  createOrRelease(vkCreateGraphicsPipelines(context.device(), cache.handle(), 1, &info, nullptr, &pipeline_));
+}
+
+Pipeline::~Pipeline() { release(); }
+
+}  // namespace sixway::gpu

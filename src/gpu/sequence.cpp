@@ -1,0 +1,299 @@
+#include "gpu/sequence.h"
+
+#include <algorithm>
+
+#include "gpu/buffer.h"
+#include "gpu/check.h"
+#include "gpu/context.h"
+#include "gpu/image.h"
+#include "gpu/pipeline.h"
+
+namespace sixway::gpu {
+namespace {
+
+template <typename Handle>
+uint64_t key(Handle handle) {
+  return reinterpret_cast<uint64_t>(handle);
+}
+
+bool readsMemory(Access a) { return a != Access::Write; }
+bool writesMemory(Access a) { return a != Access::Read; }
+
+VkRenderingAttachmentInfo attachment(const Image& image, bool clear, VkClearValue value) {
+  VkRenderingAttachmentInfo info{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  info.imageView = image.view();
+  info.imageLayout = VK_IMAGE_LAYOUT_GENERAL;
+  info.loadOp = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
+  info.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  info.clearValue = value;
+  return info;
+}
+
+}  // namespace
+
+Sequence::Sequence(const Context& context, uint32_t maxStages) : context_(&context), maxStages_(maxStages) {
+  VkDevice device = context.device();
+  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  poolInfo.queueFamilyIndex = context.queueFamily();
+  SIXWAY_VK(vkCreateCommandPool(device, &poolInfo, nullptr, &pool_));
+  VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  allocInfo.commandPool = pool_;
+  allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  allocInfo.commandBufferCount = 1;
+  SIXWAY_VK(vkAllocateCommandBuffers(device, &allocInfo, &commands_));
+  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  SIXWAY_VK(vkCreateFence(device, &fenceInfo, nullptr, &fence_));
+
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  SIXWAY_VK(vkBeginCommandBuffer(commands_, &begin));
+  if (context.capabilities().timestamps) {
+    VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    queryInfo.queryCount = 2 * maxStages_;
+    SIXWAY_VK(vkCreateQueryPool(device, &queryInfo, nullptr, &queries_));
+    vkCmdResetQueryPool(commands_, queries_, 0, 2 * maxStages_);
+  }
+}
+
+Sequence::~Sequence() {
+  VkDevice device = context_->device();
+  if (queries_) vkDestroyQueryPool(device, queries_, nullptr);
+  vkDestroyFence(device, fence_, nullptr);
+  vkDestroyCommandPool(device, pool_, nullptr);
+}
+
+void Sequence::requireRecording(const char* what) const {
+  if (finished_) throw GpuError(std::string(what) + " after the sequence was finished");
+}
+
+void Sequence::beginStage(std::string name) {
+  requireRecording("beginStage");
+  if (stageOpen_) throw GpuError("stage '" + name + "' begins inside stage '" + stageNames_.back() + "'");
+  if (stageNames_.size() == maxStages_) throw GpuError("more than " + std::to_string(maxStages_) + " timed stages");
+  if (queries_)
+    vkCmdWriteTimestamp2(commands_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_,
+                         2 * static_cast<uint32_t>(stageNames_.size()));
+  stageNames_.push_back(std::move(name));
+  stageOpen_ = true;
+}
+
+void Sequence::endStage() {
+  if (!stageOpen_) throw GpuError("endStage without beginStage");
+  if (queries_)
+    vkCmdWriteTimestamp2(commands_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_,
+                         2 * static_cast<uint32_t>(stageNames_.size()) - 1);
+  stageOpen_ = false;
+}
+
+void Sequence::addTouch(Touch& touch, const Binding& binding) const {
+  auto [handle, access] = std::visit(
+      [](auto& b) -> std::pair<uint64_t, Access> {
+        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, BufferBinding>) return {key(b.buffer->handle()), b.access};
+        else return {key(b.image->handle()), b.access};
+      },
+      binding);
+  if (readsMemory(access)) touch.reads.push_back(handle);
+  if (writesMemory(access)) touch.writes.push_back(handle);
+}
+
+void Sequence::barrierIfHazard(const Touch& touch) {
+  auto in = [](const std::set<uint64_t>& set, uint64_t k) { return set.count(k) > 0; };
+  bool hazard = std::any_of(touch.reads.begin(), touch.reads.end(), [&](uint64_t k) { return in(writtenSinceBarrier_, k); }) ||
+                std::any_of(touch.writes.begin(), touch.writes.end(),
+                            [&](uint64_t k) { return in(writtenSinceBarrier_, k) || in(readSinceBarrier_, k); });
+  if (hazard) {
+    // One global memory barrier orders all earlier writes before all later accesses: between
+    // dependent passes the GPU drains anyway, and it keeps the bookkeeping to two sets.
+    VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    barrier.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    barrier.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+    barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dependency.memoryBarrierCount = 1;
+    dependency.pMemoryBarriers = &barrier;
+    vkCmdPipelineBarrier2(commands_, &dependency);
+    ++barriers_;
+    writtenSinceBarrier_.clear();
+    readSinceBarrier_.clear();
+  }
+  readSinceBarrier_.insert(touch.reads.begin(), touch.reads.end());
+  writtenSinceBarrier_.insert(touch.writes.begin(), touch.writes.end());
+}
+
+void Sequence::pushBindings(const Pipeline& pipeline, const std::vector<Binding>& bindings) {
+  const auto& types = pipeline.bindings();
+  if (bindings.size() != types.size())
+    throw GpuError(pipeline.name() + ": " + std::to_string(bindings.size()) + " bindings given, the shader has " +
+                   std::to_string(types.size()));
+  if (bindings.empty()) return;
+  std::vector<VkDescriptorBufferInfo> bufferInfos(bindings.size());
+  std::vector<VkDescriptorImageInfo> imageInfos(bindings.size());
+  std::vector<VkWriteDescriptorSet> writes(bindings.size());
+  for (uint32_t i = 0; i < bindings.size(); ++i) {
+    VkWriteDescriptorSet& w = writes[i];
+    w = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstBinding = i;
+    w.descriptorCount = 1;
+    const bool wantsBuffer = types[i] == BindingType::StorageBuffer || types[i] == BindingType::UniformBuffer;
+    if (auto* b = std::get_if<BufferBinding>(&bindings[i])) {
+      if (!wantsBuffer) throw GpuError(pipeline.name() + ": binding " + std::to_string(i) + " expects an image");
+      bufferInfos[i] = {b->buffer->handle(), 0, VK_WHOLE_SIZE};
+      w.descriptorType = types[i] == BindingType::StorageBuffer ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
+                                                                : VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+      w.pBufferInfo = &bufferInfos[i];
+    } else {
+      const auto& image = std::get<ImageBinding>(bindings[i]);
+      if (wantsBuffer) throw GpuError(pipeline.name() + ": binding " + std::to_string(i) + " expects a buffer");
+      const bool sampled = types[i] == BindingType::SampledImage;
+      if (sampled != (image.sampler != nullptr))
+        throw GpuError(pipeline.name() + ": binding " + std::to_string(i) +
+                       (sampled ? " is sampled and needs a sampler" : " is a storage image, not sampled"));
+      imageInfos[i] = {sampled ? image.sampler->handle() : VK_NULL_HANDLE, image.image->view(),
+                       VK_IMAGE_LAYOUT_GENERAL};
+      w.descriptorType = sampled ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+      w.pImageInfo = &imageInfos[i];
+    }
+  }
+  context_->cmdPushDescriptorSet(commands_, pipeline.bindPoint(), pipeline.layout(), 0,
+                                 static_cast<uint32_t>(writes.size()), writes.data());
+}
+
+void Sequence::dispatch(const Pipeline& pipeline, const std::vector<Binding>& bindings,
+                        std::span<const std::byte> pushConstants, uint32_t groupsX, uint32_t groupsY,
+                        uint32_t groupsZ) {
+  requireRecording("dispatch");
+  if (pipeline.bindPoint() != VK_PIPELINE_BIND_POINT_COMPUTE)
+    throw GpuError(pipeline.name() + ": dispatch needs a compute pipeline");
+  if (pushConstants.size() != pipeline.pushConstantBytes())
+    throw GpuError(pipeline.name() + ": " + std::to_string(pushConstants.size()) +
+                   " bytes of push constants given, the pipeline takes " + std::to_string(pipeline.pushConstantBytes()));
+  const auto& maxGroups = context_->limits().maxComputeWorkGroupCount;
+  if (groupsX > maxGroups[0] || groupsY > maxGroups[1] || groupsZ > maxGroups[2])
+    throw GpuError(pipeline.name() + ": dispatch of " + std::to_string(groupsX) + "x" + std::to_string(groupsY) + "x" +
+                   std::to_string(groupsZ) + " groups exceeds the device's limit; reduce the grid");
+  Touch touch;
+  for (const Binding& b : bindings) addTouch(touch, b);
+  barrierIfHazard(touch);
+  vkCmdBindPipeline(commands_, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
+  pushBindings(pipeline, bindings);
+  if (!pushConstants.empty())
+    vkCmdPushConstants(commands_, pipeline.layout(), pipeline.stages(), 0,
+                       static_cast<uint32_t>(pushConstants.size()), pushConstants.data());
+  if (groupsX && groupsY && groupsZ) vkCmdDispatch(commands_, groupsX, groupsY, groupsZ);
+}
+
+void Sequence::render(const RenderTargets& targets, std::span<const Draw> draws) {
+  requireRecording("render");
+  const Image* first = targets.colors.empty() ? targets.depth : targets.colors.front();
+  if (!first) throw GpuError("render: no colour or depth target");
+  const uint32_t width = first->desc().width, height = first->desc().height;
+
+  Touch touch;
+  for (const Image* color : targets.colors) addTouch(touch, readsWrites(*color));
+  if (targets.depth) addTouch(touch, readsWrites(*targets.depth));
+  for (const Draw& draw : draws) {
+    for (const Binding& b : draw.bindings) addTouch(touch, b);
+    if (draw.vertices) addTouch(touch, reads(*draw.vertices));
+    if (draw.indices) addTouch(touch, reads(*draw.indices));
+  }
+  barrierIfHazard(touch);
+
+  VkClearValue clearColor{};
+  if (targets.clearColor)
+    std::copy(targets.clearColor->begin(), targets.clearColor->end(), clearColor.color.float32);
+  std::vector<VkRenderingAttachmentInfo> colors;
+  for (const Image* color : targets.colors) colors.push_back(attachment(*color, targets.clearColor.has_value(), clearColor));
+  VkClearValue clearDepth{};
+  clearDepth.depthStencil.depth = targets.clearDepth.value_or(1.0f);
+  VkRenderingAttachmentInfo depth{};
+  if (targets.depth) depth = attachment(*targets.depth, targets.clearDepth.has_value(), clearDepth);
+
+  VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  info.renderArea = {{0, 0}, {width, height}};
+  info.layerCount = 1;
+  info.colorAttachmentCount = static_cast<uint32_t>(colors.size());
+  info.pColorAttachments = colors.data();
+  info.pDepthAttachment = targets.depth ? &depth : nullptr;
+  vkCmdBeginRendering(commands_, &info);
+  // Negative height: clip-space +y is up and image row 0 is the top, as in the rest of sixway.
+  VkViewport viewport{0.0f, float(height), float(width), -float(height), 0.0f, 1.0f};
+  VkRect2D scissor{{0, 0}, {width, height}};
+  vkCmdSetViewport(commands_, 0, 1, &viewport);
+  vkCmdSetScissor(commands_, 0, 1, &scissor);
+  for (const Draw& draw : draws) {
+    if (draw.pipeline->bindPoint() != VK_PIPELINE_BIND_POINT_GRAPHICS)
+      throw GpuError(draw.pipeline->name() + ": render needs a graphics pipeline");
+    if (draw.pushConstants.size() != draw.pipeline->pushConstantBytes())
+      throw GpuError(draw.pipeline->name() + ": push constant size does not match the pipeline");
+    vkCmdBindPipeline(commands_, VK_PIPELINE_BIND_POINT_GRAPHICS, draw.pipeline->handle());
+    pushBindings(*draw.pipeline, draw.bindings);
+    if (!draw.pushConstants.empty())
+      vkCmdPushConstants(commands_, draw.pipeline->layout(), draw.pipeline->stages(), 0,
+                         static_cast<uint32_t>(draw.pushConstants.size()), draw.pushConstants.data());
+    if (draw.vertices) {
+      VkBuffer buffer = draw.vertices->handle();
+      VkDeviceSize offset = 0;
+      vkCmdBindVertexBuffers(commands_, 0, 1, &buffer, &offset);
+    }
+    if (draw.indices) {
+      vkCmdBindIndexBuffer(commands_, draw.indices->handle(), 0, VK_INDEX_TYPE_UINT32);
+      vkCmdDrawIndexed(commands_, draw.count, draw.instances, 0, 0, 0);
+    } else {
+      vkCmdDraw(commands_, draw.count, draw.instances, 0, 0);
+    }
+  }
+  vkCmdEndRendering(commands_);
+}
+
+void Sequence::fill(const Buffer& buffer, uint32_t word) {
+  requireRecording("fill");
+  Touch touch;
+  addTouch(touch, writes(buffer));
+  barrierIfHazard(touch);
+  vkCmdFillBuffer(commands_, buffer.handle(), 0, VK_WHOLE_SIZE, word);
+}
+
+void Sequence::copy(const Buffer& source, const Buffer& destination) {
+  requireRecording("copy");
+  if (destination.size() < source.size())
+    throw GpuError("copy from " + source.name() + " into the smaller " + destination.name());
+  Touch touch;
+  addTouch(touch, reads(source));
+  addTouch(touch, writes(destination));
+  barrierIfHazard(touch);
+  VkBufferCopy region{0, 0, source.size()};
+  vkCmdCopyBuffer(commands_, source.handle(), destination.handle(), 1, &region);
+}
+
+void Sequence::finish() {
+  requireRecording("finish");
+  if (stageOpen_) throw GpuError("stage '" + stageNames_.back() + "' was not ended");
+  SIXWAY_VK(vkEndCommandBuffer(commands_));
+  finished_ = true;
+}
+
+void Sequence::submit() {
+  if (!finished_) finish();
+  VkSubmitInfo submitInfo{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  submitInfo.commandBufferCount = 1;
+  submitInfo.pCommandBuffers = &commands_;
+  SIXWAY_VK(vkResetFences(context_->device(), 1, &fence_));
+  SIXWAY_VK(vkQueueSubmit(context_->queue(), 1, &submitInfo, fence_));
+  SIXWAY_VK(vkWaitForFences(context_->device(), 1, &fence_, VK_TRUE, UINT64_MAX));
+
+  times_.clear();
+  if (!queries_ || stageNames_.empty()) return;
+  std::vector<uint64_t> ticks(2 * stageNames_.size());
+  SIXWAY_VK(vkGetQueryPoolResults(context_->device(), queries_, 0, static_cast<uint32_t>(ticks.size()),
+                                  ticks.size() * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
+                                  VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  const uint32_t bits = context_->capabilities().timestampValidBits;
+  const uint64_t mask = bits >= 64 ? ~0ull : (1ull << bits) - 1;
+  for (size_t i = 0; i < stageNames_.size(); ++i) {
+    const uint64_t elapsed = ((ticks[2 * i + 1] & mask) - (ticks[2 * i] & mask)) & mask;
+    times_.push_back({stageNames_[i], double(elapsed) * context_->capabilities().timestampPeriodNs * 1e-6});
+  }
+}
+
+}  // namespace sixway::gpu

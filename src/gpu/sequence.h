@@ -1,0 +1,130 @@
+#pragma once
+// A recorded sequence of GPU work: dispatches, draws and copies in one command buffer, recorded
+// once and submitted as often as needed (once per frame). Barriers are inserted where a command
+// reads or writes what an earlier one wrote (or writes what an earlier one read), from the access
+// each binding declares. Named stages are bracketed by GPU timestamps.
+#include <vulkan/vulkan.h>
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <set>
+#include <span>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace sixway::gpu {
+
+class Buffer;
+class Context;
+class Image;
+class Pipeline;
+class Sampler;
+
+enum class Access { Read, Write, ReadWrite };
+
+struct BufferBinding {
+  const Buffer* buffer;
+  Access access;
+};
+struct ImageBinding {
+  const Image* image;
+  Access access;
+  const Sampler* sampler = nullptr;  // set for BindingType::SampledImage
+};
+using Binding = std::variant<BufferBinding, ImageBinding>;
+
+inline Binding reads(const Buffer& b) { return BufferBinding{&b, Access::Read}; }
+inline Binding writes(const Buffer& b) { return BufferBinding{&b, Access::Write}; }
+inline Binding readsWrites(const Buffer& b) { return BufferBinding{&b, Access::ReadWrite}; }
+inline Binding reads(const Image& i) { return ImageBinding{&i, Access::Read}; }
+inline Binding writes(const Image& i) { return ImageBinding{&i, Access::Write}; }
+inline Binding readsWrites(const Image& i) { return ImageBinding{&i, Access::ReadWrite}; }
+inline Binding samples(const Image& i, const Sampler& s) { return ImageBinding{&i, Access::Read, &s}; }
+
+struct Draw {
+  const Pipeline* pipeline;
+  std::vector<Binding> bindings;
+  std::vector<std::byte> pushConstants;
+  const Buffer* vertices = nullptr;  // bound at binding 0, or none
+  const Buffer* indices = nullptr;   // uint32 indices, or none
+  uint32_t count = 0;                // vertices, or indices when there is an index buffer
+  uint32_t instances = 1;
+};
+
+struct RenderTargets {
+  std::vector<const Image*> colors;
+  const Image* depth = nullptr;
+  std::optional<std::array<float, 4>> clearColor;  // otherwise the colour images are loaded
+  std::optional<float> clearDepth;
+};
+
+struct StageTime {
+  std::string name;
+  double milliseconds;
+};
+
+template <typename T>
+std::vector<std::byte> pushBytes(const T& value) {
+  auto bytes = std::as_bytes(std::span(&value, 1));
+  return {bytes.begin(), bytes.end()};
+}
+
+class Sequence {
+ public:
+  explicit Sequence(const Context& context, uint32_t maxStages = 64);
+  ~Sequence();
+  Sequence(const Sequence&) = delete;
+  Sequence& operator=(const Sequence&) = delete;
+
+  // Everything recorded between these two is timed as one stage (stages do not nest).
+  void beginStage(std::string name);
+  void endStage();
+
+  void dispatch(const Pipeline& pipeline, const std::vector<Binding>& bindings,
+                std::span<const std::byte> pushConstants, uint32_t groupsX, uint32_t groupsY = 1,
+                uint32_t groupsZ = 1);
+  template <typename Push>
+  void dispatch(const Pipeline& pipeline, const std::vector<Binding>& bindings, const Push& push, uint32_t groupsX,
+                uint32_t groupsY = 1, uint32_t groupsZ = 1) {
+    dispatch(pipeline, bindings, std::as_bytes(std::span(&push, 1)), groupsX, groupsY, groupsZ);
+  }
+  // One dynamic-rendering pass: the barriers for all draws are placed before it begins.
+  void render(const RenderTargets& targets, std::span<const Draw> draws);
+  void fill(const Buffer& buffer, uint32_t word);
+  void copy(const Buffer& source, const Buffer& destination);
+
+  // Ends recording; the sequence can then be submitted any number of times.
+  void finish();
+  // Submits, waits for completion and collects the stage times.
+  void submit();
+  const std::vector<StageTime>& stageTimes() const { return times_; }
+  uint32_t barrierCount() const { return barriers_; }
+
+ private:
+  // The resources touched by a command, for barrier placement.
+  struct Touch {
+    std::vector<uint64_t> reads, writes;
+  };
+  void addTouch(Touch& touch, const Binding& binding) const;
+  void barrierIfHazard(const Touch& touch);
+  void pushBindings(const Pipeline& pipeline, const std::vector<Binding>& bindings);
+  void requireRecording(const char* what) const;
+
+  const Context* context_;
+  VkCommandPool pool_ = VK_NULL_HANDLE;
+  VkCommandBuffer commands_ = VK_NULL_HANDLE;
+  VkFence fence_ = VK_NULL_HANDLE;
+  VkQueryPool queries_ = VK_NULL_HANDLE;
+  uint32_t maxStages_;
+  std::vector<std::string> stageNames_;
+  bool stageOpen_ = false;
+  bool finished_ = false;
+  std::set<uint64_t> writtenSinceBarrier_, readSinceBarrier_;
+  std::vector<StageTime> times_;
+  uint32_t barriers_ = 0;
+};
+
+}  // namespace sixway::gpu
