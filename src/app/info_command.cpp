@@ -35,7 +35,8 @@ nlohmann::json describe(const gpu::Context& context) {
       {"max_compute_shared_memory_bytes", limits.maxComputeSharedMemorySize},
       {"max_compute_workgroup_invocations", limits.maxComputeWorkGroupInvocations},
       {"max_compute_workgroup_count",
-       {limits.maxComputeWorkGroupCount[0], limits.maxComputeWorkGroupCount[1], limits.maxComputeWorkGroupCount[2]}},
+       {limits.maxComputeWorkGroupCount[0], limits.maxComputeWorkGroupCount[1],
+        limits.maxComputeWorkGroupCount[2]}},
       {"max_push_constants_bytes", limits.maxPushConstantsSize},
       {"max_image_dimension_2d", limits.maxImageDimension2D},
       {"max_image_dimension_3d", limits.maxImageDimension3D},
@@ -52,12 +53,15 @@ void printInfo(const nlohmann::json& info) {
   auto yesNo = [](bool b) { return b ? "yes" : "no"; };
   std::printf("Vulkan devices:\n");
   for (const auto& line : info["devices"]) std::printf("  %s\n", line.get<std::string>().c_str());
-  std::printf("using: %s (%s)\n", info["device"].get<std::string>().c_str(), info["type"].get<std::string>().c_str());
+  std::printf("using: %s (%s)\n", info["device"].get<std::string>().c_str(),
+              info["type"].get<std::string>().c_str());
   std::printf("  Vulkan API                 %s\n", info["api_version"].get<std::string>().c_str());
   std::printf("  driver                     %s\n", info["driver"].get<std::string>().c_str());
   std::printf("  device memory              %s\n", gpu::formatBytes(info["device_memory_bytes"]).c_str());
-  std::printf("  storage buffer range       %s\n", gpu::formatBytes(info["max_storage_buffer_range_bytes"]).c_str());
-  std::printf("  compute shared memory      %s\n", gpu::formatBytes(info["max_compute_shared_memory_bytes"]).c_str());
+  std::printf("  storage buffer range       %s\n",
+              gpu::formatBytes(info["max_storage_buffer_range_bytes"]).c_str());
+  std::printf("  compute shared memory      %s\n",
+              gpu::formatBytes(info["max_compute_shared_memory_bytes"]).c_str());
   std::printf("  workgroup invocations      %u\n", info["max_compute_workgroup_invocations"].get<unsigned>());
   std::printf("  push constants             %u B\n", info["max_push_constants_bytes"].get<unsigned>());
   std::printf("  image 2D / 3D side         %u / %u\n", info["max_image_dimension_2d"].get<unsigned>(),

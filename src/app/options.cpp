@@ -6,9 +6,12 @@
 namespace sixway::app {
 
 void CommonOptions::addTo(CLI::App& command) {
-  command.add_option("--device", device, "Vulkan device index (see `sixway info`); default: SIXWAY_DEVICE or the best")
+  command
+      .add_option("--device", device,
+                  "Vulkan device index (see `sixway info`); default: SIXWAY_DEVICE or the best")
       ->check(CLI::NonNegativeNumber);
-  command.add_flag("--validate", validate, "Vulkan validation layers on; every message is printed as 'validation: ...'");
+  command.add_flag("--validate", validate,
+                   "Vulkan validation layers on; every message is printed as 'validation: ...'");
 }
 
 gpu::ContextOptions CommonOptions::contextOptions() const {

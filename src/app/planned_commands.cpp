@@ -26,7 +26,8 @@ CLI::App* planned(CLI::App& app, const char* name, const char* description, cons
   CLI::App* command = app.add_subcommand(name, description);
   options->common.addTo(*command);
   command->callback([name, issue] {
-    throw std::runtime_error(std::string("'sixway ") + name + "' is not built yet: it arrives with issue " + issue);
+    throw std::runtime_error(std::string("'sixway ") + name + "' is not built yet: it arrives with issue " +
+                             issue);
   });
   return command;
 }
@@ -35,7 +36,8 @@ CLI::App* planned(CLI::App& app, const char* name, const char* description, cons
 
 void addPlannedCommands(CLI::App& app) {
   auto o = std::make_shared<PlannedOptions>();
-  CLI::App* sim = planned(app, "sim", "Run the smoke simulation (LBM + advection)", "#3 (smoke simulation)", o);
+  CLI::App* sim =
+      planned(app, "sim", "Run the smoke simulation (LBM + advection)", "#3 (smoke simulation)", o);
   sim->add_option("--scene", o->scene, "Scene JSON")->required();
   sim->add_option("--steps", o->steps, "Lattice steps")->required()->check(CLI::PositiveNumber);
   sim->add_option("--vdb-out", o->out, "Write density/temperature per frame as OpenVDB into this directory");
@@ -69,7 +71,8 @@ void addPlannedCommands(CLI::App& app) {
   eval->add_option("--frames", o->frames, "Frames")->required()->check(CLI::PositiveNumber);
   eval->add_option("--report", o->report, "JSON report")->required();
 
-  CLI::App* bench = planned(app, "bench", "Per-stage GPU timings at fixed sizes", "#9 (evaluation and benchmarks)", o);
+  CLI::App* bench =
+      planned(app, "bench", "Per-stage GPU timings at fixed sizes", "#9 (evaluation and benchmarks)", o);
   bench->add_option("--report", o->report, "JSON report");
 }
 

@@ -1,7 +1,7 @@
 #include "app/report.h"
 
-#include <fstream>
 #include <unistd.h>
+#include <fstream>
 
 #include "io/error.h"
 

@@ -9,7 +9,8 @@
 
 namespace sixway::gpu {
 
-Buffer::Buffer(const Context& context, uint64_t bytes, VkBufferUsageFlags usage, MemoryKind kind, std::string name)
+Buffer::Buffer(const Context& context, uint64_t bytes, VkBufferUsageFlags usage, MemoryKind kind,
+               std::string name)
     : context_(&context), size_(bytes), name_(std::move(name)) {
   if (bytes == 0) throw GpuError(name_ + ": a buffer cannot be empty");
   if (usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) context.requireStorageBufferFits(bytes, name_);
@@ -34,8 +35,9 @@ Buffer::Buffer(const Context& context, uint64_t bytes, VkBufferUsageFlags usage,
     alloc.memoryTypeIndex = context.findMemoryType(requirements.memoryTypeBits, properties);
   } catch (const GpuError&) {  // cached host memory is a preference, coherent host memory a must
     if (kind != MemoryKind::HostReadback) throw;
-    alloc.memoryTypeIndex = context.findMemoryType(
-        requirements.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    alloc.memoryTypeIndex =
+        context.findMemoryType(requirements.memoryTypeBits,
+                               VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
   }
   VkResult result = vkAllocateMemory(context.device(), &alloc, nullptr, &memory_);
   if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY) {
@@ -44,7 +46,8 @@ Buffer::Buffer(const Context& context, uint64_t bytes, VkBufferUsageFlags usage,
   }
   SIXWAY_VK(result);
   SIXWAY_VK(vkBindBufferMemory(context.device(), buffer_, memory_, 0));
-  if (kind != MemoryKind::Device) SIXWAY_VK(vkMapMemory(context.device(), memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
+  if (kind != MemoryKind::Device)
+    SIXWAY_VK(vkMapMemory(context.device(), memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
 }
 
 Buffer Buffer::storage(const Context& context, uint64_t bytes, std::string name) {
@@ -54,9 +57,13 @@ Buffer Buffer::storage(const Context& context, uint64_t bytes, std::string name)
                 MemoryKind::Device, std::move(name));
 }
 
-Buffer::~Buffer() { release(); }
+Buffer::~Buffer() {
+  release();
+}
 
-Buffer::Buffer(Buffer&& other) noexcept { *this = std::move(other); }
+Buffer::Buffer(Buffer&& other) noexcept {
+  *this = std::move(other);
+}
 
 Buffer& Buffer::operator=(Buffer&& other) noexcept {
   if (this != &other) {
@@ -89,7 +96,8 @@ void Buffer::upload(std::span<const std::byte> data, uint64_t offset) {
     std::memcpy(static_cast<std::byte*>(mapped_) + offset, data.data(), data.size());
     return;
   }
-  Buffer staging(*context_, data.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryKind::HostUpload, name_ + " (staging)");
+  Buffer staging(*context_, data.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryKind::HostUpload,
+                 name_ + " (staging)");
   std::memcpy(staging.mapped(), data.data(), data.size());
   submitOnce(*context_, [&](VkCommandBuffer cmd) {
     VkBufferCopy region{0, offset, data.size()};

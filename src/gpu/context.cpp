@@ -25,7 +25,8 @@ VkDebugUtilsMessengerCreateInfoEXT messengerInfo(ValidationLog* log) {
   VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
   info.messageSeverity =
       VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-  info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT;
+  info.messageType =
+      VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT;
   info.pfnUserCallback = onValidationMessage;
   info.pUserData = log;
   return info;
@@ -36,7 +37,8 @@ bool hasLayer(const char* name) {
   vkEnumerateInstanceLayerProperties(&count, nullptr);
   std::vector<VkLayerProperties> layers(count);
   vkEnumerateInstanceLayerProperties(&count, layers.data());
-  return std::any_of(layers.begin(), layers.end(), [&](auto& l) { return std::strcmp(l.layerName, name) == 0; });
+  return std::any_of(layers.begin(), layers.end(),
+                     [&](auto& l) { return std::strcmp(l.layerName, name) == 0; });
 }
 
 bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
@@ -66,17 +68,23 @@ std::string unsuitability(VkPhysicalDevice device) {
   vkGetPhysicalDeviceProperties(device, &props);
   if (props.apiVersion < VK_API_VERSION_1_3) return "needs Vulkan 1.3";
   if (!computeGraphicsFamily(device)) return "has no queue with both compute and graphics";
-  if (!hasDeviceExtension(device, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME)) return "lacks VK_KHR_push_descriptor";
+  if (!hasDeviceExtension(device, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME))
+    return "lacks VK_KHR_push_descriptor";
   return {};
 }
 
 int typeRank(VkPhysicalDeviceType type) {
   switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 4;
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 3;
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 1;
-    default: return 0;
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+      return 4;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+      return 3;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+      return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+      return 1;
+    default:
+      return 0;
   }
 }
 
@@ -85,7 +93,8 @@ std::optional<int> deviceIndexFromEnvironment() {
   if (!value || !*value) return std::nullopt;
   char* end = nullptr;
   long index = std::strtol(value, &end, 10);
-  if (*end != '\0' || index < 0) throw GpuError(std::string("SIXWAY_DEVICE: expected a device index, got '") + value + "'");
+  if (*end != '\0' || index < 0)
+    throw GpuError(std::string("SIXWAY_DEVICE: expected a device index, got '") + value + "'");
   return static_cast<int>(index);
 }
 
@@ -137,7 +146,8 @@ void Context::createInstance(const ContextOptions& options) {
   VkDebugUtilsMessengerCreateInfoEXT debugInfo{};
   if (options.validate) {
     if (!hasLayer(kValidationLayer))
-      throw GpuError("--validate: the Vulkan validation layer is not installed (Debian: vulkan-validationlayers)");
+      throw GpuError(
+          "--validate: the Vulkan validation layer is not installed (Debian: vulkan-validationlayers)");
     validation_ = std::make_unique<ValidationLog>();
     layers.push_back(kValidationLayer);
     extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
@@ -195,7 +205,8 @@ void Context::pickPhysicalDevice(const ContextOptions& options) {
   queueFamily_ = *computeGraphicsFamily(physicalDevice_);
 
   driver_ = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
-  VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES, &driver_};
+  VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES,
+                                              &driver_};
   VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &subgroup};
   vkGetPhysicalDeviceProperties2(physicalDevice_, &props2);
   properties_ = props2.properties;
@@ -212,17 +223,21 @@ void Context::pickPhysicalDevice(const ContextOptions& options) {
       properties_.limits.timestampComputeAndGraphics && capabilities_.timestampValidBits > 0;
   for (uint32_t i = 0; i < memory_.memoryHeapCount; ++i)
     if (memory_.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
-      capabilities_.deviceLocalHeapBytes = std::max<uint64_t>(capabilities_.deviceLocalHeapBytes, memory_.memoryHeaps[i].size);
+      capabilities_.deviceLocalHeapBytes =
+          std::max<uint64_t>(capabilities_.deviceLocalHeapBytes, memory_.memoryHeaps[i].size);
 }
 
 void Context::createDevice(const ContextOptions& options) {
   VkPhysicalDeviceVulkan11Features supported11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
-  VkPhysicalDeviceVulkan12Features supported12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &supported11};
-  VkPhysicalDeviceVulkan13Features supported13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES, &supported12};
+  VkPhysicalDeviceVulkan12Features supported12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
+                                               &supported11};
+  VkPhysicalDeviceVulkan13Features supported13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
+                                               &supported12};
   VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &supported13};
   vkGetPhysicalDeviceFeatures2(physicalDevice_, &supported);
   if (!supported13.synchronization2 || !supported13.dynamicRendering || !supported13.maintenance4)
-    throw GpuError(std::string(properties_.deviceName) + ": needs synchronization2, dynamicRendering, maintenance4");
+    throw GpuError(std::string(properties_.deviceName) +
+                   ": needs synchronization2, dynamicRendering, maintenance4");
 
   // Enable what the stages use; the optional 16-bit paths only where the device has them.
   VkPhysicalDeviceVulkan11Features enable11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
@@ -238,7 +253,8 @@ void Context::createDevice(const ContextOptions& options) {
   VkPhysicalDeviceFeatures2 enable{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &enable13};
   enable.features.shaderInt64 = supported.features.shaderInt64;
   enable.features.fragmentStoresAndAtomics = supported.features.fragmentStoresAndAtomics;
-  enable.features.shaderStorageImageWriteWithoutFormat = supported.features.shaderStorageImageWriteWithoutFormat;
+  enable.features.shaderStorageImageWriteWithoutFormat =
+      supported.features.shaderStorageImageWriteWithoutFormat;
   capabilities_.shaderFloat16 = supported12.shaderFloat16;
   capabilities_.storage16Bit = supported11.storageBuffer16BitAccess;
 
@@ -258,8 +274,8 @@ void Context::createDevice(const ContextOptions& options) {
   info.ppEnabledExtensionNames = extensions.data();
   SIXWAY_VK(vkCreateDevice(physicalDevice_, &info, nullptr, &device_));
   vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
-  cmdPushDescriptorSet =
-      reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
+  cmdPushDescriptorSet = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
+      vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
 }
 
 uint32_t Context::findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required) const {
@@ -287,7 +303,8 @@ std::vector<std::string> listPhysicalDevices(VkInstance instance) {
   for (uint32_t i = 0; i < count; ++i) {
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(devices[i], &props);
-    std::string line = std::to_string(i) + ": " + props.deviceName + " (" + deviceTypeName(props.deviceType) + ")";
+    std::string line =
+        std::to_string(i) + ": " + props.deviceName + " (" + deviceTypeName(props.deviceType) + ")";
     if (std::string why = unsuitability(devices[i]); !why.empty()) line += " — unusable: " + why;
     lines.push_back(line);
   }
@@ -296,21 +313,30 @@ std::vector<std::string> listPhysicalDevices(VkInstance instance) {
 
 const char* deviceTypeName(VkPhysicalDeviceType type) {
   switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
-    default: return "other";
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+      return "discrete GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+      return "integrated GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+      return "virtual GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+      return "CPU";
+    default:
+      return "other";
   }
 }
 
 std::string formatBytes(uint64_t bytes) {
   std::ostringstream out;
   out.precision(3);
-  if (bytes >= (1ull << 30)) out << double(bytes) / double(1ull << 30) << " GiB";
-  else if (bytes >= (1ull << 20)) out << double(bytes) / double(1ull << 20) << " MiB";
-  else if (bytes >= (1ull << 10)) out << double(bytes) / double(1ull << 10) << " KiB";
-  else out << bytes << " B";
+  if (bytes >= (1ull << 30))
+    out << double(bytes) / double(1ull << 30) << " GiB";
+  else if (bytes >= (1ull << 20))
+    out << double(bytes) / double(1ull << 20) << " MiB";
+  else if (bytes >= (1ull << 10))
+    out << double(bytes) / double(1ull << 10) << " KiB";
+  else
+    out << bytes << " B";
   return out.str();
 }
 

@@ -14,17 +14,17 @@
 namespace sixway::gpu {
 
 struct ContextOptions {
-  bool validate = false;                   // Khronos validation layer; every message is counted
-  std::optional<int> deviceIndex;          // --device N; otherwise SIXWAY_DEVICE, then the best device
+  bool validate = false;                        // Khronos validation layer; every message is counted
+  std::optional<int> deviceIndex;               // --device N; otherwise SIXWAY_DEVICE, then the best device
   std::vector<std::string> instanceExtensions;  // e.g. from glfwGetRequiredInstanceExtensions
-  bool presentation = false;               // enable VK_KHR_swapchain on the device
+  bool presentation = false;                    // enable VK_KHR_swapchain on the device
 };
 
 // What the stages need to know about the device to size their work.
 struct DeviceCapabilities {
-  bool shaderFloat16 = false;     // fp16 arithmetic in shaders
-  bool storage16Bit = false;      // 16-bit values in storage buffers
-  bool timestamps = false;        // timestamps on the compute/graphics queue
+  bool shaderFloat16 = false;  // fp16 arithmetic in shaders
+  bool storage16Bit = false;   // 16-bit values in storage buffers
+  bool timestamps = false;     // timestamps on the compute/graphics queue
   double timestampPeriodNs = 1.0;
   uint32_t timestampValidBits = 64;
   uint32_t subgroupSize = 1;

@@ -18,27 +18,35 @@ uint32_t bytesPerTexel(VkFormat format) {
     case VK_FORMAT_B8G8R8A8_SRGB:
     case VK_FORMAT_R32_SFLOAT:
     case VK_FORMAT_D32_SFLOAT:
-    case VK_FORMAT_R16G16_SFLOAT: return 4;
-    case VK_FORMAT_R16_SFLOAT: return 2;
-    case VK_FORMAT_R8_UNORM: return 1;
+    case VK_FORMAT_R16G16_SFLOAT:
+      return 4;
+    case VK_FORMAT_R16_SFLOAT:
+      return 2;
+    case VK_FORMAT_R8_UNORM:
+      return 1;
     case VK_FORMAT_R32G32_SFLOAT:
-    case VK_FORMAT_R16G16B16A16_SFLOAT: return 8;
-    case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
-    default: throw GpuError("image format " + std::to_string(format) + " is not used by sixway");
+    case VK_FORMAT_R16G16B16A16_SFLOAT:
+      return 8;
+    case VK_FORMAT_R32G32B32A32_SFLOAT:
+      return 16;
+    default:
+      throw GpuError("image format " + std::to_string(format) + " is not used by sixway");
   }
 }
 
-bool isDepthFormat(VkFormat format) { return format == VK_FORMAT_D32_SFLOAT; }
+bool isDepthFormat(VkFormat format) {
+  return format == VK_FORMAT_D32_SFLOAT;
+}
 
 Image::Image(const Context& context, const ImageDesc& desc) : context_(&context), desc_(desc) {
   const VkPhysicalDeviceLimits& limits = context.limits();
   const bool is3d = desc.depth > 1;
   const uint32_t maxSide = is3d ? limits.maxImageDimension3D : limits.maxImageDimension2D;
-  if (desc.width == 0 || desc.height == 0 || desc.depth == 0 || desc.width > maxSide || desc.height > maxSide ||
-      desc.depth > maxSide)
-    throw GpuError(desc.name + ": image of " + std::to_string(desc.width) + "x" + std::to_string(desc.height) +
-                   (is3d ? "x" + std::to_string(desc.depth) : "") + " is outside the device's 1.." +
-                   std::to_string(maxSide) + " per side; reduce its size");
+  if (desc.width == 0 || desc.height == 0 || desc.depth == 0 || desc.width > maxSide ||
+      desc.height > maxSide || desc.depth > maxSide)
+    throw GpuError(desc.name + ": image of " + std::to_string(desc.width) + "x" +
+                   std::to_string(desc.height) + (is3d ? "x" + std::to_string(desc.depth) : "") +
+                   " is outside the device's 1.." + std::to_string(maxSide) + " per side; reduce its size");
   if (byteSize() > context.capabilities().deviceLocalHeapBytes)
     throw GpuError(desc.name + ": image of " + formatBytes(byteSize()) + " exceeds the device's memory");
 
@@ -59,11 +67,13 @@ Image::Image(const Context& context, const ImageDesc& desc) : context_(&context)
   vkGetImageMemoryRequirements(context.device(), image_, &requirements);
   VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   alloc.allocationSize = requirements.size;
-  alloc.memoryTypeIndex = context.findMemoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  alloc.memoryTypeIndex =
+      context.findMemoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   SIXWAY_VK(vkAllocateMemory(context.device(), &alloc, nullptr, &memory_));
   SIXWAY_VK(vkBindImageMemory(context.device(), image_, memory_, 0));
 
-  const VkImageAspectFlags aspect = isDepthFormat(desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
+  const VkImageAspectFlags aspect =
+      isDepthFormat(desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
   VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   viewInfo.image = image_;
   viewInfo.viewType = is3d ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
@@ -89,9 +99,13 @@ Image::Image(const Context& context, const ImageDesc& desc) : context_(&context)
   });
 }
 
-Image::~Image() { release(); }
+Image::~Image() {
+  release();
+}
 
-Image::Image(Image&& other) noexcept { *this = std::move(other); }
+Image::Image(Image&& other) noexcept {
+  *this = std::move(other);
+}
 
 Image& Image::operator=(Image&& other) noexcept {
   if (this != &other) {
@@ -123,8 +137,8 @@ namespace {
 
 VkBufferImageCopy wholeImage(const ImageDesc& desc) {
   VkBufferImageCopy region{};
-  region.imageSubresource = {isDepthFormat(desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT,
-                             0, 0, 1};
+  region.imageSubresource = {
+      isDepthFormat(desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
   region.imageExtent = {desc.width, desc.height, desc.depth};
   return region;
 }
@@ -161,8 +175,8 @@ void Image::upload(std::span<const std::byte> texels) {
 
 void Image::download(std::span<std::byte> texels) const {
   if (texels.size() != byteSize())
-    throw GpuError(desc_.name + ": download of " + std::to_string(texels.size()) + " bytes, the image holds " +
-                   std::to_string(byteSize()));
+    throw GpuError(desc_.name + ": download of " + std::to_string(texels.size()) +
+                   " bytes, the image holds " + std::to_string(byteSize()));
   Buffer staging(*context_, byteSize(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryKind::HostReadback,
                  desc_.name + " (readback)");
   submitOnce(*context_, [&](VkCommandBuffer cmd) {
@@ -184,6 +198,8 @@ Sampler::Sampler(const Context& context, VkFilter filter) : context_(&context) {
   SIXWAY_VK(vkCreateSampler(context.device(), &info, nullptr, &sampler_));
 }
 
-Sampler::~Sampler() { vkDestroySampler(context_->device(), sampler_, nullptr); }
+Sampler::~Sampler() {
+  vkDestroySampler(context_->device(), sampler_, nullptr);
+}
 
 }  // namespace sixway::gpu

@@ -1,12 +1,12 @@
 #include "gpu/pipeline.h"
 
+#include <sixway/shader_registry.h>
+#include <unistd.h>
 #include <bit>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
-#include <unistd.h>
-#include <sixway/shader_registry.h>
 
 #include "gpu/check.h"
 #include "gpu/context.h"
@@ -16,10 +16,14 @@ namespace {
 
 VkDescriptorType descriptorType(BindingType type) {
   switch (type) {
-    case BindingType::StorageBuffer: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    case BindingType::UniformBuffer: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    case BindingType::StorageImage: return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-    case BindingType::SampledImage: return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    case BindingType::StorageBuffer:
+      return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    case BindingType::UniformBuffer:
+      return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    case BindingType::StorageImage:
+      return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    case BindingType::SampledImage:
+      return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   }
   return VK_DESCRIPTOR_TYPE_MAX_ENUM;
 }
@@ -57,10 +61,18 @@ SpecConstants& SpecConstants::setWord(uint32_t id, uint32_t word) {
   words_.push_back(word);
   return *this;
 }
-SpecConstants& SpecConstants::set(uint32_t id, uint32_t value) { return setWord(id, value); }
-SpecConstants& SpecConstants::set(uint32_t id, int32_t value) { return setWord(id, std::bit_cast<uint32_t>(value)); }
-SpecConstants& SpecConstants::set(uint32_t id, float value) { return setWord(id, std::bit_cast<uint32_t>(value)); }
-SpecConstants& SpecConstants::set(uint32_t id, bool value) { return setWord(id, value ? 1u : 0u); }
+SpecConstants& SpecConstants::set(uint32_t id, uint32_t value) {
+  return setWord(id, value);
+}
+SpecConstants& SpecConstants::set(uint32_t id, int32_t value) {
+  return setWord(id, std::bit_cast<uint32_t>(value));
+}
+SpecConstants& SpecConstants::set(uint32_t id, float value) {
+  return setWord(id, std::bit_cast<uint32_t>(value));
+}
+SpecConstants& SpecConstants::set(uint32_t id, bool value) {
+  return setWord(id, value ? 1u : 0u);
+}
 
 VkSpecializationInfo SpecConstants::info() const {
   VkSpecializationInfo info{};
@@ -73,9 +85,12 @@ VkSpecializationInfo SpecConstants::info() const {
 
 std::filesystem::path defaultPipelineCacheFile(const Context& context) {
   std::filesystem::path base;
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) base = xdg;
-  else if (const char* home = std::getenv("HOME"); home && *home) base = std::filesystem::path(home) / ".cache";
-  else return {};
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+    base = xdg;
+  else if (const char* home = std::getenv("HOME"); home && *home)
+    base = std::filesystem::path(home) / ".cache";
+  else
+    return {};
   char uuid[2 * VK_UUID_SIZE + 1];
   for (uint32_t i = 0; i < VK_UUID_SIZE; ++i)
     std::snprintf(uuid + 2 * i, 3, "%02x", context.properties().pipelineCacheUUID[i]);
@@ -142,7 +157,8 @@ void Pipeline::release() {
 void Pipeline::createLayout(const std::vector<BindingType>& bindings, uint32_t pushConstantBytes) {
   const VkPhysicalDeviceLimits& limits = context_->limits();
   if (pushConstantBytes > limits.maxPushConstantsSize)
-    throw GpuError(name_ + ": " + std::to_string(pushConstantBytes) + " bytes of push constants, the device allows " +
+    throw GpuError(name_ + ": " + std::to_string(pushConstantBytes) +
+                   " bytes of push constants, the device allows " +
                    std::to_string(limits.maxPushConstantsSize));
   std::vector<VkDescriptorSetLayoutBinding> layoutBindings;
   for (uint32_t i = 0; i < bindings.size(); ++i)
@@ -213,7 +229,8 @@ Pipeline::Pipeline(const Context& context, const PipelineCache& cache, const Gra
   vertexInput.vertexAttributeDescriptionCount = static_cast<uint32_t>(attributes.size());
   vertexInput.pVertexAttributeDescriptions = attributes.data();
 
-  VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+  VkPipelineInputAssemblyStateCreateInfo assembly{
+      VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
   assembly.topology = desc.topology;
   VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
   viewport.viewportCount = 1;
@@ -273,6 +290,8 @@ Pipeline::Pipeline(const Context& context, const PipelineCache& cache, const Gra
   createOrRelease(vkCreateGraphicsPipelines(context.device(), cache.handle(), 1, &info, nullptr, &pipeline_));
 }
 
-Pipeline::~Pipeline() { release(); }
+Pipeline::~Pipeline() {
+  release();
+}
 
 }  // namespace sixway::gpu

@@ -8,12 +8,16 @@
 namespace sixway::gpu {
 namespace {
 
-uint64_t groupsFor(uint64_t count, uint32_t perGroup) { return (count + perGroup - 1) / perGroup; }
+uint64_t groupsFor(uint64_t count, uint32_t perGroup) {
+  return (count + perGroup - 1) / perGroup;
+}
 
 }  // namespace
 
-ReduceStats::ReduceStats(const Context& context, const PipelineCache& cache, uint64_t maxCount) : context_(&context) {
-  if (maxCount == 0 || maxCount > UINT32_MAX) throw GpuError("ReduceStats: count must be 1.." + std::to_string(UINT32_MAX));
+ReduceStats::ReduceStats(const Context& context, const PipelineCache& cache, uint64_t maxCount)
+    : context_(&context) {
+  if (maxCount == 0 || maxCount > UINT32_MAX)
+    throw GpuError("ReduceStats: count must be 1.." + std::to_string(UINT32_MAX));
   auto desc = [](bool fromStats) {
     ComputePipelineDesc d;
     d.shader = "gpu/reduce_stats.comp";
@@ -25,7 +29,8 @@ ReduceStats::ReduceStats(const Context& context, const PipelineCache& cache, uin
   fromValues_ = std::make_unique<Pipeline>(context, cache, desc(false));
   fromStats_ = std::make_unique<Pipeline>(context, cache, desc(true));
   for (uint64_t n = groupsFor(maxCount, kPerGroup);; n = groupsFor(n, kPerGroup)) {
-    levels_.push_back(Buffer::storage(context, n * sizeof(Stats), "reduction level " + std::to_string(levels_.size())));
+    levels_.push_back(
+        Buffer::storage(context, n * sizeof(Stats), "reduction level " + std::to_string(levels_.size())));
     if (n == 1) break;
   }
 }
@@ -41,7 +46,8 @@ void ReduceStats::record(Sequence& sequence, const Buffer& values, uint32_t coun
   do counts.push_back(static_cast<uint32_t>(groupsFor(counts.back(), kPerGroup)));
   while (counts.back() > 1);
   const size_t passes = counts.size() - 1;
-  if (passes > levels_.size()) throw GpuError("ReduceStats: " + std::to_string(count) + " floats exceed its capacity");
+  if (passes > levels_.size())
+    throw GpuError("ReduceStats: " + std::to_string(count) + " floats exceed its capacity");
   for (size_t pass = 0; pass < passes; ++pass) {
     // The binding the pass does not read is given a buffer it may alias harmlessly (read-only).
     const Binding statsIn = pass == 0 ? reads(values) : reads(levels_[pass - 1]);

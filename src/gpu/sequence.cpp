@@ -16,8 +16,12 @@ uint64_t key(Handle handle) {
   return reinterpret_cast<uint64_t>(handle);
 }
 
-bool readsMemory(Access a) { return a != Access::Write; }
-bool writesMemory(Access a) { return a != Access::Read; }
+bool readsMemory(Access a) {
+  return a != Access::Write;
+}
+bool writesMemory(Access a) {
+  return a != Access::Read;
+}
 
 VkRenderingAttachmentInfo attachment(const Image& image, bool clear, VkClearValue value) {
   VkRenderingAttachmentInfo info{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -69,7 +73,8 @@ void Sequence::requireRecording(const char* what) const {
 void Sequence::beginStage(std::string name) {
   requireRecording("beginStage");
   if (stageOpen_) throw GpuError("stage '" + name + "' begins inside stage '" + stageNames_.back() + "'");
-  if (stageNames_.size() == maxStages_) throw GpuError("more than " + std::to_string(maxStages_) + " timed stages");
+  if (stageNames_.size() == maxStages_)
+    throw GpuError("more than " + std::to_string(maxStages_) + " timed stages");
   if (queries_)
     vkCmdWriteTimestamp2(commands_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_,
                          2 * static_cast<uint32_t>(stageNames_.size()));
@@ -88,8 +93,10 @@ void Sequence::endStage() {
 void Sequence::addTouch(Touch& touch, const Binding& binding) const {
   auto [handle, access] = std::visit(
       [](auto& b) -> std::pair<uint64_t, Access> {
-        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, BufferBinding>) return {key(b.buffer->handle()), b.access};
-        else return {key(b.image->handle()), b.access};
+        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, BufferBinding>)
+          return {key(b.buffer->handle()), b.access};
+        else
+          return {key(b.image->handle()), b.access};
       },
       binding);
   if (readsMemory(access)) touch.reads.push_back(handle);
@@ -98,9 +105,11 @@ void Sequence::addTouch(Touch& touch, const Binding& binding) const {
 
 void Sequence::barrierIfHazard(const Touch& touch) {
   auto in = [](const std::set<uint64_t>& set, uint64_t k) { return set.count(k) > 0; };
-  bool hazard = std::any_of(touch.reads.begin(), touch.reads.end(), [&](uint64_t k) { return in(writtenSinceBarrier_, k); }) ||
-                std::any_of(touch.writes.begin(), touch.writes.end(),
-                            [&](uint64_t k) { return in(writtenSinceBarrier_, k) || in(readSinceBarrier_, k); });
+  bool hazard = std::any_of(touch.reads.begin(), touch.reads.end(),
+                            [&](uint64_t k) { return in(writtenSinceBarrier_, k); }) ||
+                std::any_of(touch.writes.begin(), touch.writes.end(), [&](uint64_t k) {
+                  return in(writtenSinceBarrier_, k) || in(readSinceBarrier_, k);
+                });
   if (hazard) {
     // One global memory barrier orders all earlier writes before all later accesses: between
     // dependent passes the GPU drains anyway, and it keeps the bookkeeping to two sets.
@@ -124,8 +133,8 @@ void Sequence::barrierIfHazard(const Touch& touch) {
 void Sequence::pushBindings(const Pipeline& pipeline, const std::vector<Binding>& bindings) {
   const auto& types = pipeline.bindings();
   if (bindings.size() != types.size())
-    throw GpuError(pipeline.name() + ": " + std::to_string(bindings.size()) + " bindings given, the shader has " +
-                   std::to_string(types.size()));
+    throw GpuError(pipeline.name() + ": " + std::to_string(bindings.size()) +
+                   " bindings given, the shader has " + std::to_string(types.size()));
   if (bindings.empty()) return;
   std::vector<VkDescriptorBufferInfo> bufferInfos(bindings.size());
   std::vector<VkDescriptorImageInfo> imageInfos(bindings.size());
@@ -137,21 +146,24 @@ void Sequence::pushBindings(const Pipeline& pipeline, const std::vector<Binding>
     w.descriptorCount = 1;
     const bool wantsBuffer = types[i] == BindingType::StorageBuffer || types[i] == BindingType::UniformBuffer;
     if (auto* b = std::get_if<BufferBinding>(&bindings[i])) {
-      if (!wantsBuffer) throw GpuError(pipeline.name() + ": binding " + std::to_string(i) + " expects an image");
+      if (!wantsBuffer)
+        throw GpuError(pipeline.name() + ": binding " + std::to_string(i) + " expects an image");
       bufferInfos[i] = {b->buffer->handle(), 0, VK_WHOLE_SIZE};
       w.descriptorType = types[i] == BindingType::StorageBuffer ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
                                                                 : VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
       w.pBufferInfo = &bufferInfos[i];
     } else {
       const auto& image = std::get<ImageBinding>(bindings[i]);
-      if (wantsBuffer) throw GpuError(pipeline.name() + ": binding " + std::to_string(i) + " expects a buffer");
+      if (wantsBuffer)
+        throw GpuError(pipeline.name() + ": binding " + std::to_string(i) + " expects a buffer");
       const bool sampled = types[i] == BindingType::SampledImage;
       if (sampled != (image.sampler != nullptr))
         throw GpuError(pipeline.name() + ": binding " + std::to_string(i) +
                        (sampled ? " is sampled and needs a sampler" : " is a storage image, not sampled"));
       imageInfos[i] = {sampled ? image.sampler->handle() : VK_NULL_HANDLE, image.image->view(),
                        VK_IMAGE_LAYOUT_GENERAL};
-      w.descriptorType = sampled ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+      w.descriptorType =
+          sampled ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
       w.pImageInfo = &imageInfos[i];
     }
   }
@@ -167,11 +179,13 @@ void Sequence::dispatch(const Pipeline& pipeline, const std::vector<Binding>& bi
     throw GpuError(pipeline.name() + ": dispatch needs a compute pipeline");
   if (pushConstants.size() != pipeline.pushConstantBytes())
     throw GpuError(pipeline.name() + ": " + std::to_string(pushConstants.size()) +
-                   " bytes of push constants given, the pipeline takes " + std::to_string(pipeline.pushConstantBytes()));
+                   " bytes of push constants given, the pipeline takes " +
+                   std::to_string(pipeline.pushConstantBytes()));
   const auto& maxGroups = context_->limits().maxComputeWorkGroupCount;
   if (groupsX > maxGroups[0] || groupsY > maxGroups[1] || groupsZ > maxGroups[2])
-    throw GpuError(pipeline.name() + ": dispatch of " + std::to_string(groupsX) + "x" + std::to_string(groupsY) + "x" +
-                   std::to_string(groupsZ) + " groups exceeds the device's limit; reduce the grid");
+    throw GpuError(pipeline.name() + ": dispatch of " + std::to_string(groupsX) + "x" +
+                   std::to_string(groupsY) + "x" + std::to_string(groupsZ) +
+                   " groups exceeds the device's limit; reduce the grid");
   Touch touch;
   for (const Binding& b : bindings) addTouch(touch, b);
   barrierIfHazard(touch);
@@ -203,7 +217,8 @@ void Sequence::render(const RenderTargets& targets, std::span<const Draw> draws)
   if (targets.clearColor)
     std::copy(targets.clearColor->begin(), targets.clearColor->end(), clearColor.color.float32);
   std::vector<VkRenderingAttachmentInfo> colors;
-  for (const Image* color : targets.colors) colors.push_back(attachment(*color, targets.clearColor.has_value(), clearColor));
+  for (const Image* color : targets.colors)
+    colors.push_back(attachment(*color, targets.clearColor.has_value(), clearColor));
   VkClearValue clearDepth{};
   clearDepth.depthStencil.depth = targets.clearDepth.value_or(1.0f);
   VkRenderingAttachmentInfo depth{};

@@ -36,13 +36,27 @@ struct ImageBinding {
 };
 using Binding = std::variant<BufferBinding, ImageBinding>;
 
-inline Binding reads(const Buffer& b) { return BufferBinding{&b, Access::Read}; }
-inline Binding writes(const Buffer& b) { return BufferBinding{&b, Access::Write}; }
-inline Binding readsWrites(const Buffer& b) { return BufferBinding{&b, Access::ReadWrite}; }
-inline Binding reads(const Image& i) { return ImageBinding{&i, Access::Read}; }
-inline Binding writes(const Image& i) { return ImageBinding{&i, Access::Write}; }
-inline Binding readsWrites(const Image& i) { return ImageBinding{&i, Access::ReadWrite}; }
-inline Binding samples(const Image& i, const Sampler& s) { return ImageBinding{&i, Access::Read, &s}; }
+inline Binding reads(const Buffer& b) {
+  return BufferBinding{&b, Access::Read};
+}
+inline Binding writes(const Buffer& b) {
+  return BufferBinding{&b, Access::Write};
+}
+inline Binding readsWrites(const Buffer& b) {
+  return BufferBinding{&b, Access::ReadWrite};
+}
+inline Binding reads(const Image& i) {
+  return ImageBinding{&i, Access::Read};
+}
+inline Binding writes(const Image& i) {
+  return ImageBinding{&i, Access::Write};
+}
+inline Binding readsWrites(const Image& i) {
+  return ImageBinding{&i, Access::ReadWrite};
+}
+inline Binding samples(const Image& i, const Sampler& s) {
+  return ImageBinding{&i, Access::Read, &s};
+}
 
 struct Draw {
   const Pipeline* pipeline;
@@ -87,8 +101,8 @@ class Sequence {
                 std::span<const std::byte> pushConstants, uint32_t groupsX, uint32_t groupsY = 1,
                 uint32_t groupsZ = 1);
   template <typename Push>
-  void dispatch(const Pipeline& pipeline, const std::vector<Binding>& bindings, const Push& push, uint32_t groupsX,
-                uint32_t groupsY = 1, uint32_t groupsZ = 1) {
+  void dispatch(const Pipeline& pipeline, const std::vector<Binding>& bindings, const Push& push,
+                uint32_t groupsX, uint32_t groupsY = 1, uint32_t groupsZ = 1) {
     dispatch(pipeline, bindings, std::as_bytes(std::span(&push, 1)), groupsX, groupsY, groupsZ);
   }
   // One dynamic-rendering pass: the barriers for all draws are placed before it begins.

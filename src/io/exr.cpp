@@ -1,1 +1,141 @@
-// placeholder
+#include "io/exr.h"
+
+#include <Imath/half.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
+#include <OpenEXR/ImfVersion.h>
+
+#include <algorithm>
+#include <fstream>
+
+#include "io/error.h"
+#include "io/file_access.h"
+
+namespace sixway::io {
+
+namespace {
+
+// OpenEXR's messages may span lines; ours are one line.
+std::string oneLine(std::string text) {
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  return text;
+}
+
+bool hasExrMagic(const std::filesystem::path& path) {
+  char magic[4] = {};
+  std::ifstream in(path, std::ios::binary);
+  in.read(magic, sizeof(magic));
+  return in && Imf::isImfMagic(magic);
+}
+
+std::string channelList(const Imf::ChannelList& channels) {
+  std::string list;
+  for (auto it = channels.begin(); it != channels.end(); ++it)
+    list += (list.empty() ? "" : ", ") + std::string(it.name());
+  return list;
+}
+
+}  // namespace
+
+void writeExr(const std::filesystem::path& path, const Image& image, ExrPixelType pixelType,
+              const ExrAttributes& attributes) {
+  const std::string source = path.string();
+  requireConsistentImage(source, image);
+  for (std::size_t c = 0; c < image.channels.size(); ++c) {
+    const bool repeated = std::find(image.channels.begin(), image.channels.begin() + c, image.channels[c]) !=
+                          image.channels.begin() + c;
+    if (image.channels[c].empty() || repeated) {
+      throw InputError(source, "channel name '" + image.channels[c] + "' is empty or repeated");
+    }
+  }
+
+  const Imf::PixelType type = pixelType == ExrPixelType::Half ? Imf::HALF : Imf::FLOAT;
+  const std::size_t channelCount = image.channels.size();
+  const std::size_t elementSize = type == Imf::HALF ? sizeof(Imath::half) : sizeof(float);
+  // OpenEXR does not convert on output, so half channels need half values in memory.
+  std::vector<Imath::half> halves;
+  if (type == Imf::HALF) halves.assign(image.pixels.begin(), image.pixels.end());
+  const char* base = type == Imf::HALF ? reinterpret_cast<const char*>(halves.data())
+                                       : reinterpret_cast<const char*>(image.pixels.data());
+
+  AtomicFile file(path);
+  try {
+    Imf::Header header(image.width, image.height);
+    Imf::FrameBuffer frameBuffer;
+    for (std::size_t c = 0; c < channelCount; ++c) {
+      header.channels().insert(image.channels[c], Imf::Channel(type));
+      // Slice takes a non-const pointer for both directions; OutputFile only reads through it.
+      frameBuffer.insert(image.channels[c],
+                         Imf::Slice(type, const_cast<char*>(base) + c * elementSize,
+                                    channelCount * elementSize, channelCount * elementSize * image.width));
+    }
+    // OpenEXR refuses (throws) a string under the name of one of its own attributes of another type.
+    for (const auto& [name, value] : attributes) {
+      header.insert(name, Imf::StringAttribute(value));
+    }
+    Imf::OutputFile out(file.temporaryPath().c_str(), header);
+    out.setFrameBuffer(frameBuffer);
+    out.writePixels(image.height);
+  } catch (const std::exception& error) {
+    throw InputError(source, "cannot write OpenEXR: " + oneLine(error.what()));
+  }
+  file.commit();
+}
+
+ExrImage readExr(const std::filesystem::path& path, const std::vector<std::string>& channels) {
+  const std::string source = path.string();
+  requireRegularFile(path);
+  if (!hasExrMagic(path)) throw InputError(source, "not an OpenEXR file (no OpenEXR magic number)");
+
+  ExrImage result;
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imf::Header& header = file.header();
+    const Imf::ChannelList& fileChannels = header.channels();
+
+    std::vector<std::string> names = channels;
+    if (names.empty()) {
+      for (auto it = fileChannels.begin(); it != fileChannels.end(); ++it) names.emplace_back(it.name());
+    }
+    for (const std::string& name : names) {
+      const Imf::Channel* channel = fileChannels.findChannel(name);
+      if (!channel) {
+        throw InputError(source,
+                         "no channel '" + name + "' (the file has: " + channelList(fileChannels) + ")");
+      }
+      if (channel->xSampling != 1 || channel->ySampling != 1) {
+        throw InputError(source, "channel '" + name + "' is subsampled, which is not supported");
+      }
+    }
+
+    const Imath::Box2i dataWindow = header.dataWindow();
+    Image& image = result.image;
+    image = Image(dataWindow.max.x - dataWindow.min.x + 1, dataWindow.max.y - dataWindow.min.y + 1, names);
+    const std::size_t xStride = names.size() * sizeof(float);
+    const std::size_t yStride = xStride * image.width;
+    Imf::FrameBuffer frameBuffer;
+    for (std::size_t c = 0; c < names.size(); ++c) {
+      frameBuffer.insert(names[c],
+                         Imf::Slice::Make(Imf::FLOAT, image.pixels.data() + c, dataWindow, xStride, yStride));
+    }
+    file.setFrameBuffer(frameBuffer);
+    file.readPixels(dataWindow.min.y, dataWindow.max.y);
+
+    for (auto it = header.begin(); it != header.end(); ++it) {
+      if (const auto* text = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) {
+        result.attributes[it.name()] = text->value();
+      }
+    }
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& error) {
+    throw InputError(source, "cannot read OpenEXR (truncated or corrupt?): " + oneLine(error.what()));
+  }
+  return result;
+}
+
+}  // namespace sixway::io

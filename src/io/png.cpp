@@ -1,1 +1,93 @@
-// placeholder
+#include "io/png.h"
+
+#include <stb/stb_image.h>
+#include <stb/stb_image_write.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <memory>
+
+#include "io/error.h"
+#include "io/file_access.h"
+
+namespace sixway::io {
+
+namespace {
+
+constexpr std::array<unsigned char, 8> kPngSignature = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+
+float srgbEncode(float linear) {
+  return linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+}
+
+uint8_t toByte(float value, bool applySrgb) {
+  const float clipped = value > 0.0f ? std::min(value, 1.0f) : 0.0f;  // also maps NaN to 0
+  return static_cast<uint8_t>(std::lround((applySrgb ? srgbEncode(clipped) : clipped) * 255.0f));
+}
+
+bool hasPngSignature(const std::filesystem::path& path) {
+  std::array<unsigned char, 8> head{};
+  std::ifstream in(path, std::ios::binary);
+  in.read(reinterpret_cast<char*>(head.data()), head.size());
+  return in && head == kPngSignature;
+}
+
+std::vector<std::string> channelNames(int count) {
+  switch (count) {
+    case 1:
+      return {"Y"};
+    case 2:
+      return {"Y", "A"};
+    case 3:
+      return {"R", "G", "B"};
+    default:
+      return {"R", "G", "B", "A"};
+  }
+}
+
+}  // namespace
+
+void writePng(const std::filesystem::path& path, const Image& image, PngEncoding encoding) {
+  const std::string source = path.string();
+  requireConsistentImage(source, image);
+  const int channels = image.channelCount();
+  if (channels > 4) {
+    throw InputError(source, "PNG holds 1 to 4 channels, the image has " + std::to_string(channels));
+  }
+  // Grey+alpha and RGBA keep their last channel (alpha) linear.
+  const bool hasAlpha = channels == 2 || channels == 4;
+  std::vector<uint8_t> bytes(image.pixels.size());
+  for (std::size_t i = 0; i < bytes.size(); ++i) {
+    const bool isAlpha = hasAlpha && static_cast<int>(i % channels) == channels - 1;
+    bytes[i] = toByte(image.pixels[i], encoding == PngEncoding::SRGB && !isAlpha);
+  }
+
+  AtomicFile file(path);
+  if (!stbi_write_png(file.temporaryPath().c_str(), image.width, image.height, channels, bytes.data(),
+                      image.width * channels)) {
+    throw InputError(source, "cannot write the PNG file");
+  }
+  file.commit();
+}
+
+Image readPng(const std::filesystem::path& path) {
+  const std::string source = path.string();
+  requireRegularFile(path);
+  if (!hasPngSignature(path)) throw InputError(source, "not a PNG file (no PNG signature)");
+
+  int width = 0, height = 0, channels = 0;
+  const std::unique_ptr<stbi_uc, void (*)(void*)> bytes(
+      stbi_load(path.c_str(), &width, &height, &channels, 0), stbi_image_free);
+  if (!bytes) {
+    throw InputError(source, std::string("corrupt or truncated PNG file (") + stbi_failure_reason() + ")");
+  }
+
+  Image image(width, height, channelNames(channels));
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = bytes.get()[i] / 255.0f;
+  return image;
+}
+
+}  // namespace sixway::io

@@ -1,1 +1,434 @@
-// placeholder
+#include "io/scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
+#include <nlohmann/json.hpp>
+
+#include "io/file_access.h"
+#include "io/json_reader.h"
+
+namespace sixway::io {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Beyond these a scene is a typo, not a simulation: refuse before anything is allocated.
+constexpr std::int64_t kMaxCells = 512LL * 512 * 512;
+constexpr int kMaxAxisCells = 2048;
+constexpr std::int64_t kMaxSmokeCells = 1024LL * 1024 * 1024;
+constexpr double kMaxStepsPerFrame = 10000;
+
+const Choices<BoundaryType> kBoundaryTypes = {{"no_slip", BoundaryType::NoSlip},
+                                              {"free_slip", BoundaryType::FreeSlip},
+                                              {"outflow", BoundaryType::Outflow},
+                                              {"periodic", BoundaryType::Periodic},
+                                              {"inflow", BoundaryType::Inflow}};
+constexpr std::array<std::string_view, 6> kFaceNames = {"x-", "x+", "y-", "y+", "z-", "z+"};
+
+enum class InletShape { Disk, Box };
+const Choices<InletShape> kInletShapes = {{"disk", InletShape::Disk}, {"box", InletShape::Box}};
+
+enum class ObstacleType { Sphere, Cylinder, Box, Mesh };
+const Choices<ObstacleType> kObstacleTypes = {{"sphere", ObstacleType::Sphere},
+                                              {"cylinder", ObstacleType::Cylinder},
+                                              {"box", ObstacleType::Box},
+                                              {"mesh", ObstacleType::Mesh}};
+
+enum class CameraPathType { Orbit, Dolly };
+const Choices<CameraPathType> kCameraPaths = {{"orbit", CameraPathType::Orbit},
+                                              {"dolly", CameraPathType::Dolly}};
+
+enum class LightType { Directional, Point };
+const Choices<LightType> kLightTypes = {{"directional", LightType::Directional}, {"point", LightType::Point}};
+
+enum class LightPathType { Orbit };  // the only one so far; the key is there to leave room for more
+const Choices<LightPathType> kLightPaths = {{"orbit", LightPathType::Orbit}};
+
+const Choices<GuideLight> kGuideLights = {{"front", GuideLight::Front},   {"top", GuideLight::Top},
+                                          {"bottom", GuideLight::Bottom}, {"left", GuideLight::Left},
+                                          {"right", GuideLight::Right},   {"back", GuideLight::Back}};
+
+// Steps per frame that bring the fastest inflow down to fluid.max_lattice_velocity:
+// lattice speed = speed · (frameDt / steps) / cellSize.
+double stepsForLatticeVelocity(const Scene& s) {
+  return std::ceil(double(s.time.frameDt) * referenceSpeed(s) /
+                   (s.fluid.maxLatticeVelocity * s.grid.cellSize));
+}
+
+glm::vec3 direction(JsonReader& r, std::string_view key, glm::vec3 fallback) {
+  return glm::normalize(r.optional<glm::vec3>(key, fallback, nonZero()));
+}
+
+glm::vec3 direction(JsonReader& r, std::string_view key) {
+  return glm::normalize(r.required<glm::vec3>(key, nonZero()));
+}
+
+std::string showCells(const glm::ivec3& size) {
+  return show(size.x) + "×" + show(size.y) + "×" + show(size.z);
+}
+
+Grid parseGrid(JsonReader& r) {
+  Grid g;
+  g.size = r.required<glm::ivec3>("size", atLeast(8));
+  g.cellSize = r.required<float>("cell_size", positive());
+  g.origin = r.optional<glm::vec3>("origin", g.origin);
+  g.smokeUpres = r.optional<int>("smoke_upres", g.smokeUpres, inRange(1, 4));
+
+  for (int axis = 0; axis < 3; ++axis)
+    if (g.size[axis] > kMaxAxisCells)
+      r.fail("size", std::string("axis ") + "xyz"[axis] + " has " + show(g.size[axis]) +
+                         " cells, more than " + show(kMaxAxisCells) +
+                         "; reduce grid.size (and raise grid.cell_size to keep the domain)");
+  const std::int64_t cells = std::int64_t(g.size.x) * g.size.y * g.size.z;
+  if (cells > kMaxCells)
+    r.fail("size",
+           showCells(g.size) + " = " + std::to_string(cells) +
+               " cells, more than 512³; reduce grid.size (and raise grid.cell_size to keep the domain)");
+  const std::int64_t smokeCells = cells * g.smokeUpres * g.smokeUpres * g.smokeUpres;
+  if (smokeCells > kMaxSmokeCells)
+    r.fail("smoke_upres", "the smoke grid would have " + std::to_string(smokeCells) +
+                              " cells, more than 1024³; reduce grid.smoke_upres or grid.size");
+  return g;
+}
+
+TimeStepping parseTime(JsonReader& r) {
+  TimeStepping t;
+  t.frameDt = r.optional<float>("frame_dt", t.frameDt, positive());
+  t.stepsPerFrame = r.optional<int>("steps_per_frame", t.stepsPerFrame, atLeast(1));
+  return t;
+}
+
+Buoyancy parseBuoyancy(JsonReader& r) {
+  Buoyancy b;
+  b.temperature = r.optional<float>("temperature", b.temperature, atLeast(0));
+  b.density = r.optional<float>("density", b.density);
+  return b;
+}
+
+Fluid parseFluid(JsonReader& r) {
+  Fluid f;
+  f.viscosity = r.maybe<float>("viscosity", positive());
+  f.reynolds = r.maybe<float>("reynolds", positive());
+  const std::optional<float> referenceLength = r.maybe<float>("reference_length", positive());
+  f.smagorinsky = r.optional<float>("smagorinsky", f.smagorinsky, inRange(0, 0.5));
+  f.maxLatticeVelocity = r.optional<float>("max_lattice_velocity", f.maxLatticeVelocity, inRange(0.01, 0.3));
+  f.buoyancy = r.object("buoyancy", parseBuoyancy);
+  f.gravity = r.optional<glm::vec3>("gravity", f.gravity, nonZero());
+  r.finish();  // a misspelt "viscosity" explains the error below better than the error itself
+
+  if (f.viscosity && f.reynolds) r.failHere("give exactly one of viscosity and reynolds, not both");
+  if (!f.viscosity && !f.reynolds) r.failHere("give exactly one of viscosity (m²/s) and reynolds");
+  if (f.reynolds && !referenceLength) r.fail("reference_length", "required key missing (reynolds needs it)");
+  if (f.viscosity && referenceLength) r.fail("reference_length", "not allowed (only used with reynolds)");
+  f.referenceLength = referenceLength.value_or(0);
+  return f;
+}
+
+Boundaries parseBoundaries(JsonReader& r) {
+  Boundaries b;
+  for (int face = 0; face < 6; ++face)
+    b.faces[face] = r.choice(kFaceNames[face], kBoundaryTypes, b.faces[face]);
+  for (int face = 0; face < 6; ++face) {
+    const int opposite = face ^ 1;  // x- <-> x+, ...
+    if (b.faces[face] == BoundaryType::Periodic && b.faces[opposite] != BoundaryType::Periodic)
+      r.fail(kFaceNames[face], "periodic needs the opposite face periodic too (" +
+                                   std::string(kFaceNames[opposite]) + " is not)");
+  }
+  const auto inflow = std::ranges::find(b.faces, BoundaryType::Inflow);
+  if (inflow == b.faces.end()) {
+    r.forbid("wind", "only used by inflow faces, and no face is inflow");
+  } else {
+    const std::string_view face = kFaceNames[inflow - b.faces.begin()];
+    if (!r.has("wind")) r.fail("wind", "required key missing (face " + std::string(face) + " is inflow)");
+    b.wind = r.required<glm::vec3>("wind");
+  }
+  return b;
+}
+
+Inlet parseInlet(JsonReader& r) {
+  Inlet in;
+  switch (r.choice("shape", kInletShapes)) {
+    case InletShape::Disk: {
+      InletDisk disk;
+      disk.center = r.required<glm::vec3>("center");
+      disk.radius = r.required<float>("radius", positive());
+      disk.normal = direction(r, "normal");
+      in.shape = disk;
+      in.velocity = disk.normal * r.optional<float>("velocity", 0.0f, atLeast(0));
+      break;
+    }
+    case InletShape::Box: {
+      InletBox box;
+      box.min = r.required<glm::vec3>("min");
+      box.max = r.required<glm::vec3>("max");
+      if (!glm::all(glm::lessThan(box.min, box.max)))
+        r.fail("max", "must be greater than min on every axis (min " + show(box.min) + ", max " +
+                          show(box.max) + ")");
+      in.shape = box;
+      in.velocity = r.optional<glm::vec3>("velocity", in.velocity);
+      break;
+    }
+  }
+  in.density = r.optional<float>("density", in.density, atLeast(0));
+  in.temperature = r.optional<float>("temperature", in.temperature, atLeast(0));
+  in.start = r.optional<float>("start", in.start, atLeast(0));
+  in.stop = r.optional<float>("stop", in.stop);
+  if (in.stop <= in.start)
+    r.fail("stop", "must be after start (" + show(in.start) + "); got " + show(in.stop));
+  in.noise = r.optional<float>("noise", in.noise, inRange(0, 1));
+  return in;
+}
+
+Keyframe parseKeyframe(JsonReader& r) {
+  Keyframe k;
+  k.time = r.required<float>("time");
+  k.position = r.required<glm::vec3>("position");
+  return k;
+}
+
+Motion parseMotion(JsonReader& r) {
+  Motion m;
+  m.keyframes = r.requiredObjects("keyframes", parseKeyframe, 2);
+  for (std::size_t i = 1; i < m.keyframes.size(); ++i)
+    if (m.keyframes[i].time <= m.keyframes[i - 1].time)
+      r.fail("keyframes[" + std::to_string(i) + "].time", "keyframe times must increase: got " +
+                                                              show(m.keyframes[i].time) + " after " +
+                                                              show(m.keyframes[i - 1].time));
+  m.loop = r.optional<bool>("loop", m.loop);
+  return m;
+}
+
+Obstacle parseObstacle(JsonReader& r, const fs::path& baseDir) {
+  Obstacle o;
+  o.motion = r.optionalObject("motion", parseMotion);
+  // A moving obstacle's position comes from its keyframes alone.
+  auto position = [&](std::string_view key, std::optional<glm::vec3> fallback) {
+    if (o.motion) {
+      r.forbid(key, "the motion keyframes give the position");
+      return o.motion->keyframes.front().position;
+    }
+    return fallback ? r.optional<glm::vec3>(key, *fallback) : r.required<glm::vec3>(key);
+  };
+
+  switch (r.choice("type", kObstacleTypes)) {
+    case ObstacleType::Sphere: {
+      SphereObstacle sphere;
+      sphere.center = position("center", std::nullopt);
+      sphere.radius = r.required<float>("radius", positive());
+      o.shape = sphere;
+      break;
+    }
+    case ObstacleType::Cylinder: {
+      CylinderObstacle cylinder;
+      cylinder.center = position("center", std::nullopt);
+      cylinder.radius = r.required<float>("radius", positive());
+      cylinder.height = r.required<float>("height", positive());
+      cylinder.axis = direction(r, "axis", cylinder.axis);
+      o.shape = cylinder;
+      break;
+    }
+    case ObstacleType::Box: {
+      BoxObstacle box;
+      box.center = position("center", std::nullopt);
+      box.size = r.required<glm::vec3>("size", positive());
+      o.shape = box;
+      break;
+    }
+    case ObstacleType::Mesh: {
+      MeshObstacle mesh;
+      mesh.file = fs::absolute(baseDir / r.required<std::string>("file")).lexically_normal();
+      std::error_code ec;
+      if (!fs::is_regular_file(mesh.file, ec)) r.fail("file", "mesh file not found: " + mesh.file.string());
+      mesh.scale = r.optional<float>("scale", mesh.scale, positive());
+      mesh.translate = position("translate", mesh.translate);
+      mesh.rotateDeg = r.optional<glm::vec3>("rotate_deg", mesh.rotateDeg);
+      o.shape = mesh;
+      break;
+    }
+  }
+  o.shadows = r.optional<bool>("shadows", o.shadows);
+  return o;
+}
+
+EmissionKey parseEmissionKey(JsonReader& r) {
+  EmissionKey k;
+  k.temperature = r.required<float>("temperature");
+  k.color = r.required<glm::vec3>("color", atLeast(0));
+  return k;
+}
+
+Emission parseEmission(JsonReader& r) {
+  Emission e;
+  e.intensity = r.optional<float>("intensity", e.intensity, atLeast(0));
+  if (e.intensity > 0 && !r.has("ramp")) r.fail("ramp", "required key missing (intensity > 0 needs it)");
+  e.ramp = r.objects("ramp", parseEmissionKey, 2);
+  for (std::size_t i = 1; i < e.ramp.size(); ++i)
+    if (e.ramp[i].temperature <= e.ramp[i - 1].temperature)
+      r.fail("ramp[" + std::to_string(i) + "].temperature", "ramp temperatures must increase: got " +
+                                                                show(e.ramp[i].temperature) + " after " +
+                                                                show(e.ramp[i - 1].temperature));
+  return e;
+}
+
+Smoke parseSmoke(JsonReader& r) {
+  Smoke s;
+  s.extinction = r.optional<float>("extinction", s.extinction, positive());
+  s.albedo = r.optional<float>("albedo", s.albedo, inRange(0, 1));
+  s.phaseG = r.optional<float>("phase_g", s.phaseG, inRange(-0.99, 0.99));
+  s.dissipation = r.optional<float>("dissipation", s.dissipation, atLeast(0));
+  s.emission = r.object("emission", parseEmission);
+  return s;
+}
+
+std::variant<CameraOrbit, CameraDolly> parseCameraPath(JsonReader& r) {
+  if (r.choice("type", kCameraPaths) == CameraPathType::Orbit)
+    return CameraOrbit{.degreesPerFrame = r.required<float>("degrees_per_frame")};
+  CameraDolly dolly;
+  dolly.endPosition = r.required<glm::vec3>("end_position");
+  dolly.frames = r.required<int>("frames", atLeast(1));
+  return dolly;
+}
+
+Camera parseCamera(JsonReader& r) {
+  Camera c;
+  c.position = r.required<glm::vec3>("position");
+  c.target = r.required<glm::vec3>("target");
+  if (glm::distance(c.position, c.target) < 1e-6f)
+    r.fail("target", "must differ from camera.position (both are " + show(c.position) + ")");
+  c.up = direction(r, "up", c.up);
+  if (glm::length(glm::cross(glm::normalize(c.target - c.position), c.up)) < 1e-3f)
+    r.fail("up", "must not be parallel to the view direction (target - position)");
+  c.fovDeg = r.optional<float>("fov_deg", c.fovDeg, inRange(1, 170));
+  c.path = r.optionalObject("path", parseCameraPath);
+  if (c.path && std::holds_alternative<CameraDolly>(*c.path) &&
+      glm::distance(std::get<CameraDolly>(*c.path).endPosition, c.target) < 1e-6f)
+    r.fail("path.end_position", "must differ from camera.target");
+  return c;
+}
+
+LightOrbit parseLightOrbit(JsonReader& r, bool directional) {
+  r.choice("type", kLightPaths);
+  LightOrbit o;
+  if (directional)
+    r.forbid("center", "a directional light has no position; its direction turns about axis");
+  else
+    o.center = r.required<glm::vec3>("center");
+  o.axis = direction(r, "axis", o.axis);
+  o.degreesPerFrame = r.required<float>("degrees_per_frame");
+  return o;
+}
+
+Light parseLight(JsonReader& r) {
+  Light l;
+  switch (r.choice("type", kLightTypes)) {
+    case LightType::Directional:
+      l.source = DirectionalLight{.direction = direction(r, "direction")};
+      break;
+    case LightType::Point:
+      l.source = PointLight{.position = r.required<glm::vec3>("position")};
+      break;
+  }
+  l.color = r.optional<glm::vec3>("color", l.color, atLeast(0));
+  l.intensity = r.optional<float>("intensity", l.intensity, atLeast(0));
+  l.shadows = r.optional<bool>("shadows", l.shadows);
+  const bool directional = std::holds_alternative<DirectionalLight>(l.source);
+  l.path = r.optionalObject("path", [directional](JsonReader& p) { return parseLightOrbit(p, directional); });
+  return l;
+}
+
+Ambient parseAmbient(JsonReader& r) {
+  const std::optional<glm::vec3> color = r.maybe<glm::vec3>("color", atLeast(0));
+  const auto sh = r.maybe<std::vector<glm::vec3>>("sh", [](const std::vector<glm::vec3>& c) -> std::string {
+    return c.size() == 4 ? ""
+                         : "expected 4 coefficients L0, L1x, L1y, L1z (got " + std::to_string(c.size()) + ")";
+  });
+  r.finish();  // a misspelt key explains the errors below better
+  if (color && sh) r.failHere("give exactly one of color and sh, not both");
+  if (color) return AmbientColor{.color = *color};
+  if (!sh) r.failHere("give exactly one of color and sh");
+  AmbientSh out;
+  std::ranges::copy(*sh, out.coefficients.begin());
+  return out;
+}
+
+RenderSettings parseRender(JsonReader& r) {
+  RenderSettings s;
+  s.width = r.optional<int>("width", s.width, inRange(16, 8192));
+  s.height = r.optional<int>("height", s.height, inRange(16, 8192));
+  s.lightmapSize = r.optional<int>("lightmap_size", s.lightmapSize, both(inRange(16, 4096), multipleOf(16)));
+  s.guideStepVoxels = r.optional<float>("guide_step_voxels", s.guideStepVoxels, positive());
+  if (const auto names = r.maybe<std::vector<std::string>>("guide_lights")) {
+    if (names->empty()) r.fail("guide_lights", "needs at least one light");
+    s.guideLights.clear();
+    for (std::size_t i = 0; i < names->size(); ++i) {
+      const std::string key = "guide_lights[" + std::to_string(i) + "]";
+      const GuideLight light = r.pick(key, (*names)[i], kGuideLights);
+      if (std::ranges::count(s.guideLights, light) > 0)
+        r.fail(key, "\"" + (*names)[i] + "\" is listed twice");
+      s.guideLights.push_back(light);
+    }
+  }
+  s.background = r.optional<glm::vec3>("background", s.background, atLeast(0));
+  s.shellThreshold = r.optional<float>("shell_threshold", s.shellThreshold, inOpenRange(0, 1));
+  s.seed = r.optional<std::uint32_t>("seed", s.seed);
+  return s;
+}
+
+}  // namespace
+
+Scene parseScene(const nlohmann::json& j, std::string_view sourceName, const fs::path& baseDir) {
+  JsonReader r(j, "", sourceName);
+  Scene s;
+  s.name = r.optional<std::string>("name", fs::path(sourceName).stem().string());
+  s.grid = r.object("grid", parseGrid);
+  s.time = r.object("time", parseTime);
+  s.fluid = r.object("fluid", parseFluid);
+  s.boundaries = r.object("boundaries", parseBoundaries);
+  s.inlets = r.objects("inlets", parseInlet);
+  s.obstacles = r.objects("obstacles", [&baseDir](JsonReader& o) { return parseObstacle(o, baseDir); });
+  s.smoke = r.object("smoke", parseSmoke);
+  s.camera = r.object("camera", parseCamera);
+  s.lights = r.objects("lights", parseLight);
+  s.ambient = r.optionalObject("ambient", parseAmbient);
+  s.render = r.object("render", parseRender);
+  r.finish();
+
+  // Checks that need several sections.
+  if (s.fluid.reynolds && referenceSpeed(s) <= 0)
+    r.fail("fluid.reynolds", "needs a reference speed, but no inlet has a velocity and no face is inflow");
+  if (const double steps = stepsForLatticeVelocity(s); steps > kMaxStepsPerFrame)
+    r.fail("time.frame_dt", "the fastest inflow (" + show(referenceSpeed(s)) + " m/s) would need " +
+                                show(steps) +
+                                " LBM steps per frame; reduce time.frame_dt or the inflow speed, or raise "
+                                "grid.cell_size or fluid.max_lattice_velocity");
+  return s;
+}
+
+Scene loadScene(const fs::path& file) {
+  const std::vector<uint8_t> bytes = readFileBytes(file);
+  const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  const fs::path baseDir = file.has_parent_path() ? file.parent_path() : fs::path(".");
+  return parseScene(parseJsonText(text, file.string()), file.string(), baseDir);
+}
+
+float referenceSpeed(const Scene& scene) {
+  float speed = 0;
+  for (const Inlet& inlet : scene.inlets) speed = std::max(speed, glm::length(inlet.velocity));
+  if (std::ranges::count(scene.boundaries.faces, BoundaryType::Inflow) > 0)
+    speed = std::max(speed, glm::length(scene.boundaries.wind));
+  return speed;
+}
+
+float kinematicViscosity(const Scene& scene) {
+  const Fluid& f = scene.fluid;
+  return f.viscosity ? *f.viscosity : referenceSpeed(scene) * f.referenceLength / *f.reynolds;
+}
+
+int lbmStepsPerFrame(const Scene& scene) {
+  return std::max(scene.time.stepsPerFrame, static_cast<int>(stepsForLatticeVelocity(scene)));
+}
+
+}  // namespace sixway::io

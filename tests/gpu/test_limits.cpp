@@ -31,7 +31,8 @@ TEST_F(LimitsTest, StorageBufferBeyondTheBindableRangeIsRefused) {
 TEST_F(LimitsTest, ImageLargerThanTheDeviceAllowsIsRefused) {
   const uint32_t side = context().limits().maxImageDimension2D + 1;
   try {
-    gpu::Image image(context(), {side, 4, 1, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_STORAGE_BIT, "lightmap"});
+    gpu::Image image(context(),
+                     {side, 4, 1, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_STORAGE_BIT, "lightmap"});
     FAIL() << "no error";
   } catch (const gpu::GpuError& e) {
     EXPECT_THAT(e.what(), HasSubstr("lightmap: image of"));
@@ -46,21 +47,24 @@ TEST_F(LimitsTest, EmptyBufferIsRefused) {
 TEST_F(LimitsTest, DispatchMismatchesAreRefusedWhileRecording) {
   gpu::ComputePipelineDesc desc;
   desc.shader = "gpu/reduce_stats.comp";
-  desc.bindings = {gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer};
+  desc.bindings = {gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer,
+                   gpu::BindingType::StorageBuffer};
   desc.pushConstantBytes = 4;
   desc.spec.set(0, 64u);
   gpu::Pipeline pipeline(context(), pipelineCache(), desc);
   gpu::Buffer buffer = gpu::Buffer::storage(context(), 1024, "b");
   gpu::Sequence sequence(context());
   const uint32_t count = 1;
-  EXPECT_THROW(sequence.dispatch(pipeline, {gpu::reads(buffer)}, count, 1), gpu::GpuError);  // 1 of 3 bindings
+  EXPECT_THROW(sequence.dispatch(pipeline, {gpu::reads(buffer)}, count, 1),
+               gpu::GpuError);  // 1 of 3 bindings
   const uint64_t wrongPush = 0;
-  EXPECT_THROW(sequence.dispatch(pipeline, {gpu::reads(buffer), gpu::reads(buffer), gpu::writes(buffer)}, wrongPush, 1),
+  EXPECT_THROW(sequence.dispatch(pipeline, {gpu::reads(buffer), gpu::reads(buffer), gpu::writes(buffer)},
+                                 wrongPush, 1),
                gpu::GpuError);
   const uint32_t tooMany = context().limits().maxComputeWorkGroupCount[0] + 1;
-  EXPECT_THROW(
-      sequence.dispatch(pipeline, {gpu::reads(buffer), gpu::reads(buffer), gpu::writes(buffer)}, count, tooMany),
-      gpu::GpuError);
+  EXPECT_THROW(sequence.dispatch(pipeline, {gpu::reads(buffer), gpu::reads(buffer), gpu::writes(buffer)},
+                                 count, tooMany),
+               gpu::GpuError);
 }
 
 TEST_F(LimitsTest, UnknownShaderNameIsAnError) {

@@ -76,7 +76,8 @@ TEST_P(ReduceStatsTest, MatchesCpuReference) {
 }
 
 // Sizes around the 2048-value workgroup tile, and ones that need two and three passes.
-INSTANTIATE_TEST_SUITE_P(Sizes, ReduceStatsTest, ::testing::Values(1u, 7u, 2047u, 2048u, 2049u, 300001u, 4200000u));
+INSTANTIATE_TEST_SUITE_P(Sizes, ReduceStatsTest,
+                         ::testing::Values(1u, 7u, 2047u, 2048u, 2049u, 300001u, 4200000u));
 
 TEST_F(ReduceStatsTest, FindsTheFirstNonFiniteValue) {
   std::vector<float> values(70000, 1.0f);

@@ -1,1 +1,433 @@
-// placeholder: filled by the io work
+#include "io/scene.h"
+
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <numbers>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "io/error.h"
+#include "support/temp_dir.h"
+
+namespace sixway::io {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using test::TempDir;
+
+// Only the required keys.
+json minimalScene() {
+  return R"({
+    "grid": {"size": [16, 32, 16], "cell_size": 0.05},
+    "fluid": {"viscosity": 1.5e-5},
+    "camera": {"position": [0, 1, 3], "target": [0, 1, 0]}
+  })"_json;
+}
+
+// The minimal scene with `patch` merged in (RFC 7386: objects merge, arrays and values replace).
+json minimalWith(const json& patch) {
+  json scene = minimalScene();
+  scene.merge_patch(patch);
+  return scene;
+}
+
+void writeFile(const fs::path& path, const std::string& text) {
+  fs::create_directories(path.parent_path());
+  std::ofstream(path) << text;
+}
+
+// The message must be one line: "<source>: <key>: <reason...>".
+::testing::AssertionResult namesKeyAndReason(const std::string& message, const std::string& source,
+                                             const std::string& key, const std::string& reason) {
+  const std::string prefix = source + ": " + key + ": ";
+  if (message.rfind(prefix, 0) != 0)
+    return ::testing::AssertionFailure() << "\"" << message << "\" does not start with \"" << prefix << "\"";
+  if (message.find(reason, prefix.size()) == std::string::npos)
+    return ::testing::AssertionFailure() << "\"" << message << "\" does not say \"" << reason << "\"";
+  if (message.find('\n') != std::string::npos)
+    return ::testing::AssertionFailure() << "\"" << message << "\" is more than one line";
+  return ::testing::AssertionSuccess();
+}
+
+std::string errorOf(const std::function<void()>& load) {
+  try {
+    load();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no InputError)";
+}
+
+::testing::AssertionResult rejected(const json& scene, const std::string& key, const std::string& reason,
+                                    const fs::path& baseDir = ".") {
+  const std::string message = errorOf([&] { parseScene(scene, "scenes/bad.json", baseDir); });
+  return namesKeyAndReason(message, "scenes/bad.json", key, reason);
+}
+
+void expectVec(const glm::vec3& actual, const glm::vec3& expected) {
+  EXPECT_NEAR(actual.x, expected.x, 1e-6f);
+  EXPECT_NEAR(actual.y, expected.y, 1e-6f);
+  EXPECT_NEAR(actual.z, expected.z, 1e-6f);
+}
+
+// --- valid scenes ---------------------------------------------------------------------------------
+
+TEST(SceneTest, ShippedPlumeLoads) {
+  const Scene s = loadScene(fs::path(SIXWAY_ASSETS_DIR) / "scenes" / "plume.json");
+  EXPECT_EQ(s.name, "plume");
+  EXPECT_EQ(s.grid.size, glm::ivec3(64, 128, 64));
+  EXPECT_FLOAT_EQ(s.grid.cellSize, 0.025f);
+  expectVec(s.grid.origin, {-0.8f, 0, -0.8f});
+  EXPECT_EQ(s.boundaries.faces[Boundaries::YMinus], BoundaryType::NoSlip);
+  EXPECT_EQ(s.boundaries.faces[Boundaries::YPlus], BoundaryType::Outflow);
+
+  ASSERT_EQ(s.inlets.size(), 1u);
+  const auto& disk = std::get<InletDisk>(s.inlets[0].shape);
+  EXPECT_FLOAT_EQ(disk.radius, 0.1f);
+  expectVec(disk.normal, {0, 1, 0});
+  expectVec(s.inlets[0].velocity, {0, 1, 0});
+  EXPECT_FLOAT_EQ(s.inlets[0].temperature, 1);
+  EXPECT_GT(s.fluid.buoyancy.temperature, 0);  // a plume rises because it is hot
+
+  ASSERT_EQ(s.obstacles.size(), 1u);
+  const auto& cylinder = std::get<CylinderObstacle>(s.obstacles[0].shape);
+  expectVec(cylinder.center, {0, 1.1f, 0});
+  expectVec(cylinder.axis, {0, 0, 1});
+  EXPECT_FALSE(s.obstacles[0].motion);
+
+  ASSERT_EQ(s.lights.size(), 2u);
+  const auto& sun = std::get<DirectionalLight>(s.lights[0].source);
+  expectVec(sun.direction, glm::vec3(1, 1.5f, 0.5f) / std::sqrt(1 + 2.25f + 0.25f));
+  ASSERT_TRUE(s.lights[0].path);
+  EXPECT_FLOAT_EQ(s.lights[0].path->degreesPerFrame, 1);
+  EXPECT_TRUE(std::holds_alternative<PointLight>(s.lights[1].source));
+  EXPECT_FALSE(s.lights[1].path);
+
+  expectVec(s.camera.position, {0, 1.4f, 4.5f});
+  EXPECT_FLOAT_EQ(s.camera.fovDeg, 45);
+  EXPECT_TRUE(s.ambient && std::holds_alternative<AmbientColor>(*s.ambient));
+  EXPECT_EQ(s.render.width, 512);
+  EXPECT_FLOAT_EQ(kinematicViscosity(s), 1.5e-5f);
+  EXPECT_EQ(lbmStepsPerFrame(s), 14);  // 1 m/s · (1/30 s / 14) / 2.5 cm = 0.095 ≤ 0.1
+}
+
+TEST(SceneTest, MinimalSceneGetsDefaults) {
+  const Scene s = parseScene(minimalScene(), "scenes/minimal.json", ".");
+  EXPECT_EQ(s.name, "minimal");
+  EXPECT_EQ(s.grid.size, glm::ivec3(16, 32, 16));
+  expectVec(s.grid.origin, {0, 0, 0});
+  EXPECT_EQ(s.grid.smokeUpres, 1);
+  EXPECT_FLOAT_EQ(s.time.frameDt, 1.0f / 30);
+  EXPECT_EQ(s.time.stepsPerFrame, 4);
+
+  EXPECT_FLOAT_EQ(*s.fluid.viscosity, 1.5e-5f);
+  EXPECT_FALSE(s.fluid.reynolds);
+  EXPECT_FLOAT_EQ(s.fluid.smagorinsky, 0.1f);
+  EXPECT_FLOAT_EQ(s.fluid.maxLatticeVelocity, 0.1f);
+  EXPECT_EQ(s.fluid.buoyancy.temperature, 0);
+  EXPECT_EQ(s.fluid.buoyancy.density, 0);
+  expectVec(s.fluid.gravity, {0, -9.81f, 0});
+
+  for (int face = 0; face < 6; ++face)
+    EXPECT_EQ(s.boundaries.faces[face],
+              face == Boundaries::YMinus ? BoundaryType::NoSlip : BoundaryType::Outflow);
+  expectVec(s.boundaries.wind, {0, 0, 0});
+  EXPECT_TRUE(s.inlets.empty());
+  EXPECT_TRUE(s.obstacles.empty());
+
+  EXPECT_FLOAT_EQ(s.smoke.extinction, 20);
+  EXPECT_FLOAT_EQ(s.smoke.albedo, 0.9f);
+  EXPECT_FLOAT_EQ(s.smoke.phaseG, 0.2f);
+  EXPECT_EQ(s.smoke.dissipation, 0);
+  EXPECT_EQ(s.smoke.emission.intensity, 0);
+  EXPECT_TRUE(s.smoke.emission.ramp.empty());
+
+  expectVec(s.camera.up, {0, 1, 0});
+  EXPECT_FLOAT_EQ(s.camera.fovDeg, 40);
+  EXPECT_FALSE(s.camera.path);
+  EXPECT_TRUE(s.lights.empty());
+  EXPECT_FALSE(s.ambient);
+
+  EXPECT_EQ(s.render.width, 256);
+  EXPECT_EQ(s.render.height, 256);
+  EXPECT_EQ(s.render.lightmapSize, 128);
+  EXPECT_FLOAT_EQ(s.render.guideStepVoxels, 3);
+  EXPECT_EQ(s.render.guideLights, (std::vector{GuideLight::Front, GuideLight::Top, GuideLight::Bottom}));
+  expectVec(s.render.background, {0, 0, 0});
+  EXPECT_FLOAT_EQ(s.render.shellThreshold, 0.1f);
+  EXPECT_EQ(s.render.seed, 1u);
+
+  EXPECT_EQ(lbmStepsPerFrame(s), 4);  // nothing flows in
+}
+
+TEST(SceneTest, OtherShapesLightsAndPathsAreRead) {
+  const Scene s = parseScene(minimalWith(R"({
+    "boundaries": {"x-": "inflow", "z-": "periodic", "z+": "periodic", "wind": [2, 0, 0]},
+    "inlets": [{"shape": "box", "min": [0, 0, 0], "max": [0.1, 0.1, 0.1], "velocity": [0, 0.5, 0],
+                "start": 1, "stop": 2}],
+    "obstacles": [{"type": "sphere", "center": [0.4, 0.4, 0.4], "radius": 0.1, "shadows": false},
+                  {"type": "box", "size": [0.1, 0.2, 0.3],
+                   "motion": {"keyframes": [{"time": 0, "position": [1, 2, 3]},
+                                            {"time": 1, "position": [1, 3, 3]}], "loop": true}}],
+    "smoke": {"emission": {"intensity": 2, "ramp": [{"temperature": 0, "color": [0, 0, 0]},
+                                                    {"temperature": 1, "color": [4, 1, 0]}]}},
+    "camera": {"up": [0, 2, 0], "path": {"type": "dolly", "end_position": [0, 1, 2], "frames": 60}},
+    "lights": [{"type": "point", "position": [1, 1, 1],
+                "path": {"type": "orbit", "center": [0, 1, 0], "degrees_per_frame": 2}}],
+    "ambient": {"sh": [[0.1, 0.1, 0.1], [0, 0, 0], [0, 0.05, 0], [0, 0, 0]]},
+    "render": {"guide_lights": ["front", "left", "right"], "seed": 4000000000}
+  })"_json),
+                             "s.json", ".");
+  EXPECT_EQ(s.boundaries.faces[Boundaries::XMinus], BoundaryType::Inflow);
+  EXPECT_EQ(s.boundaries.faces[Boundaries::ZPlus], BoundaryType::Periodic);
+  expectVec(s.inlets[0].velocity, {0, 0.5f, 0});
+  EXPECT_FLOAT_EQ(s.inlets[0].stop, 2);
+  EXPECT_FLOAT_EQ(referenceSpeed(s), 2);  // the wind is faster than the inlet
+
+  EXPECT_FALSE(s.obstacles[0].shadows);
+  const auto& box = std::get<BoxObstacle>(s.obstacles[1].shape);
+  expectVec(box.center, {1, 2, 3});  // the first keyframe
+  EXPECT_TRUE(s.obstacles[1].motion->loop);
+
+  EXPECT_EQ(s.smoke.emission.ramp.size(), 2u);
+  expectVec(s.camera.up, {0, 1, 0});
+  EXPECT_EQ(std::get<CameraDolly>(*s.camera.path).frames, 60);
+  EXPECT_FLOAT_EQ(s.lights[0].intensity, std::numbers::pi_v<float>);
+  expectVec(s.lights[0].path->center, {0, 1, 0});
+  EXPECT_FLOAT_EQ(std::get<AmbientSh>(*s.ambient).coefficients[2].y, 0.05f);
+  EXPECT_EQ(s.render.guideLights, (std::vector{GuideLight::Front, GuideLight::Left, GuideLight::Right}));
+  EXPECT_EQ(s.render.seed, 4000000000u);
+}
+
+TEST(SceneTest, ReynoldsUsesTheFastestInlet) {
+  const Scene s = parseScene(minimalWith(R"({
+    "fluid": {"viscosity": null, "reynolds": 1000, "reference_length": 0.2, "max_lattice_velocity": 0.1},
+    "inlets": [{"shape": "disk", "center": [0.4, 0, 0.4], "radius": 0.1, "normal": [0, 3, 0], "velocity": 1},
+               {"shape": "disk", "center": [0.4, 0, 0.4], "radius": 0.1, "normal": [0, 1, 0], "velocity": 2}]
+  })"_json),
+                             "s.json", ".");
+  expectVec(std::get<InletDisk>(s.inlets[0].shape).normal, {0, 1, 0});
+  EXPECT_FLOAT_EQ(referenceSpeed(s), 2);
+  EXPECT_FLOAT_EQ(kinematicViscosity(s), 2 * 0.2f / 1000);
+  EXPECT_EQ(lbmStepsPerFrame(s), 14);  // ceil(2 m/s · 1/30 s / (0.1 · 0.05 m)) = ceil(13.3)
+}
+
+TEST(SceneTest, MeshPathIsResolvedAgainstTheSceneFile) {
+  TempDir dir;
+  writeFile(dir / "meshes" / "rock.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  json scene = minimalWith(R"({"obstacles": [{"type": "mesh", "file": "../meshes/rock.obj", "scale": 2,
+                                              "rotate_deg": [0, 90, 0]}]})"_json);
+  writeFile(dir / "scenes" / "rocky.json", scene.dump(2));
+
+  const Scene s = loadScene(dir / "scenes" / "rocky.json");
+  const auto& mesh = std::get<MeshObstacle>(s.obstacles[0].shape);
+  EXPECT_EQ(mesh.file, fs::absolute(dir / "meshes" / "rock.obj").lexically_normal());
+  EXPECT_TRUE(mesh.file.is_absolute());
+  EXPECT_FLOAT_EQ(mesh.scale, 2);
+  expectVec(mesh.rotateDeg, {0, 90, 0});
+}
+
+// --- one test per kind of error -------------------------------------------------------------------
+
+TEST(SceneParse, UnknownTopLevelKey) {
+  EXPECT_TRUE(
+      rejected(minimalWith(R"({"lightz": []})"_json), "lightz", "unknown key (did you mean \"lights\"?)"));
+}
+
+TEST(SceneParse, UnknownNestedKey) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"fluid": {"viscosity": null, "viscosty": 1e-5}})"_json),
+                       "fluid.viscosty", "unknown key (did you mean \"viscosity\"?)"));
+}
+
+TEST(SceneParse, UnknownKeyInArrayElement) {
+  const json scene = minimalWith(R"({"obstacles": [
+    {"type": "sphere", "center": [0, 0, 0], "radius": 0.1},
+    {"type": "sphere", "center": [0, 0, 0], "radius": 0.1, "height": 0.3}]})"_json);
+  EXPECT_TRUE(rejected(scene, "obstacles[1].height", "unknown key"));
+}
+
+TEST(SceneParse, MisspeltRequiredKeyIsPointedOut) {
+  const json scene =
+      minimalWith(R"({"obstacles": [{"type": "sphere", "center": [0, 0, 0], "radus": 0.1}]})"_json);
+  EXPECT_TRUE(rejected(scene, "obstacles[0].radius", "required key missing (is \"radus\" a typo?)"));
+}
+
+TEST(SceneParse, StringForNumber) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"smoke": {"albedo": "0.5"}})"_json), "smoke.albedo",
+                       "expected a number (got \"0.5\")"));
+}
+
+TEST(SceneParse, TwoElementVector) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"grid": {"size": [64, 64]}})"_json), "grid.size",
+                       "expected an array of 3 integers (got [64,64])"));
+  EXPECT_TRUE(rejected(minimalWith(R"({"camera": {"position": [0, 1]}})"_json), "camera.position",
+                       "expected an array of 3 numbers"));
+}
+
+TEST(SceneParse, FractionForInteger) {
+  EXPECT_TRUE(
+      rejected(minimalWith(R"({"render": {"width": 256.5}})"_json), "render.width", "expected an integer"));
+}
+
+TEST(SceneParse, ScalarForObject) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"smoke": 3})"_json), "smoke", "expected an object (got 3)"));
+}
+
+TEST(SceneParse, TopLevelNotAnObject) {
+  const std::string message = errorOf([] { parseScene(json::array(), "scenes/bad.json", "."); });
+  EXPECT_EQ(message, "scenes/bad.json: expected an object (got [])");
+}
+
+TEST(SceneParse, MissingRequiredKey) {
+  json scene = minimalScene();
+  scene.erase("camera");
+  EXPECT_TRUE(rejected(scene, "camera.position", "required key missing"));
+  scene = minimalScene();
+  scene["grid"].erase("cell_size");
+  EXPECT_TRUE(rejected(scene, "grid.cell_size", "required key missing"));
+}
+
+TEST(SceneParse, UnknownChoice) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"obstacles": [{"type": "cone"}]})"_json), "obstacles[0].type",
+                       "must be one of \"sphere\", \"cylinder\", \"box\", \"mesh\" (got \"cone\")"));
+}
+
+TEST(SceneParse, NegativeRadius) {
+  const json scene = minimalWith(R"({"obstacles": [
+    {"type": "sphere", "center": [0, 0, 0], "radius": 0.1},
+    {"type": "sphere", "center": [0, 0, 0], "radius": -0.5}]})"_json);
+  EXPECT_TRUE(rejected(scene, "obstacles[1].radius", "must be > 0 (got -0.5)"));
+}
+
+TEST(SceneParse, AlbedoOutOfRange) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"smoke": {"albedo": 1.5}})"_json), "smoke.albedo",
+                       "must be in [0, 1] (got 1.5)"));
+}
+
+TEST(SceneParse, LightmapSizeNotMultipleOf16) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"render": {"lightmap_size": 100}})"_json), "render.lightmap_size",
+                       "must be a multiple of 16 (got 100)"));
+}
+
+TEST(SceneParse, NegativeColorComponent) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"lights": [{"type": "point", "position": [0, 0, 0],
+                                                   "color": [1, -1, 1]}]})"_json),
+                       "lights[0].color", "every component must be >= 0 (got [1, -1, 1])"));
+}
+
+TEST(SceneParse, BothViscosityAndReynolds) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"fluid": {"reynolds": 100, "reference_length": 1}})"_json), "fluid",
+                       "give exactly one of viscosity and reynolds, not both"));
+}
+
+TEST(SceneParse, NeitherViscosityNorReynolds) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"fluid": {"viscosity": null}})"_json), "fluid",
+                       "give exactly one of viscosity (m²/s) and reynolds"));
+}
+
+TEST(SceneParse, ReynoldsWithoutAnythingFlowingIn) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"fluid": {"viscosity": null, "reynolds": 100,
+                                                 "reference_length": 1}})"_json),
+                       "fluid.reynolds", "needs a reference speed"));
+}
+
+TEST(SceneParse, UnpairedPeriodic) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"boundaries": {"x-": "periodic"}})"_json), "boundaries.x-",
+                       "periodic needs the opposite face periodic too (x+ is not)"));
+}
+
+TEST(SceneParse, InflowWithoutWind) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"boundaries": {"z-": "inflow"}})"_json), "boundaries.wind",
+                       "required key missing (face z- is inflow)"));
+}
+
+TEST(SceneParse, KeyframeTimesNotIncreasing) {
+  const json scene = minimalWith(R"({"obstacles": [{"type": "sphere", "radius": 0.1, "motion": {"keyframes": [
+    {"time": 0, "position": [0, 0, 0]}, {"time": 1.5, "position": [1, 0, 0]},
+    {"time": 1, "position": [2, 0, 0]}]}}]})"_json);
+  EXPECT_TRUE(rejected(scene, "obstacles[0].motion.keyframes[2].time",
+                       "keyframe times must increase: got 1 after 1.5"));
+}
+
+TEST(SceneParse, CenterOfMovingObstacle) {
+  const json scene = minimalWith(R"({"obstacles": [{"type": "sphere", "center": [0, 0, 0], "radius": 0.1,
+    "motion": {"keyframes": [{"time": 0, "position": [0, 0, 0]},
+                             {"time": 1, "position": [1, 0, 0]}]}}]})"_json);
+  EXPECT_TRUE(rejected(scene, "obstacles[0].center", "not allowed (the motion keyframes give the position)"));
+}
+
+TEST(SceneParse, MissingMeshFile) {
+  TempDir dir;
+  const json scene = minimalWith(R"({"obstacles": [{"type": "mesh", "file": "meshes/none.obj"}]})"_json);
+  const fs::path resolved = fs::absolute(dir / "meshes" / "none.obj").lexically_normal();
+  EXPECT_TRUE(rejected(scene, "obstacles[0].file", "mesh file not found: " + resolved.string(), dir.path()));
+}
+
+TEST(SceneParse, AbsurdGrid) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"grid": {"size": [100000, 100000, 100000]}})"_json), "grid.size",
+                       "axis x has 100000 cells, more than 2048; reduce grid.size"));
+  EXPECT_TRUE(rejected(minimalWith(R"({"grid": {"size": [1024, 1024, 1024]}})"_json), "grid.size",
+                       "1024×1024×1024 = 1073741824 cells, more than 512³; reduce grid.size"));
+  EXPECT_TRUE(rejected(minimalWith(R"({"grid": {"size": [512, 512, 512], "smoke_upres": 4}})"_json),
+                       "grid.smoke_upres", "more than 1024³; reduce grid.smoke_upres or grid.size"));
+}
+
+TEST(SceneParse, TooManyStepsPerFrame) {
+  const json scene = minimalWith(R"({"time": {"frame_dt": 10},
+    "inlets": [{"shape": "disk", "center": [0, 0, 0], "radius": 0.1, "normal": [0, 1, 0],
+                "velocity": 100}]})"_json);
+  EXPECT_TRUE(rejected(scene, "time.frame_dt", "LBM steps per frame"));
+}
+
+TEST(SceneParse, CameraTargetEqualsPosition) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"camera": {"target": [0, 1, 3]}})"_json), "camera.target",
+                       "must differ from camera.position"));
+}
+
+TEST(SceneParse, CameraUpAlongView) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"camera": {"up": [0, 0, -1]}})"_json), "camera.up",
+                       "must not be parallel to the view direction"));
+}
+
+TEST(SceneParse, DuplicateGuideLight) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"render": {"guide_lights": ["front", "top", "front"]}})"_json),
+                       "render.guide_lights[2]", "\"front\" is listed twice"));
+}
+
+TEST(SceneParse, ZeroDirection) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"lights": [{"type": "directional", "direction": [0, 0, 0]}]})"_json),
+                       "lights[0].direction", "must not be the zero vector"));
+}
+
+// --- errors reading the file ---------------------------------------------------------------------
+
+TEST(SceneTest, InvalidJsonNamesLineAndColumn) {
+  TempDir dir;
+  const fs::path file = dir / "broken.json";
+  writeFile(file, "{\n  \"grid\": {\"size\": [16, 16, 16]},\n  \"fluid\": {\"viscosity\" 1e-5}\n}\n");
+  const std::string message = errorOf([&] { loadScene(file); });
+  EXPECT_EQ(message.rfind(file.string() + ": invalid JSON: ", 0), 0u) << message;
+  EXPECT_NE(message.find("line 3, column"), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
+TEST(SceneTest, DuplicateJsonKeyNamesItsPath) {
+  TempDir dir;
+  const fs::path file = dir / "twice.json";
+  writeFile(file, R"({"lights": [{"type": "point", "position": [0, 0, 0]},
+                                 {"type": "point", "color": [1, 1, 1], "color": [1, 0, 0]}]})");
+  EXPECT_TRUE(namesKeyAndReason(errorOf([&] { loadScene(file); }), file.string(), "lights[1].color",
+                                "key appears twice"));
+}
+
+TEST(SceneTest, MissingSceneFile) {
+  TempDir dir;
+  const fs::path file = dir / "nowhere.json";
+  EXPECT_EQ(errorOf([&] { loadScene(file); }), file.string() + ": no such file");
+}
+
+}  // namespace
+}  // namespace sixway::io

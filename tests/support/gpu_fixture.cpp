@@ -19,7 +19,9 @@ gpu::PipelineCache& GpuTest::pipelineCache() {
   return cache;
 }
 
-void GpuTest::SetUp() { messagesBefore_ = context().validationMessageCount(); }
+void GpuTest::SetUp() {
+  messagesBefore_ = context().validationMessageCount();
+}
 
 void GpuTest::forgetValidationMessages() {
   context().validationLog()->clear();

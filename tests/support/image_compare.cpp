@@ -11,9 +11,13 @@
 namespace sixway::test {
 namespace {
 
-double psnrOf(double mse) { return mse == 0 ? std::numeric_limits<double>::infinity() : 10 * std::log10(1 / mse); }
+double psnrOf(double mse) {
+  return mse == 0 ? std::numeric_limits<double>::infinity() : 10 * std::log10(1 / mse);
+}
 
-double clip01(float v) { return std::isnan(v) ? 0.0 : std::clamp(double(v), 0.0, 1.0); }
+double clip01(float v) {
+  return std::isnan(v) ? 0.0 : std::clamp(double(v), 0.0, 1.0);
+}
 
 // |actual − expected|, scaled so the largest difference is white.
 io::Image differenceImage(const io::Image& actual, const io::Image& expected, double maxAbs) {
@@ -29,10 +33,10 @@ io::Image differenceImage(const io::Image& actual, const io::Image& expected, do
 ImageDifference compareImages(const io::Image& actual, const io::Image& expected) {
   if (actual.width != expected.width || actual.height != expected.height ||
       actual.channelCount() != expected.channelCount())
-    throw std::invalid_argument("images differ in shape: " + std::to_string(actual.width) + "x" +
-                                std::to_string(actual.height) + "x" + std::to_string(actual.channelCount()) +
-                                " vs " + std::to_string(expected.width) + "x" + std::to_string(expected.height) +
-                                "x" + std::to_string(expected.channelCount()));
+    throw std::invalid_argument(
+        "images differ in shape: " + std::to_string(actual.width) + "x" + std::to_string(actual.height) +
+        "x" + std::to_string(actual.channelCount()) + " vs " + std::to_string(expected.width) + "x" +
+        std::to_string(expected.height) + "x" + std::to_string(expected.channelCount()));
   const int channels = actual.channelCount();
   std::vector<double> squared(channels, 0.0);
   ImageDifference d;
@@ -45,8 +49,9 @@ ImageDifference compareImages(const io::Image& actual, const io::Image& expected
         const double clipped = clip01(a) - clip01(e);
         squared[c] += clipped * clipped;
         // A NaN anywhere is the worst possible difference.
-        const double abs = (std::isnan(a) != std::isnan(e)) ? std::numeric_limits<double>::infinity()
-                                                            : (std::isnan(a) ? 0.0 : std::fabs(double(a) - e));
+        const double abs = (std::isnan(a) != std::isnan(e))
+                               ? std::numeric_limits<double>::infinity()
+                               : (std::isnan(a) ? 0.0 : std::fabs(double(a) - e));
         d.channelMaxAbs[c] = std::max(d.channelMaxAbs[c], abs);
         if (abs > d.maxAbs) {
           d.maxAbs = abs;
@@ -82,10 +87,11 @@ std::filesystem::path testArtifactDir() {
   if (d.maxAbs <= tolerance.maxAbs && d.psnr >= tolerance.minPsnr) return ::testing::AssertionSuccess();
 
   std::ostringstream message;
-  message << label << ": PSNR " << d.psnr << " dB (need >= " << tolerance.minPsnr << "), max |diff| " << d.maxAbs
-          << " (allowed " << tolerance.maxAbs << ") at x=" << d.worstX << " y=" << d.worstY << " channel "
-          << actual.channels[d.worstChannel] << " (actual " << actual.at(d.worstX, d.worstY, d.worstChannel)
-          << ", expected " << expected.at(d.worstX, d.worstY, d.worstChannel) << "); per channel:";
+  message << label << ": PSNR " << d.psnr << " dB (need >= " << tolerance.minPsnr << "), max |diff| "
+          << d.maxAbs << " (allowed " << tolerance.maxAbs << ") at x=" << d.worstX << " y=" << d.worstY
+          << " channel " << actual.channels[d.worstChannel] << " (actual "
+          << actual.at(d.worstX, d.worstY, d.worstChannel) << ", expected "
+          << expected.at(d.worstX, d.worstY, d.worstChannel) << "); per channel:";
   for (size_t c = 0; c < d.channelPsnr.size(); ++c)
     message << " " << actual.channels[c] << " " << d.channelPsnr[c] << " dB/" << d.channelMaxAbs[c];
   const std::filesystem::path dir = testArtifactDir();

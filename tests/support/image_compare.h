@@ -14,10 +14,10 @@
 namespace sixway::test {
 
 struct ImageDifference {
-  double mse = 0;                    // over all channels, clipped values
-  double psnr = 0;                   // +inf when identical
-  double maxAbs = 0;                 // unclipped
-  std::vector<double> channelPsnr;   // per channel
+  double mse = 0;                   // over all channels, clipped values
+  double psnr = 0;                  // +inf when identical
+  double maxAbs = 0;                // unclipped
+  std::vector<double> channelPsnr;  // per channel
   std::vector<double> channelMaxAbs;
   int worstX = 0, worstY = 0, worstChannel = 0;  // where maxAbs is
 };

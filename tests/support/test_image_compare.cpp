@@ -10,8 +10,9 @@ namespace sixway::test {
 namespace {
 
 io::Image constant(float value, int channels = 3) {
-  io::Image image(8, 4, channels == 3 ? std::vector<std::string>{"R", "G", "B"}
-                                      : std::vector<std::string>{"R", "G", "B", "A"});
+  io::Image image(
+      8, 4,
+      channels == 3 ? std::vector<std::string>{"R", "G", "B"} : std::vector<std::string>{"R", "G", "B", "A"});
   std::fill(image.pixels.begin(), image.pixels.end(), value);
   return image;
 }

@@ -1,0 +1,64 @@
+#include "io/file_access.h"
+
+#include <unistd.h>
+
+#include <fstream>
+#include <string>
+#include <system_error>
+
+#include "io/error.h"
+
+namespace sixway::io {
+
+namespace fs = std::filesystem;
+
+void requireRegularFile(const fs::path& path) {
+  std::error_code error;
+  const fs::file_status status = fs::status(path, error);
+  if (!fs::exists(status)) throw InputError(path.string(), "no such file");
+  if (!fs::is_regular_file(status)) throw InputError(path.string(), "not a regular file");
+}
+
+std::vector<uint8_t> readFileBytes(const fs::path& path) {
+  requireRegularFile(path);
+  std::ifstream in(path, std::ios::binary);
+  std::error_code error;
+  const std::uintmax_t size = fs::file_size(path, error);
+  if (!in || error) throw InputError(path.string(), "cannot open the file for reading");
+  std::vector<uint8_t> bytes(size);
+  if (!in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size))) {
+    throw InputError(path.string(), "cannot read the file");
+  }
+  return bytes;
+}
+
+AtomicFile::AtomicFile(fs::path target) : target_(std::move(target)) {
+  const fs::path directory = target_.parent_path().empty() ? fs::path(".") : target_.parent_path();
+  std::error_code error;
+  if (!fs::is_directory(directory, error)) {
+    throw InputError(target_.string(), "cannot write: directory '" + directory.string() + "' does not exist");
+  }
+  // The process id keeps two processes writing the same target from sharing a temporary file.
+  std::string name = ".";
+  name += target_.filename().string();
+  name += '.';
+  name += std::to_string(getpid());
+  name += ".partial";
+  temporary_ = directory / name;
+}
+
+AtomicFile::~AtomicFile() {
+  if (committed_) return;
+  std::error_code ignored;
+  fs::remove(temporary_, ignored);
+}
+
+void AtomicFile::commit() {
+  std::error_code error;
+  if (!fs::is_regular_file(temporary_, error)) throw InputError(target_.string(), "cannot write the file");
+  fs::rename(temporary_, target_, error);
+  if (error) throw InputError(target_.string(), "cannot write the file: " + error.message());
+  committed_ = true;
+}
+
+}  // namespace sixway::io

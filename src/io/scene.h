@@ -1,0 +1,238 @@
+#pragma once
+// A scene file (docs/scene-format.md), read into typed settings and validated as a whole: what
+// loadScene returns can be used without further checks. World units: metres, seconds, y up.
+// Directions (normals, axes, light directions, camera up) are normalised when read.
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <nlohmann/json_fwd.hpp>
+
+namespace sixway::io {
+
+// The LBM lattice. Cell (i,j,k) has its centre at origin + (i+0.5, j+0.5, k+0.5)·cellSize.
+struct Grid {
+  glm::ivec3 size{0};
+  float cellSize = 0;  // m
+  glm::vec3 origin{0};
+  int smokeUpres = 1;  // the smoke grid is this many times finer on each axis
+};
+
+struct TimeStepping {
+  float frameDt = 1.0f / 30;  // s of simulated time per frame
+  int stepsPerFrame = 4;      // the least LBM steps per frame; see lbmStepsPerFrame()
+};
+
+// Acceleration along "up" (= -gravity direction): temperature·T + density·ρ.
+struct Buoyancy {
+  float temperature = 0;  // m/s² per unit temperature
+  float density = 0;      // m/s² per unit density; negative: heavy smoke sinks
+};
+
+struct Fluid {
+  // Exactly one of viscosity and reynolds is set; kinematicViscosity() resolves them.
+  std::optional<float> viscosity;  // m²/s
+  std::optional<float> reynolds;   // with referenceLength and referenceSpeed()
+  float referenceLength = 0;       // m, only with reynolds
+  float smagorinsky = 0.1f;
+  float maxLatticeVelocity = 0.1f;  // lattice speed of the fastest inflow (at most)
+  Buoyancy buoyancy;
+  glm::vec3 gravity{0, -9.81f, 0};  // only its direction is used
+};
+
+enum class BoundaryType { NoSlip, FreeSlip, Outflow, Periodic, Inflow };
+
+struct Boundaries {
+  enum Face { XMinus, XPlus, YMinus, YPlus, ZMinus, ZPlus };
+  std::array<BoundaryType, 6> faces{BoundaryType::Outflow, BoundaryType::Outflow, BoundaryType::NoSlip,
+                                    BoundaryType::Outflow, BoundaryType::Outflow, BoundaryType::Outflow};
+  glm::vec3 wind{0};  // m/s, imposed on inflow faces; zero when there are none
+};
+
+struct InletDisk {
+  glm::vec3 center{0};
+  float radius = 0;
+  glm::vec3 normal{0, 1, 0};  // the side the flow leaves on
+};
+
+struct InletBox {
+  glm::vec3 min{0};
+  glm::vec3 max{0};
+};
+
+struct Inlet {
+  std::variant<InletDisk, InletBox> shape;
+  glm::vec3 velocity{0};  // m/s; a disk's is its speed along the normal
+  float density = 1;
+  float temperature = 0;
+  float start = 0;                                      // s
+  float stop = std::numeric_limits<float>::infinity();  // s, after start
+  float noise = 0;                                      // 0..1, turbulence of the inflow
+};
+
+struct SphereObstacle {
+  glm::vec3 center{0};
+  float radius = 0;
+};
+
+struct CylinderObstacle {
+  glm::vec3 center{0};
+  float radius = 0;
+  float height = 0;  // full length along the axis, centred on center
+  glm::vec3 axis{0, 1, 0};
+};
+
+struct BoxObstacle {
+  glm::vec3 center{0};
+  glm::vec3 size{0};  // full edge lengths
+};
+
+// world = translate + R(rotateDeg) · (scale · object), R = Rz·Ry·Rx (x applied first).
+struct MeshObstacle {
+  std::filesystem::path file;  // absolute, exists
+  float scale = 1;
+  glm::vec3 translate{0};
+  glm::vec3 rotateDeg{0};
+};
+
+struct Keyframe {
+  float time = 0;  // s
+  glm::vec3 position{0};
+};
+
+// Position = linear interpolation of the keyframes, held at the ends (or repeated, with loop).
+// It is the centre of a shape and the translation of a mesh; the shape's own centre/translate
+// holds the first keyframe's position.
+struct Motion {
+  std::vector<Keyframe> keyframes;  // ≥ 2, strictly increasing time
+  bool loop = false;
+};
+
+struct Obstacle {
+  std::variant<SphereObstacle, CylinderObstacle, BoxObstacle, MeshObstacle> shape;
+  std::optional<Motion> motion;
+  bool shadows = true;  // casts shadows on the smoke
+};
+
+struct EmissionKey {
+  float temperature = 0;
+  glm::vec3 color{0};
+};
+
+struct Emission {
+  std::vector<EmissionKey> ramp;  // strictly increasing temperature; ≥ 2 keys when present
+  float intensity = 0;            // 0: no emission
+};
+
+struct Smoke {
+  float extinction = 20;  // σ_t per unit density, 1/m
+  float albedo = 0.9f;
+  float phaseG = 0.2f;    // Henyey–Greenstein
+  float dissipation = 0;  // 1/s
+  Emission emission;
+};
+
+struct CameraOrbit {
+  float degreesPerFrame = 0;  // about target, around the camera's up
+};
+
+struct CameraDolly {
+  glm::vec3 endPosition{0};
+  int frames = 1;  // frames to go from position to endPosition, then it stays
+};
+
+struct Camera {
+  glm::vec3 position{0};
+  glm::vec3 target{0};
+  glm::vec3 up{0, 1, 0};
+  float fovDeg = 40;  // vertical
+  std::optional<std::variant<CameraOrbit, CameraDolly>> path;
+};
+
+struct DirectionalLight {
+  glm::vec3 direction{0, 1, 0};  // from the shaded point toward the light
+};
+
+struct PointLight {
+  glm::vec3 position{0};
+};
+
+// A point light's position turns about the line (center, axis); a directional light's direction
+// turns about axis.
+struct LightOrbit {
+  glm::vec3 center{0};
+  glm::vec3 axis{0, 1, 0};
+  float degreesPerFrame = 0;
+};
+
+struct Light {
+  std::variant<DirectionalLight, PointLight> source;
+  glm::vec3 color{1};
+  // Directional: irradiance (π matches the bake normalisation). Point: intensity, irradiance I/r².
+  float intensity = std::numbers::pi_v<float>;
+  bool shadows = true;
+  std::optional<LightOrbit> path;
+};
+
+struct AmbientColor {
+  glm::vec3 color{0};
+};
+
+// L1 spherical harmonics of the ambient light, per colour channel.
+struct AmbientSh {
+  std::array<glm::vec3, 4> coefficients{};  // L0, L1x, L1y, L1z
+};
+
+using Ambient = std::variant<AmbientColor, AmbientSh>;
+
+enum class GuideLight { Front, Top, Bottom, Left, Right, Back };
+
+struct RenderSettings {
+  int width = 256;
+  int height = 256;
+  int lightmapSize = 128;  // multiple of 16
+  float guideStepVoxels = 3;
+  std::vector<GuideLight> guideLights{GuideLight::Front, GuideLight::Top, GuideLight::Bottom};
+  glm::vec3 background{0};
+  float shellThreshold = 0.1f;  // alpha at which the smoke shell depth is taken
+  std::uint32_t seed = 1;
+};
+
+struct Scene {
+  std::string name;
+  Grid grid;
+  TimeStepping time;
+  Fluid fluid;
+  Boundaries boundaries;
+  std::vector<Inlet> inlets;
+  std::vector<Obstacle> obstacles;
+  Smoke smoke;
+  Camera camera;
+  std::vector<Light> lights;
+  std::optional<Ambient> ambient;
+  RenderSettings render;
+};
+
+// `sourceName` names the file in errors; mesh paths are resolved against `baseDir`.
+// Throws InputError for anything the format does not allow.
+Scene parseScene(const nlohmann::json& j, std::string_view sourceName, const std::filesystem::path& baseDir);
+Scene loadScene(const std::filesystem::path& file);
+
+// The speed that fixes the time step and the Reynolds number: the fastest inlet, or the wind when a
+// face is inflow, in m/s.
+float referenceSpeed(const Scene& scene);
+// m²/s: the given viscosity, or referenceSpeed · referenceLength / reynolds.
+float kinematicViscosity(const Scene& scene);
+// LBM steps per frame: time.stepsPerFrame, or more if needed to keep the fastest inflow at or below
+// fluid.maxLatticeVelocity (lattice speed = speed · dt / cellSize with dt = frameDt / steps).
+int lbmStepsPerFrame(const Scene& scene);
+
+}  // namespace sixway::io
