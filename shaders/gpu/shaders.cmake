@@ -1,0 +1,6 @@
+# Shaders of the Vulkan host itself (src/gpu) and its tests.
+list(APPEND SIXWAY_SHADERS
+  gpu/reduce_stats.comp
+  gpu/fill_gradient.vert
+  gpu/fill_gradient.frag
+)
