@@ -1,12 +1,14 @@
 #version 460
 // One level of the Stats reduction: each workgroup summarises GROUP_SIZE * ITEMS_PER_THREAD
-// consecutive inputs (raw floats, or the previous level's Stats) into one Stats.
+// consecutive inputs (floats, lengths of small vectors, or the previous level's Stats) into one Stats.
 #extension GL_GOOGLE_include_directive : require
 #include "stats.glsl"
 
 layout(local_size_x_id = 0) in;
 layout(constant_id = 1) const uint ITEMS_PER_THREAD = 8;
 layout(constant_id = 2) const bool FROM_STATS = false;  // input is a previous level's output
+layout(constant_id = 3) const uint STRIDE = 1;          // floats from one input value to the next
+layout(constant_id = 4) const uint COMPONENTS = 1;      // > 1: the value is the length of that many floats
 
 layout(std430, binding = 0) readonly buffer Values { float values[]; };
 layout(std430, binding = 1) readonly buffer StatsIn { Stats statsIn[]; };
@@ -14,6 +16,13 @@ layout(std430, binding = 2) writeonly buffer StatsOut { Stats statsOut[]; };
 layout(push_constant) uniform Push { uint count; } push;
 
 shared Stats partial[gl_WorkGroupSize.x];
+
+float inputValue(uint i) {
+  if (COMPONENTS == 1u) return values[i * STRIDE];
+  float squares = 0.0;
+  for (uint c = 0u; c < COMPONENTS; ++c) squares += values[i * STRIDE + c] * values[i * STRIDE + c];
+  return sqrt(squares);
+}
 
 void main() {
   const uint local = gl_LocalInvocationID.x;
@@ -24,7 +33,7 @@ void main() {
     if (i >= push.count) break;
     Stats next;  // (an if, not ?:, whose mixed block/plain struct types glslang 12 miscompiles)
     if (FROM_STATS) next = statsIn[i];
-    else next = statsOf(values[i], i);
+    else next = statsOf(inputValue(i), i);
     s = statsCombine(s, next);
   }
   partial[local] = s;

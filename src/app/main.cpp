@@ -5,11 +5,13 @@
 
 #include "app/info_command.h"
 #include "app/planned_commands.h"
+#include "app/sim_command.h"
 
 int main(int argc, char** argv) {
   CLI::App app("sixway: real-time smoke rendering with neural six-way lightmaps");
   app.require_subcommand(1);
   sixway::app::addInfoCommand(app);
+  sixway::app::addSimCommand(app);
   sixway::app::addPlannedCommands(app);
   try {
     app.parse(argc, argv);

@@ -36,13 +36,6 @@ CLI::App* planned(CLI::App& app, const char* name, const char* description, cons
 
 void addPlannedCommands(CLI::App& app) {
   auto o = std::make_shared<PlannedOptions>();
-  CLI::App* sim =
-      planned(app, "sim", "Run the smoke simulation (LBM + advection)", "#3 (smoke simulation)", o);
-  sim->add_option("--scene", o->scene, "Scene JSON")->required();
-  sim->add_option("--steps", o->steps, "Lattice steps")->required()->check(CLI::PositiveNumber);
-  sim->add_option("--vdb-out", o->out, "Write density/temperature per frame as OpenVDB into this directory");
-  sim->add_option("--report", o->report, "JSON report: forces, mass, max velocity, MLUPs, watchdog");
-
   CLI::App* bake = planned(app, "bake", "Reference six-way lightmaps and a Unity-packed flipbook",
                            "#4 (reference volume rendering)", o);
   auto* sceneOption = bake->add_option("--scene", o->scene, "Scene JSON");

@@ -228,7 +228,10 @@ void Context::pickPhysicalDevice(const ContextOptions& options) {
 }
 
 void Context::createDevice(const ContextOptions& options) {
-  VkPhysicalDeviceVulkan11Features supported11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
+  VkPhysicalDeviceShaderAtomicFloatFeaturesEXT supportedAtomics{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT};
+  VkPhysicalDeviceVulkan11Features supported11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES,
+                                               &supportedAtomics};
   VkPhysicalDeviceVulkan12Features supported12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
                                                &supported11};
   VkPhysicalDeviceVulkan13Features supported13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
@@ -240,7 +243,13 @@ void Context::createDevice(const ContextOptions& options) {
                    ": needs synchronization2, dynamicRendering, maintenance4");
 
   // Enable what the stages use; the optional 16-bit paths only where the device has them.
-  VkPhysicalDeviceVulkan11Features enable11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
+  if (!supportedAtomics.shaderBufferFloat32AtomicAdd)
+    throw GpuError(std::string(properties_.deviceName) + ": needs float atomic add on storage buffers");
+  // Float atomic add: the simulation sums obstacle forces with it.
+  VkPhysicalDeviceShaderAtomicFloatFeaturesEXT enableAtomics{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT};
+  enableAtomics.shaderBufferFloat32AtomicAdd = VK_TRUE;
+  VkPhysicalDeviceVulkan11Features enable11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES, &enableAtomics};
   enable11.storageBuffer16BitAccess = supported11.storageBuffer16BitAccess;
   VkPhysicalDeviceVulkan12Features enable12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &enable11};
   enable12.shaderFloat16 = supported12.shaderFloat16;
@@ -258,7 +267,8 @@ void Context::createDevice(const ContextOptions& options) {
   capabilities_.shaderFloat16 = supported12.shaderFloat16;
   capabilities_.storage16Bit = supported11.storageBuffer16BitAccess;
 
-  std::vector<const char*> extensions = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+  std::vector<const char*> extensions = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME,
+                                         VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME};
   if (options.presentation) extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
 
   float priority = 1.0f;

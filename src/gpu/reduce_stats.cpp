@@ -14,16 +14,19 @@ uint64_t groupsFor(uint64_t count, uint32_t perGroup) {
 
 }  // namespace
 
-ReduceStats::ReduceStats(const Context& context, const PipelineCache& cache, uint64_t maxCount)
-    : context_(&context) {
+ReduceStats::ReduceStats(const Context& context, const PipelineCache& cache, uint64_t maxCount, ReduceInput input)
+    : context_(&context), input_(input) {
   if (maxCount == 0 || maxCount > UINT32_MAX)
     throw GpuError("ReduceStats: count must be 1.." + std::to_string(UINT32_MAX));
-  auto desc = [](bool fromStats) {
+  if (input.stride < input.components || input.components == 0)
+    throw GpuError("ReduceStats: a stride of " + std::to_string(input.stride) + " cannot hold " +
+                   std::to_string(input.components) + " components");
+  auto desc = [input](bool fromStats) {
     ComputePipelineDesc d;
     d.shader = "gpu/reduce_stats.comp";
     d.bindings = {BindingType::StorageBuffer, BindingType::StorageBuffer, BindingType::StorageBuffer};
     d.pushConstantBytes = sizeof(uint32_t);
-    d.spec.set(0, kGroupSize).set(1, kItemsPerThread).set(2, fromStats);
+    d.spec.set(0, kGroupSize).set(1, kItemsPerThread).set(2, fromStats).set(3, input.stride).set(4, input.components);
     return d;
   };
   fromValues_ = std::make_unique<Pipeline>(context, cache, desc(false));
@@ -38,8 +41,8 @@ ReduceStats::ReduceStats(const Context& context, const PipelineCache& cache, uin
 ReduceStats::~ReduceStats() = default;
 
 void ReduceStats::record(Sequence& sequence, const Buffer& values, uint32_t count) {
-  if (count == 0 || uint64_t(count) * sizeof(float) > values.size())
-    throw GpuError("ReduceStats: " + std::to_string(count) + " floats asked of " + values.name());
+  if (count == 0 || (uint64_t(count - 1) * input_.stride + input_.components) * sizeof(float) > values.size())
+    throw GpuError("ReduceStats: " + std::to_string(count) + " values asked of " + values.name());
   // Pass i reduces counts[i] inputs into counts[i+1] = ceil(counts[i] / kPerGroup) Stats in levels_[i];
   // a single value still takes one pass.
   std::vector<uint32_t> counts = {count};
@@ -47,7 +50,7 @@ void ReduceStats::record(Sequence& sequence, const Buffer& values, uint32_t coun
   while (counts.back() > 1);
   const size_t passes = counts.size() - 1;
   if (passes > levels_.size())
-    throw GpuError("ReduceStats: " + std::to_string(count) + " floats exceed its capacity");
+    throw GpuError("ReduceStats: " + std::to_string(count) + " values exceed its capacity");
   for (size_t pass = 0; pass < passes; ++pass) {
     // The binding the pass does not read is given a buffer it may alias harmlessly (read-only).
     const Binding statsIn = pass == 0 ? reads(values) : reads(levels_[pass - 1]);

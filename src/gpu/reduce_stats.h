@@ -28,13 +28,20 @@ struct Stats {
 };
 static_assert(sizeof(Stats) == 32);
 
+// How the input buffer holds its values: value i is the float at i · stride, or with components > 1
+// the length of the vector of that many floats there (e.g. a speed from vec4 velocities: {4, 3}).
+struct ReduceInput {
+  uint32_t stride = 1;
+  uint32_t components = 1;
+};
+
 class ReduceStats {
  public:
-  // Handles inputs of up to `maxCount` floats.
-  ReduceStats(const Context& context, const PipelineCache& cache, uint64_t maxCount);
+  // Handles inputs of up to `maxCount` values.
+  ReduceStats(const Context& context, const PipelineCache& cache, uint64_t maxCount, ReduceInput input = {});
   ~ReduceStats();
 
-  // Records the passes that reduce the first `count` floats of `values`.
+  // Records the passes that reduce the first `count` values of `values`.
   void record(Sequence& sequence, const Buffer& values, uint32_t count);
   // The result of the last submitted recording.
   Stats result() const;
@@ -45,6 +52,7 @@ class ReduceStats {
   static constexpr uint32_t kPerGroup = kGroupSize * kItemsPerThread;
 
   const Context* context_;
+  ReduceInput input_;
   std::unique_ptr<Pipeline> fromValues_, fromStats_;
   std::vector<Buffer> levels_;  // levels_[i] holds the Stats written by pass i
   size_t resultLevel_ = 0;      // the level of the last recorded pass

@@ -26,6 +26,8 @@ const Choices<BoundaryType> kBoundaryTypes = {{"no_slip", BoundaryType::NoSlip},
                                               {"outflow", BoundaryType::Outflow},
                                               {"periodic", BoundaryType::Periodic},
                                               {"inflow", BoundaryType::Inflow}};
+const Choices<InflowProfile> kInflowProfiles = {{"uniform", InflowProfile::Uniform},
+                                                {"parabolic", InflowProfile::Parabolic}};
 constexpr std::array<std::string_view, 6> kFaceNames = {"x-", "x+", "y-", "y+", "z-", "z+"};
 
 enum class InletShape { Disk, Box };
@@ -117,6 +119,7 @@ Fluid parseFluid(JsonReader& r) {
   f.maxLatticeVelocity = r.optional<float>("max_lattice_velocity", f.maxLatticeVelocity, inRange(0.01, 0.3));
   f.buoyancy = r.object("buoyancy", parseBuoyancy);
   f.gravity = r.optional<glm::vec3>("gravity", f.gravity, nonZero());
+  f.bodyForce = r.optional<glm::vec3>("body_force", f.bodyForce);
   r.finish();  // a misspelt "viscosity" explains the error below better than the error itself
 
   if (f.viscosity && f.reynolds) r.failHere("give exactly one of viscosity and reynolds, not both");
@@ -140,10 +143,12 @@ Boundaries parseBoundaries(JsonReader& r) {
   const auto inflow = std::ranges::find(b.faces, BoundaryType::Inflow);
   if (inflow == b.faces.end()) {
     r.forbid("wind", "only used by inflow faces, and no face is inflow");
+    r.forbid("inflow_profile", "only used by inflow faces, and no face is inflow");
   } else {
     const std::string_view face = kFaceNames[inflow - b.faces.begin()];
     if (!r.has("wind")) r.fail("wind", "required key missing (face " + std::string(face) + " is inflow)");
     b.wind = r.required<glm::vec3>("wind");
+    b.inflowProfile = r.choice("inflow_profile", kInflowProfiles, b.inflowProfile);
   }
   return b;
 }

@@ -46,15 +46,21 @@ struct Fluid {
   float maxLatticeVelocity = 0.1f;  // lattice speed of the fastest inflow (at most)
   Buoyancy buoyancy;
   glm::vec3 gravity{0, -9.81f, 0};  // only its direction is used
+  glm::vec3 bodyForce{0};           // m/s², a constant acceleration (e.g. a driving pressure gradient)
 };
 
 enum class BoundaryType { NoSlip, FreeSlip, Outflow, Periodic, Inflow };
+
+// Uniform: the wind everywhere on an inflow face. Parabolic: the wind times 4s(1−s) across each
+// tangential axis whose two faces are no_slip walls (s = position across, 0..1): the wind is the peak.
+enum class InflowProfile { Uniform, Parabolic };
 
 struct Boundaries {
   enum Face { XMinus, XPlus, YMinus, YPlus, ZMinus, ZPlus };
   std::array<BoundaryType, 6> faces{BoundaryType::Outflow, BoundaryType::Outflow, BoundaryType::NoSlip,
                                     BoundaryType::Outflow, BoundaryType::Outflow, BoundaryType::Outflow};
   glm::vec3 wind{0};  // m/s, imposed on inflow faces; zero when there are none
+  InflowProfile inflowProfile = InflowProfile::Uniform;
 };
 
 struct InletDisk {

@@ -95,3 +95,38 @@ TEST_F(ReduceStatsTest, FindsTheFirstNonFiniteValue) {
 
 }  // namespace
 }  // namespace sixway::test
+
+namespace sixway::test {
+namespace {
+
+TEST_F(ReduceStatsTest, LengthsOfStridedVectors) {
+  // vec4 (x, y, z, w) per value; the statistic is |xyz|, w is skipped.
+  const uint32_t n = 5001;
+  std::vector<float> values(4 * n);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+  for (float& v : values) v = uniform(rng);
+  values[4 * 777 + 3] = 1e9f;  // in w: must not count
+  gpu::Buffer buffer = gpu::Buffer::storage(context(), values.size() * 4, "vec4s");
+  buffer.upload(values);
+  gpu::ReduceStats reduce(context(), pipelineCache(), n, {4, 3});
+  gpu::Sequence sequence(context());
+  reduce.record(sequence, buffer, n);
+  sequence.submit();
+  const gpu::Stats stats = reduce.result();
+  float longest = 0;
+  uint32_t where = 0;
+  double sum = 0;
+  for (uint32_t i = 0; i < n; ++i) {
+    const float length = std::sqrt(values[4 * i] * values[4 * i] + values[4 * i + 1] * values[4 * i + 1] +
+                                   values[4 * i + 2] * values[4 * i + 2]);
+    sum += length;
+    if (length > longest) longest = length, where = i;
+  }
+  EXPECT_NEAR(stats.maxAbs, longest, 1e-6f);
+  EXPECT_EQ(stats.maxAbsIndex, where);
+  EXPECT_NEAR(stats.sum, sum, 1e-3);
+}
+
+}  // namespace
+}  // namespace sixway::test

@@ -1,0 +1,117 @@
+#version 460
+// Flux-corrected transport of the smoke (Zalesak 1979), pass 1 of 3: for every face, the
+// low-order (donor-cell) flux and the antidiffusive flux A = F_high − F_low, with Lax–Wendroff as
+// the high-order flux; the low-order update q_td. Fluxes are positive along +axis, in smoke-cell
+// units per substep; each cell stores the fluxes of its three lower faces.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
+
+layout(local_size_x = 64) in;
+layout(constant_id = 0) const int NX = 1;
+layout(constant_id = 1) const int NY = 1;
+layout(constant_id = 2) const int NZ = 1;
+layout(constant_id = 3) const int SMOKE_UPRES = 1;
+layout(constant_id = 4) const uint FACE_XM = 0u;  // boundary type per face (sim_grid.glsl)
+layout(constant_id = 5) const uint FACE_XP = 0u;
+layout(constant_id = 6) const uint FACE_YM = 0u;
+layout(constant_id = 7) const uint FACE_YP = 0u;
+layout(constant_id = 8) const uint FACE_ZM = 0u;
+layout(constant_id = 9) const uint FACE_ZP = 0u;
+
+#include "sim_grid.glsl"
+#include "sim_smoke.glsl"
+
+layout(std430, binding = 0) readonly buffer Flags { uint flags[]; };
+layout(std430, binding = 1) readonly buffer Macro_ { vec4 macro[]; };  // lattice velocity, cells/step
+layout(std430, binding = 2) readonly buffer Smoke { vec2 smoke[]; };
+layout(std430, binding = 3) writeonly buffer LowOrder { vec2 lowOrder[]; };      // q_td
+layout(std430, binding = 4) writeonly buffer Antidiffusive { vec2 antidiffusive[]; };  // [cell][axis]
+
+uint faceType(int face) {  // 0..5 = x−, x+, y−, y+, z−, z+
+  switch (face) {
+    case 0: return FACE_XM;
+    case 1: return FACE_XP;
+    case 2: return FACE_YM;
+    case 3: return FACE_YP;
+    case 4: return FACE_ZM;
+    default: return FACE_ZP;
+  }
+}
+
+bool solidAt(ivec3 s) { return isSolid(flags[cellIndex(latticeCellOf(s), LATTICE)]); }
+
+// Lattice velocity at a point in lattice coordinates (cell centres at integer + 0.5), trilinear.
+vec3 latticeVelocity(vec3 x) {
+  vec3 g = clamp(x - 0.5, vec3(0.0), vec3(LATTICE - 1));
+  ivec3 i0 = min(ivec3(floor(g)), LATTICE - 2 + ivec3(equal(LATTICE, ivec3(1))));
+  ivec3 i1 = min(i0 + 1, LATTICE - 1);
+  vec3 t = g - vec3(i0);
+  vec3 u = vec3(0.0);
+  [[unroll]] for (int k = 0; k < 8; ++k) {
+    ivec3 corner = ivec3(k & 1, (k >> 1) & 1, (k >> 2) & 1);
+    vec3 w = mix(1.0 - t, t, vec3(corner));
+    u += w.x * w.y * w.z * macro[cellIndex(mix(i0, i1, bvec3(corner)), LATTICE)].xyz;
+  }
+  return u;
+}
+
+// Normal velocity on the lower face of smoke cell s along axis a, in smoke cells per substep
+// (lattice cells per step: a substep is 1/SMOKE_UPRES of a step and a smoke cell as much smaller).
+float faceVelocity(ivec3 s, int a) {
+  if (SMOKE_UPRES == 1) {
+    ivec3 left = s;
+    left[a] = (s[a] - 1 + SMOKE[a]) % SMOKE[a];  // periodic wrap; other boundaries are handled by the caller
+    return 0.5 * (macro[cellIndex(s, LATTICE)][a] + macro[cellIndex(left, LATTICE)][a]);
+  }
+  vec3 x = (vec3(s) + 0.5) / float(SMOKE_UPRES);
+  x[a] = float(s[a]) / float(SMOKE_UPRES);
+  return latticeVelocity(x)[a];
+}
+
+// Velocity at the centre of smoke cell s, in smoke cells per substep.
+vec3 cellVelocity(ivec3 s) {
+  if (SMOKE_UPRES == 1) return macro[cellIndex(s, LATTICE)].xyz;
+  return latticeVelocity((vec3(s) + 0.5) / float(SMOKE_UPRES));
+}
+
+// Fluxes through the lower face of smoke cell s along axis a (s[a] may equal SMOKE[a]: the upper
+// boundary). Returns (low-order flux, antidiffusive flux) per value.
+mat2 faceFluxes(ivec3 s, int a) {
+  bool lower = s[a] == 0, upper = s[a] == SMOKE[a];
+  uint type = lower ? faceType(2 * a) : faceType(2 * a + 1);
+  if ((lower || upper) && type != FACE_PERIODIC) {
+    // Domain boundary: walls pass nothing; open faces let smoke out (zero gradient) and clean air in.
+    if (type == FACE_NO_SLIP || type == FACE_FREE_SLIP) return mat2(0.0);
+    ivec3 inside = s;
+    if (upper) inside[a] -= 1;
+    if (solidAt(inside)) return mat2(0.0);
+    float u = cellVelocity(inside)[a];  // zero gradient: the boundary cell's own velocity
+    bool leaving = upper ? u > 0.0 : u < 0.0;
+    return mat2(leaving ? u * smoke[cellIndex(inside, SMOKE)] : vec2(0.0), vec2(0.0));
+  }
+  ivec3 right = s, left = s;
+  right[a] = s[a] % SMOKE[a];
+  left[a] = (s[a] - 1 + SMOKE[a]) % SMOKE[a];
+  if (solidAt(left) || solidAt(right)) return mat2(0.0);  // obstacles pass no smoke
+  float u = faceVelocity(right, a);
+  vec2 qL = smoke[cellIndex(left, SMOKE)], qR = smoke[cellIndex(right, SMOKE)];
+  vec2 low = u > 0.0 ? u * qL : u * qR;
+  vec2 high = u * 0.5 * (qL + qR) - 0.5 * u * u * (qR - qL);  // Lax–Wendroff
+  return mat2(low, high - low);
+}
+
+void main() {
+  uint index = gl_GlobalInvocationID.x;
+  if (index >= SMOKE_CELLS) return;
+  ivec3 s = cellOf(index, SMOKE);
+  vec2 q = smoke[index];
+  [[unroll]] for (int a = 0; a < 3; ++a) {
+    ivec3 up = s;
+    up[a] += 1;
+    mat2 lowerFace = faceFluxes(s, a);
+    mat2 upperFace = faceFluxes(up, a);
+    q += lowerFace[0] - upperFace[0];
+    antidiffusive[3u * index + uint(a)] = lowerFace[1];
+  }
+  lowOrder[index] = q;
+}

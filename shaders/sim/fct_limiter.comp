@@ -1,0 +1,54 @@
+#version 460
+// Flux-corrected transport, pass 2 of 3: Zalesak's limiter ratios R+ and R− per cell, from the
+// antidiffusive fluxes in and out and the bounds of the old and low-order values over the cell
+// and its face neighbours, so that the corrected update creates no new extrema.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
+
+layout(local_size_x = 64) in;
+layout(constant_id = 0) const int NX = 1;
+layout(constant_id = 1) const int NY = 1;
+layout(constant_id = 2) const int NZ = 1;
+layout(constant_id = 3) const int SMOKE_UPRES = 1;
+layout(constant_id = 4) const bool PERIODIC_X = false;
+layout(constant_id = 5) const bool PERIODIC_Y = false;
+layout(constant_id = 6) const bool PERIODIC_Z = false;
+
+#include "sim_grid.glsl"
+#include "sim_smoke.glsl"
+#include "sim_fct.glsl"
+
+layout(std430, binding = 0) readonly buffer Flags { uint flags[]; };
+layout(std430, binding = 1) readonly buffer Smoke { vec2 smoke[]; };
+layout(std430, binding = 2) readonly buffer LowOrder { vec2 lowOrder[]; };
+layout(std430, binding = 3) readonly buffer Antidiffusive { vec2 antidiffusive[]; };
+layout(std430, binding = 4) writeonly buffer Ratios { vec4 ratios[]; };  // R+ (xy), R− (zw)
+
+void main() {
+  uint index = gl_GlobalInvocationID.x;
+  if (index >= SMOKE_CELLS) return;
+  ivec3 s = cellOf(index, SMOKE);
+  vec2 qtd = lowOrder[index];
+  vec2 highest = max(smoke[index], qtd), lowest = min(smoke[index], qtd);
+  vec2 in_ = vec2(0.0), out_ = vec2(0.0);  // antidiffusive fluxes into and out of the cell
+  [[unroll]] for (int a = 0; a < 3; ++a)
+    [[unroll]] for (int side = 0; side < 2; ++side) {
+      ivec3 n = s;
+      n[a] += side == 0 ? -1 : 1;
+      if (!wrapNeighbour(n, a)) continue;
+      uint ni = cellIndex(n, SMOKE);
+      if (!isSolid(flags[cellIndex(latticeCellOf(n), LATTICE)])) {
+        highest = max(highest, max(smoke[ni], lowOrder[ni]));
+        lowest = min(lowest, min(smoke[ni], lowOrder[ni]));
+      }
+      // The lower face is stored at this cell, the upper one at the neighbour; + along the axis.
+      vec2 flux = antidiffusive[3u * (side == 0 ? index : ni) + uint(a)];
+      vec2 into = side == 0 ? flux : -flux;
+      in_ += max(into, 0.0);
+      out_ += max(-into, 0.0);
+    }
+  vec2 up = highest - qtd, down = qtd - lowest;
+  vec2 rPlus = mix(vec2(0.0), min(vec2(1.0), up / max(in_, 1e-30)), greaterThan(in_, vec2(0.0)));
+  vec2 rMinus = mix(vec2(0.0), min(vec2(1.0), down / max(out_, 1e-30)), greaterThan(out_, vec2(0.0)));
+  ratios[index] = vec4(rPlus, rMinus);
+}

@@ -1,0 +1,48 @@
+#version 460
+// Flux-corrected transport, pass 3 of 3: q = q_td + the antidiffusive fluxes, each scaled by the
+// limiter of the cell it leaves and the cell it enters (Zalesak 1979, eq. 13).
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
+
+layout(local_size_x = 64) in;
+layout(constant_id = 0) const int NX = 1;
+layout(constant_id = 1) const int NY = 1;
+layout(constant_id = 2) const int NZ = 1;
+layout(constant_id = 3) const int SMOKE_UPRES = 1;
+layout(constant_id = 4) const bool PERIODIC_X = false;
+layout(constant_id = 5) const bool PERIODIC_Y = false;
+layout(constant_id = 6) const bool PERIODIC_Z = false;
+
+#include "sim_grid.glsl"
+#include "sim_smoke.glsl"
+#include "sim_fct.glsl"
+
+layout(std430, binding = 0) readonly buffer LowOrder { vec2 lowOrder[]; };
+layout(std430, binding = 1) readonly buffer Antidiffusive { vec2 antidiffusive[]; };
+layout(std430, binding = 2) readonly buffer Ratios { vec4 ratios[]; };
+layout(std430, binding = 3) writeonly buffer Smoke { vec2 smoke[]; };
+
+// The limited flux through the face between `left` and `right` (flux positive from left to right).
+vec2 limited(vec2 flux, vec4 left, vec4 right) {
+  vec2 positive = min(right.xy, left.zw), negative = min(left.xy, right.zw);
+  return flux * mix(negative, positive, greaterThanEqual(flux, vec2(0.0)));
+}
+
+void main() {
+  uint index = gl_GlobalInvocationID.x;
+  if (index >= SMOKE_CELLS) return;
+  ivec3 s = cellOf(index, SMOKE);
+  vec4 r = ratios[index];
+  vec2 q = lowOrder[index];
+  [[unroll]] for (int a = 0; a < 3; ++a) {
+    ivec3 lower = s, upper = s;
+    lower[a] -= 1;
+    upper[a] += 1;
+    if (wrapNeighbour(lower, a)) q += limited(antidiffusive[3u * index + uint(a)], ratios[cellIndex(lower, SMOKE)], r);
+    if (wrapNeighbour(upper, a)) {
+      uint ui = cellIndex(upper, SMOKE);
+      q -= limited(antidiffusive[3u * ui + uint(a)], r, ratios[ui]);
+    }
+  }
+  smoke[index] = q;
+}

@@ -1,0 +1,67 @@
+#version 460
+// Force of the fluid on each obstacle by momentum exchange over the bounce-back links, in the
+// Galilean-invariant form of Wen et al. (2014): per link F = (c_ī − u_w) f*_ī − (c_i − u_w) f_i.
+// Reads the same post-collision lattice that the coming lbm_step streams from. Each subgroup adds
+// its sum into the step's slot with one float atomic per component (workgroup barriers cost a
+// coroutine switch per invocation on lavapipe); the order of the additions is not fixed.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
+#extension GL_EXT_shader_atomic_float : require
+
+layout(local_size_x = 64) in;
+layout(constant_id = 0) const int NX = 1;
+layout(constant_id = 1) const int NY = 1;
+layout(constant_id = 2) const int NZ = 1;
+
+const uint CELLS = uint(NX * NY * NZ);
+const ivec3 SIZE = ivec3(NX, NY, NZ);
+
+#include "lbm_d3q19.glsl"
+#include "lbm_lattice.glsl"
+#include "sim_grid.glsl"
+
+layout(std430, binding = 0) readonly buffer Params { StepParams params[]; };
+layout(std430, binding = 1) readonly buffer Flags { uint flags[]; };
+layout(std430, binding = 2) readonly buffer F0 { float f0[]; };
+layout(std430, binding = 3) readonly buffer F1 { float f1[]; };
+layout(std430, binding = 4) readonly buffer F2 { float f2[]; };
+layout(std430, binding = 5) readonly buffer F3 { float f3[]; };
+layout(std430, binding = 6) readonly buffer Macro_ { vec4 macro[]; };
+layout(std430, binding = 7) buffer Forces { float forces[]; };  // [slot][obstacle] vec4, zeroed before
+layout(push_constant) uniform Push {
+  uint step;  // StepParams entry
+  uint slot;  // where this step's forces go
+} push;
+
+void main() {
+  uint cell = gl_GlobalInvocationID.x;
+  uint count = params[push.step].counts.x;
+  ivec3 p = cellOf(min(cell, CELLS - 1u), SIZE);
+  bool linked = cell < CELLS && nearSolid(params[push.step], p) && !isSolid(flags[cell]);
+
+  uint neighbour[Q];  // the obstacle (plus one) each population streams from, 0 for fluid
+  float rho = linked ? macro[cell].w : 0.0;
+  [[unroll]] for (int i = 0; i < Q; ++i) {
+    ivec3 source = p - C[i];
+    bool inside = all(greaterThanEqual(source, ivec3(0))) && all(lessThan(source, SIZE));
+    neighbour[i] = (linked && i > 0 && inside) ? obstacleOf(flags[cellIndex(source, SIZE)]) : 0u;
+  }
+  for (uint o = 0u; o < count; ++o) {
+    vec3 force = vec3(0.0);
+    vec3 wall = params[push.step].obstacles[o].velocity.xyz;
+    [[unroll]] for (int i = 1; i < Q; ++i) {
+      if (neighbour[i] != o + 1u) continue;
+      float toWall = SIXWAY_LOAD(opposite(i), cell, f0, f1, f2, f3);
+      float back = toWall + 6.0 * W[i] * rho * dot(vec3(C[i]), wall);
+      force += (vec3(-C[i]) - wall) * toWall - (vec3(C[i]) - wall) * back;
+    }
+    vec3 sum = subgroupAdd(force);
+    if (subgroupElect() && any(notEqual(sum, vec3(0.0)))) {
+      uint word = 4u * (push.slot * MAX_OBSTACLES + o);
+      atomicAdd(forces[word], sum.x);
+      atomicAdd(forces[word + 1u], sum.y);
+      atomicAdd(forces[word + 2u], sum.z);
+    }
+  }
+}

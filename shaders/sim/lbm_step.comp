@@ -1,0 +1,184 @@
+#version 460
+// One lattice Boltzmann step per fluid cell: pull streaming from lattice F with the boundary
+// conditions, regularized collision with Smagorinsky and Guo forcing (lbm_d3q19.glsl), result
+// into lattice G, and the cell's velocity and density into `macro` for the smoke and the watchdog.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
+
+layout(local_size_x = 64) in;
+layout(constant_id = 0) const int NX = 1;
+layout(constant_id = 1) const int NY = 1;
+layout(constant_id = 2) const int NZ = 1;
+layout(constant_id = 3) const uint FACE_XM = 0u;  // boundary type per face (sim_grid.glsl)
+layout(constant_id = 4) const uint FACE_XP = 0u;
+layout(constant_id = 5) const uint FACE_YM = 0u;
+layout(constant_id = 6) const uint FACE_YP = 0u;
+layout(constant_id = 7) const uint FACE_ZM = 0u;
+layout(constant_id = 8) const uint FACE_ZP = 0u;
+layout(constant_id = 9) const float TAU0 = 0.6;          // from the molecular viscosity
+layout(constant_id = 10) const float SMAGORINSKY = 0.0;  // LES constant C_s
+layout(constant_id = 11) const int SMOKE_UPRES = 1;      // smoke cells per lattice cell per axis
+layout(constant_id = 12) const float BUOYANCY_T = 0.0;   // lattice acceleration per unit temperature
+layout(constant_id = 13) const float BUOYANCY_D = 0.0;   // lattice acceleration per unit smoke density
+layout(constant_id = 14) const float UP_X = 0.0;         // unit vector against gravity
+layout(constant_id = 15) const float UP_Y = 1.0;
+layout(constant_id = 16) const float UP_Z = 0.0;
+layout(constant_id = 17) const float BODY_X = 0.0;  // constant lattice acceleration
+layout(constant_id = 18) const float BODY_Y = 0.0;
+layout(constant_id = 19) const float BODY_Z = 0.0;
+layout(constant_id = 20) const float WIND_X = 0.0;  // lattice velocity on inflow faces
+layout(constant_id = 21) const float WIND_Y = 0.0;
+layout(constant_id = 22) const float WIND_Z = 0.0;
+layout(constant_id = 23) const bool PARABOLIC_INFLOW = false;
+
+const uint CELLS = uint(NX * NY * NZ);
+
+#include "lbm_d3q19.glsl"
+#include "lbm_lattice.glsl"
+#include "sim_grid.glsl"
+
+layout(std430, binding = 0) readonly buffer Params { StepParams params[]; };
+layout(std430, binding = 1) readonly buffer Flags { uint flags[]; };
+layout(std430, binding = 2) readonly buffer F0 { float f0[]; };
+layout(std430, binding = 3) readonly buffer F1 { float f1[]; };
+layout(std430, binding = 4) readonly buffer F2 { float f2[]; };
+layout(std430, binding = 5) readonly buffer F3 { float f3[]; };
+layout(std430, binding = 6) writeonly buffer G0 { float g0[]; };
+layout(std430, binding = 7) writeonly buffer G1 { float g1[]; };
+layout(std430, binding = 8) writeonly buffer G2 { float g2[]; };
+layout(std430, binding = 9) writeonly buffer G3 { float g3[]; };
+layout(std430, binding = 10) buffer Macro_ { vec4 macro[]; };  // xyz velocity, w density
+layout(std430, binding = 11) readonly buffer Smoke { vec2 smoke[]; };  // density, temperature
+layout(push_constant) uniform Push { uint step; } push;
+
+const ivec3 SIZE = ivec3(NX, NY, NZ);
+uint faceType(int face) {  // 0..5 = x−, x+, y−, y+, z−, z+
+  switch (face) {
+    case 0: return FACE_XM;
+    case 1: return FACE_XP;
+    case 2: return FACE_YM;
+    case 3: return FACE_YP;
+    case 4: return FACE_ZM;
+    default: return FACE_ZP;
+  }
+}
+
+float loadPost(int i, uint cell) { return SIXWAY_LOAD(i, cell, f0, f1, f2, f3); }
+
+void store(int i, uint cell, float value) {
+  uint word = populationWord(i, cell);
+  if (i < 5) g0[word] = value;
+  else if (i < 10) g1[word] = value;
+  else if (i < 15) g2[word] = value;
+  else g3[word] = value;
+}
+
+vec3 inflowVelocity(ivec3 p, int normalAxis) {
+  vec3 u = vec3(WIND_X, WIND_Y, WIND_Z);
+  if (!PARABOLIC_INFLOW) return u;
+  [[unroll]] for (int b = 0; b < 3; ++b) {  // 4s(1 − s) across each channel bounded by no-slip walls
+    if (b == normalAxis || faceType(2 * b) != FACE_NO_SLIP || faceType(2 * b + 1) != FACE_NO_SLIP) continue;
+    float s = (float(p[b]) + 0.5) / float(SIZE[b]);
+    u *= 4.0 * s * (1.0 - s);
+  }
+  return u;
+}
+
+// The population arriving at fluid cell p along C[i] from a neighbour outside the domain.
+float fromOutside(int i, ivec3 p, ivec3 source, uint cell, vec4 previous) {
+  float bounceBack = loadPost(opposite(i), cell);  // a wall at rest, half-way between the cells
+  int outAxes = 0, axis = 0;
+  bool wall = false, inflow = false;
+  [[unroll]] for (int a = 0; a < 3; ++a) {
+    if (source[a] >= 0 && source[a] < SIZE[a]) continue;
+    uint type = faceType(2 * a + (source[a] < 0 ? 0 : 1));
+    ++outAxes;
+    axis = a;
+    wall = wall || type == FACE_NO_SLIP || type == FACE_FREE_SLIP;
+    inflow = inflow || type == FACE_INFLOW;
+  }
+  if (wall) {
+    uint type = faceType(2 * axis + (source[axis] < 0 ? 0 : 1));
+    if (type != FACE_FREE_SLIP || outAxes > 1) return bounceBack;
+    // Specular reflection: the population left a tangential neighbour with its normal component flipped.
+    ivec3 mirrored = C[i];
+    mirrored[axis] = -mirrored[axis];
+    ivec3 from = p - C[i];
+    from[axis] = p[axis];
+    int r = 0;
+    [[unroll]] for (int j = 1; j < Q; ++j) if (C[j] == mirrored) r = j;
+    if (any(lessThan(from, ivec3(0))) || any(greaterThanEqual(from, SIZE))) return bounceBack;
+    uint fromCell = cellIndex(from, SIZE);
+    if (isSolid(flags[fromCell])) return bounceBack;
+    return loadPost(r, fromCell);
+  }
+  if (inflow) return equilibrium(i, previous.w, inflowVelocity(p, axis));
+  return equilibrium(i, 1.0, previous.xyz);  // outflow: ambient pressure, the cell's own velocity
+}
+
+vec3 bodyForce(ivec3 p, float rho) {
+  vec2 s = vec2(0.0);
+  for (int z = 0; z < SMOKE_UPRES; ++z)
+    for (int y = 0; y < SMOKE_UPRES; ++y)
+      for (int x = 0; x < SMOKE_UPRES; ++x)
+        s += smoke[cellIndex(p * SMOKE_UPRES + ivec3(x, y, z), SIZE * SMOKE_UPRES)];
+  s /= float(SMOKE_UPRES * SMOKE_UPRES * SMOKE_UPRES);
+  vec3 a = (BUOYANCY_T * s.y + BUOYANCY_D * s.x) * vec3(UP_X, UP_Y, UP_Z) + vec3(BODY_X, BODY_Y, BODY_Z);
+  return rho * a;
+}
+
+void main() {
+  uint cell = gl_GlobalInvocationID.x;
+  if (cell >= CELLS) return;
+  ivec3 p = cellOf(cell, SIZE);
+  uint flag = flags[cell];
+  vec4 previous = macro[cell];
+  if (isSolid(flag)) {  // obstacles move rigidly; their cells carry the wall velocity
+    macro[cell] = vec4(params[push.step].obstacles[obstacleOf(flag) - 1u].velocity.xyz, 1.0);
+    return;
+  }
+
+  float f[Q];
+  bool nearObstacle = nearSolid(params[push.step], p);  // else no neighbour flags need reading
+  if ((flag & FLAG_WAS_SOLID) != 0u) {
+    // Uncovered by a moving obstacle: start from equilibrium at the wall's velocity.
+    [[unroll]] for (int i = 0; i < Q; ++i) f[i] = equilibrium(i, 1.0, previous.xyz);
+  } else {
+    [[unroll]] for (int i = 0; i < Q; ++i) {
+      ivec3 source = p - C[i];
+      [[unroll]] for (int a = 0; a < 3; ++a)
+        if (faceType(2 * a) == FACE_PERIODIC) source[a] = (source[a] + SIZE[a]) % SIZE[a];
+      if (any(lessThan(source, ivec3(0))) || any(greaterThanEqual(source, SIZE))) {
+        f[i] = fromOutside(i, p, source, cell, previous);
+        continue;
+      }
+      uint sourceCell = cellIndex(source, SIZE);
+      uint sourceFlag = nearObstacle ? flags[sourceCell] : 0u;
+      if (isSolid(sourceFlag)) {
+        // Half-way bounce-back from a wall moving at u_w: f_i = f*_ī + 6 w_i ρ c_i·u_w (Ladd 1994).
+        vec3 wall = params[push.step].obstacles[obstacleOf(sourceFlag) - 1u].velocity.xyz;
+        f[i] = loadPost(opposite(i), cell) + 6.0 * W[i] * previous.w * dot(vec3(C[i]), wall);
+      } else {
+        f[i] = loadPost(i, sourceCell);
+      }
+    }
+  }
+
+  // The force needs the density, the density needs no force: take ρ first.
+  float rho = 0.0;
+  [[unroll]] for (int i = 0; i < Q; ++i) rho += f[i];
+  vec3 force = bodyForce(p, rho);
+  Macro m = moments(f, force);
+  float tau = effectiveTau(TAU0, SMAGORINSKY, m);
+
+  uint inlet = inletOf(flag);
+  if (inlet != 0u) {  // a velocity inlet: the populations are set to equilibrium at the inflow velocity
+    Inlet in_ = params[push.step].inlets[inlet - 1u];
+    vec3 u = in_.velocity.xyz + in_.velocity.w * length(in_.velocity.xyz) * noise3(p, params[push.step].counts.z);
+    [[unroll]] for (int i = 0; i < Q; ++i) store(i, cell, equilibrium(i, m.rho, u));
+    macro[cell] = vec4(u, m.rho);
+    return;
+  }
+  [[unroll]] for (int i = 0; i < Q; ++i) store(i, cell, collide(i, m, tau, force));
+  macro[cell] = vec4(m.u, m.rho);
+}

@@ -1,0 +1,142 @@
+#include "app/sim_command.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "app/options.h"
+#include "app/report.h"
+#include "gpu/context.h"
+#include "gpu/pipeline.h"
+#include "io/error.h"
+#include "io/vdb.h"
+#include "sim/simulation.h"
+#include "sim/watchdog.h"
+
+namespace sixway::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct SimOptions {
+  CommonOptions common;
+  fs::path scene, vdbOut, report;
+  uint32_t steps = 0;
+  bool force = false;
+};
+
+nlohmann::json vec(glm::vec3 v) { return {v.x, v.y, v.z}; }
+
+// Outputs are checked before any work: an existing directory or report needs --force.
+void prepareOutputs(const SimOptions& o) {
+  if (!o.vdbOut.empty()) {
+    requireWritable(o.vdbOut, o.force);
+    std::error_code error;
+    fs::create_directories(o.vdbOut, error);
+    if (error) throw io::InputError(o.vdbOut.string(), "cannot create the directory: " + error.message());
+  }
+  if (!o.report.empty()) requireWritable(o.report, o.force);
+}
+
+void run(const SimOptions& o) {
+  const io::Scene scene = io::loadScene(o.scene);
+  prepareOutputs(o);
+  gpu::Context context(o.common.contextOptions());
+  gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));
+  sim::Simulation simulation(context, cache, scene);
+  const sim::LatticeUnits& units = simulation.units();
+  const glm::ivec3 size = scene.grid.size;
+  std::printf("%s: %dx%dx%d lattice, %d steps per frame of %.4g s, tau %.5f, on %s\n", scene.name.c_str(), size.x,
+              size.y, size.z, units.stepsPerFrame, scene.time.frameDt, units.tau, context.properties().deviceName);
+
+  nlohmann::json frames = nlohmann::json::array();
+  std::vector<nlohmann::json> forcesPerObstacle(simulation.obstacles().obstacleCount(), nlohmann::json::array());
+  std::string watchdog = "ok";
+  double lbmMs = 0, smokeMs = 0, totalMs = 0;
+  uint64_t updates = 0;
+  int frame = 0;
+  const auto started = std::chrono::steady_clock::now();
+  try {
+    while (simulation.step() < o.steps) {
+      const uint32_t n = std::min<uint64_t>(units.stepsPerFrame, o.steps - simulation.step());
+      simulation.advance(n);
+      ++frame;
+      const sim::AdvanceReport& r = simulation.report();
+      for (size_t s = 0; s < r.forces.size(); ++s)
+        for (size_t i = 0; i < r.forces[s].size(); ++i) forcesPerObstacle[i].push_back(vec(r.forces[s][i]));
+      const double mlups = double(simulation.lbm().cells()) * n / (r.times.lbm * 1e3);
+      lbmMs += r.times.lbm;
+      smokeMs += r.times.smoke;
+      totalMs += r.times.total();
+      updates += simulation.lbm().cells() * n;
+      frames.push_back({{"frame", frame},
+                        {"step", simulation.step()},
+                        {"time_s", simulation.seconds()},
+                        {"smoke_mass", r.smokeMass},
+                        {"max_speed_m_s", r.maxSpeed},
+                        {"max_lattice_speed", r.maxLatticeSpeed},
+                        {"obstacles_ms", r.times.obstacles},
+                        {"forces_ms", r.times.forces},
+                        {"lbm_ms", r.times.lbm},
+                        {"smoke_ms", r.times.smoke},
+                        {"watchdog_ms", r.times.watchdog},
+                        {"total_ms", r.times.total()},
+                        {"mlups", mlups}});
+      std::printf("\rstep %6llu/%u  frame %4d  max speed %6.3f m/s (lattice %.3f)  smoke mass %.4g  %6.1f MLUPs",
+                  (unsigned long long)simulation.step(), o.steps, frame, r.maxSpeed, r.maxLatticeSpeed, r.smokeMass,
+                  mlups);
+      std::fflush(stdout);
+      if (!o.vdbOut.empty()) {
+        auto [density, temperature] = simulation.smokeGrids();
+        char name[64];
+        std::snprintf(name, sizeof(name), "%s_%04d.vdb", scene.name.c_str(), frame);
+        io::writeVdb(o.vdbOut / name, {{"density", &density}, {"temperature", &temperature}});
+      }
+    }
+  } catch (const sim::WatchdogError& e) {
+    watchdog = e.what();
+  }
+  std::printf("\n");
+  const double wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+
+  if (!o.report.empty()) {
+    nlohmann::json obstacles = nlohmann::json::array();
+    for (auto& f : forcesPerObstacle) obstacles.push_back({{"force_lattice_per_step", f}});
+    writeReport(o.report, {{"scene", scene.name},
+                           {"device", context.properties().deviceName},
+                           {"lattice", {size.x, size.y, size.z}},
+                           {"smoke_upres", scene.grid.smokeUpres},
+                           {"steps", simulation.step()},
+                           {"steps_per_frame", units.stepsPerFrame},
+                           {"step_seconds", units.stepSeconds},
+                           {"tau", units.tau},
+                           {"watchdog", watchdog},
+                           {"mlups", updates / (lbmMs * 1e3)},
+                           {"lbm_ms", lbmMs},
+                           {"smoke_ms", smokeMs},
+                           {"gpu_ms", totalMs},
+                           {"wall_seconds", wallSeconds},
+                           {"force_units", "lattice: rho0 = 1, cells/step^2; newtons = value * rho_air * dx^4 / dt^2"},
+                           {"obstacles", obstacles},
+                           {"frames", frames}});
+  }
+  if (watchdog != "ok") throw sim::WatchdogError(watchdog);
+}
+
+}  // namespace
+
+void addSimCommand(CLI::App& app) {
+  auto o = std::make_shared<SimOptions>();
+  CLI::App* command = app.add_subcommand("sim", "Run the smoke simulation (LBM + smoke transport) of a scene");
+  o->common.addTo(*command);
+  command->add_option("--scene", o->scene, "Scene JSON")->required();
+  command->add_option("--steps", o->steps, "Lattice steps")->required()->check(CLI::Range(1u, 100000000u));
+  command->add_option("--vdb-out", o->vdbOut, "Write density and temperature per frame as OpenVDB into this directory");
+  command->add_option("--report", o->report, "JSON report: forces on each obstacle, mass, max velocity, MLUPs, watchdog");
+  command->add_flag("--force", o->force, "Overwrite an existing output directory or report");
+  command->callback([o] { run(*o); });
+}
+
+}  // namespace sixway::app

@@ -1,0 +1,126 @@
+#include "sim/lbm_solver.h"
+
+#include <string>
+
+#include "gpu/context.h"
+#include "gpu/sequence.h"
+#include "io/error.h"
+#include "sim/sim_params.h"
+
+namespace sixway::sim {
+namespace {
+
+constexpr uint32_t kGroupSize = 64;
+constexpr uint32_t kPopulationsPerBuffer = 5;  // lbm_lattice.glsl
+
+using gpu::BindingType;
+
+struct StepPush {
+  uint32_t slot;
+};
+struct ForcesPush {
+  uint32_t step, slot;
+};
+
+std::vector<BindingType> storageBuffers(int count) { return std::vector<BindingType>(count, BindingType::StorageBuffer); }
+
+}  // namespace
+
+LbmSettings lbmSettings(const io::Scene& scene, const LatticeUnits& units) {
+  LbmSettings s;
+  s.size = scene.grid.size;
+  s.faces = scene.boundaries.faces;
+  s.tau = units.tau;
+  s.smagorinsky = scene.fluid.smagorinsky;
+  s.smokeUpres = scene.grid.smokeUpres;
+  s.buoyancyTemperature = scene.fluid.buoyancy.temperature * units.accelerationScale;
+  s.buoyancyDensity = scene.fluid.buoyancy.density * units.accelerationScale;
+  s.up = -glm::normalize(scene.fluid.gravity);
+  s.bodyForce = units.toLatticeAcceleration(scene.fluid.bodyForce);
+  s.wind = units.toLatticeVelocity(scene.boundaries.wind);
+  s.parabolicInflow = scene.boundaries.inflowProfile == io::InflowProfile::Parabolic;
+  return s;
+}
+
+LbmSolver::LbmSolver(const gpu::Context& context, const gpu::PipelineCache& cache, const LbmSettings& settings)
+    : context_(&context),
+      settings_(settings),
+      cells_(uint64_t(settings.size.x) * settings.size.y * settings.size.z),
+      groups_(uint32_t((cells_ + kGroupSize - 1) / kGroupSize)) {
+  if (cells_ > UINT32_MAX / kPopulationsPerBuffer)
+    throw io::InputError("grid.size", "the lattice has too many cells for 32-bit population addressing");
+  const std::string shape = std::to_string(settings.size.x) + "x" + std::to_string(settings.size.y) + "x" +
+                            std::to_string(settings.size.z);
+  for (int parity = 0; parity < 2; ++parity)
+    for (uint32_t b = 0; b < 4; ++b) {
+      const uint32_t populations = b < 3 ? kPopulationsPerBuffer : 19 - 3 * kPopulationsPerBuffer;
+      lattices_[parity][b] = gpu::Buffer::storage(
+          context, uint64_t(populations) * cells_ * sizeof(float),
+          "the " + shape + " lattice (populations " + std::to_string(b * 5) + "..)");
+    }
+  macro_ = gpu::Buffer::storage(context, cells_ * 16, "the " + shape + " velocity field");
+
+  const auto& sz = settings.size;
+  gpu::ComputePipelineDesc init;
+  init.shader = "sim/lbm_init.comp";
+  init.bindings = storageBuffers(5);
+  init.spec.set(0, uint32_t(cells_));
+  init_ = std::make_unique<gpu::Pipeline>(context, cache, init);
+
+  gpu::ComputePipelineDesc step;
+  step.shader = "sim/lbm_step.comp";
+  step.bindings = storageBuffers(12);
+  step.pushConstantBytes = sizeof(StepPush);
+  step.spec.set(0, sz.x).set(1, sz.y).set(2, sz.z);
+  for (uint32_t f = 0; f < 6; ++f) step.spec.set(3 + f, uint32_t(settings.faces[f]));
+  step.spec.set(9, settings.tau).set(10, settings.smagorinsky).set(11, settings.smokeUpres);
+  step.spec.set(12, settings.buoyancyTemperature).set(13, settings.buoyancyDensity);
+  step.spec.set(14, settings.up.x).set(15, settings.up.y).set(16, settings.up.z);
+  step.spec.set(17, settings.bodyForce.x).set(18, settings.bodyForce.y).set(19, settings.bodyForce.z);
+  step.spec.set(20, settings.wind.x).set(21, settings.wind.y).set(22, settings.wind.z);
+  step.spec.set(23, settings.parabolicInflow);
+  step_ = std::make_unique<gpu::Pipeline>(context, cache, step);
+
+  gpu::ComputePipelineDesc forces;
+  forces.shader = "sim/forces.comp";
+  forces.bindings = storageBuffers(8);
+  forces.pushConstantBytes = sizeof(ForcesPush);
+  forces.spec.set(0, sz.x).set(1, sz.y).set(2, sz.z);
+  forces_ = std::make_unique<gpu::Pipeline>(context, cache, forces);
+
+}
+
+void LbmSolver::initialize(const std::vector<glm::vec4>& macro, int parity) {
+  if (macro.size() != cells_)
+    throw std::invalid_argument("LbmSolver::initialize: " + std::to_string(macro.size()) + " cells given, the lattice has " +
+                                std::to_string(cells_));
+  macro_.upload(macro);
+  gpu::Sequence sequence(*context_);
+  const auto& f = lattices_[parity];
+  sequence.dispatch(*init_,
+                    {gpu::reads(macro_), gpu::writes(f[0]), gpu::writes(f[1]), gpu::writes(f[2]), gpu::writes(f[3])},
+                    std::span<const std::byte>(), groups_);
+  sequence.submit();
+}
+
+void LbmSolver::recordStep(gpu::Sequence& sequence, const gpu::Buffer& params, const gpu::Buffer& flags,
+                           const gpu::Buffer& smoke, uint32_t slot, int parity) const {
+  const auto& from = lattices_[parity];
+  const auto& to = lattices_[1 - parity];
+  sequence.dispatch(*step_,
+                    {gpu::reads(params), gpu::reads(flags), gpu::reads(from[0]), gpu::reads(from[1]),
+                     gpu::reads(from[2]), gpu::reads(from[3]), gpu::writes(to[0]), gpu::writes(to[1]),
+                     gpu::writes(to[2]), gpu::writes(to[3]), gpu::readsWrites(macro_), gpu::reads(smoke)},
+                    StepPush{slot}, groups_);
+}
+
+void LbmSolver::recordForces(gpu::Sequence& sequence, const gpu::Buffer& params, const gpu::Buffer& flags,
+                             uint32_t slot, int parity, const gpu::Buffer& forces) const {
+  const auto& f = lattices_[parity];
+  sequence.dispatch(*forces_,
+                    {gpu::reads(params), gpu::reads(flags), gpu::reads(f[0]), gpu::reads(f[1]), gpu::reads(f[2]),
+                     gpu::reads(f[3]), gpu::reads(macro_), gpu::readsWrites(forces)},
+                    ForcesPush{slot, slot}, groups_);
+}
+
+}  // namespace sixway::sim

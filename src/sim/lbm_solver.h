@@ -1,0 +1,66 @@
+#pragma once
+// The D3Q19 lattice and its kernels (shaders/sim/lbm_*.comp, forces*.comp): two lattices, each
+// in four structure-of-arrays buffers, swapped every step (pull streaming reads one, writes the other).
+#include <array>
+#include <glm/glm.hpp>
+#include <memory>
+#include <vector>
+
+#include "gpu/buffer.h"
+#include "gpu/pipeline.h"
+#include "io/scene.h"
+#include "sim/lattice_units.h"
+
+namespace sixway::gpu {
+class Sequence;
+}
+
+namespace sixway::sim {
+
+struct LbmSettings {
+  glm::ivec3 size{0};
+  std::array<io::BoundaryType, 6> faces{};
+  float tau = 0.6f;
+  float smagorinsky = 0;
+  int smokeUpres = 1;
+  float buoyancyTemperature = 0, buoyancyDensity = 0;  // lattice acceleration per unit
+  glm::vec3 up{0, 1, 0};
+  glm::vec3 bodyForce{0};  // lattice acceleration
+  glm::vec3 wind{0};       // lattice velocity on inflow faces
+  bool parabolicInflow = false;
+};
+
+LbmSettings lbmSettings(const io::Scene& scene, const LatticeUnits& units);
+
+class LbmSolver {
+ public:
+  LbmSolver(const gpu::Context& context, const gpu::PipelineCache& cache, const LbmSettings& settings);
+
+  // Sets the populations of lattice `parity` to the equilibrium of `macro` (velocity xyz, density w
+  // per cell) and keeps `macro` as the current macroscopic state. Blocks.
+  void initialize(const std::vector<glm::vec4>& macro, int parity);
+  // One step: stream from lattice `parity`, collide, write lattice 1 − parity and the macro state.
+  void recordStep(gpu::Sequence& sequence, const gpu::Buffer& params, const gpu::Buffer& flags,
+                  const gpu::Buffer& smoke, uint32_t slot, int parity) const;
+  // Momentum-exchange force on each obstacle before the step that streams from lattice `parity`,
+  // added into forces[slot · kMaxObstacles + obstacle] (vec4; zero it before).
+  void recordForces(gpu::Sequence& sequence, const gpu::Buffer& params, const gpu::Buffer& flags, uint32_t slot,
+                    int parity, const gpu::Buffer& forces) const;
+
+  const gpu::Buffer& macro() const { return macro_; }
+  uint64_t cells() const { return cells_; }
+  // Bytes read and written per cell update by lbm_step: 19 populations each way, the flags and
+  // the macro state (read and written); the smoke and the neighbours' flags are left out.
+  static constexpr uint32_t kBytesPerCellUpdate = 19 * 4 * 2 + 4 + 16 * 2;
+
+ private:
+  const gpu::Context* context_;
+  LbmSettings settings_;
+  uint64_t cells_;
+  uint32_t groups_;
+  std::array<std::array<gpu::Buffer, 4>, 2> lattices_;
+  gpu::Buffer macro_;
+  std::unique_ptr<gpu::Pipeline> init_, step_, forces_;
+};
+
+}  // namespace sixway::sim

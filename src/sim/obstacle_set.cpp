@@ -1,0 +1,226 @@
+#include "sim/obstacle_set.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <glm/gtc/matrix_transform.hpp>
+#include <string>
+
+#include "gpu/context.h"
+#include "gpu/pipeline.h"
+#include "gpu/sequence.h"
+#include "io/error.h"
+#include "io/obj.h"
+
+namespace sixway::sim {
+namespace {
+
+template <class... Ts>
+struct Overloaded : Ts... {
+  using Ts::operator()...;
+};
+
+// R = Rz·Ry·Rx, x applied first (scene-format.md, mesh obstacles).
+glm::mat3 meshRotation(glm::vec3 degrees) {
+  glm::mat4 r(1.0f);
+  r = glm::rotate(r, glm::radians(degrees.z), glm::vec3(0, 0, 1));
+  r = glm::rotate(r, glm::radians(degrees.y), glm::vec3(0, 1, 0));
+  r = glm::rotate(r, glm::radians(degrees.x), glm::vec3(1, 0, 0));
+  return glm::mat3(r);
+}
+
+struct VoxelizePush {
+  glm::vec4 origin;
+  glm::ivec4 grid;
+  uint32_t triangleCount;
+};
+
+}  // namespace
+
+MotionState evaluateMotion(const io::Motion& motion, double seconds) {
+  const auto& keys = motion.keyframes;
+  const double first = keys.front().time, last = keys.back().time;
+  if (motion.loop) seconds = first + std::fmod(std::fmod(seconds - first, last - first) + (last - first), last - first);
+  if (seconds <= first) return {keys.front().position, glm::vec3(0)};
+  if (seconds >= last) return {keys.back().position, glm::vec3(0)};
+  size_t k = 0;
+  while (keys[k + 1].time < seconds) ++k;
+  const float span = keys[k + 1].time - keys[k].time;
+  const float t = float(seconds - keys[k].time) / span;
+  return {glm::mix(keys[k].position, keys[k + 1].position, t), (keys[k + 1].position - keys[k].position) / span};
+}
+
+ObstacleSet::ObstacleSet(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
+                         const LatticeUnits& units)
+    : units_(units), origin_(scene.grid.origin), size_(scene.grid.size) {
+  const uint64_t cells = uint64_t(scene.grid.size.x) * scene.grid.size.y * scene.grid.size.z;
+  groups_ = uint32_t((cells + 63) / 64);
+  flags_ = gpu::Buffer::storage(context, cells * sizeof(uint32_t), "cell flags");
+  flags_.upload(std::vector<uint32_t>(cells, 0u));
+  gpu::ComputePipelineDesc desc;
+  desc.shader = "sim/obstacles.comp";
+  desc.bindings.assign(3, gpu::BindingType::StorageBuffer);
+  desc.pushConstantBytes = sizeof(uint32_t);
+  desc.spec.set(0, scene.grid.size.x).set(1, scene.grid.size.y).set(2, scene.grid.size.z);
+  flagsPipeline_ = std::make_unique<gpu::Pipeline>(context, cache, desc);
+  if (scene.obstacles.size() > kMaxObstacles)
+    throw io::InputError(scene.name, "obstacles: at most " + std::to_string(kMaxObstacles) + " are supported, got " +
+                                         std::to_string(scene.obstacles.size()));
+  if (scene.inlets.size() > kMaxInlets)
+    throw io::InputError(scene.name, "inlets: at most " + std::to_string(kMaxInlets) + " are supported, got " +
+                                         std::to_string(scene.inlets.size()));
+  const float toCells = 1.0f / units.cellSize;
+  for (const io::Obstacle& o : scene.obstacles) {
+    GpuObstacle g{};
+    glm::vec3 extent(0);
+    std::visit(Overloaded{
+                   [&](const io::SphereObstacle& s) {
+                     g.centre = glm::vec4(units.toLattice(s.center, origin_), float(ShapeCode::Sphere));
+                     g.size.x = s.radius * toCells;
+                     extent = glm::vec3(g.size.x);
+                   },
+                   [&](const io::CylinderObstacle& c) {
+                     g.centre = glm::vec4(units.toLattice(c.center, origin_), float(ShapeCode::Cylinder));
+                     g.axis = glm::vec4(c.axis, 0.5f * c.height * toCells);
+                     g.size.x = c.radius * toCells;
+                     extent = g.axis.w * glm::abs(c.axis) + g.size.x * glm::sqrt(1.0f - c.axis * c.axis);
+                   },
+                   [&](const io::BoxObstacle& b) {
+                     g.centre = glm::vec4(units.toLattice(b.center, origin_), float(ShapeCode::Box));
+                     g.size = glm::vec4(0.5f * b.size * toCells, 0.0f);
+                     extent = glm::vec3(g.size);
+                   },
+                   [&](const io::MeshObstacle& m) {
+                     g.centre = glm::vec4(units.toLattice(m.translate, origin_), float(ShapeCode::Mesh));
+                     // lattice offset d → object: Rᵀ · d · cellSize / scale
+                     const glm::mat3 toObject = glm::transpose(meshRotation(m.rotateDeg)) * (units.cellSize / m.scale);
+                     for (int row = 0; row < 3; ++row)
+                       g.rotation[row] = glm::vec4(toObject[0][row], toObject[1][row], toObject[2][row], 0.0f);
+                   },
+               },
+               o.shape);
+    obstacles_.push_back({g, o.motion, extent});
+  }
+  for (const io::Inlet& in : scene.inlets) {
+    GpuInlet g{};
+    std::visit(Overloaded{
+                   [&](const io::InletDisk& d) {
+                     g.centre = glm::vec4(units.toLattice(d.center, origin_), 0.0f);
+                     g.normal = glm::vec4(d.normal, d.radius * toCells);
+                   },
+                   [&](const io::InletBox& b) {
+                     g.centre = glm::vec4(units.toLattice(b.min, origin_), 1.0f);
+                     g.normal = glm::vec4(units.toLattice(b.max, origin_), 0.0f);
+                   },
+               },
+               in.shape);
+    g.velocity = glm::vec4(units.toLatticeVelocity(in.velocity), in.noise);
+    g.smoke = glm::vec4(in.density, in.temperature, 0.0f, 0.0f);
+    inlets_.push_back({g, in.start, in.stop});
+  }
+  voxelizeMeshes(context, cache, scene);
+}
+
+void ObstacleSet::voxelizeMeshes(const gpu::Context& context, const gpu::PipelineCache& cache,
+                                 const io::Scene& scene) {
+  struct Job {
+    io::Mesh mesh;
+    GpuObstacle* target;
+  };
+  std::vector<Job> jobs;
+  uint32_t words = 0;
+  for (size_t i = 0; i < scene.obstacles.size(); ++i) {
+    const auto* m = std::get_if<io::MeshObstacle>(&scene.obstacles[i].shape);
+    if (!m) continue;
+    GpuObstacle& g = obstacles_[i].shape;
+    Job job{io::readObj(m->file), &g};
+    // Object-space voxels of half a lattice cell, over the mesh bounds plus a voxel of margin.
+    const float voxel = 0.5f * units_.cellSize / m->scale;
+    const glm::vec3 lo = job.mesh.boundsMin - voxel, hi = job.mesh.boundsMax + voxel;
+    const glm::ivec3 cells = glm::ivec3(glm::ceil((hi - lo) / voxel));
+    const uint64_t count = uint64_t(cells.x) * cells.y * cells.z;
+    if (count > (64u << 20))
+      throw io::InputError(m->file.string(), "the mesh needs " + std::to_string(count) +
+                                                 " occupancy voxels at this cell size; reduce its scale");
+    g.meshOrigin = glm::vec4(lo, voxel);
+    // A sphere around the translation that holds every corner of the grid, whatever the rotation.
+    float reach = 0;
+    for (int corner = 0; corner < 8; ++corner)
+      reach = std::max(reach, glm::length(glm::vec3(corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y,
+                                                    corner & 4 ? hi.z : lo.z)));
+    obstacles_[i].halfExtent = glm::vec3(reach * m->scale / units_.cellSize);
+    g.meshGrid = glm::ivec4(cells, int(words));
+    words += uint32_t(count);
+    jobs.push_back(std::move(job));
+  }
+  occupancy_ = gpu::Buffer::storage(context, std::max<uint64_t>(words, 1) * sizeof(uint32_t), "mesh occupancy");
+  if (jobs.empty()) return;
+
+  gpu::ComputePipelineDesc desc;
+  desc.shader = "sim/voxelize_mesh.comp";
+  desc.bindings = {gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer};
+  desc.pushConstantBytes = sizeof(VoxelizePush);
+  gpu::Pipeline pipeline(context, cache, desc);
+  std::vector<gpu::Buffer> inputs;
+  gpu::Sequence sequence(context);
+  sequence.fill(occupancy_, 0);
+  for (const Job& job : jobs) {
+    std::vector<float> positions;
+    for (const glm::vec3& p : job.mesh.positions) positions.insert(positions.end(), {p.x, p.y, p.z});
+    std::vector<uint32_t> triangles;
+    for (const glm::uvec3& t : job.mesh.triangles) triangles.insert(triangles.end(), {t.x, t.y, t.z});
+    inputs.push_back(gpu::Buffer::storage(context, positions.size() * 4, "mesh positions"));
+    inputs.back().upload(positions);
+    inputs.push_back(gpu::Buffer::storage(context, triangles.size() * 4, "mesh triangles"));
+    inputs.back().upload(triangles);
+    const VoxelizePush push{job.target->meshOrigin, job.target->meshGrid, uint32_t(job.mesh.triangles.size())};
+    sequence.dispatch(pipeline,
+                      {gpu::reads(inputs[inputs.size() - 2]), gpu::reads(inputs.back()), gpu::readsWrites(occupancy_)},
+                      push, (3 * push.triangleCount + 63) / 64);
+  }
+  sequence.submit();
+}
+
+void ObstacleSet::recordFlags(gpu::Sequence& sequence, const gpu::Buffer& params, uint32_t slot) const {
+  sequence.dispatch(*flagsPipeline_, {gpu::reads(params), gpu::reads(occupancy_), gpu::readsWrites(flags_)}, slot,
+                    groups_);
+}
+
+glm::vec3 ObstacleSet::centreAt(size_t obstacle, uint64_t step) const {
+  const Placed& p = obstacles_[obstacle];
+  if (!p.motion) return glm::vec3(p.shape.centre);
+  return units_.toLattice(evaluateMotion(*p.motion, double(step) * units_.stepSeconds).position, origin_);
+}
+
+void ObstacleSet::fill(StepParams& params, uint64_t step) const {
+  const double seconds = double(step) * units_.stepSeconds;
+  // The cells any obstacle covers now or covered a step ago, grown by two cells for the neighbours.
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+  for (size_t i = 0; i < obstacles_.size(); ++i)
+    for (uint64_t s : {step, step > 0 ? step - 1 : step}) {
+      lo = glm::min(lo, centreAt(i, s) - obstacles_[i].halfExtent);
+      hi = glm::max(hi, centreAt(i, s) + obstacles_[i].halfExtent);
+    }
+  if (obstacles_.empty()) {
+    params.solidMin = params.solidMax = glm::ivec4(0);
+  } else {
+    params.solidMin = glm::ivec4(glm::clamp(glm::ivec3(glm::floor(lo)) - 2, glm::ivec3(0), size_), 0);
+    params.solidMax = glm::ivec4(glm::clamp(glm::ivec3(glm::ceil(hi)) + 2, glm::ivec3(0), size_), 0);
+  }
+  for (size_t i = 0; i < obstacles_.size(); ++i) {
+    GpuObstacle g = obstacles_[i].shape;
+    if (obstacles_[i].motion) {
+      const MotionState state = evaluateMotion(*obstacles_[i].motion, seconds);
+      g.centre = glm::vec4(units_.toLattice(state.position, origin_), g.centre.w);
+      g.velocity = glm::vec4(units_.toLatticeVelocity(state.velocity), 0.0f);
+    }
+    params.obstacles[i] = g;
+  }
+  for (size_t i = 0; i < inlets_.size(); ++i) {
+    params.inlets[i] = inlets_[i].inlet;
+    params.inlets[i].smoke.z = (seconds >= inlets_[i].start && seconds < inlets_[i].stop) ? 1.0f : 0.0f;
+  }
+  params.counts = glm::uvec4(obstacles_.size(), inlets_.size(), uint32_t(step), 0);
+}
+
+}  // namespace sixway::sim

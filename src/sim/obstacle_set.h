@@ -1,0 +1,69 @@
+#pragma once
+// The scene's obstacles and inlets in lattice coordinates, at any step: keyframed motion is
+// evaluated on the host and handed to the shaders in StepParams. Meshes are voxelized once on
+// the GPU into an occupancy grid in their own object space, so they can move rigidly too.
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "gpu/buffer.h"
+#include "gpu/pipeline.h"
+#include "io/scene.h"
+#include "sim/lattice_units.h"
+#include "sim/sim_params.h"
+
+namespace sixway::gpu {
+class Sequence;
+}
+
+namespace sixway::sim {
+
+class ObstacleSet {
+ public:
+  ObstacleSet(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
+              const LatticeUnits& units);
+
+  // Obstacles and inlets as they are at lattice step `step` (time = step · stepSeconds).
+  void fill(StepParams& params, uint64_t step) const;
+  // Marks each lattice cell with the obstacle and the inlet covering it at step params[slot].
+  void recordFlags(gpu::Sequence& sequence, const gpu::Buffer& params, uint32_t slot) const;
+
+  // Per lattice cell: obstacle and inlet (shaders/common/sim_grid.glsl, FLAG_*).
+  const gpu::Buffer& flags() const { return flags_; }
+  const gpu::Buffer& occupancy() const { return occupancy_; }
+  size_t obstacleCount() const { return obstacles_.size(); }
+
+ private:
+  struct Placed {
+    GpuObstacle shape;  // at rest; centre replaced by the motion's position
+    std::optional<io::Motion> motion;
+    glm::vec3 halfExtent;  // of an axis-aligned box around the centre that holds the shape, cells
+  };
+  struct TimedInlet {
+    GpuInlet inlet;
+    float start, stop;  // s
+  };
+  void voxelizeMeshes(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene);
+  glm::vec3 centreAt(size_t obstacle, uint64_t step) const;  // lattice coordinates
+
+  LatticeUnits units_;
+  glm::vec3 origin_;
+  glm::ivec3 size_;
+  uint32_t groups_;
+  gpu::Buffer flags_;
+  std::unique_ptr<gpu::Pipeline> flagsPipeline_;
+  std::vector<Placed> obstacles_;
+  std::vector<TimedInlet> inlets_;
+  gpu::Buffer occupancy_;
+};
+
+// Position and velocity of a keyframed motion at time t (linear between keyframes, held at the
+// ends or repeated with `loop`).
+struct MotionState {
+  glm::vec3 position;
+  glm::vec3 velocity;
+};
+MotionState evaluateMotion(const io::Motion& motion, double seconds);
+
+}  // namespace sixway::sim

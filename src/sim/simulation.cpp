@@ -1,0 +1,140 @@
+#include "sim/simulation.h"
+
+#include <cmath>
+#include <cstring>
+
+#include "gpu/context.h"
+#include "gpu/sequence.h"
+#include "sim/sim_params.h"
+#include "sim/watchdog.h"
+
+namespace sixway::sim {
+
+Simulation::Simulation(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene)
+    : context_(&context), scene_(scene), units_(latticeUnits(scene)) {
+  obstacles_ = std::make_unique<ObstacleSet>(context, cache, scene, units_);
+  lbm_ = std::make_unique<LbmSolver>(context, cache, lbmSettings(scene, units_));
+  SmokeSettings smoke;
+  smoke.lattice = scene.grid.size;
+  smoke.upres = scene.grid.smokeUpres;
+  smoke.faces = scene.boundaries.faces;
+  smoke.decayPerStep = std::exp(-scene.smoke.dissipation * units_.stepSeconds);
+  smoke_ = std::make_unique<SmokeTransport>(context, cache, smoke);
+  speedStats_ = std::make_unique<gpu::ReduceStats>(context, cache, lbm_->cells(), gpu::ReduceInput{4, 3});
+  densityStats_ = std::make_unique<gpu::ReduceStats>(context, cache, smoke_->cells(), gpu::ReduceInput{2, 1});
+
+  capacity_ = uint32_t(units_.stepsPerFrame);
+  params_ = gpu::Buffer(context, uint64_t(capacity_) * sizeof(StepParams), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                        gpu::MemoryKind::HostUpload, "step parameters");
+  forces_ = gpu::Buffer::storage(context, uint64_t(capacity_) * kMaxObstacles * 16, "obstacle forces");
+  smoke_->upload(std::vector<glm::vec2>(smoke_->cells(), glm::vec2(0)));
+  lbm_->initialize(std::vector<glm::vec4>(lbm_->cells(), glm::vec4(0, 0, 0, 1)), 0);
+}
+
+Simulation::~Simulation() = default;
+
+void Simulation::setFlow(const std::vector<glm::vec3>& velocity, const std::vector<float>& density) {
+  if (velocity.size() != lbm_->cells() || density.size() != lbm_->cells())
+    throw std::invalid_argument("Simulation::setFlow: one velocity and one density per lattice cell");
+  std::vector<glm::vec4> macro(velocity.size());
+  for (size_t i = 0; i < macro.size(); ++i) macro[i] = glm::vec4(units_.toLatticeVelocity(velocity[i]), density[i]);
+  lbm_->initialize(macro, int(step_ % 2));
+}
+
+gpu::Sequence& Simulation::sequenceFor(uint32_t steps, int parity) {
+  auto& slot = sequences_[{steps, parity}];
+  if (slot) return *slot;
+  slot = std::make_unique<gpu::Sequence>(*context_, 4 * steps + 1);
+  gpu::Sequence& sequence = *slot;
+  const uint32_t obstacleCount = uint32_t(obstacles_->obstacleCount());
+  if (obstacleCount > 0) sequence.fill(forces_, 0);
+  for (uint32_t s = 0; s < steps; ++s) {
+    const int from = (parity + int(s)) % 2;
+    sequence.beginStage("obstacles");
+    obstacles_->recordFlags(sequence, params_, s);
+    sequence.endStage();
+    if (obstacleCount > 0) {
+      sequence.beginStage("forces");
+      lbm_->recordForces(sequence, params_, obstacles_->flags(), s, from, forces_);
+      sequence.endStage();
+    }
+    sequence.beginStage("lbm");
+    lbm_->recordStep(sequence, params_, obstacles_->flags(), smoke_->smoke(), s, from);
+    sequence.endStage();
+    sequence.beginStage("smoke");
+    smoke_->recordSources(sequence, params_, obstacles_->flags(), s);
+    smoke_->recordTransport(sequence, obstacles_->flags(), lbm_->macro());
+    sequence.endStage();
+  }
+  sequence.beginStage("watchdog");
+  speedStats_->record(sequence, lbm_->macro(), uint32_t(lbm_->cells()));
+  densityStats_->record(sequence, smoke_->smoke(), uint32_t(smoke_->cells()));
+  sequence.endStage();
+  sequence.finish();
+  return sequence;
+}
+
+void Simulation::advance(uint32_t steps) {
+  while (steps > 0) {
+    const uint32_t n = std::min(steps, capacity_);
+    auto* params = static_cast<StepParams*>(params_.mapped());
+    for (uint32_t s = 0; s < n; ++s) {
+      std::memset(&params[s], 0, sizeof(StepParams));
+      obstacles_->fill(params[s], step_ + s);
+    }
+    gpu::Sequence& sequence = sequenceFor(n, int(step_ % 2));
+    sequence.submit();
+
+    AdvanceReport report;
+    report.firstStep = step_;
+    step_ += n;
+    for (const gpu::StageTime& t : sequence.stageTimes()) {
+      double* total = t.name == "obstacles" ? &report.times.obstacles
+                      : t.name == "forces"  ? &report.times.forces
+                      : t.name == "lbm"     ? &report.times.lbm
+                      : t.name == "smoke"   ? &report.times.smoke
+                                            : &report.times.watchdog;
+      *total += t.milliseconds;
+    }
+    const size_t obstacleCount = obstacles_->obstacleCount();
+    if (obstacleCount > 0) {
+      const std::vector<glm::vec4> forces = forces_.download<glm::vec4>();
+      for (uint32_t s = 0; s < n; ++s) {
+        report.forces.emplace_back();
+        for (size_t o = 0; o < obstacleCount; ++o) report.forces.back().push_back(glm::vec3(forces[s * kMaxObstacles + o]));
+      }
+    }
+    const gpu::Stats speed = speedStats_->result();
+    const gpu::Stats density = densityStats_->result();
+    const float smokeCell = units_.cellSize / float(scene_.grid.smokeUpres);
+    report.smokeMass = double(density.sum) * smokeCell * smokeCell * smokeCell;
+    report.minDensity = density.minimum;
+    report.maxDensity = density.maximum;
+    report.maxLatticeSpeed = speed.maxAbs;
+    report.maxSpeed = speed.maxAbs / units_.velocityScale;
+    report_ = std::move(report);
+
+    const WatchdogReport watchdog = checkWatchdog(speed, density, step_, scene_.grid.size, smoke_->size(),
+                                                  scene_.grid.origin, units_.cellSize);
+    if (watchdog.tripped) throw WatchdogError(watchdog.message);
+    steps -= n;
+  }
+}
+
+std::pair<io::DenseGrid, io::DenseGrid> Simulation::smokeGrids() const {
+  const std::vector<glm::vec2> values = smoke_->download();
+  io::DenseGrid density, temperature;
+  for (io::DenseGrid* g : {&density, &temperature}) {
+    g->size = smoke_->size();
+    g->origin = scene_.grid.origin;
+    g->dx = glm::vec3(units_.cellSize / float(scene_.grid.smokeUpres));
+    g->values.resize(values.size());
+  }
+  for (size_t i = 0; i < values.size(); ++i) {
+    density.values[i] = values[i].x;
+    temperature.values[i] = values[i].y;
+  }
+  return {std::move(density), std::move(temperature)};
+}
+
+}  // namespace sixway::sim

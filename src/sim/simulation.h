@@ -1,0 +1,83 @@
+#pragma once
+// The smoke simulation of one scene: obstacles and inlets → lattice Boltzmann flow → smoke
+// sources and transport, all on the GPU. Each submission of n steps is recorded once into a
+// gpu::Sequence and replayed; between submissions only StepParams (obstacle positions, inlet
+// switches) are written by the host, and a few bytes (watchdog, forces) are read back.
+#include <glm/glm.hpp>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gpu/buffer.h"
+#include "gpu/reduce_stats.h"
+#include "io/scene.h"
+#include "io/vdb.h"
+#include "sim/lattice_units.h"
+#include "sim/lbm_solver.h"
+#include "sim/obstacle_set.h"
+#include "sim/smoke_transport.h"
+
+namespace sixway::gpu {
+class Sequence;
+}
+
+namespace sixway::sim {
+
+struct StepTimes {
+  double obstacles = 0, forces = 0, lbm = 0, smoke = 0, watchdog = 0;  // ms, GPU timestamps
+  double total() const { return obstacles + forces + lbm + smoke + watchdog; }
+};
+
+struct AdvanceReport {
+  uint64_t firstStep = 0;                       // the step number of the first of these steps
+  std::vector<std::vector<glm::vec3>> forces;   // [step][obstacle], lattice units (ρ₀ = 1, per step²)
+  double smokeMass = 0;                         // Σ density · smoke-cell volume (density · m³)
+  float minDensity = 0, maxDensity = 0;
+  float maxSpeed = 0;                           // m/s
+  float maxLatticeSpeed = 0;                    // cells/step
+  StepTimes times;                              // for all the steps of this submission
+};
+
+class Simulation {
+ public:
+  Simulation(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene);
+  ~Simulation();
+
+  // Runs `steps` lattice steps (in submissions of at most stepsPerFrame). Throws WatchdogError.
+  void advance(uint32_t steps);
+  // Sets the velocity (m/s) and density (ρ/ρ₀) of every lattice cell, x fastest, and the
+  // populations to their equilibrium; for analytic initial conditions.
+  void setFlow(const std::vector<glm::vec3>& velocity, const std::vector<float>& density);
+
+  // The last submission's measurements (forces of every step in it).
+  const AdvanceReport& report() const { return report_; }
+  uint64_t step() const { return step_; }
+  double seconds() const { return double(step_) * units_.stepSeconds; }
+  const LatticeUnits& units() const { return units_; }
+  const io::Scene& scene() const { return scene_; }
+
+  const LbmSolver& lbm() const { return *lbm_; }
+  SmokeTransport& smoke() { return *smoke_; }
+  const ObstacleSet& obstacles() const { return *obstacles_; }
+  // Density and temperature on the smoke grid, for VDB output (reads back the smoke grid).
+  std::pair<io::DenseGrid, io::DenseGrid> smokeGrids() const;
+
+ private:
+  gpu::Sequence& sequenceFor(uint32_t steps, int parity);
+
+  const gpu::Context* context_;
+  io::Scene scene_;
+  LatticeUnits units_;
+  std::unique_ptr<ObstacleSet> obstacles_;
+  std::unique_ptr<LbmSolver> lbm_;
+  std::unique_ptr<SmokeTransport> smoke_;
+  std::unique_ptr<gpu::ReduceStats> speedStats_, densityStats_;
+  uint32_t capacity_;  // steps per submission
+  gpu::Buffer params_, forces_;
+  std::map<std::pair<uint32_t, int>, std::unique_ptr<gpu::Sequence>> sequences_;
+  uint64_t step_ = 0;
+  AdvanceReport report_;
+};
+
+}  // namespace sixway::sim

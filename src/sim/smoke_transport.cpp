@@ -1,0 +1,92 @@
+#include "sim/smoke_transport.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "gpu/sequence.h"
+
+namespace sixway::sim {
+namespace {
+
+constexpr uint32_t kGroupSize = 64;
+
+struct SourcesPush {
+  uint32_t slot;
+};
+
+gpu::ComputePipelineDesc smokeDesc(const char* shader, int bindings, const SmokeSettings& s) {
+  gpu::ComputePipelineDesc d;
+  d.shader = shader;
+  d.bindings.assign(bindings, gpu::BindingType::StorageBuffer);
+  d.spec.set(0, s.lattice.x).set(1, s.lattice.y).set(2, s.lattice.z).set(3, s.upres);
+  return d;
+}
+
+void setPeriodicAxes(gpu::ComputePipelineDesc& d, const SmokeSettings& s) {
+  for (uint32_t axis = 0; axis < 3; ++axis) d.spec.set(4 + axis, s.faces[2 * axis] == io::BoundaryType::Periodic);
+}
+
+}  // namespace
+
+SmokeTransport::SmokeTransport(const gpu::Context& context, const gpu::PipelineCache& cache,
+                               const SmokeSettings& settings)
+    : settings_(settings) {
+  const glm::ivec3 s = size();
+  cells_ = uint64_t(s.x) * s.y * s.z;
+  groups_ = uint32_t((cells_ + kGroupSize - 1) / kGroupSize);
+  const std::string shape = std::to_string(s.x) + "x" + std::to_string(s.y) + "x" + std::to_string(s.z);
+  smoke_ = gpu::Buffer::storage(context, cells_ * 8, "the " + shape + " smoke grid");
+  lowOrder_ = gpu::Buffer::storage(context, cells_ * 8, "the " + shape + " smoke grid (low-order update)");
+  antidiffusive_ = gpu::Buffer::storage(context, cells_ * 24, "the " + shape + " smoke grid (fluxes)");
+  ratios_ = gpu::Buffer::storage(context, cells_ * 16, "the " + shape + " smoke grid (limiters)");
+
+  gpu::ComputePipelineDesc sources = smokeDesc("sim/smoke_sources.comp", 3, settings);
+  sources.spec.set(4, settings.decayPerStep);
+  sources.pushConstantBytes = sizeof(SourcesPush);
+  sources_ = std::make_unique<gpu::Pipeline>(context, cache, sources);
+
+  gpu::ComputePipelineDesc fluxes = smokeDesc("sim/fct_fluxes.comp", 5, settings);
+  for (uint32_t f = 0; f < 6; ++f) fluxes.spec.set(4 + f, uint32_t(settings.faces[f]));
+  fluxes_ = std::make_unique<gpu::Pipeline>(context, cache, fluxes);
+
+  gpu::ComputePipelineDesc limiter = smokeDesc("sim/fct_limiter.comp", 5, settings);
+  setPeriodicAxes(limiter, settings);
+  limiter_ = std::make_unique<gpu::Pipeline>(context, cache, limiter);
+
+  gpu::ComputePipelineDesc update = smokeDesc("sim/fct_update.comp", 4, settings);
+  setPeriodicAxes(update, settings);
+  update_ = std::make_unique<gpu::Pipeline>(context, cache, update);
+}
+
+void SmokeTransport::upload(const std::vector<glm::vec2>& values) {
+  if (values.size() != cells_)
+    throw std::invalid_argument("SmokeTransport::upload: " + std::to_string(values.size()) +
+                                " values for a grid of " + std::to_string(cells_));
+  smoke_.upload(values);
+}
+
+void SmokeTransport::recordSources(gpu::Sequence& sequence, const gpu::Buffer& params, const gpu::Buffer& flags,
+                                   uint32_t slot) const {
+  sequence.dispatch(*sources_, {gpu::reads(params), gpu::reads(flags), gpu::readsWrites(smoke_)}, SourcesPush{slot},
+                    groups_);
+}
+
+void SmokeTransport::recordTransport(gpu::Sequence& sequence, const gpu::Buffer& flags,
+                                     const gpu::Buffer& macro) const {
+  const std::span<const std::byte> none;
+  for (int substep = 0; substep < settings_.upres; ++substep) {
+    sequence.dispatch(*fluxes_,
+                      {gpu::reads(flags), gpu::reads(macro), gpu::reads(smoke_), gpu::writes(lowOrder_),
+                       gpu::writes(antidiffusive_)},
+                      none, groups_);
+    sequence.dispatch(*limiter_,
+                      {gpu::reads(flags), gpu::reads(smoke_), gpu::reads(lowOrder_), gpu::reads(antidiffusive_),
+                       gpu::writes(ratios_)},
+                      none, groups_);
+    sequence.dispatch(*update_,
+                      {gpu::reads(lowOrder_), gpu::reads(antidiffusive_), gpu::reads(ratios_), gpu::writes(smoke_)},
+                      none, groups_);
+  }
+}
+
+}  // namespace sixway::sim
