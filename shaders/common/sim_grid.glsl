@@ -10,15 +10,24 @@ const uint FACE_OUTFLOW = 2u;
 const uint FACE_PERIODIC = 3u;
 const uint FACE_INFLOW = 4u;
 
-// Cell flags: the low byte is the obstacle covering the cell, plus one (0: fluid).
+// Cell flags: bits 0..7 the obstacle covering the cell, plus one (0: fluid); bits 8..15 the same
+// for the previous step; bits 16..23 the inlet forcing the cell, plus one (0: none).
 const uint FLAG_OBSTACLE_MASK = 0xffu;
-const uint FLAG_WAS_SOLID = 0x100u;   // solid in the previous step (a cell uncovered now needs new populations)
-const uint FLAG_INLET_SHIFT = 16u;    // bits 16..23: the inlet forcing the cell, plus one (0: none)
+const uint FLAG_PREVIOUS_SHIFT = 8u;
+const uint FLAG_INLET_SHIFT = 16u;
 const uint FLAG_INLET_MASK = 0xff0000u;
 
 uint obstacleOf(uint flags) { return flags & FLAG_OBSTACLE_MASK; }
 bool isSolid(uint flags) { return (flags & FLAG_OBSTACLE_MASK) != 0u; }
+uint previousObstacleOf(uint flags) { return (flags >> FLAG_PREVIOUS_SHIFT) & FLAG_OBSTACLE_MASK; }
 uint inletOf(uint flags) { return (flags & FLAG_INLET_MASK) >> FLAG_INLET_SHIFT; }
+// The obstacle a population streaming out of this cell comes from: the one covering it now, or,
+// for a cell a moving obstacle has just uncovered, the one that covered it a step ago (its own
+// populations are not valid yet: it starts from equilibrium in this step). 0: a fluid cell.
+uint wallOf(uint flags) {
+  uint now = obstacleOf(flags);
+  return now != 0u ? now : previousObstacleOf(flags);
+}
 
 uint cellIndex(ivec3 p, ivec3 size) { return uint(p.x + size.x * (p.y + size.y * p.z)); }
 ivec3 cellOf(uint index, ivec3 size) {

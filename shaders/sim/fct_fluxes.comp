@@ -27,25 +27,31 @@ layout(std430, binding = 2) readonly buffer Smoke { vec2 smoke[]; };
 layout(std430, binding = 3) writeonly buffer LowOrder { vec2 lowOrder[]; };      // q_td
 layout(std430, binding = 4) writeonly buffer Antidiffusive { vec2 antidiffusive[]; };  // [cell][axis]
 
-uint faceType(int face) {  // 0..5 = x−, x+, y−, y+, z−, z+
-  switch (face) {
-    case 0: return FACE_XM;
-    case 1: return FACE_XP;
-    case 2: return FACE_YM;
-    case 3: return FACE_YP;
-    case 4: return FACE_ZM;
-    default: return FACE_ZP;
-  }
-}
+#include "sim_faces.glsl"
 
 bool solidAt(ivec3 s) { return isSolid(flags[cellIndex(latticeCellOf(s), LATTICE)]); }
 
-// Lattice velocity at a point in lattice coordinates (cell centres at integer + 0.5), trilinear.
+// Lattice velocity at a point in lattice coordinates (cell centres at integer + 0.5), trilinear;
+// across the seam on periodic axes, clamped to the outer cell centres on the others.
 vec3 latticeVelocity(vec3 x) {
-  vec3 g = clamp(x - 0.5, vec3(0.0), vec3(LATTICE - 1));
-  ivec3 i0 = min(ivec3(floor(g)), LATTICE - 2 + ivec3(equal(LATTICE, ivec3(1))));
-  ivec3 i1 = min(i0 + 1, LATTICE - 1);
-  vec3 t = g - vec3(i0);
+  ivec3 i0, i1;
+  vec3 t;
+  [[unroll]] for (int a = 0; a < 3; ++a) {
+    float g = x[a] - 0.5;
+    if (faceType(2 * a) == FACE_PERIODIC) {
+      float below = floor(g);
+      t[a] = g - below;
+      i0[a] = (int(below) + LATTICE[a]) % LATTICE[a];
+      i1[a] = (i0[a] + 1) % LATTICE[a];
+    } else {
+      // Scalar bounds: the validation layer of SDK 1.3.239 rejects some vector specialization-constant
+      // expressions after specialization (e.g. LATTICE − 2) although spirv-val accepts them.
+      g = clamp(g, 0.0, float(LATTICE[a] - 1));
+      i0[a] = min(int(floor(g)), max(LATTICE[a] - 2, 0));
+      i1[a] = min(i0[a] + 1, LATTICE[a] - 1);
+      t[a] = g - float(i0[a]);
+    }
+  }
   vec3 u = vec3(0.0);
   [[unroll]] for (int k = 0; k < 8; ++k) {
     ivec3 corner = ivec3(k & 1, (k >> 1) & 1, (k >> 2) & 1);

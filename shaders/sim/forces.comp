@@ -13,6 +13,12 @@ layout(local_size_x = 64) in;
 layout(constant_id = 0) const int NX = 1;
 layout(constant_id = 1) const int NY = 1;
 layout(constant_id = 2) const int NZ = 1;
+layout(constant_id = 3) const uint FACE_XM = 0u;  // boundary type per face (sim_grid.glsl)
+layout(constant_id = 4) const uint FACE_XP = 0u;
+layout(constant_id = 5) const uint FACE_YM = 0u;
+layout(constant_id = 6) const uint FACE_YP = 0u;
+layout(constant_id = 7) const uint FACE_ZM = 0u;
+layout(constant_id = 8) const uint FACE_ZP = 0u;
 
 const uint CELLS = uint(NX * NY * NZ);
 const ivec3 SIZE = ivec3(NX, NY, NZ);
@@ -20,6 +26,7 @@ const ivec3 SIZE = ivec3(NX, NY, NZ);
 #include "lbm_d3q19.glsl"
 #include "lbm_lattice.glsl"
 #include "sim_grid.glsl"
+#include "sim_faces.glsl"
 
 layout(std430, binding = 0) readonly buffer Params { StepParams params[]; };
 layout(std430, binding = 1) readonly buffer Flags { uint flags[]; };
@@ -38,14 +45,19 @@ void main() {
   uint cell = gl_GlobalInvocationID.x;
   uint count = params[push.step].counts.x;
   ivec3 p = cellOf(min(cell, CELLS - 1u), SIZE);
-  bool linked = cell < CELLS && nearSolid(params[push.step], p) && !isSolid(flags[cell]);
+  uint own = cell < CELLS ? flags[cell] : 0u;
+  // Cells just uncovered restart from equilibrium: their links carry no momentum this step.
+  bool linked = cell < CELLS && !isSolid(own) && previousObstacleOf(own) == 0u;
 
   uint neighbour[Q];  // the obstacle (plus one) each population streams from, 0 for fluid
   float rho = linked ? macro[cell].w : 0.0;
   [[unroll]] for (int i = 0; i < Q; ++i) {
-    ivec3 source = p - C[i];
+    ivec3 source = p - C[i];  // wrapped on periodic axes exactly as lbm_step streams
+    [[unroll]] for (int a = 0; a < 3; ++a)
+      if (faceType(2 * a) == FACE_PERIODIC) source[a] = (source[a] + SIZE[a]) % SIZE[a];
     bool inside = all(greaterThanEqual(source, ivec3(0))) && all(lessThan(source, SIZE));
-    neighbour[i] = (linked && i > 0 && inside) ? obstacleOf(flags[cellIndex(source, SIZE)]) : 0u;
+    bool near = inside && nearSolid(params[push.step], source);  // else the source is fluid
+    neighbour[i] = (linked && i > 0 && near) ? wallOf(flags[cellIndex(source, SIZE)]) : 0u;
   }
   for (uint o = 0u; o < count; ++o) {
     vec3 force = vec3(0.0);

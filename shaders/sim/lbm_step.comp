@@ -52,16 +52,7 @@ layout(std430, binding = 11) readonly buffer Smoke { vec2 smoke[]; };  // densit
 layout(push_constant) uniform Push { uint step; } push;
 
 const ivec3 SIZE = ivec3(NX, NY, NZ);
-uint faceType(int face) {  // 0..5 = x−, x+, y−, y+, z−, z+
-  switch (face) {
-    case 0: return FACE_XM;
-    case 1: return FACE_XP;
-    case 2: return FACE_YM;
-    case 3: return FACE_YP;
-    case 4: return FACE_ZM;
-    default: return FACE_ZP;
-  }
-}
+#include "sim_faces.glsl"
 
 float loadPost(int i, uint cell) { return SIXWAY_LOAD(i, cell, f0, f1, f2, f3); }
 
@@ -103,16 +94,18 @@ float fromOutside(int i, ivec3 p, ivec3 source, uint cell, vec4 previous) {
     // Specular reflection: the population left a tangential neighbour with its normal component flipped.
     ivec3 mirrored = C[i];
     mirrored[axis] = -mirrored[axis];
-    ivec3 from = p - C[i];
+    ivec3 from = source;  // already wrapped on periodic axes
     from[axis] = p[axis];
     int r = 0;
     [[unroll]] for (int j = 1; j < Q; ++j) if (C[j] == mirrored) r = j;
     if (any(lessThan(from, ivec3(0))) || any(greaterThanEqual(from, SIZE))) return bounceBack;
     uint fromCell = cellIndex(from, SIZE);
-    if (isSolid(flags[fromCell])) return bounceBack;
+    if (wallOf(flags[fromCell]) != 0u) return bounceBack;
     return loadPost(r, fromCell);
   }
-  if (inflow) return equilibrium(i, previous.w, inflowVelocity(p, axis));
+  // Inflow: a wall moving at the inflow velocity, half-way outside (Ladd 1994), second order like
+  // the obstacles' bounce-back; an equilibrium inflow falls a few percent short of the set velocity.
+  if (inflow) return bounceBack + 6.0 * W[i] * previous.w * dot(vec3(C[i]), inflowVelocity(p, axis));
   return equilibrium(i, 1.0, previous.xyz);  // outflow: ambient pressure, the cell's own velocity
 }
 
@@ -139,8 +132,7 @@ void main() {
   }
 
   float f[Q];
-  bool nearObstacle = nearSolid(params[push.step], p);  // else no neighbour flags need reading
-  if ((flag & FLAG_WAS_SOLID) != 0u) {
+  if (previousObstacleOf(flag) != 0u) {
     // Uncovered by a moving obstacle: start from equilibrium at the wall's velocity.
     [[unroll]] for (int i = 0; i < Q; ++i) f[i] = equilibrium(i, 1.0, previous.xyz);
   } else {
@@ -153,10 +145,11 @@ void main() {
         continue;
       }
       uint sourceCell = cellIndex(source, SIZE);
-      uint sourceFlag = nearObstacle ? flags[sourceCell] : 0u;
-      if (isSolid(sourceFlag)) {
+      // Outside the obstacles' box no cell is or was solid: no flags to read (the box holds wrapped cells).
+      uint wallIndex = nearSolid(params[push.step], source) ? wallOf(flags[sourceCell]) : 0u;
+      if (wallIndex != 0u) {
         // Half-way bounce-back from a wall moving at u_w: f_i = f*_ī + 6 w_i ρ c_i·u_w (Ladd 1994).
-        vec3 wall = params[push.step].obstacles[obstacleOf(sourceFlag) - 1u].velocity.xyz;
+        vec3 wall = params[push.step].obstacles[wallIndex - 1u].velocity.xyz;
         f[i] = loadPost(opposite(i), cell) + 6.0 * W[i] * previous.w * dot(vec3(C[i]), wall);
       } else {
         f[i] = loadPost(i, sourceCell);
@@ -169,7 +162,7 @@ void main() {
   [[unroll]] for (int i = 0; i < Q; ++i) rho += f[i];
   vec3 force = bodyForce(p, rho);
   Macro m = moments(f, force);
-  float tau = effectiveTau(TAU0, SMAGORINSKY, m);
+  float tau = effectiveTau(TAU0, SMAGORINSKY, m, force);
 
   uint inlet = inletOf(flag);
   if (inlet != 0u) {  // a velocity inlet: the populations are set to equilibrium at the inflow velocity

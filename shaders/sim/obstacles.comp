@@ -1,6 +1,6 @@
 #version 460
 // Marks every lattice cell with the obstacle that covers it (first in the list wins) and the inlet
-// that forces it, for the current step; remembers whether it was solid in the previous step.
+// that forces it, for the current step; remembers the obstacle that covered it in the previous step.
 #extension GL_GOOGLE_include_directive : require
 
 layout(local_size_x = 64) in;
@@ -32,5 +32,5 @@ void main() {
   uint inlet = 0u;
   for (uint i = 0u; i < params[push.step].counts.y && inlet == 0u && solid == 0u; ++i)
     if (params[push.step].inlets[i].smoke.z != 0.0 && insideInlet(params[push.step].inlets[i], p)) inlet = i + 1u;
-  flags[index] = solid | (isSolid(previous) ? FLAG_WAS_SOLID : 0u) | (inlet << FLAG_INLET_SHIFT);
+  flags[index] = solid | (obstacleOf(previous) << FLAG_PREVIOUS_SHIFT) | (inlet << FLAG_INLET_SHIFT);
 }

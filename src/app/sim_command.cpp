@@ -27,7 +27,9 @@ struct SimOptions {
   bool force = false;
 };
 
-nlohmann::json vec(glm::vec3 v) { return {v.x, v.y, v.z}; }
+nlohmann::json vec(glm::vec3 v) {
+  return {v.x, v.y, v.z};
+}
 
 // Outputs are checked before any work: an existing directory or report needs --force.
 void prepareOutputs(const SimOptions& o) {
@@ -48,11 +50,13 @@ void run(const SimOptions& o) {
   sim::Simulation simulation(context, cache, scene);
   const sim::LatticeUnits& units = simulation.units();
   const glm::ivec3 size = scene.grid.size;
-  std::printf("%s: %dx%dx%d lattice, %d steps per frame of %.4g s, tau %.5f, on %s\n", scene.name.c_str(), size.x,
-              size.y, size.z, units.stepsPerFrame, scene.time.frameDt, units.tau, context.properties().deviceName);
+  std::printf("%s: %dx%dx%d lattice, %d steps per frame of %.4g s, tau %.5f, on %s\n", scene.name.c_str(),
+              size.x, size.y, size.z, units.stepsPerFrame, scene.time.frameDt, units.tau,
+              context.properties().deviceName);
 
   nlohmann::json frames = nlohmann::json::array();
-  std::vector<nlohmann::json> forcesPerObstacle(simulation.obstacles().obstacleCount(), nlohmann::json::array());
+  std::vector<nlohmann::json> forcesPerObstacle(simulation.obstacles().obstacleCount(),
+                                                nlohmann::json::array());
   std::string watchdog = "ok";
   double lbmMs = 0, smokeMs = 0, totalMs = 0;
   uint64_t updates = 0;
@@ -84,9 +88,10 @@ void run(const SimOptions& o) {
                         {"watchdog_ms", r.times.watchdog},
                         {"total_ms", r.times.total()},
                         {"mlups", mlups}});
-      std::printf("\rstep %6llu/%u  frame %4d  max speed %6.3f m/s (lattice %.3f)  smoke mass %.4g  %6.1f MLUPs",
-                  (unsigned long long)simulation.step(), o.steps, frame, r.maxSpeed, r.maxLatticeSpeed, r.smokeMass,
-                  mlups);
+      std::printf(
+          "\rstep %6llu/%u  frame %4d  max speed %6.3f m/s (lattice %.3f)  smoke mass %.4g  %6.1f MLUPs",
+          (unsigned long long)simulation.step(), o.steps, frame, r.maxSpeed, r.maxLatticeSpeed, r.smokeMass,
+          mlups);
       std::fflush(stdout);
       if (!o.vdbOut.empty()) {
         auto [density, temperature] = simulation.smokeGrids();
@@ -99,28 +104,30 @@ void run(const SimOptions& o) {
     watchdog = e.what();
   }
   std::printf("\n");
-  const double wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  const double wallSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
   if (!o.report.empty()) {
     nlohmann::json obstacles = nlohmann::json::array();
     for (auto& f : forcesPerObstacle) obstacles.push_back({{"force_lattice_per_step", f}});
-    writeReport(o.report, {{"scene", scene.name},
-                           {"device", context.properties().deviceName},
-                           {"lattice", {size.x, size.y, size.z}},
-                           {"smoke_upres", scene.grid.smokeUpres},
-                           {"steps", simulation.step()},
-                           {"steps_per_frame", units.stepsPerFrame},
-                           {"step_seconds", units.stepSeconds},
-                           {"tau", units.tau},
-                           {"watchdog", watchdog},
-                           {"mlups", updates / (lbmMs * 1e3)},
-                           {"lbm_ms", lbmMs},
-                           {"smoke_ms", smokeMs},
-                           {"gpu_ms", totalMs},
-                           {"wall_seconds", wallSeconds},
-                           {"force_units", "lattice: rho0 = 1, cells/step^2; newtons = value * rho_air * dx^4 / dt^2"},
-                           {"obstacles", obstacles},
-                           {"frames", frames}});
+    writeReport(o.report,
+                {{"scene", scene.name},
+                 {"device", context.properties().deviceName},
+                 {"lattice", {size.x, size.y, size.z}},
+                 {"smoke_upres", scene.grid.smokeUpres},
+                 {"steps", simulation.step()},
+                 {"steps_per_frame", units.stepsPerFrame},
+                 {"step_seconds", units.stepSeconds},
+                 {"tau", units.tau},
+                 {"watchdog", watchdog},
+                 {"mlups", updates / (lbmMs * 1e3)},
+                 {"lbm_ms", lbmMs},
+                 {"smoke_ms", smokeMs},
+                 {"gpu_ms", totalMs},
+                 {"wall_seconds", wallSeconds},
+                 {"force_units", "lattice: rho0 = 1, cells/step^2; newtons = value * rho_air * dx^4 / dt^2"},
+                 {"obstacles", obstacles},
+                 {"frames", frames}});
   }
   if (watchdog != "ok") throw sim::WatchdogError(watchdog);
 }
@@ -129,12 +136,15 @@ void run(const SimOptions& o) {
 
 void addSimCommand(CLI::App& app) {
   auto o = std::make_shared<SimOptions>();
-  CLI::App* command = app.add_subcommand("sim", "Run the smoke simulation (LBM + smoke transport) of a scene");
+  CLI::App* command =
+      app.add_subcommand("sim", "Run the smoke simulation (LBM + smoke transport) of a scene");
   o->common.addTo(*command);
   command->add_option("--scene", o->scene, "Scene JSON")->required();
   command->add_option("--steps", o->steps, "Lattice steps")->required()->check(CLI::Range(1u, 100000000u));
-  command->add_option("--vdb-out", o->vdbOut, "Write density and temperature per frame as OpenVDB into this directory");
-  command->add_option("--report", o->report, "JSON report: forces on each obstacle, mass, max velocity, MLUPs, watchdog");
+  command->add_option("--vdb-out", o->vdbOut,
+                      "Write density and temperature per frame as OpenVDB into this directory");
+  command->add_option("--report", o->report,
+                      "JSON report: forces on each obstacle, mass, max velocity, MLUPs, watchdog");
   command->add_flag("--force", o->force, "Overwrite an existing output directory or report");
   command->callback([o] { run(*o); });
 }

@@ -46,8 +46,14 @@ Buffer::Buffer(const Context& context, uint64_t bytes, VkBufferUsageFlags usage,
   }
   SIXWAY_VK(result);
   SIXWAY_VK(vkBindBufferMemory(context.device(), buffer_, memory_, 0));
-  if (kind != MemoryKind::Device)
+  // New memory holds whatever was there before (after a free: another run's data, even NaN), so
+  // every buffer starts as zeros.
+  if (kind != MemoryKind::Device) {
     SIXWAY_VK(vkMapMemory(context.device(), memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
+    std::memset(mapped_, 0, bytes);
+  } else if (usage & VK_BUFFER_USAGE_TRANSFER_DST_BIT) {
+    submitOnce(context, [&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, buffer_, 0, VK_WHOLE_SIZE, 0); });
+  }
 }
 
 Buffer Buffer::storage(const Context& context, uint64_t bytes, std::string name) {

@@ -1,6 +1,6 @@
 #pragma once
-// A VkBuffer with its own memory. Device buffers are filled and read through staging copies;
-// host buffers stay mapped.
+// A VkBuffer with its own memory, zero-filled on creation. Device buffers are filled and read through
+// staging copies; host buffers stay mapped.
 #include <vulkan/vulkan.h>
 
 #include <cstddef>

@@ -74,7 +74,7 @@ std::string showCells(const glm::ivec3& size) {
 
 Grid parseGrid(JsonReader& r) {
   Grid g;
-  g.size = r.required<glm::ivec3>("size", atLeast(8));
+  g.size = r.required<glm::ivec3>("size", atLeast(1));
   g.cellSize = r.required<float>("cell_size", positive());
   g.origin = r.optional<glm::vec3>("origin", g.origin);
   g.smokeUpres = r.optional<int>("smoke_upres", g.smokeUpres, inRange(1, 4));

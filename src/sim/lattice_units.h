@@ -9,11 +9,11 @@
 namespace sixway::sim {
 
 struct LatticeUnits {
-  float cellSize = 0;       // m
-  float stepSeconds = 0;    // s per lattice step
+  float cellSize = 0;     // m
+  float stepSeconds = 0;  // s per lattice step
   int stepsPerFrame = 1;
-  float tau = 0;            // from the molecular viscosity
-  float velocityScale = 0;  // (cells/step) per (m/s)
+  float tau = 0;                // from the molecular viscosity
+  float velocityScale = 0;      // (cells/step) per (m/s)
   float accelerationScale = 0;  // (cells/step²) per (m/s²)
 
   float toLatticeVelocity(float metresPerSecond) const { return metresPerSecond * velocityScale; }

@@ -22,7 +22,9 @@ struct ForcesPush {
   uint32_t step, slot;
 };
 
-std::vector<BindingType> storageBuffers(int count) { return std::vector<BindingType>(count, BindingType::StorageBuffer); }
+std::vector<BindingType> storageBuffers(int count) {
+  return std::vector<BindingType>(count, BindingType::StorageBuffer);
+}
 
 }  // namespace
 
@@ -42,7 +44,8 @@ LbmSettings lbmSettings(const io::Scene& scene, const LatticeUnits& units) {
   return s;
 }
 
-LbmSolver::LbmSolver(const gpu::Context& context, const gpu::PipelineCache& cache, const LbmSettings& settings)
+LbmSolver::LbmSolver(const gpu::Context& context, const gpu::PipelineCache& cache,
+                     const LbmSettings& settings)
     : context_(&context),
       settings_(settings),
       cells_(uint64_t(settings.size.x) * settings.size.y * settings.size.z),
@@ -54,9 +57,9 @@ LbmSolver::LbmSolver(const gpu::Context& context, const gpu::PipelineCache& cach
   for (int parity = 0; parity < 2; ++parity)
     for (uint32_t b = 0; b < 4; ++b) {
       const uint32_t populations = b < 3 ? kPopulationsPerBuffer : 19 - 3 * kPopulationsPerBuffer;
-      lattices_[parity][b] = gpu::Buffer::storage(
-          context, uint64_t(populations) * cells_ * sizeof(float),
-          "the " + shape + " lattice (populations " + std::to_string(b * 5) + "..)");
+      lattices_[parity][b] =
+          gpu::Buffer::storage(context, uint64_t(populations) * cells_ * sizeof(float),
+                               "the " + shape + " lattice (populations " + std::to_string(b * 5) + "..)");
     }
   macro_ = gpu::Buffer::storage(context, cells_ * 16, "the " + shape + " velocity field");
 
@@ -86,20 +89,21 @@ LbmSolver::LbmSolver(const gpu::Context& context, const gpu::PipelineCache& cach
   forces.bindings = storageBuffers(8);
   forces.pushConstantBytes = sizeof(ForcesPush);
   forces.spec.set(0, sz.x).set(1, sz.y).set(2, sz.z);
+  for (uint32_t f = 0; f < 6; ++f) forces.spec.set(3 + f, uint32_t(settings.faces[f]));
   forces_ = std::make_unique<gpu::Pipeline>(context, cache, forces);
-
 }
 
 void LbmSolver::initialize(const std::vector<glm::vec4>& macro, int parity) {
   if (macro.size() != cells_)
-    throw std::invalid_argument("LbmSolver::initialize: " + std::to_string(macro.size()) + " cells given, the lattice has " +
-                                std::to_string(cells_));
+    throw std::invalid_argument("LbmSolver::initialize: " + std::to_string(macro.size()) +
+                                " cells given, the lattice has " + std::to_string(cells_));
   macro_.upload(macro);
   gpu::Sequence sequence(*context_);
   const auto& f = lattices_[parity];
-  sequence.dispatch(*init_,
-                    {gpu::reads(macro_), gpu::writes(f[0]), gpu::writes(f[1]), gpu::writes(f[2]), gpu::writes(f[3])},
-                    std::span<const std::byte>(), groups_);
+  sequence.dispatch(
+      *init_,
+      {gpu::reads(macro_), gpu::writes(f[0]), gpu::writes(f[1]), gpu::writes(f[2]), gpu::writes(f[3])},
+      std::span<const std::byte>(), groups_);
   sequence.submit();
 }
 
@@ -118,8 +122,8 @@ void LbmSolver::recordForces(gpu::Sequence& sequence, const gpu::Buffer& params,
                              uint32_t slot, int parity, const gpu::Buffer& forces) const {
   const auto& f = lattices_[parity];
   sequence.dispatch(*forces_,
-                    {gpu::reads(params), gpu::reads(flags), gpu::reads(f[0]), gpu::reads(f[1]), gpu::reads(f[2]),
-                     gpu::reads(f[3]), gpu::reads(macro_), gpu::readsWrites(forces)},
+                    {gpu::reads(params), gpu::reads(flags), gpu::reads(f[0]), gpu::reads(f[1]),
+                     gpu::reads(f[2]), gpu::reads(f[3]), gpu::reads(macro_), gpu::readsWrites(forces)},
                     ForcesPush{slot, slot}, groups_);
 }
 

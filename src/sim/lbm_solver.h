@@ -44,10 +44,12 @@ class LbmSolver {
                   const gpu::Buffer& smoke, uint32_t slot, int parity) const;
   // Momentum-exchange force on each obstacle before the step that streams from lattice `parity`,
   // added into forces[slot · kMaxObstacles + obstacle] (vec4; zero it before).
-  void recordForces(gpu::Sequence& sequence, const gpu::Buffer& params, const gpu::Buffer& flags, uint32_t slot,
-                    int parity, const gpu::Buffer& forces) const;
+  void recordForces(gpu::Sequence& sequence, const gpu::Buffer& params, const gpu::Buffer& flags,
+                    uint32_t slot, int parity, const gpu::Buffer& forces) const;
 
   const gpu::Buffer& macro() const { return macro_; }
+  // Read-only view of lattice `parity`'s populations, buffer b of 4 (lbm_lattice.glsl), for tests.
+  const gpu::Buffer& lattice(int parity, int buffer) const { return lattices_[parity][buffer]; }
   uint64_t cells() const { return cells_; }
   // Bytes read and written per cell update by lbm_step: 19 populations each way, the flags and
   // the macro state (read and written); the smoke and the neighbours' flags are left out.

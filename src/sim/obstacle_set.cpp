@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <glm/gtc/matrix_transform.hpp>
+#include <limits>
 #include <string>
 
 #include "gpu/context.h"
@@ -40,14 +40,17 @@ struct VoxelizePush {
 MotionState evaluateMotion(const io::Motion& motion, double seconds) {
   const auto& keys = motion.keyframes;
   const double first = keys.front().time, last = keys.back().time;
-  if (motion.loop) seconds = first + std::fmod(std::fmod(seconds - first, last - first) + (last - first), last - first);
-  if (seconds <= first) return {keys.front().position, glm::vec3(0)};
+  if (motion.loop)
+    seconds = first + std::fmod(std::fmod(seconds - first, last - first) + (last - first), last - first);
+  if (seconds < first) return {keys.front().position, glm::vec3(0)};
   if (seconds >= last) return {keys.back().position, glm::vec3(0)};
+  // The segment [t_k, t_k+1) holding the time: at a keyframe, the one the coming step moves along.
   size_t k = 0;
-  while (keys[k + 1].time < seconds) ++k;
+  while (keys[k + 1].time <= seconds) ++k;
   const float span = keys[k + 1].time - keys[k].time;
   const float t = float(seconds - keys[k].time) / span;
-  return {glm::mix(keys[k].position, keys[k + 1].position, t), (keys[k + 1].position - keys[k].position) / span};
+  return {glm::mix(keys[k].position, keys[k + 1].position, t),
+          (keys[k + 1].position - keys[k].position) / span};
 }
 
 ObstacleSet::ObstacleSet(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
@@ -64,11 +67,11 @@ ObstacleSet::ObstacleSet(const gpu::Context& context, const gpu::PipelineCache& 
   desc.spec.set(0, scene.grid.size.x).set(1, scene.grid.size.y).set(2, scene.grid.size.z);
   flagsPipeline_ = std::make_unique<gpu::Pipeline>(context, cache, desc);
   if (scene.obstacles.size() > kMaxObstacles)
-    throw io::InputError(scene.name, "obstacles: at most " + std::to_string(kMaxObstacles) + " are supported, got " +
-                                         std::to_string(scene.obstacles.size()));
+    throw io::InputError(scene.name, "obstacles: at most " + std::to_string(kMaxObstacles) +
+                                         " are supported, got " + std::to_string(scene.obstacles.size()));
   if (scene.inlets.size() > kMaxInlets)
-    throw io::InputError(scene.name, "inlets: at most " + std::to_string(kMaxInlets) + " are supported, got " +
-                                         std::to_string(scene.inlets.size()));
+    throw io::InputError(scene.name, "inlets: at most " + std::to_string(kMaxInlets) +
+                                         " are supported, got " + std::to_string(scene.inlets.size()));
   const float toCells = 1.0f / units.cellSize;
   for (const io::Obstacle& o : scene.obstacles) {
     GpuObstacle g{};
@@ -93,9 +96,11 @@ ObstacleSet::ObstacleSet(const gpu::Context& context, const gpu::PipelineCache& 
                    [&](const io::MeshObstacle& m) {
                      g.centre = glm::vec4(units.toLattice(m.translate, origin_), float(ShapeCode::Mesh));
                      // lattice offset d → object: Rᵀ · d · cellSize / scale
-                     const glm::mat3 toObject = glm::transpose(meshRotation(m.rotateDeg)) * (units.cellSize / m.scale);
+                     const glm::mat3 toObject =
+                         glm::transpose(meshRotation(m.rotateDeg)) * (units.cellSize / m.scale);
                      for (int row = 0; row < 3; ++row)
-                       g.rotation[row] = glm::vec4(toObject[0][row], toObject[1][row], toObject[2][row], 0.0f);
+                       g.rotation[row] =
+                           glm::vec4(toObject[0][row], toObject[1][row], toObject[2][row], 0.0f);
                    },
                },
                o.shape);
@@ -153,12 +158,14 @@ void ObstacleSet::voxelizeMeshes(const gpu::Context& context, const gpu::Pipelin
     words += uint32_t(count);
     jobs.push_back(std::move(job));
   }
-  occupancy_ = gpu::Buffer::storage(context, std::max<uint64_t>(words, 1) * sizeof(uint32_t), "mesh occupancy");
+  occupancy_ =
+      gpu::Buffer::storage(context, std::max<uint64_t>(words, 1) * sizeof(uint32_t), "mesh occupancy");
   if (jobs.empty()) return;
 
   gpu::ComputePipelineDesc desc;
   desc.shader = "sim/voxelize_mesh.comp";
-  desc.bindings = {gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer};
+  desc.bindings = {gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer,
+                   gpu::BindingType::StorageBuffer};
   desc.pushConstantBytes = sizeof(VoxelizePush);
   gpu::Pipeline pipeline(context, cache, desc);
   std::vector<gpu::Buffer> inputs;
@@ -173,17 +180,19 @@ void ObstacleSet::voxelizeMeshes(const gpu::Context& context, const gpu::Pipelin
     inputs.back().upload(positions);
     inputs.push_back(gpu::Buffer::storage(context, triangles.size() * 4, "mesh triangles"));
     inputs.back().upload(triangles);
-    const VoxelizePush push{job.target->meshOrigin, job.target->meshGrid, uint32_t(job.mesh.triangles.size())};
-    sequence.dispatch(pipeline,
-                      {gpu::reads(inputs[inputs.size() - 2]), gpu::reads(inputs.back()), gpu::readsWrites(occupancy_)},
-                      push, (3 * push.triangleCount + 63) / 64);
+    const VoxelizePush push{job.target->meshOrigin, job.target->meshGrid,
+                            uint32_t(job.mesh.triangles.size())};
+    sequence.dispatch(
+        pipeline,
+        {gpu::reads(inputs[inputs.size() - 2]), gpu::reads(inputs.back()), gpu::readsWrites(occupancy_)},
+        push, (3 * push.triangleCount + 63) / 64);
   }
   sequence.submit();
 }
 
 void ObstacleSet::recordFlags(gpu::Sequence& sequence, const gpu::Buffer& params, uint32_t slot) const {
-  sequence.dispatch(*flagsPipeline_, {gpu::reads(params), gpu::reads(occupancy_), gpu::readsWrites(flags_)}, slot,
-                    groups_);
+  sequence.dispatch(*flagsPipeline_, {gpu::reads(params), gpu::reads(occupancy_), gpu::readsWrites(flags_)},
+                    slot, groups_);
 }
 
 glm::vec3 ObstacleSet::centreAt(size_t obstacle, uint64_t step) const {

@@ -13,7 +13,7 @@ inline constexpr uint32_t kMaxInlets = 8;
 enum class ShapeCode : uint32_t { Sphere = 0, Cylinder = 1, Box = 2, Mesh = 3 };
 
 struct GpuObstacle {
-  glm::vec4 centre;       // w: ShapeCode
+  glm::vec4 centre;  // w: ShapeCode
   glm::vec4 velocity;
   glm::vec4 axis;         // cylinder: unit axis, w: half height
   glm::vec4 size;         // sphere/cylinder: x radius; box: half sizes

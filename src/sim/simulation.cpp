@@ -1,5 +1,6 @@
 #include "sim/simulation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -23,7 +24,8 @@ Simulation::Simulation(const gpu::Context& context, const gpu::PipelineCache& ca
   speedStats_ = std::make_unique<gpu::ReduceStats>(context, cache, lbm_->cells(), gpu::ReduceInput{4, 3});
   densityStats_ = std::make_unique<gpu::ReduceStats>(context, cache, smoke_->cells(), gpu::ReduceInput{2, 1});
 
-  capacity_ = uint32_t(units_.stepsPerFrame);
+  // A frame at a time, and at least 64 steps per submission for long runs (each submission waits).
+  capacity_ = uint32_t(std::max(units_.stepsPerFrame, 64));
   params_ = gpu::Buffer(context, uint64_t(capacity_) * sizeof(StepParams), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                         gpu::MemoryKind::HostUpload, "step parameters");
   forces_ = gpu::Buffer::storage(context, uint64_t(capacity_) * kMaxObstacles * 16, "obstacle forces");
@@ -37,7 +39,8 @@ void Simulation::setFlow(const std::vector<glm::vec3>& velocity, const std::vect
   if (velocity.size() != lbm_->cells() || density.size() != lbm_->cells())
     throw std::invalid_argument("Simulation::setFlow: one velocity and one density per lattice cell");
   std::vector<glm::vec4> macro(velocity.size());
-  for (size_t i = 0; i < macro.size(); ++i) macro[i] = glm::vec4(units_.toLatticeVelocity(velocity[i]), density[i]);
+  for (size_t i = 0; i < macro.size(); ++i)
+    macro[i] = glm::vec4(units_.toLatticeVelocity(velocity[i]), density[i]);
   lbm_->initialize(macro, int(step_ % 2));
 }
 
@@ -101,7 +104,8 @@ void Simulation::advance(uint32_t steps) {
       const std::vector<glm::vec4> forces = forces_.download<glm::vec4>();
       for (uint32_t s = 0; s < n; ++s) {
         report.forces.emplace_back();
-        for (size_t o = 0; o < obstacleCount; ++o) report.forces.back().push_back(glm::vec3(forces[s * kMaxObstacles + o]));
+        for (size_t o = 0; o < obstacleCount; ++o)
+          report.forces.back().push_back(glm::vec3(forces[s * kMaxObstacles + o]));
       }
     }
     const gpu::Stats speed = speedStats_->result();

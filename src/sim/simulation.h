@@ -30,13 +30,13 @@ struct StepTimes {
 };
 
 struct AdvanceReport {
-  uint64_t firstStep = 0;                       // the step number of the first of these steps
-  std::vector<std::vector<glm::vec3>> forces;   // [step][obstacle], lattice units (ρ₀ = 1, per step²)
-  double smokeMass = 0;                         // Σ density · smoke-cell volume (density · m³)
+  uint64_t firstStep = 0;                      // the step number of the first of these steps
+  std::vector<std::vector<glm::vec3>> forces;  // [step][obstacle], lattice units (ρ₀ = 1, per step²)
+  double smokeMass = 0;                        // Σ density · smoke-cell volume (density · m³)
   float minDensity = 0, maxDensity = 0;
-  float maxSpeed = 0;                           // m/s
-  float maxLatticeSpeed = 0;                    // cells/step
-  StepTimes times;                              // for all the steps of this submission
+  float maxSpeed = 0;         // m/s
+  float maxLatticeSpeed = 0;  // cells/step
+  StepTimes times;            // for all the steps of this submission
 };
 
 class Simulation {

@@ -23,7 +23,8 @@ gpu::ComputePipelineDesc smokeDesc(const char* shader, int bindings, const Smoke
 }
 
 void setPeriodicAxes(gpu::ComputePipelineDesc& d, const SmokeSettings& s) {
-  for (uint32_t axis = 0; axis < 3; ++axis) d.spec.set(4 + axis, s.faces[2 * axis] == io::BoundaryType::Periodic);
+  for (uint32_t axis = 0; axis < 3; ++axis)
+    d.spec.set(4 + axis, s.faces[2 * axis] == io::BoundaryType::Periodic);
 }
 
 }  // namespace
@@ -65,10 +66,10 @@ void SmokeTransport::upload(const std::vector<glm::vec2>& values) {
   smoke_.upload(values);
 }
 
-void SmokeTransport::recordSources(gpu::Sequence& sequence, const gpu::Buffer& params, const gpu::Buffer& flags,
-                                   uint32_t slot) const {
-  sequence.dispatch(*sources_, {gpu::reads(params), gpu::reads(flags), gpu::readsWrites(smoke_)}, SourcesPush{slot},
-                    groups_);
+void SmokeTransport::recordSources(gpu::Sequence& sequence, const gpu::Buffer& params,
+                                   const gpu::Buffer& flags, uint32_t slot) const {
+  sequence.dispatch(*sources_, {gpu::reads(params), gpu::reads(flags), gpu::readsWrites(smoke_)},
+                    SourcesPush{slot}, groups_);
 }
 
 void SmokeTransport::recordTransport(gpu::Sequence& sequence, const gpu::Buffer& flags,
@@ -80,12 +81,13 @@ void SmokeTransport::recordTransport(gpu::Sequence& sequence, const gpu::Buffer&
                        gpu::writes(antidiffusive_)},
                       none, groups_);
     sequence.dispatch(*limiter_,
-                      {gpu::reads(flags), gpu::reads(smoke_), gpu::reads(lowOrder_), gpu::reads(antidiffusive_),
-                       gpu::writes(ratios_)},
+                      {gpu::reads(flags), gpu::reads(smoke_), gpu::reads(lowOrder_),
+                       gpu::reads(antidiffusive_), gpu::writes(ratios_)},
                       none, groups_);
-    sequence.dispatch(*update_,
-                      {gpu::reads(lowOrder_), gpu::reads(antidiffusive_), gpu::reads(ratios_), gpu::writes(smoke_)},
-                      none, groups_);
+    sequence.dispatch(
+        *update_,
+        {gpu::reads(lowOrder_), gpu::reads(antidiffusive_), gpu::reads(ratios_), gpu::writes(smoke_)}, none,
+        groups_);
   }
 }
 

@@ -24,7 +24,7 @@ struct WatchdogReport {
 };
 
 // `speed` summarises |u| per lattice cell, `smoke` the smoke density per smoke cell.
-WatchdogReport checkWatchdog(const gpu::Stats& speed, const gpu::Stats& smoke, uint64_t step, glm::ivec3 lattice,
-                             glm::ivec3 smokeGrid, glm::vec3 origin, float cellSize);
+WatchdogReport checkWatchdog(const gpu::Stats& speed, const gpu::Stats& smoke, uint64_t step,
+                             glm::ivec3 lattice, glm::ivec3 smokeGrid, glm::vec3 origin, float cellSize);
 
 }  // namespace sixway::sim

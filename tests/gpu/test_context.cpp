@@ -2,6 +2,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <numeric>
 #include <random>
@@ -185,6 +186,23 @@ TEST_F(SequenceTest, MisuseIsReported) {
   sequence.finish();
   gpu::Buffer buffer = gpu::Buffer::storage(context(), 16, "b");
   EXPECT_THROW(sequence.fill(buffer, 0), gpu::GpuError);
+}
+
+}  // namespace
+}  // namespace sixway::test
+
+namespace sixway::test {
+namespace {
+
+TEST_F(BufferTest, NewBuffersAreZero) {
+  // Reused memory must not leak an earlier buffer's contents into a new one.
+  for (int round = 0; round < 2; ++round) {
+    gpu::Buffer buffer = gpu::Buffer::storage(context(), 1 << 16, "fresh");
+    const std::vector<uint32_t> words = buffer.download<uint32_t>();
+    EXPECT_TRUE(std::all_of(words.begin(), words.end(), [](uint32_t w) { return w == 0; }))
+        << "round " << round;
+    buffer.upload(std::vector<uint32_t>(words.size(), 0xdeadbeefu));
+  }
 }
 
 }  // namespace

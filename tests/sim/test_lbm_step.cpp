@@ -1,0 +1,250 @@
+// shaders/sim/lbm_step.comp (through sim::Simulation, with the obstacle flags and the smoke it drives)
+// against the CPU oracle, a few steps on small grids from a smooth random flow.
+//
+// Tolerance: 1e-5 (cells/step) on each velocity component and on the density (ρ ≈ 1). The GPU works in
+// float (ε = 6e-8), the oracle in double; a population (≤ 1/3) takes a few roundings per step and the
+// moments sum 19 of them, so after 5 steps the expected difference is ~1e-7 to 1e-6. A real error in a
+// boundary rule or a collision term shows up at the size of the term: u ≈ 0.05, forces ≈ 1e-4 per step.
+// Each test also checks that the feature it covers changes the CPU result by more than 10 × the
+// tolerance, so that the comparison cannot pass with the feature ignored.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cpu_simulation.h"
+#include "scene_fixtures.h"
+#include "sim/simulation.h"
+#include "sim/watchdog.h"
+#include "support/gpu_fixture.h"
+
+namespace sixway::test {
+namespace {
+
+using nlohmann::json;
+
+constexpr double kTolerance = 1e-5;
+constexpr double kSurfaceMargin = 1e-3;  // cells; far beyond float rounding of the GPU's inside tests
+constexpr glm::ivec3 kSize{16, 12, 10};
+constexpr float kViscosity = 0.02f;  // τ = 0.56
+
+struct Initial {
+  std::vector<glm::vec3> velocity;
+  std::vector<float> density;
+  std::vector<glm::vec2> smoke;
+};
+
+Initial initialState(const io::Scene& scene) {
+  const glm::ivec3 n = scene.grid.size;
+  return {smoothVelocity(n, 0.05f, 7), smoothDensity(n, 0.01f, 8), smoothSmoke(n * scene.grid.smokeUpres, 9)};
+}
+
+std::vector<glm::dvec4> cpuMacro(const io::Scene& scene, int steps) {
+  const Initial init = initialState(scene);
+  CpuSimulation cpu(scene);
+  cpu.setFlow(toDouble(init.velocity), toDouble(init.density));
+  cpu.setSmoke(toDouble(init.smoke));
+  cpu.advance(steps);
+  return cpu.lbm().macro();
+}
+
+std::string describe(const FieldError& e, const io::Scene& scene, const std::vector<glm::vec4>& gpu,
+                     const std::vector<glm::dvec4>& cpu) {
+  if (e.cell < 0) return "";
+  const glm::vec4 g = gpu[e.cell];
+  const glm::dvec4 c = cpu[e.cell];
+  std::ostringstream out;
+  out << " differs most at " << e.where(scene.grid.size) << ": GPU (u, rho) = (" << g.x << ", " << g.y << ", "
+      << g.z << ", " << g.w << "), CPU (" << c.x << ", " << c.y << ", " << c.z << ", " << c.w << ")";
+  return out.str();
+}
+
+class LbmStepTest : public GpuTest {
+ protected:
+  // Runs `steps` steps of `scene` on the GPU and the CPU and compares the velocity and density; the CPU
+  // result of `withoutFeature` (the scene with the tested feature turned off) must differ clearly (by 10 ×
+  // the tolerance).
+  void expectMatchesCpu(const json& sceneJson, int steps, const json& withoutFeature) {
+    const io::Scene scene = parseLatticeScene(sceneJson);
+    const CpuSimulation probe(scene);
+    for (int s = 0; s <= steps; ++s)
+      ASSERT_GT(probe.surfaceMargin(s), kSurfaceMargin)
+          << "a cell centre lies on an obstacle's surface at step " << s;
+    const Initial init = initialState(scene);
+    sim::Simulation gpu(context(), pipelineCache(), scene);
+    gpu.setFlow(init.velocity, init.density);
+    gpu.smoke().upload(init.smoke);
+    try {
+      gpu.advance(steps);
+    } catch (const sim::WatchdogError& e) {
+      FAIL() << "the GPU flow diverged where the CPU reference stays smooth: " << e.what();
+    }
+    const std::vector<glm::vec4> gpuMacro = gpu.lbm().macro().download<glm::vec4>();
+    const std::vector<glm::dvec4> expected = cpuMacro(scene, steps);
+
+    const FieldError u = velocityError(gpuMacro, expected), rho = densityError(gpuMacro, expected);
+    EXPECT_LE(u.max, kTolerance) << "velocity" << describe(u, scene, gpuMacro, expected);
+    EXPECT_LE(rho.max, kTolerance) << "density" << describe(rho, scene, gpuMacro, expected);
+    const FieldError effect = maxDifference(expected, cpuMacro(parseLatticeScene(withoutFeature), steps));
+    EXPECT_GT(effect.max, 10 * kTolerance) << "the feature under test hardly changes the flow";
+    std::cout << "[ measured ] max |Δu| " << u.max << ", max |Δρ| " << rho.max << "; feature effect "
+              << effect.max << "\n";
+  }
+};
+
+json withPatch(json scene, const json& patch) {
+  scene.merge_patch(patch);
+  return scene;
+}
+
+TEST_F(LbmStepTest, PeriodicBox) {
+  const json scene = latticeScene(kSize, kViscosity);
+  // Against a much more viscous fluid (τ = 3.5): the collision must shape the result.
+  expectMatchesCpu(scene, 5, withPatch(scene, {{"fluid", {{"viscosity", 1.0}}}}));
+}
+
+TEST_F(LbmStepTest, NoSlipAndFreeSlipWallsInAClosedBox) {
+  const json walls = {{"boundaries",
+                       {{"x-", "no_slip"},
+                        {"x+", "free_slip"},
+                        {"y-", "free_slip"},
+                        {"y+", "no_slip"},
+                        {"z-", "no_slip"},
+                        {"z+", "free_slip"}}}};
+  expectMatchesCpu(latticeScene(kSize, kViscosity, walls), 4, latticeScene(kSize, kViscosity));
+}
+
+TEST_F(LbmStepTest, FreeSlipWallsAlongAPeriodicAxis) {
+  // At x = 0 and x = 15 a diagonal population reflected by a free-slip wall comes from the tangential
+  // neighbour on the other side of the periodic x faces.
+  const json walls = {
+      {"boundaries", {{"y-", "free_slip"}, {"y+", "free_slip"}, {"z-", "no_slip"}, {"z+", "free_slip"}}}};
+  expectMatchesCpu(latticeScene(kSize, kViscosity, walls), 4, latticeScene(kSize, kViscosity));
+}
+
+TEST_F(LbmStepTest, UniformInflowAndOutflow) {
+  const json open = {{"boundaries", {{"x-", "inflow"}, {"x+", "outflow"}, {"wind", {0.06, 0.01, -0.02}}}}};
+  expectMatchesCpu(latticeScene(kSize, kViscosity, open), 5, latticeScene(kSize, kViscosity));
+}
+
+TEST_F(LbmStepTest, ParabolicInflowInANoSlipChannel) {
+  const json channel = {{"boundaries",
+                         {{"x-", "inflow"},
+                          {"x+", "outflow"},
+                          {"y-", "no_slip"},
+                          {"y+", "no_slip"},
+                          {"z-", "no_slip"},
+                          {"z+", "no_slip"},
+                          {"wind", {0.08, 0.0, 0.0}},
+                          {"inflow_profile", "parabolic"}}}};
+  const json scene = latticeScene(kSize, kViscosity, channel);
+  expectMatchesCpu(scene, 5, withPatch(scene, {{"boundaries", {{"inflow_profile", "uniform"}}}}));
+}
+
+TEST_F(LbmStepTest, StaticSphereBounceBack) {
+  const json sphere = {{"obstacles", {{{"type", "sphere"}, {"center", {7.8, 6.3, 5.15}}, {"radius", 3.1}}}}};
+  expectMatchesCpu(latticeScene(kSize, kViscosity, sphere), 5, latticeScene(kSize, kViscosity));
+}
+
+TEST_F(LbmStepTest, StaticSphereCutByAPeriodicFace) {
+  // Fluid cells at x = 15 bounce back from the solid cells at x = 0 across the periodic face.
+  const json sphere = {{"obstacles", {{{"type", "sphere"}, {"center", {0.7, 6.3, 5.15}}, {"radius", 2.6}}}}};
+  expectMatchesCpu(latticeScene(kSize, kViscosity, sphere), 3, latticeScene(kSize, kViscosity));
+}
+
+TEST_F(LbmStepTest, MovingSphereBounceBackAndRefill) {
+  // 0.12 cells per step along a diagonal: cells are covered and uncovered within the five steps. An
+  // uncovered cell restarts from f^eq(1, u_wall); its neighbours still bounce back from the wall there.
+  const glm::dvec3 start(7.8, 6.3, 5.15), velocity(0.12, -0.07, 0.05);
+  const auto at = [&](double t) {
+    const glm::dvec3 p = start + t * velocity;
+    return json{p.x, p.y, p.z};
+  };
+  const json moving = {
+      {"obstacles",
+       {{{"type", "sphere"},
+         {"radius", 3.1},
+         {"motion",
+          {{"keyframes",
+            {{{"time", -10.0}, {"position", at(-10)}}, {{"time", 100.0}, {"position", at(100)}}}}}}}}}};
+  const json scene = latticeScene(kSize, kViscosity, moving);
+  const CpuSimulation probe(parseLatticeScene(scene));
+  int uncovered = 0;
+  CpuStepInputs in = probe.inputsAt(0, std::vector<CellFlags>(size_t(kSize.x) * kSize.y * kSize.z));
+  for (int s = 1; s < 5; ++s) {
+    in = probe.inputsAt(s, in.flags);
+    for (const CellFlags& f : in.flags) uncovered += f.uncovered();
+  }
+  ASSERT_GT(uncovered, 0) << "the scene must uncover cells to test the refill";
+  const json still = latticeScene(
+      kSize, kViscosity, {{"obstacles", {{{"type", "sphere"}, {"center", at(0)}, {"radius", 3.1}}}}});
+  expectMatchesCpu(scene, 5, still);
+}
+
+TEST_F(LbmStepTest, VelocityInletDisk) {
+  const json inlet = {{"inlets",
+                       {{{"shape", "disk"},
+                         {"center", {8.0, 2.2, 5.4}},
+                         {"radius", 2.3},
+                         {"normal", {0.0, 1.0, 0.0}},
+                         {"velocity", 0.07},
+                         {"noise", 0.0},
+                         {"density", 1.5},
+                         {"temperature", 0.5}}}}};
+  expectMatchesCpu(latticeScene(kSize, kViscosity, inlet), 5, latticeScene(kSize, kViscosity));
+}
+
+TEST_F(LbmStepTest, BuoyancyFromSmoke) {
+  const json buoyant = {
+      {"fluid", {{"buoyancy", {{"temperature", 2e-3}, {"density", -1e-3}}}, {"gravity", {0.3, -1.0, 0.2}}}}};
+  expectMatchesCpu(latticeScene(kSize, kViscosity, buoyant), 5, latticeScene(kSize, kViscosity));
+}
+
+TEST_F(LbmStepTest, BuoyancyFromAFinerSmokeGrid) {
+  // The force averages the 2³ smoke cells of each lattice cell. Closed walls keep this test apart from
+  // the transport across periodic faces (SmokeTransportTest.FinerSmokeGridPeriodic).
+  const json closed = {{"grid", {{"smoke_upres", 2}}},
+                       {"boundaries",
+                        {{"x-", "no_slip"},
+                         {"x+", "no_slip"},
+                         {"y-", "no_slip"},
+                         {"y+", "no_slip"},
+                         {"z-", "no_slip"},
+                         {"z+", "no_slip"}}}};
+  const json scene = latticeScene(kSize, kViscosity, closed);
+  expectMatchesCpu(withPatch(scene, {{"fluid", {{"buoyancy", {{"temperature", 2e-3}, {"density", -1e-3}}}}}}),
+                   3, scene);
+}
+
+TEST_F(LbmStepTest, SmagorinskyEddyViscosity) {
+  const json scene = latticeScene(kSize, 0.002, {{"fluid", {{"smagorinsky", 0.15}}}});
+  expectMatchesCpu(scene, 5, withPatch(scene, {{"fluid", {{"smagorinsky", 0.0}}}}));
+}
+
+// Guo forcing adds exactly F = ρa of momentum per step (Σ c_i f_i* = Σ c_i f_i + F), and the reported
+// velocity carries the half-force shift: from rest, every cell has u = (n − ½) a after n steps. Exact
+// physics, independent of the oracle; float rounding stays below 1e-8 here.
+TEST_F(LbmStepTest, UniformBodyForceAddsExactlyFPerStep) {
+  const glm::dvec3 a(4e-4, -2e-4, 1e-4);
+  const int steps = 5;
+  sim::Simulation gpu(
+      context(), pipelineCache(),
+      parseLatticeScene(latticeScene(kSize, kViscosity, {{"fluid", {{"body_force", {a.x, a.y, a.z}}}}})));
+  gpu.advance(steps);
+  double worst = 0;
+  for (const glm::vec4& m : gpu.lbm().macro().download<glm::vec4>())
+    worst = std::max(worst, glm::length(glm::dvec3(m) - (steps - 0.5) * a));
+  EXPECT_LE(worst, 1e-6) << "expected u = " << (steps - 0.5) * a.x << ", " << (steps - 0.5) * a.y << ", "
+                         << (steps - 0.5) * a.z;
+  std::cout << "[ measured ] max |u − (n − ½) a| " << worst << "\n";
+}
+
+TEST_F(LbmStepTest, BodyForce) {
+  const json pushed = {{"fluid", {{"body_force", {4e-4, -2e-4, 1e-4}}}}};
+  expectMatchesCpu(latticeScene(kSize, kViscosity, pushed), 5, latticeScene(kSize, kViscosity));
+}
+
+}  // namespace
+}  // namespace sixway::test
