@@ -1,6 +1,8 @@
 #version 460
 // Force of the fluid on each obstacle by momentum exchange over the bounce-back links, in the
-// Galilean-invariant form of Wen et al. (2014): per link F = (c_ī − u_w) f*_ī − (c_i − u_w) f_i.
+// Galilean-invariant form of Wen et al. (2014): per link F = (c_ī − u_w) f*_ī − (c_i − u_w) f_i;
+// plus, for moving obstacles, the momentum of the cells that change sides (Wen et al.'s refilling
+// term): a cell the obstacle covers gives it the fluid's ρu, a cell it uncovers takes ρ₀u_w from it.
 // Reads the same post-collision lattice that the coming lbm_step streams from. Each subgroup adds
 // its sum into the step's slot with one float atomic per component (workgroup barriers cost a
 // coroutine switch per invocation on lavapipe); the order of the additions is not fixed.
@@ -50,7 +52,12 @@ void main() {
   bool linked = cell < CELLS && !isSolid(own) && previousObstacleOf(own) == 0u;
 
   uint neighbour[Q];  // the obstacle (plus one) each population streams from, 0 for fluid
-  float rho = linked ? macro[cell].w : 0.0;
+  vec4 state = cell < CELLS ? macro[cell] : vec4(0.0);  // the previous step's velocity and density
+  float rho = linked ? state.w : 0.0;
+  // Covered this step: the fluid's momentum goes to the obstacle. Uncovered: the cell restarts at
+  // ρ₀ = 1 and the velocity it carried as a wall (lbm_step), momentum the obstacle gives away.
+  uint covered = (isSolid(own) && previousObstacleOf(own) == 0u) ? obstacleOf(own) : 0u;
+  uint uncovered = (!isSolid(own) && previousObstacleOf(own) != 0u) ? previousObstacleOf(own) : 0u;
   [[unroll]] for (int i = 0; i < Q; ++i) {
     ivec3 source = p - C[i];  // wrapped on periodic axes exactly as lbm_step streams
     [[unroll]] for (int a = 0; a < 3; ++a)
@@ -68,6 +75,8 @@ void main() {
       float back = toWall + 6.0 * W[i] * rho * dot(vec3(C[i]), wall);
       force += (vec3(-C[i]) - wall) * toWall - (vec3(C[i]) - wall) * back;
     }
+    if (covered == o + 1u) force += state.w * state.xyz;
+    if (uncovered == o + 1u) force -= state.xyz;
     vec3 sum = subgroupAdd(force);
     if (subgroupElect() && any(notEqual(sum, vec3(0.0)))) {
       uint word = 4u * (push.slot * MAX_OBSTACLES + o);

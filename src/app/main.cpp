@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "app/bake_command.h"
 #include "app/info_command.h"
 #include "app/planned_commands.h"
 #include "app/sim_command.h"
@@ -12,6 +13,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   sixway::app::addInfoCommand(app);
   sixway::app::addSimCommand(app);
+  sixway::app::addBakeCommand(app);
   sixway::app::addPlannedCommands(app);
   try {
     app.parse(argc, argv);

@@ -4,7 +4,6 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
-#include <vector>
 
 #include "app/options.h"
 
@@ -15,10 +14,9 @@ namespace {
 struct PlannedOptions {
   CommonOptions common;
   std::filesystem::path scene, out, report, config;
-  std::vector<std::filesystem::path> vdb;
   int steps = 0, frames = 0;
   std::string mode, shard;
-  bool force = false, multipleScattering = false;
+  bool force = false;
 };
 
 CLI::App* planned(CLI::App& app, const char* name, const char* description, const char* issue,
@@ -36,14 +34,6 @@ CLI::App* planned(CLI::App& app, const char* name, const char* description, cons
 
 void addPlannedCommands(CLI::App& app) {
   auto o = std::make_shared<PlannedOptions>();
-  CLI::App* bake = planned(app, "bake", "Reference six-way lightmaps and a Unity-packed flipbook",
-                           "#4 (reference volume rendering)", o);
-  auto* sceneOption = bake->add_option("--scene", o->scene, "Scene JSON");
-  bake->add_option("--vdb", o->vdb, "OpenVDB files, one per frame")->excludes(sceneOption);
-  bake->add_option("--out", o->out, "Output directory")->required();
-  bake->add_flag("--multiple-scattering", o->multipleScattering, "Path-traced multiple scattering");
-  bake->add_flag("--force", o->force, "Overwrite an existing output directory");
-
   CLI::App* render = planned(app, "render", "Headless frame capture", "#5 (real-time renderer)", o);
   render->add_option("--scene", o->scene, "Scene JSON")->required();
   render->add_option("--frames", o->frames, "Frames")->required()->check(CLI::PositiveNumber);

@@ -167,6 +167,17 @@ LinkForces momentumExchange(const CpuLbmSettings& settings, const std::vector<d3
   out.magnitude = out.force;
   for (int cell = 0; cell < int(post.size()); ++cell) {
     const CellFlags& here = inputs.flags[cell];
+    // A cell the obstacle covers now hands its fluid momentum to it; one it uncovers restarts at
+    // ρ = 1 with the velocity it carried as a wall, taken from the obstacle (Wen et al.'s refilling).
+    if (here.solid() && here.previousObstacle < 0) {
+      const glm::dvec3 momentum = macro[cell].w * glm::dvec3(macro[cell]);
+      out.force[here.obstacle] += momentum;
+      out.magnitude[here.obstacle] += glm::abs(momentum);
+    }
+    if (here.uncovered()) {
+      out.force[here.previousObstacle] -= glm::dvec3(macro[cell]);
+      out.magnitude[here.previousObstacle] += glm::abs(glm::dvec3(macro[cell]));
+    }
     if (here.solid() || here.uncovered()) continue;  // no bounce-back happens there
     const glm::ivec3 p = cellOf(cell, settings.size);
     for (int i = 1; i < d3q19::kQ; ++i) {

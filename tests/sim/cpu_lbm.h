@@ -85,7 +85,8 @@ bool insideGrid(glm::ivec3 p, glm::ivec3 size);
 // The force of the fluid on each obstacle by momentum exchange over the links that the coming step
 // bounces back (Galilean-invariant form, Wen et al. 2014): per link from a fluid cell x (not one just
 // uncovered) along c_i to a wall cell (CellFlags::wall), F += (c_ī − u_w) f*_ī(x) − (c_i − u_w) f_i(x)
-// with f_i(x) the bounced-back population.
+// with f_i(x) the bounced-back population; plus the momentum of the cells a moving obstacle covers
+// (their ρu, to the obstacle) and uncovers (the refill's ρ₀u_w, from it).
 // `post` is the state the step streams from, `macro` the macro state before it, `flags` the step's.
 struct LinkForces {
   std::vector<glm::dvec3> force;

@@ -1,0 +1,212 @@
+#include "app/bake_command.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "app/options.h"
+#include "app/report.h"
+#include "app/scene_volumes.h"
+#include "gpu/context.h"
+#include "gpu/pipeline.h"
+#include "io/error.h"
+#include "io/scene.h"
+#include "render/bake_flipbook.h"
+#include "render/scene_frame.h"
+#include "render/vdb_sequence.h"
+
+namespace sixway::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct BakeOptions {
+  CommonOptions common;
+  fs::path scene, out;
+  std::vector<fs::path> vdb;
+  bool force = false, multipleScattering = false;
+  int first = 0;
+  std::optional<int> frames, columns, voxels, samples, orders;
+  std::optional<uint32_t> seed;
+  std::string tile;
+  std::vector<float> cameraPosition, cameraTarget, cameraUp;
+  std::optional<float> fov, extinction, albedo, g, emission, step, lightSpacing;
+};
+
+// "128" or "128x256".
+std::pair<int, int> parseTile(const std::string& text) {
+  std::smatch m;
+  if (!std::regex_match(text, m, std::regex(R"((\d{1,5})(?:x(\d{1,5}))?)")))
+    throw io::InputError("--tile", "expected N or WxH (got \"" + text + "\")");
+  const int w = std::stoi(m[1]), h = m[2].matched ? std::stoi(m[2]) : w;
+  if (w < 1 || h < 1 || w > 8192 || h > 8192) throw io::InputError("--tile", "each side must be in 1..8192");
+  return {w, h};
+}
+
+glm::vec3 vec3Of(const std::vector<float>& v) {
+  return {v[0], v[1], v[2]};
+}
+
+// The fixed view: --camera-* flags, else the scene's camera (at frame 0), else the default framing camera.
+render::Camera chooseCamera(const BakeOptions& o, const io::Scene* scene, const render::Box& bounds) {
+  const float fov = o.fov.value_or(scene ? scene->camera.fovDeg : 40.0f);
+  if (!o.cameraPosition.empty()) {
+    const glm::vec3 up = o.cameraUp.empty() ? glm::vec3(0, 1, 0) : vec3Of(o.cameraUp);
+    try {
+      return render::Camera::lookAt(vec3Of(o.cameraPosition), vec3Of(o.cameraTarget), up, fov);
+    } catch (const std::invalid_argument& e) {
+      throw io::InputError("--camera-position", std::string(e.what()).substr(std::string("camera: ").size()));
+    }
+  }
+  if (scene) {
+    io::Camera camera = scene->camera;
+    camera.fovDeg = fov;
+    return render::sceneCamera(camera, 0);
+  }
+  return render::framingCamera(bounds, fov);
+}
+
+// The five-key emission ramp used for OpenVDB files with --emission (temperature 0 … 1, black to white-hot).
+io::Emission defaultRamp(float intensity) {
+  io::Emission e;
+  e.intensity = intensity;
+  e.ramp = {{0.0f, {0.0f, 0.0f, 0.0f}},
+            {0.25f, {0.5f, 0.05f, 0.0f}},
+            {0.5f, {1.0f, 0.35f, 0.05f}},
+            {0.75f, {1.0f, 0.7f, 0.3f}},
+            {1.0f, {1.0f, 0.95f, 0.8f}}};
+  return e;
+}
+
+void run(const BakeOptions& o) {
+  if (o.scene.empty() && o.vdb.empty()) throw io::InputError("bake", "give --scene S or --vdb F...");
+  if (o.cameraPosition.empty() != o.cameraTarget.empty())
+    throw io::InputError("--camera-position", "--camera-position and --camera-target go together");
+  requireWritable(o.out, o.force);
+
+  std::optional<io::Scene> scene;
+  if (!o.scene.empty()) scene = io::loadScene(o.scene);
+  io::Smoke smoke = scene ? scene->smoke : io::Smoke{};
+  if (o.extinction) smoke.extinction = *o.extinction;
+  if (o.albedo) smoke.albedo = *o.albedo;
+  if (o.g) smoke.phaseG = *o.g;
+  if (o.emission) {
+    if (scene && !smoke.emission.ramp.empty()) {
+      smoke.emission.intensity = *o.emission;
+    } else {
+      smoke.emission = defaultRamp(*o.emission);
+    }
+  }
+  const auto [tileWidth, tileHeight] = o.tile.empty() ? std::pair(scene ? scene->render.lightmapSize : 128,
+                                                                  scene ? scene->render.lightmapSize : 128)
+                                                      : parseTile(o.tile);
+
+  gpu::Context context(o.common.contextOptions());
+  gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));
+  std::unique_ptr<render::VolumeSequence> sequence;
+  nlohmann::json provenance;
+  if (scene) {
+    sequence = simulatedVolumes(context, cache, *scene, o.first + o.frames.value_or(16));
+    provenance["source"] = {{"scene", fs::absolute(o.scene).string()}};
+  } else {
+    auto vdb = std::make_unique<render::VdbSequence>(context, o.vdb, o.voxels.value_or(128),
+                                                     smoke.emission.intensity > 0.0f);
+    nlohmann::json files = nlohmann::json::array();
+    for (const fs::path& f : o.vdb) files.push_back(fs::absolute(f).string());
+    const render::VolumeGrid& lattice = vdb->lattice();
+    provenance["source"] = {{"vdb", files},
+                            {"lattice",
+                             {{"cells", {lattice.size.x, lattice.size.y, lattice.size.z}},
+                              {"origin", {lattice.origin.x, lattice.origin.y, lattice.origin.z}},
+                              {"cell_size", lattice.cellSize}}}};
+    sequence = std::move(vdb);
+  }
+
+  render::FlipbookBake job;
+  job.out = o.out;
+  job.firstFrame = o.first;
+  job.frameCount = o.frames.value_or(sequence->frameCount() - o.first);
+  job.columns = o.columns.value_or(0);
+  job.camera = chooseCamera(o, scene ? &*scene : nullptr, sequence->bounds());
+  job.smoke = smoke;
+  job.settings.width = tileWidth;
+  job.settings.height = tileHeight;
+  if (o.step) job.settings.stepCells = *o.step;
+  if (o.lightSpacing) job.settings.lightSpacingCells = *o.lightSpacing;
+  if (o.multipleScattering)
+    job.multipleScattering =
+        render::MultipleScattering{uint32_t(o.samples.value_or(256)), o.orders.value_or(64),
+                                   o.seed.value_or(scene ? scene->render.seed : 1u)};
+  job.provenance = provenance;
+
+  if (fs::exists(o.out / "frames"))  // --force: frames of an earlier, longer bake must not linger
+    for (const auto& entry : fs::directory_iterator(o.out / "frames"))
+      if (entry.path().filename().string().starts_with("frame_")) fs::remove(entry.path());
+  std::printf("sixway bake: %d frames, tiles of %dx%d, %s scattering\n", job.frameCount, tileWidth,
+              tileHeight, job.multipleScattering ? "multiple" : "single");
+  std::fflush(stdout);
+  const render::FlipbookBakeResult result =
+      render::bakeFlipbook(context, cache, *sequence, job, [](const std::string& line) {
+        std::printf("  %s\n", line.c_str());
+        std::fflush(stdout);
+      });
+  if (const auto* vdb = dynamic_cast<const render::VdbSequence*>(sequence.get()))
+    for (const std::string& note : vdb->notes()) std::printf("  note: %s\n", note.c_str());
+  std::printf("sixway bake: wrote %s\n", result.sidecar.string().c_str());
+  if (context.validationMessageCount() > 0)
+    throw std::runtime_error(std::to_string(context.validationMessageCount()) + " validation messages");
+}
+
+}  // namespace
+
+void addBakeCommand(CLI::App& app) {
+  auto o = std::make_shared<BakeOptions>();
+  CLI::App* bake = app.add_subcommand("bake", "Reference six-way lightmaps and a Unity-packed flipbook");
+  o->common.addTo(*bake);
+  auto* sceneOption = bake->add_option("--scene", o->scene, "Scene JSON: bake its simulation");
+  bake->add_option("--vdb", o->vdb, "OpenVDB files, one per frame")->excludes(sceneOption);
+  bake->add_option("--out", o->out, "Output directory")->required();
+  bake->add_flag("--force", o->force, "Write into an existing output directory");
+  bake->add_option("--first", o->first, "First frame baked (default 0)")->check(CLI::NonNegativeNumber);
+  bake->add_option("--frames", o->frames, "Frames baked (default: every VDB file; 16 for a scene)")
+      ->check(CLI::PositiveNumber);
+  bake->add_option("--columns", o->columns, "Flipbook columns (default: a near-square grid)")
+      ->check(CLI::PositiveNumber);
+  bake->add_option("--tile", o->tile,
+                   "Tile size N or WxH in pixels (default: the scene's lightmap_size, or 128)");
+  bake->add_option("--camera-position", o->cameraPosition, "Camera position X Y Z (with --camera-target)")
+      ->expected(3);
+  bake->add_option("--camera-target", o->cameraTarget, "Point the camera looks at, X Y Z")->expected(3);
+  bake->add_option("--camera-up", o->cameraUp, "Camera up X Y Z (default 0 1 0)")->expected(3);
+  bake->add_option("--fov", o->fov, "Vertical field of view in degrees (default: the scene's, or 40)")
+      ->check(CLI::Range(1.0f, 170.0f));
+  bake->add_option("--extinction", o->extinction, "σ_t per unit density, 1/m (default: the scene's, or 20)")
+      ->check(CLI::PositiveNumber);
+  bake->add_option("--albedo", o->albedo, "Single-scattering albedo (default: the scene's, or 0.9)")
+      ->check(CLI::Range(0.0f, 1.0f));
+  bake->add_option("--g", o->g, "Henyey-Greenstein asymmetry (default: the scene's, or 0.2)")
+      ->check(CLI::Range(-0.99f, 0.99f));
+  bake->add_option("--emission", o->emission,
+                   "Emission intensity (VDB: with a built-in black-body-like ramp)")
+      ->check(CLI::NonNegativeNumber);
+  bake->add_option("--voxels", o->voxels,
+                   "VDB: cells along the longest axis of the resampled lattice (default 128)")
+      ->check(CLI::Range(2, 1024));
+  bake->add_option("--step", o->step, "Longest march step in cells (default 0.5)")
+      ->check(CLI::Range(0.01f, 0.5f));
+  bake->add_option("--light-spacing", o->lightSpacing, "Light-grid spacing in cells (default 1)")
+      ->check(CLI::Range(0.1f, 8.0f));
+  bake->add_flag("--multiple-scattering", o->multipleScattering, "Path-traced multiple scattering");
+  bake->add_option("--spp", o->samples, "Multiple scattering: samples per pixel (default 256)")
+      ->check(CLI::PositiveNumber);
+  bake->add_option("--orders", o->orders, "Multiple scattering: scattering orders (default 64)")
+      ->check(CLI::Range(1, 100000));
+  bake->add_option("--seed", o->seed, "Multiple scattering: random seed (default: the scene's, or 1)");
+  bake->callback([o] { run(*o); });
+}
+
+}  // namespace sixway::app

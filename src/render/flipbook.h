@@ -1,0 +1,66 @@
+#pragma once
+// Flipbooks of six-way lightmaps, the way game engines play them back (DESIGN.md §3): the frames as tiles of
+// a columns × rows grid, row-major, frame 0 at the top-left, the eight channels packed into RGBA textures
+// (Unity's packing unless told otherwise), written as EXR (half, linear) and 8-bit PNG and TGA (linear) with
+// a JSON sidecar. Flipbooks from other tools are read through a description in the sidecar's format, which
+// says where each channel lives (docs/reference-rendering.md, "Flipbooks").
+#include <array>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "io/image.h"
+#include "render/sixway.h"
+
+namespace sixway::render {
+
+struct FlipbookLayout {
+  int columns = 1, rows = 1;
+  int frames = 1;  // tiles in use, at most columns · rows
+  int tileWidth = 1, tileHeight = 1;
+};
+
+// A near-square grid for `frames` tiles: `columns` columns (0: ceil(√frames)) and as many rows as needed.
+FlipbookLayout flipbookLayout(int frames, int tileWidth, int tileHeight, int columns = 0);
+
+// Where each six-way channel lives: a texture (by index into `textures`) and a component 0..3 (R, G, B, A).
+// A channel without a texture reads as 0 (only emissive may be absent).
+struct ChannelPacking {
+  struct Slot {
+    int texture = -1;
+    int component = 0;
+  };
+  std::vector<std::string> textures;
+  std::array<Slot, kSixWayChannels> slots;
+};
+
+// Unity VFX Graph's six-way packing: A = (Right, Top, Back, alpha), B = (Left, Bottom, Front, emissive).
+ChannelPacking unityPacking();
+
+// The textures (RGBA, one per packing texture) holding `frames` (eight-channel tiles in sixWayChannelNames()
+// order, of the layout's tile size); unused tiles are 0.
+std::vector<io::Image> packFlipbook(const std::vector<io::Image>& frames, const FlipbookLayout& layout,
+                                    const ChannelPacking& packing);
+// The eight-channel frames held by `textures` (RGBA, in packing order).
+std::vector<io::Image> unpackFlipbook(const std::vector<io::Image>& textures, const FlipbookLayout& layout,
+                                      const ChannelPacking& packing);
+
+// Writes <stem>_<texture>.exr (half), .png and .tga (8-bit, linear) for each texture of `packing`, and the
+// sidecar <stem>.json (layout, files, channels, colour space, normalisation, and `provenance` as given).
+// Returns the sidecar's path.
+std::filesystem::path writeFlipbook(const std::filesystem::path& directory, const std::string& stem,
+                                    const std::vector<io::Image>& frames, const FlipbookLayout& layout,
+                                    const ChannelPacking& packing, const nlohmann::json& provenance);
+
+struct Flipbook {
+  FlipbookLayout layout;
+  std::vector<io::Image> frames;  // eight channels each, premultiplied, linear
+};
+
+// Reads the flipbook a description (a sidecar of writeFlipbook, or one written by hand for another tool's
+// textures) names; texture paths are relative to the description's folder. Throws io::InputError naming the
+// description or texture file and the problem.
+Flipbook readFlipbook(const std::filesystem::path& description);
+
+}  // namespace sixway::render

@@ -1,0 +1,68 @@
+#pragma once
+// Host mirrors of the std140 parameter blocks of the render shaders: every member is 16 bytes wide, so the
+// C++ and GLSL layouts agree member for member (checked by the static_asserts).
+#include <glm/vec4.hpp>
+
+#include "io/scene.h"
+#include "render/camera.h"
+#include "render/light_grid.h"
+#include "render/volume.h"
+
+namespace sixway::render::layout {
+
+constexpr int kMaxRampKeys = 16;  // shaders/common/emission.glsl
+constexpr int kMaxLights = 8;     // shaders/render/path_trace.comp
+
+struct VolumeGrid {  // shaders/common/volume.glsl
+  glm::vec4 originCell;
+  glm::ivec4 size;
+};
+
+struct CameraRays {  // shaders/common/camera.glsl
+  glm::vec4 position, right, up, forward, plane;
+};
+
+struct LightGrid {  // shaders/render/bake_params.glsl
+  glm::vec4 corner, u, v, toLight;
+  glm::ivec4 nodes;
+};
+
+struct BakeParams {  // shaders/render/bake_params.glsl
+  VolumeGrid volume;
+  CameraRays camera;
+  glm::vec4 optics;
+  glm::vec4 march;
+  glm::ivec4 image;
+  glm::ivec4 bricks;
+  glm::vec4 ramp[kMaxRampKeys];
+  LightGrid lights[6];
+};
+static_assert(sizeof(BakeParams) == 16 * (2 + 5 + 4 + kMaxRampKeys + 6 * 5));
+
+struct PathLight {  // shaders/render/path_trace.comp
+  glm::vec4 position, radiance;
+};
+
+struct TraceParams {  // shaders/render/path_trace.comp
+  VolumeGrid volume;
+  CameraRays camera;
+  glm::vec4 optics;
+  glm::ivec4 bricks;
+  glm::uvec4 frame;
+  glm::ivec4 image;
+  glm::uvec4 flags;
+  glm::vec4 background;
+  glm::vec4 environment[4];
+  glm::vec4 ramp[kMaxRampKeys];
+  PathLight lights[kMaxLights];
+};
+static_assert(sizeof(TraceParams) == 16 * (2 + 5 + 6 + 4 + kMaxRampKeys + 2 * kMaxLights));
+
+VolumeGrid volumeGrid(const render::VolumeGrid& grid);
+CameraRays cameraRays(const Camera& camera, const ImagePlane& plane);
+LightGrid lightGrid(const render::LightGrid& grid);
+// The emission ramp as (temperature, r, g, b) keys; returns the key count, 0 when the smoke does not emit.
+// Throws io::InputError for more keys than the shaders hold.
+int emissionRamp(const io::Emission& emission, glm::vec4 (&keys)[kMaxRampKeys]);
+
+}  // namespace sixway::render::layout

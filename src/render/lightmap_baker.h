@@ -1,0 +1,67 @@
+#pragma once
+// The reference six-way baker (single scattering, no noise): the eight channels of DESIGN.md §3 for a
+// camera, a billboard and a density volume. For each of the six camera-relative lights a compute pass
+// integrates the optical depth toward the light on a light-space grid (light_depth.comp); then one fine
+// view-ray march accumulates σ_s · T_view · T_light · π · p_HG for the six lights, alpha = 1 − T_view and
+// the emission (sixway_march.comp), skipping empty bricks (majorant.comp). The method and its
+// normalisation: docs/reference-rendering.md.
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "gpu/buffer.h"
+#include "gpu/sequence.h"
+#include "io/image.h"
+#include "io/scene.h"
+#include "render/camera.h"
+#include "render/light_grid.h"
+#include "render/recorded_sequence.h"
+#include "render/volume.h"
+
+namespace sixway::gpu {
+class Context;
+class Pipeline;
+class PipelineCache;
+}  // namespace sixway::gpu
+
+namespace sixway::render {
+
+struct BakeSettings {
+  int width = 128, height = 128;   // lightmap pixels
+  float stepCells = 0.5f;          // longest quadrature step of view rays and light columns, in cells
+  float lightSpacingCells = 1.0f;  // spacing of the light grids, in cells (widened when a grid would not fit)
+  float minTransmittance = 1e-6f;  // a view ray stops once less than this of the background shows through
+};
+
+class LightmapBaker {
+ public:
+  LightmapBaker(const gpu::Context& context, const gpu::PipelineCache& cache);
+  ~LightmapBaker();
+
+  // The eight channels (sixWayChannelNames(), linear, premultiplied) of `volume` lit from the six directions
+  // of `camera`, over the `billboard` rectangle of its image plane. Throws io::InputError for settings out
+  // of range and an emission ramp with too many keys.
+  io::Image bake(const Volume& volume, const io::Smoke& smoke, const Camera& camera,
+                 const ImagePlane& billboard, const BakeSettings& settings);
+
+  // Of the last bake: the light grids (channel order), GPU time per stage, and the optical depths on the
+  // grid of light `light`, node index (c · ny + b) · nx + a.
+  const std::array<LightGrid, 6>& lightGrids() const { return grids_; }
+  const std::vector<gpu::StageTime>& stageTimes() const;
+  std::vector<float> lightDepths(int light) const;
+
+  static constexpr int kBrickCells = 8;  // side of the empty-space bricks
+
+ private:
+  void ensureCapacity(const VolumeGrid& grid, uint64_t lightmapValues);
+
+  const gpu::Context* context_;
+  std::unique_ptr<gpu::Pipeline> majorantPass_, depthPass_, marchPass_;
+  gpu::Buffer params_, bricks_, lightmaps_, readback_;
+  std::array<gpu::Buffer, 6> depths_;
+  std::array<LightGrid, 6> grids_;
+  RecordedSequence sequence_;
+  gpu::Sequence* last_ = nullptr;
+};
+
+}  // namespace sixway::render

@@ -1,0 +1,83 @@
+#pragma once
+// The volumetric path tracer (Monte Carlo, unbiased; shaders/render/path_trace.comp): delta tracking for
+// free paths, ratio tracking for shadow rays and alpha, Henyey–Greenstein phase sampling, any number of
+// scattering orders, directional and point lights, emission, a constant background and an L1 environment.
+// Samples accumulate progressively; a fixed seed gives the same image however the samples are split into
+// passes. It renders final images under arbitrary lights and six-way lightmaps with multiple scattering.
+#include <array>
+#include <cstdint>
+#include <glm/vec3.hpp>
+#include <memory>
+#include <vector>
+
+#include "gpu/buffer.h"
+#include "gpu/sequence.h"
+#include "io/image.h"
+#include "io/scene.h"
+#include "render/camera.h"
+#include "render/recorded_sequence.h"
+#include "render/volume.h"
+
+namespace sixway::gpu {
+class Context;
+class Pipeline;
+class PipelineCache;
+}  // namespace sixway::gpu
+
+namespace sixway::render {
+
+struct TraceSettings {
+  int width = 128, height = 128;
+  uint32_t seed = 1;
+  int maxOrders = 64;       // scattering orders followed (1 = single scattering, 0 = none)
+  bool jitter = true;       // random points inside pixels; false: pixel centres, as the baker samples
+  int samplesPerPass = 4;   // samples per pixel in one dispatch
+  int brickCells = 8;       // side of the majorant bricks, in cells
+  glm::vec3 background{0};  // radiance seen where camera rays leave the volume
+  // Radiance arriving from direction w (world) at scattered rays that leave the volume: max(0, L0 + L1·w),
+  // as {L0, L1x, L1y, L1z}.
+  std::array<glm::vec3, 4> environment{};
+};
+
+class PathTracer {
+ public:
+  PathTracer(const gpu::Context& context, const gpu::PipelineCache& cache);
+  ~PathTracer();
+
+  // Starts an image of `volume` under `lights` (positioned for the frame; at most 8): channels R, G, B
+  // (radiance, including the background and emission) and A (alpha = 1 − T of the camera ray).
+  void beginImage(const Volume& volume, const io::Smoke& smoke, const Camera& camera, const ImagePlane& plane,
+                  const std::vector<io::Light>& lights, const TraceSettings& settings);
+  // Starts six-way lightmaps: the eight channels of sixway.h, each light channel lit by one white
+  // directional light of irradiance π from its camera-relative direction, black world; emissive is the
+  // emission seen directly. Background and environment are not used.
+  void beginSixWay(const Volume& volume, const io::Smoke& smoke, const Camera& camera,
+                   const ImagePlane& billboard, const TraceSettings& settings);
+
+  // Adds `samplesPerPixel` samples (rounded up to whole passes).
+  void accumulate(uint32_t samplesPerPixel);
+  uint32_t samples() const { return samples_; }
+  // The mean of the samples so far.
+  io::Image image() const;
+  // GPU milliseconds spent tracing since begin (GPU timestamps of the passes).
+  double traceMilliseconds() const { return traceMs_; }
+
+ private:
+  void begin(const Volume& volume, const io::Smoke& smoke, const Camera& camera, const ImagePlane& plane,
+             const TraceSettings& settings, bool sixWay);
+
+  const gpu::Context* context_;
+  std::unique_ptr<gpu::Pipeline> majorantPass_, imagePass_, sixWayPass_;
+  gpu::Buffer params_, majorants_, accumulation_, readback_;
+  RecordedSequence prepare_, trace_;
+  mutable RecordedSequence read_;
+  std::vector<uint64_t> traceKey_;
+  std::vector<std::string> channels_;
+  TraceSettings settings_;
+  uint32_t samples_ = 0;
+  double traceMs_ = 0;
+  bool sixWay_ = false;
+  Volume volume_;
+};
+
+}  // namespace sixway::render

@@ -1,0 +1,42 @@
+#pragma once
+// A gpu::Sequence recorded once and replayed while the things it was recorded with (buffers, dispatch
+// shapes) stay the same; per-frame values travel in uniform buffers, so most frames record nothing.
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "gpu/sequence.h"
+
+namespace sixway::render {
+
+class RecordedSequence {
+ public:
+  explicit RecordedSequence(const gpu::Context& context) : context_(&context) {}
+
+  // The sequence recorded for `key`; `record` fills a fresh one when the key differs from the last one.
+  gpu::Sequence& get(const std::vector<uint64_t>& key, const std::function<void(gpu::Sequence&)>& record) {
+    if (!sequence_ || key != key_) {
+      sequence_.reset();
+      auto fresh = std::make_unique<gpu::Sequence>(*context_);
+      record(*fresh);
+      fresh->finish();
+      sequence_ = std::move(fresh);
+      key_ = key;
+    }
+    return *sequence_;
+  }
+
+ private:
+  const gpu::Context* context_;
+  std::vector<uint64_t> key_;
+  std::unique_ptr<gpu::Sequence> sequence_;
+};
+
+// The handle of a Vulkan object as a key element.
+template <typename Handle>
+uint64_t handleKey(Handle handle) {
+  return reinterpret_cast<uint64_t>(handle);
+}
+
+}  // namespace sixway::render

@@ -1,0 +1,104 @@
+// Timings of the reference renderers for docs/benchmarks.md ("Reference rendering (#4)"): the full
+// eight-channel bake of a 256² lightmap from a 128³ volume, and the path tracer's samples per second.
+// GPU timestamps of the gpu::Sequence stages, median of 5 runs after a warm-up run.
+// The volume: tests/data/vdb/densityAndHeat.vdb resampled onto a 128³ cube of cubic cells around it.
+// Usage: render_bench
+#include <algorithm>
+#include <cstdio>
+#include <glm/geometric.hpp>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "gpu/context.h"
+#include "gpu/pipeline.h"
+#include "io/vdb.h"
+#include "render/billboard.h"
+#include "render/lightmap_baker.h"
+#include "render/path_tracer.h"
+
+namespace {
+
+using namespace sixway;
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+void benchBake(render::LightmapBaker& baker, const render::Volume& volume, const io::Smoke& smoke,
+               const render::Camera& camera, const char* view) {
+  render::BakeSettings settings;
+  settings.width = settings.height = 256;
+  const render::ImagePlane billboard = render::billboardBounds(camera, volume.grid.bounds(), 1.0f);
+  std::map<std::string, std::vector<double>> stages;
+  std::vector<double> totals;
+  for (int run = 0; run < 6; ++run) {
+    baker.bake(volume, smoke, camera, billboard, settings);
+    if (run == 0) continue;  // warm-up
+    double total = 0;
+    for (const gpu::StageTime& t : baker.stageTimes()) {
+      total += t.milliseconds;
+      stages[t.name].push_back(t.milliseconds);
+    }
+    totals.push_back(total);
+  }
+  uint64_t nodes = 0;
+  for (const render::LightGrid& g : baker.lightGrids()) nodes = std::max(nodes, g.nodeCount());
+  std::printf("bake 256x256, 8 channels, %s view: %.1f ms (light grids up to %.1f M nodes)\n", view,
+              median(totals), nodes / 1e6);
+  for (const auto& [name, times] : stages) std::printf("  %-24s %.1f ms\n", name.c_str(), median(times));
+}
+
+void benchTrace(render::PathTracer& tracer, const render::Volume& volume, const io::Smoke& smoke,
+                const render::Camera& camera, int orders) {
+  render::TraceSettings settings;
+  settings.width = settings.height = 256;
+  settings.maxOrders = orders;
+  settings.samplesPerPass = 4;
+  const render::ImagePlane billboard = render::billboardBounds(camera, volume.grid.bounds(), 1.0f);
+  std::vector<double> rates;
+  for (int run = 0; run < 6; ++run) {
+    tracer.beginSixWay(volume, smoke, camera, billboard, settings);
+    tracer.accumulate(8);
+    if (run > 0) rates.push_back(256.0 * 256.0 * tracer.samples() / (tracer.traceMilliseconds() * 1e-3));
+  }
+  std::printf("path tracer, six-way lightmaps 256x256, %d scattering order%s: %.3g samples/s\n", orders,
+              orders == 1 ? "" : "s", median(rates));
+}
+
+}  // namespace
+
+int main() {
+  gpu::Context context;
+  gpu::PipelineCache cache(context);
+  std::printf("device: %s (%s)\n", context.properties().deviceName, context.driver().driverInfo);
+
+  const std::string file = SIXWAY_TEST_DATA_DIR "/vdb/densityAndHeat.vdb";
+  const io::VdbFile info = io::readVdbInfo(file);
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (const auto& g : info.grids) {
+    lo = glm::min(lo, g.worldMin);
+    hi = glm::max(hi, g.worldMax);
+  }
+  const float side = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+  const glm::vec3 centre = 0.5f * (lo + hi);
+  const io::DenseGrid density = io::readVdbDense(
+      file, "density", io::ExplicitBounds{centre - 0.5f * side, centre + 0.5f * side, glm::ivec3(128)});
+  const render::DeviceVolume volume = render::uploadVolume(context, density);
+
+  io::Smoke smoke;  // about 0.3 optical depth per cell at the densest cells, as in the simulated scenes
+  smoke.extinction = 0.3f / volume.grid().cellSize;
+  const render::Box box = volume.grid().bounds();
+  const render::Camera front = render::framingCamera(box);
+  const render::Camera oblique = render::Camera::lookAt(
+      box.centre() + glm::length(box.size()) * glm::vec3(0.9f, 0.6f, 1.2f), box.centre(), {0, 1, 0}, 40.0f);
+
+  render::LightmapBaker baker(context, cache);
+  benchBake(baker, volume.view(), smoke, front, "front (axis-aligned)");
+  benchBake(baker, volume.view(), smoke, oblique, "oblique");
+  render::PathTracer tracer(context, cache);
+  benchTrace(tracer, volume.view(), smoke, front, 1);
+  benchTrace(tracer, volume.view(), smoke, front, 64);
+  return 0;
+}

@@ -1,0 +1,211 @@
+// Flipbook layout, Unity packing, the files and sidecar written, and reading flipbooks back through a
+// description, including another tool's packing.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "io/exr.h"
+#include "io/png.h"
+#include "io/tga.h"
+#include "render/flipbook.h"
+#include "support/input_error.h"
+#include "support/temp_dir.h"
+
+namespace sixway::test {
+namespace {
+
+using render::FlipbookLayout;
+
+// Frame f, channel c, pixel (x, y) holds a value that names all four.
+float code(int f, int c, int x, int y) {
+  return float(f * 8 + c) / 64.0f + float(x + 3 * y) / 4096.0f;
+}
+
+std::vector<io::Image> codedFrames(int frames, int w, int h) {
+  std::vector<io::Image> result;
+  const auto& names = render::sixWayChannelNames();
+  for (int f = 0; f < frames; ++f) {
+    io::Image tile(w, h, {names.begin(), names.end()});
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < 8; ++c) tile.at(x, y, c) = code(f, c, x, y);
+    result.push_back(tile);
+  }
+  return result;
+}
+
+void expectFramesNear(const std::vector<io::Image>& actual, const std::vector<io::Image>& expected,
+                      float tolerance) {
+  ASSERT_EQ(actual.size(), expected.size());
+  for (size_t f = 0; f < actual.size(); ++f) {
+    ASSERT_EQ(actual[f].channels, expected[f].channels);
+    for (size_t i = 0; i < actual[f].pixels.size(); ++i)
+      ASSERT_NEAR(actual[f].pixels[i], expected[f].pixels[i], tolerance) << "frame " << f << " value " << i;
+  }
+}
+
+TEST(FlipbookLayoutTest, IsANearSquareRowMajorGrid) {
+  const FlipbookLayout five = render::flipbookLayout(5, 16, 8);
+  EXPECT_EQ(five.columns, 3);
+  EXPECT_EQ(five.rows, 2);
+  EXPECT_EQ(render::flipbookLayout(16, 4, 4).columns, 4);
+  EXPECT_EQ(render::flipbookLayout(1, 4, 4).rows, 1);
+  const FlipbookLayout strip = render::flipbookLayout(6, 4, 4, 6);
+  EXPECT_EQ(strip.columns, 6);
+  EXPECT_EQ(strip.rows, 1);
+}
+
+// Unity: A = (Right, Top, Back, alpha), B = (Left, Bottom, Front, emissive); frame f at column f % columns,
+// row f / columns, row 0 at the top of the texture.
+TEST(FlipbookPackingTest, PlacesFramesAndChannelsAsUnityExpects) {
+  const FlipbookLayout layout = render::flipbookLayout(5, 4, 3);
+  const auto textures = render::packFlipbook(codedFrames(5, 4, 3), layout, render::unityPacking());
+  ASSERT_EQ(textures.size(), 2u);
+  ASSERT_EQ(textures[0].width, 12);
+  ASSERT_EQ(textures[0].height, 6);
+  const int a[4] = {render::Right, render::Top, render::Back, render::Alpha};
+  const int b[4] = {render::Left, render::Bottom, render::Front, render::Emissive};
+  for (int f = 0; f < 5; ++f)
+    for (int k = 0; k < 4; ++k) {
+      const int x = 1, y = 2, tx = (f % 3) * 4 + x, ty = (f / 3) * 3 + y;
+      EXPECT_EQ(textures[0].at(tx, ty, k), code(f, a[k], x, y)) << f << " " << k;
+      EXPECT_EQ(textures[1].at(tx, ty, k), code(f, b[k], x, y)) << f << " " << k;
+    }
+  EXPECT_EQ(textures[0].at(11, 5, 3), 0.0f) << "the unused sixth tile is transparent";
+  expectFramesNear(render::unpackFlipbook(textures, layout, render::unityPacking()), codedFrames(5, 4, 3),
+                   0.0f);
+}
+
+class FlipbookFilesTest : public ::testing::Test {
+ protected:
+  void writeDescription(const nlohmann::json& description) {
+    std::ofstream(dir / "book.json") << description.dump(2);
+  }
+  TempDir dir;
+};
+
+TEST_F(FlipbookFilesTest, WritesExrPngTgaAndASidecarThatReadsBack) {
+  const FlipbookLayout layout = render::flipbookLayout(3, 5, 4);
+  const auto frames = codedFrames(3, 5, 4);
+  const auto sidecar = render::writeFlipbook(dir.path(), "flipbook", frames, layout, render::unityPacking(),
+                                             {{"note", "test"}});
+  for (const char* file : {"flipbook_A.exr", "flipbook_A.png", "flipbook_A.tga", "flipbook_B.exr",
+                           "flipbook_B.png", "flipbook_B.tga", "flipbook.json"})
+    EXPECT_TRUE(std::filesystem::exists(dir / file)) << file;
+  EXPECT_EQ(io::readExr(dir / "flipbook_A.exr").attributes.at("colorspace"), "linear");
+  // PNG and TGA hold the same values to 8 bits, linear (no sRGB curve).
+  const io::Image png = io::readPng(dir / "flipbook_B.png");
+  EXPECT_NEAR(png.at(6, 1, 2), code(1, render::Front, 1, 1), 0.5f / 255);
+  EXPECT_EQ(io::readTga(dir / "flipbook_B.tga").pixels, png.pixels);
+
+  const nlohmann::json json = nlohmann::json::parse(std::ifstream(sidecar));
+  EXPECT_EQ(json["channels"]["back"], "A.B");
+  EXPECT_EQ(json["channels"]["emissive"], "B.A");
+  EXPECT_EQ(json["color_space"], "linear");
+  EXPECT_EQ(json["layout"]["columns"], 2);
+  const render::Flipbook book = render::readFlipbook(sidecar);
+  EXPECT_EQ(book.layout.frames, 3);
+  expectFramesNear(book.frames, frames, 2e-4f);  // EXR half
+}
+
+// Another tool's packing (here EmberGen-style "RLT"/"BBF" textures as TGA: R = Right, G = Left, B = Top,
+// A = alpha; R = Bottom, G = Back, B = Front, A = emissive), read through a hand-written description.
+TEST_F(FlipbookFilesTest, ReadsAnotherToolsPackingThroughADescription) {
+  render::ChannelPacking rltBbf;
+  rltBbf.textures = {"RLT", "BBF"};
+  rltBbf.slots[render::Right] = {0, 0};
+  rltBbf.slots[render::Left] = {0, 1};
+  rltBbf.slots[render::Top] = {0, 2};
+  rltBbf.slots[render::Alpha] = {0, 3};
+  rltBbf.slots[render::Bottom] = {1, 0};
+  rltBbf.slots[render::Back] = {1, 1};
+  rltBbf.slots[render::Front] = {1, 2};
+  rltBbf.slots[render::Emissive] = {1, 3};
+  const FlipbookLayout layout = render::flipbookLayout(4, 6, 5);
+  const auto frames = codedFrames(4, 6, 5);
+  const auto textures = render::packFlipbook(frames, layout, rltBbf);
+  io::writeTga(dir / "smoke_RLT.tga", textures[0]);
+  io::writeTga(dir / "smoke_BBF.tga", textures[1]);
+  writeDescription({{"layout", {{"columns", 2}, {"rows", 2}, {"tile_width", 6}, {"tile_height", 5}}},
+                    {"textures", {{"RLT", "smoke_RLT.tga"}, {"BBF", "smoke_BBF.tga"}}},
+                    {"channels",
+                     {{"right", "RLT.R"},
+                      {"left", "RLT.G"},
+                      {"top", "RLT.B"},
+                      {"alpha", "RLT.A"},
+                      {"bottom", "BBF.R"},
+                      {"back", "BBF.G"},
+                      {"front", "BBF.B"},
+                      {"emissive", "BBF.A"}}}});
+  expectFramesNear(render::readFlipbook(dir / "book.json").frames, frames, 0.5f / 255 + 1e-6f);
+}
+
+// sRGB-encoded 8-bit textures are decoded (colour channels only); straight-alpha lightmaps are premultiplied.
+TEST_F(FlipbookFilesTest, DecodesSrgbAndPremultipliesStraightAlpha) {
+  io::Image a(1, 1, {"R", "G", "B", "A"}), b(1, 1, {"R", "G", "B", "A"});
+  a.pixels = {0.5f, 0.5f, 0.5f, 0.5f};
+  b.pixels = {0.5f, 0.5f, 0.5f, 0.0f};
+  io::writePng(dir / "a.png", a, io::PngEncoding::Linear);  // codes as given: read as sRGB below
+  io::writePng(dir / "b.png", b, io::PngEncoding::Linear);
+  writeDescription({{"layout", {{"columns", 1}, {"rows", 1}, {"tile_width", 1}, {"tile_height", 1}}},
+                    {"textures", {{"A", "a.png"}, {"B", "b.png"}}},
+                    {"channels",
+                     {{"right", "A.R"},
+                      {"top", "A.G"},
+                      {"back", "A.B"},
+                      {"alpha", "A.A"},
+                      {"left", "B.R"},
+                      {"bottom", "B.G"},
+                      {"front", "B.B"}}},
+                    {"color_space", "srgb"},
+                    {"premultiplied", false}});
+  const io::Image frame = render::readFlipbook(dir / "book.json").frames.at(0);
+  const float decoded = std::pow((128 / 255.0f + 0.055f) / 1.055f, 2.4f);
+  EXPECT_NEAR(frame.at(0, 0, render::Alpha), 128 / 255.0f, 1e-6f) << "alpha is never sRGB-decoded";
+  EXPECT_NEAR(frame.at(0, 0, render::Right), decoded * 128 / 255.0f, 1e-6f);
+  EXPECT_NEAR(frame.at(0, 0, render::Left), decoded * 128 / 255.0f, 1e-6f);
+  EXPECT_EQ(frame.at(0, 0, render::Emissive), 0.0f) << "no emissive channel reads as 0";
+}
+
+TEST_F(FlipbookFilesTest, BadDescriptionsAreOneLineErrors) {
+  io::Image rgba(2, 2, {"R", "G", "B", "A"});
+  io::writePng(dir / "t.png", rgba, io::PngEncoding::Linear);
+  const nlohmann::json layout = {{"columns", 1}, {"rows", 1}, {"tile_width", 2}, {"tile_height", 2}};
+  const nlohmann::json channels = {{"right", "T.R"}, {"left", "T.G"},  {"top", "T.B"},  {"bottom", "T.R"},
+                                   {"back", "T.G"},  {"front", "T.B"}, {"alpha", "T.A"}};
+  const auto file = dir / "book.json";
+  auto problem = [&](nlohmann::json description) {
+    writeDescription(description);
+    return inputErrorMessage([&] { render::readFlipbook(file); });
+  };
+  const nlohmann::json good = {{"layout", layout}, {"textures", {{"T", "t.png"}}}, {"channels", channels}};
+  EXPECT_NO_THROW(render::readFlipbook((writeDescription(good), file)));
+
+  nlohmann::json d = good;
+  d["channels"].erase("alpha");
+  EXPECT_THAT(problem(d), namesFileAndProblem(file, "channels.alpha: required key missing"));
+  d = good;
+  d["channels"]["top"] = "T.X";
+  EXPECT_THAT(problem(d), namesFileAndProblem(file, "channels.top: must be \"<texture>.<R|G|B|A>\""));
+  d = good;
+  d["channels"]["top"] = "U.R";
+  EXPECT_THAT(problem(d), namesFileAndProblem(file, "naming one of the textures"));
+  d = good;
+  d["layout"]["tile_width"] = 3;
+  EXPECT_THAT(problem(d), namesFileAndProblem(dir / "t.png", "the layout needs 3x2"));
+  d = good;
+  d["colour_space"] = "linear";
+  EXPECT_THAT(problem(d), namesFileAndProblem(file, "colour_space: unknown key"));
+  d = good;
+  d["textures"]["T"] = "missing.png";
+  EXPECT_THAT(problem(d), namesFileAndProblem(dir / "missing.png", "no such file"));
+  d = good;
+  d["layout"]["frames"] = 2;
+  EXPECT_THAT(problem(d), namesFileAndProblem(file, "layout.frames: must be in [1, 1]"));
+}
+
+}  // namespace
+}  // namespace sixway::test
