@@ -8,6 +8,7 @@
 
 #include "app/options.h"
 #include "app/report.h"
+#include "gpu/bandwidth.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "io/error.h"
@@ -108,6 +109,10 @@ void run(const SimOptions& o) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
   if (!o.report.empty()) {
+    // Memory-bound: the fraction of the device's copy bandwidth that the lattice update moves.
+    const double bandwidth = gpu::measureCopyBandwidth(context);
+    const double mlups = updates / (lbmMs * 1e3);
+    const double lbmBandwidth = mlups * 1e6 * sim::LbmSolver::kBytesPerCellUpdate / 1e9;
     nlohmann::json obstacles = nlohmann::json::array();
     for (auto& f : forcesPerObstacle) obstacles.push_back({{"force_lattice_per_step", f}});
     writeReport(o.report,
@@ -120,7 +125,11 @@ void run(const SimOptions& o) {
                  {"step_seconds", units.stepSeconds},
                  {"tau", units.tau},
                  {"watchdog", watchdog},
-                 {"mlups", updates / (lbmMs * 1e3)},
+                 {"mlups", mlups},
+                 {"bytes_per_cell_update", sim::LbmSolver::kBytesPerCellUpdate},
+                 {"lbm_bandwidth_gb_s", lbmBandwidth},
+                 {"copy_bandwidth_gb_s", bandwidth},
+                 {"bandwidth_fraction", lbmBandwidth / bandwidth},
                  {"lbm_ms", lbmMs},
                  {"smoke_ms", smokeMs},
                  {"gpu_ms", totalMs},

@@ -1,0 +1,12 @@
+#pragma once
+// The device's memory bandwidth as seen by a buffer-to-buffer copy: the reference against which
+// memory-bound kernels (the lattice Boltzmann step) are judged (DESIGN.md §8).
+namespace sixway::gpu {
+
+class Context;
+
+// GB/s counting each copied byte twice (read and written): the median of several timed copies of
+// a 64 MiB buffer, after a warm-up copy.
+double measureCopyBandwidth(const Context& context);
+
+}  // namespace sixway::gpu
