@@ -143,19 +143,6 @@ VkBufferImageCopy wholeImage(const ImageDesc& desc) {
   return region;
 }
 
-// Orders a copy against everything before and after it on the queue.
-void fullBarrier(VkCommandBuffer cmd) {
-  VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-  barrier.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-  barrier.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
-  barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-  barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
-  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-  dependency.memoryBarrierCount = 1;
-  dependency.pMemoryBarriers = &barrier;
-  vkCmdPipelineBarrier2(cmd, &dependency);
-}
-
 }  // namespace
 
 void Image::upload(std::span<const std::byte> texels) {
@@ -167,9 +154,9 @@ void Image::upload(std::span<const std::byte> texels) {
   std::memcpy(staging.mapped(), texels.data(), texels.size());
   submitOnce(*context_, [&](VkCommandBuffer cmd) {
     VkBufferImageCopy region = wholeImage(desc_);
-    fullBarrier(cmd);
+    recordFullBarrier(cmd);
     vkCmdCopyBufferToImage(cmd, staging.handle(), image_, VK_IMAGE_LAYOUT_GENERAL, 1, &region);
-    fullBarrier(cmd);
+    recordFullBarrier(cmd);
   });
 }
 
@@ -181,9 +168,9 @@ void Image::download(std::span<std::byte> texels) const {
                  desc_.name + " (readback)");
   submitOnce(*context_, [&](VkCommandBuffer cmd) {
     VkBufferImageCopy region = wholeImage(desc_);
-    fullBarrier(cmd);
+    recordFullBarrier(cmd);
     vkCmdCopyImageToBuffer(cmd, image_, VK_IMAGE_LAYOUT_GENERAL, staging.handle(), 1, &region);
-    fullBarrier(cmd);
+    recordFullBarrier(cmd);
   });
   std::memcpy(texels.data(), staging.mapped(), texels.size());
 }

@@ -11,4 +11,7 @@ class Context;
 
 void submitOnce(const Context& context, const std::function<void(VkCommandBuffer)>& record);
 
+// Orders every earlier write on the queue before every later access (a global memory barrier).
+void recordFullBarrier(VkCommandBuffer commands);
+
 }  // namespace sixway::gpu

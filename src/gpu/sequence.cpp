@@ -6,6 +6,7 @@
 #include "gpu/check.h"
 #include "gpu/context.h"
 #include "gpu/image.h"
+#include "gpu/one_shot.h"
 #include "gpu/pipeline.h"
 
 namespace sixway::gpu {
@@ -113,15 +114,7 @@ void Sequence::barrierIfHazard(const Touch& touch) {
   if (hazard) {
     // One global memory barrier orders all earlier writes before all later accesses: between
     // dependent passes the GPU drains anyway, and it keeps the bookkeeping to two sets.
-    VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    barrier.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    barrier.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
-    barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
-    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dependency.memoryBarrierCount = 1;
-    dependency.pMemoryBarriers = &barrier;
-    vkCmdPipelineBarrier2(commands_, &dependency);
+    recordFullBarrier(commands_);
     ++barriers_;
     writtenSinceBarrier_.clear();
     readSinceBarrier_.clear();
