@@ -1,9 +1,17 @@
 # Compiles one shader for Vulkan 1.3, validates the SPIR-V with spirv-val, and writes it as a C
 # header of 32-bit words. Any warning fails the build (glslangValidator has no -Werror of its own).
+# DEFINES: comma-separated preprocessor macros of a variant (may be empty).
 get_filename_component(spv ${OUTPUT} NAME_WE)
 set(spv ${OUTPUT}.spv)
+set(define_flags)
+if(DEFINES)
+  string(REPLACE "," ";" define_list "${DEFINES}")
+  foreach(define IN LISTS define_list)
+    list(APPEND define_flags -D${define})
+  endforeach()
+endif()
 execute_process(
-  COMMAND ${GLSLANG} --target-env vulkan1.3 -I${INCLUDE_DIR} --depfile ${DEPFILE} -o ${spv} ${SOURCE}
+  COMMAND ${GLSLANG} --target-env vulkan1.3 -I${INCLUDE_DIR} ${define_flags} --depfile ${DEPFILE} -o ${spv} ${SOURCE}
   RESULT_VARIABLE result
   OUTPUT_VARIABLE out
   ERROR_VARIABLE out)

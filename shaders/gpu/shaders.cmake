@@ -3,4 +3,5 @@ list(APPEND SIXWAY_SHADERS
   gpu/reduce_stats.comp
   gpu/fill_gradient.vert
   gpu/fill_gradient.frag
+  gpu/texel_buffer_scale.comp
 )

@@ -4,6 +4,7 @@
 #include <exception>
 
 #include "app/bake_command.h"
+#include "app/bench_command.h"
 #include "app/info_command.h"
 #include "app/planned_commands.h"
 #include "app/sim_command.h"
@@ -14,6 +15,7 @@ int main(int argc, char** argv) {
   sixway::app::addInfoCommand(app);
   sixway::app::addSimCommand(app);
   sixway::app::addBakeCommand(app);
+  sixway::app::addBenchCommand(app);
   sixway::app::addPlannedCommands(app);
   try {
     app.parse(argc, argv);

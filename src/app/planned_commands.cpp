@@ -53,10 +53,6 @@ void addPlannedCommands(CLI::App& app) {
   eval->add_option("--scene", o->scene, "Scene JSON")->required();
   eval->add_option("--frames", o->frames, "Frames")->required()->check(CLI::PositiveNumber);
   eval->add_option("--report", o->report, "JSON report")->required();
-
-  CLI::App* bench =
-      planned(app, "bench", "Per-stage GPU timings at fixed sizes", "#9 (evaluation and benchmarks)", o);
-  bench->add_option("--report", o->report, "JSON report");
 }
 
 }  // namespace sixway::app

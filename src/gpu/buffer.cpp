@@ -129,4 +129,36 @@ void Buffer::download(std::span<std::byte> data, uint64_t offset) const {
   std::memcpy(data.data(), staging.mapped(), data.size());
 }
 
+BufferView::BufferView(const Context& context, const Buffer& buffer, VkFormat format)
+    : context_(&context), buffer_(&buffer) {
+  VkBufferViewCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+  info.buffer = buffer.handle();
+  info.format = format;
+  info.range = VK_WHOLE_SIZE;
+  SIXWAY_VK(vkCreateBufferView(context.device(), &info, nullptr, &view_));
+}
+
+BufferView::~BufferView() {
+  release();
+}
+
+BufferView::BufferView(BufferView&& other) noexcept {
+  *this = std::move(other);
+}
+
+BufferView& BufferView::operator=(BufferView&& other) noexcept {
+  if (this != &other) {
+    release();
+    context_ = std::exchange(other.context_, nullptr);
+    buffer_ = std::exchange(other.buffer_, nullptr);
+    view_ = std::exchange(other.view_, VK_NULL_HANDLE);
+  }
+  return *this;
+}
+
+void BufferView::release() {
+  if (context_ && view_) vkDestroyBufferView(context_->device(), view_, nullptr);
+  view_ = VK_NULL_HANDLE;
+}
+
 }  // namespace sixway::gpu

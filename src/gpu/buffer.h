@@ -56,4 +56,26 @@ class Buffer {
   std::string name_;
 };
 
+// A view of a buffer as an array of texels of one format, for BindingType::StorageTexelBuffer: shaders read
+// it with imageLoad (format conversion by the device) while other dispatches write the same buffer as a
+// storage buffer. The buffer needs VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT and must outlive the view.
+class BufferView {
+ public:
+  BufferView() = default;
+  BufferView(const Context& context, const Buffer& buffer, VkFormat format);
+  ~BufferView();
+  BufferView(BufferView&& other) noexcept;
+  BufferView& operator=(BufferView&& other) noexcept;
+
+  VkBufferView handle() const { return view_; }
+  const Buffer& buffer() const { return *buffer_; }
+
+ private:
+  void release();
+
+  const Context* context_ = nullptr;
+  const Buffer* buffer_ = nullptr;
+  VkBufferView view_ = VK_NULL_HANDLE;
+};
+
 }  // namespace sixway::gpu

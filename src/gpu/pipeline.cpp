@@ -24,6 +24,8 @@ VkDescriptorType descriptorType(BindingType type) {
       return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     case BindingType::SampledImage:
       return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    case BindingType::StorageTexelBuffer:
+      return VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
   }
   return VK_DESCRIPTOR_TYPE_MAX_ENUM;
 }

@@ -13,7 +13,7 @@ namespace sixway::gpu {
 
 class Context;
 
-enum class BindingType { StorageBuffer, UniformBuffer, StorageImage, SampledImage };
+enum class BindingType { StorageBuffer, UniformBuffer, StorageImage, SampledImage, StorageTexelBuffer };
 
 // constant_id → 32-bit value, in the order they are set.
 class SpecConstants {

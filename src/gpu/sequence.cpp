@@ -94,8 +94,11 @@ void Sequence::endStage() {
 void Sequence::addTouch(Touch& touch, const Binding& binding) const {
   auto [handle, access] = std::visit(
       [](auto& b) -> std::pair<uint64_t, Access> {
-        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, BufferBinding>)
+        using B = std::decay_t<decltype(b)>;
+        if constexpr (std::is_same_v<B, BufferBinding>)
           return {key(b.buffer->handle()), b.access};
+        else if constexpr (std::is_same_v<B, TexelBufferBinding>)
+          return {key(b.view->buffer().handle()), b.access};
         else
           return {key(b.image->handle()), b.access};
       },
@@ -131,6 +134,7 @@ void Sequence::pushBindings(const Pipeline& pipeline, const std::vector<Binding>
   if (bindings.empty()) return;
   std::vector<VkDescriptorBufferInfo> bufferInfos(bindings.size());
   std::vector<VkDescriptorImageInfo> imageInfos(bindings.size());
+  std::vector<VkBufferView> texelViews(bindings.size());
   std::vector<VkWriteDescriptorSet> writes(bindings.size());
   for (uint32_t i = 0; i < bindings.size(); ++i) {
     VkWriteDescriptorSet& w = writes[i];
@@ -138,7 +142,15 @@ void Sequence::pushBindings(const Pipeline& pipeline, const std::vector<Binding>
     w.dstBinding = i;
     w.descriptorCount = 1;
     const bool wantsBuffer = types[i] == BindingType::StorageBuffer || types[i] == BindingType::UniformBuffer;
-    if (auto* b = std::get_if<BufferBinding>(&bindings[i])) {
+    if (auto* t = std::get_if<TexelBufferBinding>(&bindings[i])) {
+      if (types[i] != BindingType::StorageTexelBuffer)
+        throw GpuError(pipeline.name() + ": binding " + std::to_string(i) + " is not a texel buffer");
+      texelViews[i] = t->view->handle();
+      w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
+      w.pTexelBufferView = &texelViews[i];
+    } else if (types[i] == BindingType::StorageTexelBuffer) {
+      throw GpuError(pipeline.name() + ": binding " + std::to_string(i) + " expects a texel buffer view");
+    } else if (auto* b = std::get_if<BufferBinding>(&bindings[i])) {
       if (!wantsBuffer)
         throw GpuError(pipeline.name() + ": binding " + std::to_string(i) + " expects an image");
       bufferInfos[i] = {b->buffer->handle(), 0, VK_WHOLE_SIZE};

@@ -18,6 +18,7 @@
 namespace sixway::gpu {
 
 class Buffer;
+class BufferView;
 class Context;
 class Image;
 class Pipeline;
@@ -34,7 +35,13 @@ struct ImageBinding {
   Access access;
   const Sampler* sampler = nullptr;  // set for BindingType::SampledImage
 };
-using Binding = std::variant<BufferBinding, ImageBinding>;
+// A buffer read or written as texels (BindingType::StorageTexelBuffer); barriers follow the underlying
+// buffer.
+struct TexelBufferBinding {
+  const BufferView* view;
+  Access access;
+};
+using Binding = std::variant<BufferBinding, ImageBinding, TexelBufferBinding>;
 
 inline Binding reads(const Buffer& b) {
   return BufferBinding{&b, Access::Read};
@@ -53,6 +60,9 @@ inline Binding writes(const Image& i) {
 }
 inline Binding readsWrites(const Image& i) {
   return ImageBinding{&i, Access::ReadWrite};
+}
+inline Binding reads(const BufferView& v) {
+  return TexelBufferBinding{&v, Access::Read};
 }
 inline Binding samples(const Image& i, const Sampler& s) {
   return ImageBinding{&i, Access::Read, &s};

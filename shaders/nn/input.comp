@@ -1,0 +1,29 @@
+#version 460
+// The network's input: the guiding map (any float format, read through a sampler) copied into the first
+// feature map, its first GUIDE_CHANNELS channels kept and the rest zero. The map may be larger than the guide
+// (rounded up to the network's size multiple); the extra pixels are zero.
+#extension GL_GOOGLE_include_directive : require
+#ifdef NN_FP16
+#extension GL_EXT_shader_16bit_storage : require
+#extension GL_EXT_shader_explicit_arithmetic_types_float16 : require
+#endif
+#include "nn_tensor.glsl"
+
+layout(local_size_x_id = 0, local_size_y_id = 1) in;
+layout(constant_id = 2) const int WIDTH = 1;  // of the feature map
+layout(constant_id = 3) const int HEIGHT = 1;
+layout(constant_id = 4) const int GUIDE_WIDTH = 1;
+layout(constant_id = 5) const int GUIDE_HEIGHT = 1;
+layout(constant_id = 6) const int GUIDE_CHANNELS = 3;
+
+layout(binding = 0) uniform sampler2D guide;
+NN_OUTPUT_MAP(1, outputMap);
+
+void main() {
+  const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (pixel.x >= WIDTH || pixel.y >= HEIGHT) return;
+  vec4 value = vec4(0.0);
+  if (pixel.x < GUIDE_WIDTH && pixel.y < GUIDE_HEIGHT)
+    value = texelFetch(guide, pixel, 0) * vec4(lessThan(ivec4(0, 1, 2, 3), ivec4(GUIDE_CHANNELS)));
+  outputMap[nnIndex(pixel.x, pixel.y, 0, WIDTH, HEIGHT)] = NN_TEXEL(value);
+}

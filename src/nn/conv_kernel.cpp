@@ -1,0 +1,126 @@
+#include "nn/conv_kernel.h"
+
+#include <algorithm>
+#include <numeric>
+
+#include "gpu/check.h"
+#include "gpu/pipeline.h"
+#include "gpu/sequence.h"
+#include "nn/weight_packing.h"
+
+namespace sixway::nn {
+namespace {
+
+// Output pixels along x per invocation (see the shaders), and input groups per unrolled slice of conv2d.
+constexpr int kConvPixels = 4;
+constexpr int kSliceGroups = 2;
+constexpr int kTransposedPixels = 8;
+
+struct Push {
+  int32_t firstGroup;  // the output group of the chunk's first
+};
+
+// Output rows per conv2d invocation: 8 (fastest on lavapipe), fewer while an output group would not fill one
+// workgroup, so that small maps still spread over the device's threads.
+int rowsPerInvocation(const MapShape& out) {
+  int rows = 8;
+  while (rows > 1 && groupsFor(out.width, kConvPixels) * groupsFor(out.height, rows) < kTile * kTile)
+    rows /= 2;
+  return rows;
+}
+
+}  // namespace
+
+int ConvShape::inChannels() const {
+  return std::accumulate(inputChannels.begin(), inputChannels.end(), 0);
+}
+
+MapShape ConvShape::output() const {
+  if (transposed) return {inWidth * 2, inHeight * 2, uint32_t(outChannels)};
+  // PyTorch: floor((n + 2 * (k / 2) - k) / stride) + 1.
+  auto size = [this](uint32_t n) { return (n + 2 * (kernel / 2) - kernel) / stride + 1; };
+  return {size(inWidth), size(inHeight), uint32_t(outChannels)};
+}
+
+double ConvShape::flops() const {
+  const MapShape out = output();
+  const double taps = transposed ? 1.0 : double(kernel) * kernel;  // a transposed 2x2 output pixel sees 1 tap
+  return 2.0 * inChannels() * outChannels * taps * out.width * out.height;
+}
+
+ConvKernel::ConvKernel(const KernelSetup& setup, const ConvShape& shape, const std::vector<float>& weight,
+                       const std::vector<float>& bias, const std::string& name)
+    : shape_(shape) {
+  const int taps = shape.transposed ? 4 : shape.kernel * shape.kernel;
+  const ChannelLayout in = concatLayout(shape.inputChannels), out = plainLayout(shape.outChannels);
+  const std::vector<float> packed = packConvolution(
+      shape.transposed ? swapInOut(weight, shape.inChannels(), shape.outChannels, taps) : weight, &bias, taps,
+      out, in);
+  outGroups_ = out.groups();
+  const size_t groupFloats = packed.size() / outGroups_;
+  const uint32_t limit = maxUniformBytes(*setup.context);
+  groupsPerChunk_ = std::min<int>(outGroups_, int(limit / (groupFloats * sizeof(float))));
+  if (groupsPerChunk_ < 1)
+    throw gpu::GpuError(name + ": " + std::to_string(shape.inChannels()) +
+                        " input channels need more weights per output group than a " + std::to_string(limit) +
+                        "-byte uniform buffer holds; reduce the layer's input channels");
+  for (int first = 0; first < outGroups_; first += groupsPerChunk_) {
+    std::vector<float> chunk(groupFloats * groupsPerChunk_, 0.0f);  // the last chunk is padded with zeros
+    const size_t count = groupFloats * std::min(groupsPerChunk_, outGroups_ - first);
+    std::copy_n(packed.begin() + groupFloats * first, count, chunk.begin());
+    chunks_.push_back(
+        uniformBuffer(*setup.context, chunk, name + " weights " + std::to_string(chunks_.size())));
+  }
+
+  const int pixels = shape.transposed ? kTransposedPixels : kConvPixels;
+  gpu::ComputePipelineDesc desc;
+  desc.shader = shaderName(shape.transposed ? "conv_transpose2x2" : "conv2d", setup.precision);
+  desc.pushConstantBytes = sizeof(Push);
+  const int weightVec4s = int(groupFloats / 4) * groupsPerChunk_;
+  desc.spec.set(0, kTile).set(1, kTile);
+  if (shape.transposed) {
+    desc.bindings = {gpu::BindingType::StorageTexelBuffer, gpu::BindingType::UniformBuffer,
+                     gpu::BindingType::StorageBuffer};
+    desc.spec.set(2, int(shape.inWidth)).set(3, int(shape.inHeight)).set(4, in.groups()).set(5, pixels);
+    desc.spec.set(6, int(shape.activation)).set(7, shape.negativeSlope).set(8, weightVec4s);
+    gridX_ = groupsFor(groupsFor(shape.inWidth, pixels), kTile);
+    gridY_ = groupsFor(shape.inHeight, kTile);
+  } else {
+    const MapShape o = shape.output();
+    const int rows = shape.rows ? shape.rows : rowsPerInvocation(o);
+    const int groupsA = concatLayout({shape.inputChannels[0]}).groups();
+    desc.bindings = {gpu::BindingType::StorageTexelBuffer, gpu::BindingType::StorageTexelBuffer,
+                     gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer};
+    desc.spec.set(2, shape.kernel).set(3, shape.stride).set(4, int(shape.inHeight)).set(5, int(o.width));
+    desc.spec.set(6, int(o.height))
+        .set(7, groupsA)
+        .set(8, in.groups() - groupsA)
+        .set(9, pixels)
+        .set(10, rows);
+    desc.spec.set(11, kSliceGroups).set(12, int(shape.activation)).set(13, shape.negativeSlope);
+    desc.spec.set(14, weightVec4s).set(15, int(shape.inWidth));
+    gridX_ = groupsFor(groupsFor(o.width, pixels), kTile);
+    gridY_ = groupsFor(groupsFor(o.height, rows), kTile);
+  }
+  pipeline_ = &setup.pipelines->get(desc);
+}
+
+void ConvKernel::record(gpu::Sequence& sequence, const std::vector<const FeatureMap*>& inputs,
+                        const FeatureMap& output) const {
+  if (inputs.size() != shape_.inputChannels.size() || (shape_.transposed && inputs.size() != 1) ||
+      inputs.size() > 2)
+    throw gpu::GpuError("conv kernel: " + std::to_string(inputs.size()) + " inputs for a layer of " +
+                        std::to_string(shape_.inputChannels.size()));
+  for (int chunk = 0; chunk < int(chunks_.size()); ++chunk) {
+    const int first = chunk * groupsPerChunk_, count = std::min(groupsPerChunk_, outGroups_ - first);
+    std::vector<gpu::Binding> bindings;
+    if (shape_.transposed)
+      bindings = {gpu::reads(inputs[0]->texels()), gpu::reads(chunks_[chunk]), gpu::writes(output.buffer())};
+    else
+      bindings = {gpu::reads(inputs[0]->texels()), gpu::reads(inputs.back()->texels()),
+                  gpu::reads(chunks_[chunk]), gpu::writes(output.buffer())};
+    sequence.dispatch(*pipeline_, bindings, Push{first}, gridX_, gridY_, uint32_t(count));
+  }
+}
+
+}  // namespace sixway::nn

@@ -1,0 +1,69 @@
+#include "nn/io_kernels.h"
+
+#include "gpu/check.h"
+#include "gpu/pipeline.h"
+#include "gpu/sequence.h"
+
+namespace sixway::nn {
+
+InputKernel::InputKernel(const KernelSetup& setup, MapShape map, uint32_t guideWidth, uint32_t guideHeight,
+                         int guideChannels)
+    : map_(map), sampler_(std::make_unique<gpu::Sampler>(*setup.context, VK_FILTER_NEAREST)) {
+  gpu::ComputePipelineDesc desc;
+  desc.shader = shaderName("input", setup.precision);
+  desc.bindings = {gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer};
+  desc.spec.set(0, kTile).set(1, kTile).set(2, int(map.width)).set(3, int(map.height));
+  desc.spec.set(4, int(guideWidth)).set(5, int(guideHeight)).set(6, guideChannels);
+  pipeline_ = &setup.pipelines->get(desc);
+}
+
+void InputKernel::record(gpu::Sequence& sequence, const gpu::Image& guide, const FeatureMap& output) const {
+  sequence.dispatch(*pipeline_, {gpu::samples(guide, *sampler_), gpu::writes(output.buffer())},
+                    std::span<const std::byte>(), groupsFor(map_.width, kTile),
+                    groupsFor(map_.height, kTile));
+}
+
+OutputLayout outputLayout(const Node& output, const std::vector<int>& inputChannels) {
+  OutputLayout layout;
+  int k = 0;
+  for (size_t input = 0; input < inputChannels.size(); ++input)
+    for (int c = 0; c < inputChannels[input]; ++c) layout.source.at(k++) = int(input) * 4 + c;
+  for (int i = 0; i < 8; ++i) layout.encoding[i] = output.encodings.at(i);
+  layout.lightmapA = output.lightmapA;
+  layout.lightmapB = output.lightmapB;
+  return layout;
+}
+
+OutputKernel::OutputKernel(const KernelSetup& setup, const OutputLayout& layout, const MapShape& map,
+                           uint32_t width, uint32_t height)
+    : width_(width), height_(height) {
+  gpu::ComputePipelineDesc desc;
+  desc.shader = shaderName("output", setup.precision);
+  using gpu::BindingType;
+  desc.bindings = {BindingType::StorageTexelBuffer, BindingType::StorageTexelBuffer,
+                   BindingType::StorageTexelBuffer, BindingType::StorageTexelBuffer,
+                   BindingType::StorageImage,       BindingType::StorageImage};
+  int srgbMask = 0;
+  for (int k = 0; k < 8; ++k)
+    if (layout.encoding[k] == Encoding::Srgb) srgbMask |= 1 << k;
+  desc.spec.set(0, kTile).set(1, kTile).set(2, int(width)).set(3, int(height)).set(4, int(map.height));
+  desc.spec.set(5, srgbMask).set(22, int(map.width));
+  for (uint32_t k = 0; k < 8; ++k) desc.spec.set(6 + k, layout.source[k]);
+  for (uint32_t k = 0; k < 4; ++k)
+    desc.spec.set(14 + k, layout.lightmapA[k]).set(18 + k, layout.lightmapB[k]);
+  pipeline_ = &setup.pipelines->get(desc);
+}
+
+void OutputKernel::record(gpu::Sequence& sequence, const std::vector<const FeatureMap*>& heads,
+                          const gpu::Image& lightmapA, const gpu::Image& lightmapB) const {
+  if (heads.empty() || heads.size() > 4) throw gpu::GpuError("output kernel: needs 1 to 4 head maps");
+  std::vector<gpu::Binding> bindings;
+  for (size_t i = 0; i < 4; ++i)
+    bindings.push_back(gpu::reads(heads[std::min(i, heads.size() - 1)]->texels()));
+  bindings.push_back(gpu::writes(lightmapA));
+  bindings.push_back(gpu::writes(lightmapB));
+  sequence.dispatch(*pipeline_, bindings, std::span<const std::byte>(), groupsFor(width_, kTile),
+                    groupsFor(height_, kTile));
+}
+
+}  // namespace sixway::nn

@@ -1,0 +1,79 @@
+#pragma once
+// The lightmap network run by our own compute shaders, built from a weights file alone: the graph in its
+// metadata gives the layers, the tensors their weights. Everything (pipelines, weights, feature maps) is made
+// once for one guide size; record() puts the whole network into a Sequence that is then replayed per frame.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "io/safetensors.h"
+#include "nn/feature_map.h"
+#include "nn/graph.h"
+#include "nn/kernel.h"
+
+namespace sixway::gpu {
+class Context;
+class Image;
+class PipelineCache;
+class Sequence;
+}  // namespace sixway::gpu
+
+namespace sixway::nn {
+
+struct NetworkOptions {
+  Precision precision = Precision::Fp32;
+  // A 1x1 conv (no activation) that is the only consumer of a NAFBlock runs inside the block's last kernel
+  // (an adapter's head): the block's own output is then never stored, and has no feature map.
+  bool fuseProjections = true;
+};
+
+// A layer as the benchmark sees it: one timed stage, or one per kernel (`parts`, in stage order).
+struct LayerInfo {
+  struct Part {
+    std::string name;  // the stage is "<layer>/<part>"
+    double flops;
+  };
+  std::string name;
+  std::string kind;  // the layer type for per-type figures: "conv2d 3x3", "conv2d 3x3 s2", "naf_block", ...
+  double flops;      // 2 per multiply-add of its convolutions (docs/benchmarks.md)
+  std::vector<Part> parts;
+};
+
+class Network {
+ public:
+  // Throws io::InputError naming the file when the graph or a tensor is wrong.
+  Network(const gpu::Context& context, const gpu::PipelineCache& cache, const io::SafetensorsFile& weights,
+          uint32_t guideWidth, uint32_t guideHeight, const NetworkOptions& options = {});
+  ~Network();
+  Network(const Network&) = delete;
+  Network& operator=(const Network&) = delete;
+
+  const Graph& graph() const { return graph_; }
+  // The feature maps' size: the guide's, rounded up to the graph's size multiple.
+  uint32_t mapWidth() const { return mapWidth_; }
+  uint32_t mapHeight() const { return mapHeight_; }
+
+  // The guide (RGBA16F/32F, the guide's size) in, lightmaps A and B (any float RGBA storage format, the
+  // guide's size) out. With `timeLayers`, every node is a timed stage named after it, and a NAFBlock is
+  // four stages "<node>/<kernel>".
+  void record(gpu::Sequence& sequence, const gpu::Image& guide, const gpu::Image& lightmapA,
+              const gpu::Image& lightmapB, bool timeLayers = false) const;
+  // Stages that record(..., true) adds.
+  uint32_t stageCount() const;
+
+  // The output of a node after a submitted recording, for tests and tools; nullptr for the output node and
+  // for a NAFBlock whose projection was fused.
+  const FeatureMap* featureMap(const std::string& node) const;
+  std::vector<LayerInfo> layers() const;
+
+ private:
+  struct Layer;
+  Graph graph_;
+  uint32_t guideWidth_, guideHeight_, mapWidth_, mapHeight_;
+  std::unique_ptr<PipelinePool> pipelines_;  // outlives the layers that use its pipelines
+  std::vector<Layer> layers_;                // one per node
+  std::vector<int> mapOf_;                   // per node: the layer whose feature map holds its values, or -1
+  const FeatureMap& valuesOf(int node) const;
+};
+
+}  // namespace sixway::nn

@@ -1,0 +1,136 @@
+// The graph in a weights file's metadata: the committed test networks parse; malformed files (missing
+// tensor, wrong shape, unknown layer type, bad JSON, a graph that does not add up) fail with one line that
+// names the file and the problem.
+#include <gmock/gmock.h>
+
+#include <nlohmann/json.hpp>
+
+#include "gpu/pipeline.h"
+#include "io/safetensors.h"
+#include "nn/graph.h"
+#include "nn/network.h"
+#include "support/gpu_fixture.h"
+#include "support/input_error.h"
+#include "support/temp_dir.h"
+
+namespace sixway::test {
+namespace {
+
+const std::filesystem::path kTiny = std::filesystem::path(SIXWAY_TEST_DATA_DIR) / "nn" / "tiny.safetensors";
+const std::filesystem::path kDefault =
+    std::filesystem::path(SIXWAY_TEST_DATA_DIR) / "nn" / "default.safetensors";
+
+TEST(NetworkGraph, DefaultNetworkHasTheIssuesShape) {
+  const nn::Graph graph = nn::parseGraph(io::readSafetensors(kDefault));
+  EXPECT_EQ(graph.sizeMultiple, 4);
+  EXPECT_EQ(graph.nodes.front().op, nn::Op::Input);
+  EXPECT_EQ(graph.nodes.back().op, nn::Op::Output);
+  int nafBlocks = 0, heads = 0;
+  for (const nn::Node& node : graph.nodes) {
+    nafBlocks += node.op == nn::Op::NafBlock;
+    heads += node.name.ends_with(".head");
+  }
+  EXPECT_EQ(nafBlocks, 4);  // one per adapter
+  EXPECT_EQ(heads, 4);
+  EXPECT_EQ(graph.node("mid.1").outChannels, 64);
+  EXPECT_EQ(graph.node("dec.1.0").inputs, (std::vector<std::string>{"up.1", "enc.1.1"}));  // skip connection
+}
+
+// Rewrites the tiny network with `edit` applied to its tensors and graph JSON, and returns the error of
+// parsing it.
+class MalformedWeights : public ::testing::Test {
+ protected:
+  std::string errorAfter(const std::function<void(std::vector<io::Tensor>&, nlohmann::json&)>& edit) {
+    io::SafetensorsFile file = io::readSafetensors(kTiny);
+    nlohmann::json graph = nlohmann::json::parse(file.metadata.at("sixway.graph"));
+    edit(file.tensors, graph);
+    file.metadata["sixway.graph"] = graph.dump();
+    io::writeSafetensors(path(), file.tensors, file.metadata);
+    return inputErrorMessage([this] { nn::parseGraph(io::readSafetensors(path())); });
+  }
+  std::filesystem::path path() const { return dir_ / "net.safetensors"; }
+  nlohmann::json& node(nlohmann::json& graph, const std::string& name) {
+    for (nlohmann::json& n : graph["nodes"])
+      if (n["name"] == name) return n;
+    throw std::logic_error("no node " + name);
+  }
+
+  TempDir dir_;
+};
+
+TEST_F(MalformedWeights, MissingTensor) {
+  const std::string error = errorAfter([](std::vector<io::Tensor>& tensors, nlohmann::json&) {
+    std::erase_if(tensors, [](const io::Tensor& t) { return t.name == "adapters.2.blocks.0.conv4.bias"; });
+  });
+  EXPECT_THAT(error, namesFileAndProblem(path(), "missing tensor 'adapters.2.blocks.0.conv4.bias'"));
+}
+
+TEST_F(MalformedWeights, WrongShape) {
+  const std::string error = errorAfter([](std::vector<io::Tensor>& tensors, nlohmann::json&) {
+    for (io::Tensor& t : tensors)
+      if (t.name == "enc.0.0.weight")
+        t = io::Tensor::fromFloat(t.name, io::DType::F32, {7, 4, 1, 9}, t.toFloat());
+  });
+  EXPECT_THAT(error, namesFileAndProblem(path(),
+                                         "tensor 'enc.0.0.weight' has shape [7, 4, 1, 9], node 'enc.0.0' "
+                                         "needs [7, 4, 3, 3]"));
+}
+
+TEST_F(MalformedWeights, UnknownLayerType) {
+  const std::string error = errorAfter(
+      [this](std::vector<io::Tensor>&, nlohmann::json& graph) { node(graph, "mid.0")["op"] = "conv9d"; });
+  EXPECT_THAT(error, namesFileAndProblem(path(), "sixway.graph.nodes[7].op: unknown layer type \"conv9d\""));
+}
+
+TEST_F(MalformedWeights, ChannelsThatDoNotAddUp) {
+  const std::string error = errorAfter([this](std::vector<io::Tensor>&, nlohmann::json& graph) {
+    node(graph, "dec.1.0")["inputs"] = {"up.1"};
+  });
+  EXPECT_THAT(error, namesFileAndProblem(path(), "in_channels: is 20 but the inputs have 10"));
+}
+
+TEST_F(MalformedWeights, InputThatIsNotAnEarlierNode) {
+  const std::string error = errorAfter([this](std::vector<io::Tensor>&, nlohmann::json& graph) {
+    node(graph, "enc.0.0")["inputs"] = {"mid.1"};
+  });
+  EXPECT_THAT(error, namesFileAndProblem(path(), "\"mid.1\" is not an earlier node"));
+}
+
+TEST_F(MalformedWeights, UnknownKey) {
+  const std::string error = errorAfter(
+      [this](std::vector<io::Tensor>&, nlohmann::json& graph) { node(graph, "mid.0")["kernal"] = 3; });
+  EXPECT_THAT(error, namesFileAndProblem(path(), "kernal: unknown key"));
+}
+
+TEST_F(MalformedWeights, BadGraphJson) {
+  io::SafetensorsFile file = io::readSafetensors(kTiny);
+  file.metadata["sixway.graph"] = "{\"version\": 1, \"nodes\": [";
+  io::writeSafetensors(path(), file.tensors, file.metadata);
+  EXPECT_THAT(inputErrorMessage([this] { nn::parseGraph(io::readSafetensors(path())); }),
+              namesFileAndProblem(path(), "sixway.graph: invalid JSON"));
+}
+
+TEST_F(MalformedWeights, NoGraph) {
+  io::SafetensorsFile file = io::readSafetensors(kTiny);
+  file.metadata.erase("sixway.graph");
+  io::writeSafetensors(path(), file.tensors, file.metadata);
+  EXPECT_THAT(inputErrorMessage([this] { nn::parseGraph(io::readSafetensors(path())); }),
+              namesFileAndProblem(path(), "no \"sixway.graph\" in the metadata"));
+}
+
+class MalformedWeightsOnGpu : public GpuTest {};
+
+TEST_F(MalformedWeightsOnGpu, NetworkRefusesTheFileBeforeBuildingAnything) {
+  TempDir dir;
+  io::SafetensorsFile file = io::readSafetensors(kTiny);
+  std::erase_if(file.tensors,
+                [](const io::Tensor& t) { return t.name == "output.weight" || t.name == "mid.1.beta"; });
+  io::writeSafetensors(dir / "net.safetensors", file.tensors, file.metadata);
+  EXPECT_THAT(inputErrorMessage([&] {
+                nn::Network(context(), pipelineCache(), io::readSafetensors(dir / "net.safetensors"), 32, 32);
+              }),
+              namesFileAndProblem(dir / "net.safetensors", "missing tensor 'mid.1.beta'"));
+}
+
+}  // namespace
+}  // namespace sixway::test

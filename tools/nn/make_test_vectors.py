@@ -1,0 +1,93 @@
+#!/usr/bin/python3
+"""Writes the network test data of tests/data/nn/ (docs/network-format.md, "Test data"):
+
+  default.safetensors          the default config, untrained: random weights (seeded), for tests and benchmarks
+  default_vectors.safetensors  a 32x48 guide, and what PyTorch computes from it with default.safetensors
+  tiny.safetensors             a tiny config that exercises the other options (NAF levels, gelu, bilinear
+                               upsampling, odd channel counts, an adapter with dw_expand 3)
+  tiny_vectors.safetensors     a 29x45 guide (not a multiple of the size multiple: padded, then cropped)
+
+A vectors file holds "input" (3 x H x W), "raw" (the 8 output channels in the network's encoding), "lightmap_a"
+and "lightmap_b" (decoded and packed, 4 x H x W each) and "node.<name>" intermediates (at the padded size).
+Everything is deterministic (numpy PCG64 seeds, float32 CPU evaluation), so `--out DIR` regenerates the same
+files; check_test_vectors.py compares a regeneration with the committed ones.
+
+Usage: /usr/bin/python3 tools/nn/make_test_vectors.py [--out tests/data/nn]
+"""
+import argparse
+import json
+import os
+import sys
+
+import numpy as np
+import torch
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from safetensors_io import write_safetensors  # noqa: E402
+from sixway_net import (SixwayNet, decode_output, export_safetensors, pack_lightmaps,  # noqa: E402
+                        randomize, run_padded)
+
+TINY_CONFIG = {
+    "widths": [7, 10, 12],
+    "depth": 2,
+    "block": "naf",
+    "activation": "gelu",
+    "upsample": "bilinear",
+    "adapters": {"enabled": True, "width": 6, "blocks": 1, "dw_expand": 3, "ffn_expand": 2},
+}
+
+# name: (config, weights seed, guide seed, guide height, guide width, intermediates)
+CASES = {
+    "default": (None, 6, 60, 32, 48, ["enc.0.1", "down.0", "mid.1", "up.0", "dec.0.1", "adapters.0.blocks.0",
+                                      "adapters.3.head"]),
+    "tiny": (TINY_CONFIG, 7, 70, 29, 45, ["enc.0.1", "mid.1", "up.1", "dec.0.1", "adapters.1.proj",
+                                          "adapters.1.blocks.0", "adapters.2.head"]),
+}
+
+
+def guide_image(seed, height, width):
+    """A guide-like input: smooth blobs of guide and alpha in [0, 1], depth in [0, 1], plus a little noise."""
+    rng = np.random.default_rng(seed)
+    y, x = np.meshgrid(np.linspace(-1, 1, height), np.linspace(-1, 1, width), indexing="ij")
+    channels = []
+    for _ in range(3):
+        cx, cy, r = rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5), rng.uniform(0.3, 0.8)
+        blob = np.exp(-((x - cx) ** 2 + (y - cy) ** 2) / (r * r))
+        channels.append(np.clip(blob + rng.uniform(-0.05, 0.05, blob.shape), 0.0, 1.0))
+    return torch.from_numpy(np.stack(channels)[None].astype(np.float32))
+
+
+def make_case(name, out_dir):
+    config, weight_seed, guide_seed, height, width, nodes = CASES[name]
+    torch.manual_seed(0)
+    model = randomize(SixwayNet(config), weight_seed).eval()
+    export_safetensors(model, os.path.join(out_dir, f"{name}.safetensors"),
+                       {"sixway.training": {"note": "untrained: random weights for tests and benchmarks",
+                                            "seed": weight_seed}})
+    guide = guide_image(guide_seed, height, width)
+    intermediates = {}
+    with torch.no_grad():
+        raw = run_padded(model, guide, intermediates)
+        a, b = pack_lightmaps(decode_output(raw, model.config))
+    tensors = {"input": guide[0], "raw": raw[0], "lightmap_a": a[0], "lightmap_b": b[0]}
+    for node in nodes:
+        tensors[f"node.{node}"] = intermediates[node][0]
+    tensors = {k: v.numpy().astype(np.float32) for k, v in tensors.items()}
+    metadata = {"sixway.vectors": json.dumps({"weights": f"{name}.safetensors", "guide_seed": guide_seed,
+                                              "height": height, "width": width})}
+    write_safetensors(os.path.join(out_dir, f"{name}_vectors.safetensors"), tensors, metadata)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--out", default=os.path.join(os.path.dirname(__file__), "..", "..", "tests", "data", "nn"))
+    args = parser.parse_args()
+    os.makedirs(args.out, exist_ok=True)
+    torch.set_num_threads(1)  # one thread: the same summation order on every machine
+    for name in CASES:
+        make_case(name, args.out)
+        print(f"wrote {name}.safetensors and {name}_vectors.safetensors to {args.out}")
+
+
+if __name__ == "__main__":
+    main()
