@@ -1,0 +1,28 @@
+// View depths (distance along the camera's forward axis) as the real-time renderer stores them
+// (docs/real-time-rendering.md): the shell depth in the guiding map's third channel, linear in the volume's
+// depth range, and the depth buffer of a perspective projection (src/render/projection.h).
+#ifndef SIXWAY_DEPTH_GLSL
+#define SIXWAY_DEPTH_GLSL
+
+#include "camera.glsl"
+
+// range = (near, far): the view depths of the volume box (render::boxDepthRange). The guide stores
+// (z − near) / (far − near); 1 where the view ray's opacity never reaches the shell threshold.
+float encodeShellDepth(float viewDepth, vec2 range) {
+  return clamp((viewDepth - range.x) / (range.y - range.x), 0.0, 1.0);
+}
+float decodeShellDepth(float encoded, vec2 range) { return mix(range.x, range.y, encoded); }
+
+// A depth-buffer value of render::projectionMatrix(plane, {near, far}) back to view depth:
+// d = far (z − near) / (z (far − near))  ⇔  z = near far / (far − d (far − near)).
+float viewDepthFromDepthBuffer(float d, vec2 range) {
+  return range.x * range.y / (range.y - d * (range.y - range.x));
+}
+
+// The world point at view depth `viewDepth` behind image-plane point `q` (the plane at distance 1, x right,
+// y up, as in CameraRays.plane).
+vec3 worldAtViewDepth(CameraRays c, vec2 q, float viewDepth) {
+  return c.position.xyz + viewDepth * (c.forward.xyz + q.x * c.right.xyz + q.y * c.up.xyz);
+}
+
+#endif
