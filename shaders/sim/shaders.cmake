@@ -9,4 +9,5 @@ list(APPEND SIXWAY_SHADERS
   sim/fct_fluxes.comp
   sim/fct_limiter.comp
   sim/fct_update.comp
+  sim/smoke_export.comp
 )

@@ -1,8 +1,8 @@
 #include "app/scene_volumes.h"
 
-#include <algorithm>
 #include <cstdio>
 
+#include "gpu/sequence.h"
 #include "render/volume.h"
 #include "sim/simulation.h"
 
@@ -18,19 +18,19 @@ class SimulatedVolumes : public render::VolumeSequence {
         volume_(context,
                 {simulation_.smoke().size(), scene.grid.origin,
                  scene.grid.cellSize / float(scene.grid.smokeUpres)},
-                true) {}
+                true),
+        exportSmoke_(context) {
+    simulation_.smoke().recordExport(exportSmoke_, volume_.density(), volume_.temperature());
+    exportSmoke_.finish();
+  }
 
   int frameCount() const override { return frames_; }
 
   std::optional<render::Volume> frame(int index) override {
     const uint32_t steps = uint32_t(io::lbmStepsPerFrame(simulation_.scene()));
     for (; simulated_ <= index; ++simulated_) simulation_.advance(steps);
-    // The simulation keeps density and temperature interleaved on the GPU; they travel through the host into
-    // the two buffers the renderers read.
-    const auto [density, temperature] = simulation_.smokeGrids();
-    if (std::none_of(density.values.begin(), density.values.end(), [](float v) { return v > 0.0f; }))
-      return std::nullopt;
-    volume_.upload(density.values, temperature.values);
+    if (simulation_.report().maxDensity <= 0.0f) return std::nullopt;
+    exportSmoke_.submit();
     return volume_.view();
   }
 
@@ -47,6 +47,7 @@ class SimulatedVolumes : public render::VolumeSequence {
   int frames_;
   int simulated_ = 0;  // frames simulated so far
   render::DeviceVolume volume_;
+  gpu::Sequence exportSmoke_;  // the simulation's smoke into volume_, on the GPU
 };
 
 }  // namespace

@@ -56,6 +56,9 @@ class DeviceVolume {
   void upload(std::span<const float> density, std::span<const float> temperature = {});
   const VolumeGrid& grid() const { return grid_; }
   Volume view() const;
+  // For GPU producers (the simulation's smoke export); the temperature buffer only withTemperature.
+  const gpu::Buffer& density() const { return density_; }
+  const gpu::Buffer& temperature() const { return temperature_; }
 
  private:
   VolumeGrid grid_;

@@ -57,6 +57,8 @@ SmokeTransport::SmokeTransport(const gpu::Context& context, const gpu::PipelineC
   gpu::ComputePipelineDesc update = smokeDesc("sim/fct_update.comp", 4, settings);
   setPeriodicAxes(update, settings);
   update_ = std::make_unique<gpu::Pipeline>(context, cache, update);
+
+  export_ = std::make_unique<gpu::Pipeline>(context, cache, smokeDesc("sim/smoke_export.comp", 3, settings));
 }
 
 void SmokeTransport::upload(const std::vector<glm::vec2>& values) {
@@ -89,6 +91,12 @@ void SmokeTransport::recordTransport(gpu::Sequence& sequence, const gpu::Buffer&
         {gpu::reads(lowOrder_), gpu::reads(antidiffusive_), gpu::reads(ratios_), gpu::writes(smoke_)}, none,
         groups_);
   }
+}
+
+void SmokeTransport::recordExport(gpu::Sequence& sequence, const gpu::Buffer& density,
+                                  const gpu::Buffer& temperature) const {
+  sequence.dispatch(*export_, {gpu::reads(smoke_), gpu::writes(density), gpu::writes(temperature)},
+                    std::span<const std::byte>(), groups_);
 }
 
 }  // namespace sixway::sim

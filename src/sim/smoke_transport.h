@@ -39,6 +39,8 @@ class SmokeTransport {
   const gpu::Buffer& smoke() const { return smoke_; }
   void upload(const std::vector<glm::vec2>& values);
   std::vector<glm::vec2> download() const { return smoke_.download<glm::vec2>(); }
+  // Density and temperature into two float buffers of cells() values each (the renderers' layout).
+  void recordExport(gpu::Sequence& sequence, const gpu::Buffer& density, const gpu::Buffer& temperature) const;
   glm::ivec3 size() const { return settings_.lattice * settings_.upres; }
   uint64_t cells() const { return cells_; }
 
@@ -47,7 +49,7 @@ class SmokeTransport {
   uint64_t cells_;
   uint32_t groups_;
   gpu::Buffer smoke_, lowOrder_, antidiffusive_, ratios_;
-  std::unique_ptr<gpu::Pipeline> sources_, fluxes_, limiter_, update_;
+  std::unique_ptr<gpu::Pipeline> sources_, fluxes_, limiter_, update_, export_;
 };
 
 }  // namespace sixway::sim
