@@ -9,6 +9,7 @@ SIXWAY_PACKAGES=(
   libglm-dev libglfw3-dev libopenexr-dev libopenvdb-dev libboost-iostreams-dev libtbb-dev
   libstb-dev nlohmann-json3-dev libcli11-dev libtinyobjloader-dev
   googletest libgtest-dev libgmock-dev libbenchmark-dev
+  ffmpeg  # sixway render --video
   python3-torch python3-numpy  # tools/nn: the PyTorch network; the test that regenerates its test vectors
 )
 

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds, and runs sixway headless into out/.
-# Until the real-time renderer lands (issue #5) this runs the most complete pipeline there is: the
-# default scene's smoke simulation, baked frame by frame into a reference six-way flipbook
-# (out/flipbook/), plus the device description (out/info.json).
+# Installs what is missing, builds, and renders the default scene headless into out/: the plume rising around a
+# cylinder under an orbiting light, 64 frames (out/render: PNG per frame, contact sheet, video, per-stage GPU
+# timings), with the shipped network when weights/sixway-unet.safetensors exists, else the reference lightmaps;
+# plus the device description (out/info.json).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 source "$root/tools/deps.sh"
@@ -10,5 +10,5 @@ source "$root/tools/build.sh"
 sixway="$root/build/src/app/sixway"
 mkdir -p "$root/out"
 "$sixway" info --validate --report "$root/out/info.json" --force
-"$sixway" bake --scene "$root/assets/scenes/plume.json" --frames 8 --tile 64 --out "$root/out/flipbook" --force
-echo "sixway: wrote $root/out/info.json and the flipbook in $root/out/flipbook"
+"$sixway" render --scene "$root/assets/scenes/plume.json" --frames 64 --out "$root/out/render" --video --force
+echo "sixway: wrote $root/out/info.json and the frames in $root/out/render"

@@ -4,4 +4,11 @@ list(APPEND SIXWAY_SHADERS
   render/sixway_march.comp
   render/majorant.comp
   render/path_trace.comp
+  render/obstacle.vert
+  render/obstacle.frag
+  render/shadow_depth.vert
+  render/shadow_depth.frag
+  render/billboard.vert
+  render/sixway_shade.frag
+  render/guide_march.comp
 )

@@ -110,7 +110,7 @@ void run(const BakeOptions& o) {
   std::unique_ptr<render::VolumeSequence> sequence;
   nlohmann::json provenance;
   if (scene) {
-    sequence = simulatedVolumes(context, cache, *scene, o.first + o.frames.value_or(16));
+    sequence = std::make_unique<SimulatedVolumes>(context, cache, *scene, o.first + o.frames.value_or(16));
     provenance["source"] = {{"scene", fs::absolute(o.scene).string()}};
   } else {
     auto vdb = std::make_unique<render::VdbSequence>(context, o.vdb, o.voxels.value_or(128),

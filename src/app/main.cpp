@@ -7,6 +7,7 @@
 #include "app/bench_command.h"
 #include "app/info_command.h"
 #include "app/planned_commands.h"
+#include "app/render_command.h"
 #include "app/sim_command.h"
 
 int main(int argc, char** argv) {
@@ -16,6 +17,7 @@ int main(int argc, char** argv) {
   sixway::app::addSimCommand(app);
   sixway::app::addBakeCommand(app);
   sixway::app::addBenchCommand(app);
+  sixway::app::addRenderCommand(app);
   sixway::app::addPlannedCommands(app);
   try {
     app.parse(argc, argv);

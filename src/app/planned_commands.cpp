@@ -15,7 +15,7 @@ struct PlannedOptions {
   CommonOptions common;
   std::filesystem::path scene, out, report, config;
   int steps = 0, frames = 0;
-  std::string mode, shard;
+  std::string shard;
   bool force = false;
 };
 
@@ -34,14 +34,6 @@ CLI::App* planned(CLI::App& app, const char* name, const char* description, cons
 
 void addPlannedCommands(CLI::App& app) {
   auto o = std::make_shared<PlannedOptions>();
-  CLI::App* render = planned(app, "render", "Headless frame capture", "#5 (real-time renderer)", o);
-  render->add_option("--scene", o->scene, "Scene JSON")->required();
-  render->add_option("--frames", o->frames, "Frames")->required()->check(CLI::PositiveNumber);
-  render->add_option("--out", o->out, "Output directory")->required();
-  render->add_option("--mode", o->mode, "neural | reference | traditional | guide | pathtrace")
-      ->check(CLI::IsMember({"neural", "reference", "traditional", "guide", "pathtrace"}));
-  render->add_flag("--force", o->force, "Overwrite an existing output directory");
-
   CLI::App* dataset = planned(app, "dataset", "Training pairs: guiding map → reference lightmaps",
                               "#7 (training data and weights)", o);
   dataset->add_option("--config", o->config, "Dataset config JSON")->required();

@@ -208,6 +208,12 @@ void Sequence::render(const RenderTargets& targets, std::span<const Draw> draws)
   if (!first) throw GpuError("render: no colour or depth target");
   const uint32_t width = first->desc().width, height = first->desc().height;
 
+  for (const Draw& draw : draws)
+    if (const auto& a = draw.area;
+        a && (a->offset.x < 0 || a->offset.y < 0 || a->extent.width == 0 || a->extent.height == 0 ||
+              a->offset.x + a->extent.width > width || a->offset.y + a->extent.height > height))
+      throw GpuError(draw.pipeline->name() + ": draw area lies outside the render targets");
+
   Touch touch;
   for (const Image* color : targets.colors) addTouch(touch, readsWrites(*color));
   if (targets.depth) addTouch(touch, readsWrites(*targets.depth));
@@ -236,16 +242,21 @@ void Sequence::render(const RenderTargets& targets, std::span<const Draw> draws)
   info.pColorAttachments = colors.data();
   info.pDepthAttachment = targets.depth ? &depth : nullptr;
   vkCmdBeginRendering(commands_, &info);
-  // Negative height: clip-space +y is up and image row 0 is the top, as in the rest of sixway.
-  VkViewport viewport{0.0f, float(height), float(width), -float(height), 0.0f, 1.0f};
-  VkRect2D scissor{{0, 0}, {width, height}};
-  vkCmdSetViewport(commands_, 0, 1, &viewport);
-  vkCmdSetScissor(commands_, 0, 1, &scissor);
   for (const Draw& draw : draws) {
     if (draw.pipeline->bindPoint() != VK_PIPELINE_BIND_POINT_GRAPHICS)
       throw GpuError(draw.pipeline->name() + ": render needs a graphics pipeline");
     if (draw.pushConstants.size() != draw.pipeline->pushConstantBytes())
       throw GpuError(draw.pipeline->name() + ": push constant size does not match the pipeline");
+    const VkRect2D area = draw.area.value_or(VkRect2D{{0, 0}, {width, height}});
+    // Negative height: clip-space +y is up and image row 0 is the top, as in the rest of sixway.
+    VkViewport viewport{float(area.offset.x),
+                        float(area.offset.y + area.extent.height),
+                        float(area.extent.width),
+                        -float(area.extent.height),
+                        0.0f,
+                        1.0f};
+    vkCmdSetViewport(commands_, 0, 1, &viewport);
+    vkCmdSetScissor(commands_, 0, 1, &area);
     vkCmdBindPipeline(commands_, VK_PIPELINE_BIND_POINT_GRAPHICS, draw.pipeline->handle());
     pushBindings(*draw.pipeline, draw.bindings);
     if (!draw.pushConstants.empty())

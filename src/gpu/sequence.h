@@ -76,6 +76,9 @@ struct Draw {
   const Buffer* indices = nullptr;   // uint32 indices, or none
   uint32_t count = 0;                // vertices, or indices when there is an index buffer
   uint32_t instances = 1;
+  // The viewport and scissor of this draw in pixels of the targets (row 0 at the top), e.g. one tile of an
+  // atlas: clip space [-1, 1]² maps onto it, +y up. Unset: the whole targets.
+  std::optional<VkRect2D> area;
 };
 
 struct RenderTargets {

@@ -1,0 +1,97 @@
+#include "app/frame_writer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "io/error.h"
+#include "io/exr.h"
+#include "io/png.h"
+
+namespace sixway::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+// RGB of `frame`, box-filtered down to `width` pixels across (never up).
+io::Image thumbnail(const io::Image& frame, int width) {
+  const int factor = std::max(1, (frame.width + width - 1) / width);
+  io::Image small(std::max(1, frame.width / factor), std::max(1, frame.height / factor), {"R", "G", "B"});
+  for (int y = 0; y < small.height; ++y)
+    for (int x = 0; x < small.width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        float sum = 0.0f;
+        for (int j = 0; j < factor; ++j)
+          for (int i = 0; i < factor; ++i) sum += frame.at(x * factor + i, y * factor + j, c);
+        small.at(x, y, c) = sum / float(factor * factor);
+      }
+  return small;
+}
+
+io::Image rgbOf(const io::Image& frame) {
+  io::Image rgb(frame.width, frame.height, {"R", "G", "B"});
+  for (int y = 0; y < frame.height; ++y)
+    for (int x = 0; x < frame.width; ++x)
+      for (int c = 0; c < 3; ++c) rgb.at(x, y, c) = frame.at(x, y, c);
+  return rgb;
+}
+
+bool ffmpegInstalled() {
+  return std::system("command -v ffmpeg >/dev/null 2>&1") == 0;
+}
+
+}  // namespace
+
+FrameWriter::FrameWriter(fs::path directory, const FrameWriterOptions& options)
+    : directory_(std::move(directory)), options_(options) {
+  if (options_.video && !ffmpegInstalled())
+    throw io::InputError("--video", "ffmpeg is not installed (apt-get install ffmpeg)");
+  fs::create_directories(directory_);
+}
+
+std::string FrameWriter::frameName(int index) {
+  char name[32];
+  std::snprintf(name, sizeof(name), "frame_%04d", index);
+  return name;
+}
+
+void FrameWriter::write(int index, const io::Image& frame) {
+  const fs::path base = directory_ / frameName(index);
+  const io::Image rgb = rgbOf(frame);
+  io::writePng(fs::path(base) += ".png", rgb);
+  if (options_.exr)
+    io::writeExr(fs::path(base) += ".exr", frame, io::ExrPixelType::Half, {{"colorspace", "linear"}});
+  thumbnails_.push_back(thumbnail(rgb, options_.thumbnailWidth));
+}
+
+std::vector<std::string> FrameWriter::finish() {
+  std::vector<std::string> files;
+  if (!thumbnails_.empty()) {
+    const int count = int(thumbnails_.size());
+    const int columns = int(std::ceil(std::sqrt(double(count))));
+    const int rows = (count + columns - 1) / columns;
+    const int cellW = thumbnails_[0].width, cellH = thumbnails_[0].height;
+    io::Image sheet(columns * cellW, rows * cellH, {"R", "G", "B"});
+    for (int t = 0; t < count; ++t)
+      for (int y = 0; y < cellH; ++y)
+        for (int x = 0; x < cellW; ++x)
+          for (int c = 0; c < 3; ++c)
+            sheet.at((t % columns) * cellW + x, (t / columns) * cellH + y, c) = thumbnails_[t].at(x, y, c);
+    io::writePng(directory_ / "contact_sheet.png", sheet);
+    files.push_back("contact_sheet.png");
+  }
+  if (options_.video && !thumbnails_.empty()) {
+    // yuv420p needs even sides; the scale filter rounds them down.
+    const std::string command = "ffmpeg -loglevel error -y -framerate " + std::to_string(options_.fps) +
+                                " -i '" + (directory_ / "frame_%04d.png").string() +
+                                "' -vf 'scale=trunc(iw/2)*2:trunc(ih/2)*2' -c:v libx264 -pix_fmt yuv420p '" +
+                                (directory_ / "video.mp4").string() + "'";
+    if (std::system(command.c_str()) != 0)
+      throw io::InputError((directory_ / "video.mp4").string(), "ffmpeg failed to encode the frames");
+    files.push_back("video.mp4");
+  }
+  return files;
+}
+
+}  // namespace sixway::app

@@ -1,0 +1,157 @@
+#include "app/render_command.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/frame_pipeline.h"
+#include "app/frame_writer.h"
+#include "app/options.h"
+#include "app/report.h"
+#include "app/scene_volumes.h"
+#include "gpu/context.h"
+#include "gpu/pipeline.h"
+#include "io/error.h"
+#include "io/scene.h"
+
+namespace sixway::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RenderOptions {
+  CommonOptions common;
+  fs::path scene, out, weights;
+  int frames = 0;
+  std::optional<std::string> mode;
+  bool force = false, exr = false, video = false, fp16 = false, noShadows = false;
+  int fps = 30;
+  uint32_t samples = 64;
+  int orders = 64;
+};
+
+// The default network, next to the executable's source tree.
+fs::path defaultWeights() {
+  return fs::path(SIXWAY_WEIGHTS_DIR) / "sixway-unet.safetensors";
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+void run(const RenderOptions& o) {
+  const io::Scene scene = io::loadScene(o.scene);
+  FramePipelineOptions options;
+  options.weights = o.weights.empty() ? defaultWeights() : o.weights;
+  // Without --mode: the network when its weights exist, else the reference lightmaps (said on the terminal).
+  options.mode = o.mode ? parseRenderMode(*o.mode)
+                        : (fs::exists(options.weights) ? RenderMode::Neural : RenderMode::Reference);
+  options.fp16 = o.fp16;
+  options.shadows = !o.noShadows;
+  options.pathTraceSamples = o.samples;
+  options.pathTraceOrders = o.orders;
+  requireWritable(o.out, o.force);
+
+  gpu::Context context(o.common.contextOptions());
+  gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));
+  SimulatedVolumes volumes(context, cache, scene, o.frames);
+  FramePipeline pipeline(context, cache, scene, options);
+  // The output directory appears only once everything it needs has been checked.
+  FrameWriterOptions writerOptions;
+  writerOptions.exr = o.exr;
+  writerOptions.video = o.video;
+  writerOptions.fps = o.fps;
+  FrameWriter writer(o.out, writerOptions);
+  std::printf("sixway render: %s, %d frames, mode %s, %dx%d (lightmaps %d²), on %s\n", scene.name.c_str(),
+              o.frames, renderModeName(options.mode), scene.render.width, scene.render.height,
+              scene.render.lightmapSize, context.properties().deviceName);
+  std::fflush(stdout);
+
+  nlohmann::json frames = nlohmann::json::array();
+  std::map<std::string, std::vector<double>> perStage;
+  const auto started = std::chrono::steady_clock::now();
+  for (int i = 0; i < o.frames; ++i) {
+    const render::Volume volume = volumes.volume(i);
+    const RenderedFrame frame = pipeline.render(i, SimulatedVolumes::frameSeconds(scene, i), volume);
+    writer.write(i, frame.image);
+    for (const std::string& note : frame.notes) std::printf("  note: %s\n", note.c_str());
+
+    const sim::StepTimes& sim = volumes.frameTimes();
+    std::vector<gpu::StageTime> stages = {{"sim/obstacles", sim.obstacles},
+                                          {"sim/lbm", sim.lbm},
+                                          {"sim/smoke", sim.smoke},
+                                          {"sim/forces+watchdog", sim.forces + sim.watchdog}};
+    stages.insert(stages.end(), frame.stages.begin(), frame.stages.end());
+    nlohmann::json stageJson = nlohmann::json::object();
+    double total = 0;
+    for (const gpu::StageTime& s : stages) {
+      stageJson[s.name] = stageJson.value(s.name, 0.0) + s.milliseconds;
+      total += s.milliseconds;
+    }
+    for (const auto& [name, ms] : stageJson.items()) perStage[name].push_back(ms.get<double>());
+    frames.push_back({{"frame", i},
+                      {"seconds", SimulatedVolumes::frameSeconds(scene, i)},
+                      {"stages_ms", stageJson},
+                      {"total_ms", total}});
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    std::printf("  frame %d/%d: %.1f ms GPU, %.1f s elapsed, ETA %.0f s\n", i + 1, o.frames, total, elapsed,
+                elapsed / (i + 1) * (o.frames - i - 1));
+    std::fflush(stdout);
+  }
+  const std::vector<std::string> extras = writer.finish();
+
+  nlohmann::json medians = nlohmann::json::object();
+  for (const auto& [name, values] : perStage) medians[name] = median(values);
+  nlohmann::json report = {{"scene", fs::absolute(o.scene).string()},
+                           {"mode", renderModeName(options.mode)},
+                           {"device", context.properties().deviceName},
+                           {"size", {scene.render.width, scene.render.height}},
+                           {"lightmap_size", scene.render.lightmapSize},
+                           {"median_stage_ms", medians},
+                           {"frames", frames}};
+  if (options.mode == RenderMode::Neural) report["weights"] = fs::absolute(options.weights).string();
+  writeReport(o.out / "timings.json", report);
+  std::printf("sixway render: wrote %d frames, timings.json", o.frames);
+  for (const std::string& f : extras) std::printf(", %s", f.c_str());
+  std::printf(" to %s\n", o.out.string().c_str());
+  if (context.validationMessageCount() > 0)
+    throw std::runtime_error(std::to_string(context.validationMessageCount()) + " validation messages");
+}
+
+}  // namespace
+
+void addRenderCommand(CLI::App& app) {
+  auto o = std::make_shared<RenderOptions>();
+  CLI::App* render = app.add_subcommand("render", "Headless frame capture of a scene's simulation");
+  o->common.addTo(*render);
+  render->add_option("--scene", o->scene, "Scene JSON")->required();
+  render->add_option("--frames", o->frames, "Frames rendered")->required()->check(CLI::Range(1, 100000));
+  render->add_option("--out", o->out, "Output directory")->required();
+  render->add_flag("--force", o->force, "Write into an existing output directory");
+  render->add_option("--mode", o->mode,
+                     "neural | reference | traditional | guide | pathtrace (default: neural when the weights "
+                     "exist, else reference)");
+  render->add_option("--weights", o->weights, "Network file (default weights/sixway-unet.safetensors)");
+  render->add_flag("--fp16", o->fp16, "Neural: fp16 feature maps");
+  render->add_flag("--no-shadows", o->noShadows, "No obstacle shadows on the smoke");
+  render->add_option("--spp", o->samples, "Pathtrace: samples per pixel (default 64)")
+      ->check(CLI::Range(1, 1 << 20));
+  render
+      ->add_option("--orders", o->orders, "Pathtrace: scattering orders (default 64; 1 = single scattering)")
+      ->check(CLI::Range(1, 100000));
+  render->add_flag("--exr", o->exr, "Also write each frame as a linear EXR");
+  render->add_flag("--video", o->video, "Also write video.mp4 (needs ffmpeg)");
+  render->add_option("--fps", o->fps, "Video frame rate (default 30)")->check(CLI::Range(1, 240));
+  render->callback([o] { run(*o); });
+}
+
+}  // namespace sixway::app

@@ -1,0 +1,235 @@
+#include "render/guiding_map.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <stdexcept>
+#include <string>
+
+#include "gpu/context.h"
+#include "gpu/pipeline.h"
+#include "io/error.h"
+#include "render/gpu_layout.h"
+
+namespace sixway::render {
+namespace {
+
+// A ray stops once less than this of the background shows through (and its shell depth is known): what it
+// leaves out is below the fp16 rounding of alpha near 1 (2^−11).
+constexpr float kStopTransmittance = 1e-3f;
+constexpr int kMaxGrids = 3;  // guide_march.comp's light-grid bindings: one per axis of the six-way frame
+
+struct GuideFrame {  // guide_march.comp
+  glm::uvec4 jitter;
+  glm::vec4 shell;
+};
+
+struct BrickPush {  // majorant.comp
+  glm::ivec4 size, bricks;
+};
+
+uint32_t groups(int count, int groupSize) {
+  return uint32_t((count + groupSize - 1) / groupSize);
+}
+
+std::string text(float value) {
+  std::string s = std::to_string(value);
+  s.erase(s.find_last_not_of('0') + 1);
+  if (s.back() == '.') s.pop_back();
+  return s;
+}
+
+void checkSettings(const GuideSettings& s) {
+  const auto fail = [](const std::string& problem) { throw io::InputError("guiding map", problem); };
+  if (s.size < 1 || s.size > 16384) fail("size " + std::to_string(s.size) + " is outside 1..16384");
+  if (!(s.stepCells > 0.0f && std::isfinite(s.stepCells)))
+    fail("the step must be > 0 cells (got " + text(s.stepCells) + ")");
+  if (!(s.shadowSpacingCells > 0.0f && std::isfinite(s.shadowSpacingCells)))
+    fail("the light grid spacing must be > 0 cells (got " + text(s.shadowSpacingCells) + ")");
+  if (s.lights.empty()) fail("needs at least one light");
+  for (size_t i = 0; i < s.lights.size(); ++i)
+    if (std::count(s.lights.begin(), s.lights.end(), s.lights[i]) > 1) fail("lists a light twice");
+  if (!(s.shellThreshold > 0.0f && s.shellThreshold < 1.0f))
+    fail("the shell threshold must be in (0, 1) (got " + text(s.shellThreshold) + ")");
+}
+
+// The axis of the six-way frame a light lies on: opposite lights share a light grid.
+int axisOf(io::GuideLight light) {
+  switch (light) {
+    case io::GuideLight::Right:
+    case io::GuideLight::Left:
+      return 0;
+    case io::GuideLight::Top:
+    case io::GuideLight::Bottom:
+      return 1;
+    default:
+      return 2;
+  }
+}
+
+// Toward the light, in the camera-relative six-way frame (DESIGN.md §3), with the two axes across it that
+// the baker's grid for the same light uses.
+struct LightFrame {
+  glm::vec3 toLight, u, v;
+};
+LightFrame lightFrame(io::GuideLight light, const Camera& c) {
+  switch (light) {
+    case io::GuideLight::Right:
+      return {c.right, c.up, c.forward};
+    case io::GuideLight::Left:
+      return {-c.right, c.up, c.forward};
+    case io::GuideLight::Top:
+      return {c.up, c.right, c.forward};
+    case io::GuideLight::Bottom:
+      return {-c.up, c.right, c.forward};
+    case io::GuideLight::Back:
+      return {c.forward, c.right, c.up};
+    case io::GuideLight::Front:
+      break;
+  }
+  return {-c.forward, c.right, c.up};
+}
+
+}  // namespace
+
+GuideSettings GuideSettings::fromScene(const io::Scene& scene) {
+  GuideSettings s;
+  s.size = uint32_t(scene.render.lightmapSize);
+  s.stepCells = scene.render.guideStepVoxels;
+  s.lights = scene.render.guideLights;
+  s.shellThreshold = scene.render.shellThreshold;
+  s.seed = scene.render.seed;
+  return s;
+}
+
+GuidingMap::GuidingMap(const gpu::Context& context, const gpu::PipelineCache& cache,
+                       const GuideSettings& settings)
+    : context_(&context),
+      settings_(settings),
+      params_(context, sizeof(layout::BakeParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+              gpu::MemoryKind::HostUpload, "guide parameters"),
+      frame_(context, sizeof(GuideFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryKind::HostUpload,
+             "guide frame") {
+  checkSettings(settings_);
+  // One light grid per axis of the six-way frame that a guide light other than front lies on; the shader's
+  // kLightGrids holds, per such light k, its grid (bits 3k, 3k + 1) and whether it is the grid's opposite.
+  int32_t lightGrids = 0, shadowed = 0;
+  for (io::GuideLight light : settings_.lights) {
+    if (light == io::GuideLight::Front) continue;
+    const size_t grid = std::find_if(gridLights_.begin(), gridLights_.end(),
+                                     [&](io::GuideLight l) { return axisOf(l) == axisOf(light); }) -
+                        gridLights_.begin();
+    if (grid == gridLights_.size()) gridLights_.push_back(light);
+    lightGrids |= int32_t(grid | (gridLights_[grid] != light ? 4 : 0)) << (3 * shadowed++);
+  }
+  using gpu::BindingType;
+  majorantPass_ = std::make_unique<gpu::Pipeline>(
+      context, cache,
+      gpu::ComputePipelineDesc{"render/majorant.comp",
+                               {BindingType::StorageBuffer, BindingType::StorageBuffer},
+                               sizeof(BrickPush)});
+  depthPass_ = std::make_unique<gpu::Pipeline>(
+      context, cache,
+      gpu::ComputePipelineDesc{"render/light_depth.comp",
+                               {BindingType::UniformBuffer, BindingType::StorageBuffer,
+                                BindingType::StorageBuffer, BindingType::StorageBuffer},
+                               sizeof(uint32_t)});
+  std::vector<BindingType> march(4 + kMaxGrids + 1, BindingType::StorageBuffer);
+  march[0] = march[1] = BindingType::UniformBuffer;
+  march.back() = BindingType::StorageImage;
+  gpu::SpecConstants spec;
+  spec.set(0, shadowed);
+  spec.set(1, size_t(shadowed) < settings_.lights.size());
+  spec.set(2, lightGrids);
+  marchPass_ = std::make_unique<gpu::Pipeline>(
+      context, cache, gpu::ComputePipelineDesc{"render/guide_march.comp", march, 0, spec});
+}
+
+GuidingMap::~GuidingMap() = default;
+
+gpu::ImageDesc GuidingMap::imageDesc() const {
+  return {settings_.size,
+          settings_.size,
+          1,
+          VK_FORMAT_R16G16B16A16_SFLOAT,
+          VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+          "guiding map"};
+}
+
+void GuidingMap::record(gpu::Sequence& sequence, const Volume& volume, const gpu::Image& guide) {
+  requireConsistent(volume);
+  const gpu::ImageDesc& d = guide.desc();
+  if (d.width != settings_.size || d.height != settings_.size || d.depth != 1 ||
+      d.format != VK_FORMAT_R16G16B16A16_SFLOAT)
+    throw std::invalid_argument("guiding map: the image must be RGBA16F, " + std::to_string(settings_.size) +
+                                " pixels square");
+  // Every light grid of this lattice, whatever the camera, spans at most the box's diagonal (plus one node
+  // of alignment on each side): a fixed capacity, so that the dispatches do not depend on the camera.
+  grid_ = volume.grid;
+  const float diagonal = glm::length(grid_.bounds().size());
+  spacing_ = settings_.shadowSpacingCells * grid_.cellSize;
+  const auto nodesFor = [&](float spacing) { return int(std::ceil(diagonal / spacing)) + 2; };
+  const auto bytesFor = [](int nodes) { return uint64_t(nodes) * uint64_t(nodes) * uint64_t(nodes) * 4; };
+  while (bytesFor(nodesFor(spacing_)) > context_->limits().maxStorageBufferRange ||
+         bytesFor(nodesFor(spacing_)) * std::max<size_t>(1, gridLights_.size()) >
+             context_->capabilities().deviceLocalHeapBytes / 8)
+    spacing_ *= 1.25f;
+  gridNodes_ = nodesFor(spacing_);
+  depths_.clear();
+  const uint64_t depthBytes = gridLights_.empty() ? sizeof(float) : bytesFor(gridNodes_);
+  for (size_t i = 0; i < std::max<size_t>(1, gridLights_.size()); ++i)
+    depths_.push_back(gpu::Buffer::storage(*context_, depthBytes, "guide light grid " + std::to_string(i)));
+  const glm::ivec3 bricks = (grid_.size + kBrickCells - 1) / kBrickCells;
+  bricks_ = gpu::Buffer::storage(*context_, uint64_t(bricks.x) * bricks.y * bricks.z * sizeof(float),
+                                 "guide empty-space bricks");
+
+  const gpu::Buffer& density = *volume.density;
+  sequence.beginStage("guide");
+  sequence.dispatch(*majorantPass_, {gpu::reads(density), gpu::writes(bricks_)},
+                    BrickPush{glm::ivec4(grid_.size, 0), glm::ivec4(bricks, kBrickCells)},
+                    groups(bricks.x, 4), groups(bricks.y, 4), groups(bricks.z, 4));
+  for (uint32_t light = 0; light < gridLights_.size(); ++light)
+    sequence.dispatch(
+        *depthPass_,
+        {gpu::reads(params_), gpu::reads(density), gpu::reads(bricks_), gpu::writes(depths_[light])}, light,
+        groups(gridNodes_, 8), groups(gridNodes_, 8));
+  std::vector<gpu::Binding> bindings = {gpu::reads(params_), gpu::reads(frame_), gpu::reads(density),
+                                        gpu::reads(bricks_)};
+  for (int i = 0; i < kMaxGrids; ++i)
+    bindings.push_back(gpu::reads(depths_[std::min<size_t>(i, depths_.size() - 1)]));
+  bindings.push_back(gpu::writes(guide));
+  sequence.dispatch(*marchPass_, bindings, std::span<const std::byte>(), groups(int(settings_.size), 8),
+                    groups(int(settings_.size), 8));
+  sequence.endStage();
+}
+
+void GuidingMap::update(const Camera& camera, const ImagePlane& billboard, const DepthRange& shellRange,
+                        const io::Smoke& smoke, uint32_t frame) {
+  if (gridNodes_ == 0) throw std::logic_error("GuidingMap::update before record");
+  // One midpoint sample per interval of a column (finer ones change the result by far less than the
+  // interpolation between columns); the step limit sits a hair above the interval so that rounding cannot
+  // make it two steps on one side only.
+  const float columnStep = spacing_ * 1.001f;
+  grids_.clear();
+  for (io::GuideLight light : gridLights_) {
+    const LightFrame f = lightFrame(light, camera);
+    grids_.push_back(lightGridFor(grid_, f.toLight, f.u, f.v, spacing_, columnStep));
+    if (glm::any(glm::greaterThan(grids_.back().nodes, glm::ivec3(gridNodes_))))
+      throw std::logic_error("guiding map: a light grid outgrew its capacity");
+  }
+
+  layout::BakeParams p{};
+  p.volume = layout::volumeGrid(grid_);
+  p.camera = layout::cameraRays(camera, billboard);
+  p.optics = glm::vec4(smoke.extinction, smoke.albedo, smoke.phaseG, 0.0f);
+  p.march = glm::vec4(settings_.stepCells * grid_.cellSize, kStopTransmittance, 0.0f, 0.0f);
+  p.image = glm::ivec4(int(settings_.size), int(settings_.size), 0, 0);
+  p.bricks = glm::ivec4((grid_.size + kBrickCells - 1) / kBrickCells, kBrickCells);
+  for (size_t i = 0; i < grids_.size(); ++i) p.lights[i] = layout::lightGrid(grids_[i]);
+  params_.upload(std::as_bytes(std::span(&p, 1)));
+  const GuideFrame f{glm::uvec4(settings_.seed, frame, 0u, 0u),
+                     glm::vec4(settings_.shellThreshold, shellRange.near, shellRange.far, 0.0f)};
+  frame_.upload(std::as_bytes(std::span(&f, 1)));
+}
+
+}  // namespace sixway::render

@@ -1,0 +1,126 @@
+#pragma once
+// Six-way shading of the smoke billboard (DESIGN.md §3): a graphics pass that draws the camera-facing quad
+// over the lightmaps' rectangle and blends the lit smoke premultiplied-over onto a colour target that already
+// holds the background and the obstacles. Any number of directional and point lights (colour, intensity,
+// obstacle shadows from a shadow atlas, tested at the smoke shell), ambient light (constant or L1 spherical
+// harmonics), emission through a colour gradient, Unity's colour/absorption and lightmap remapping controls,
+// and depth-aware compositing against the obstacles' depth buffer. The same pass shades neural lightmaps,
+// reference lightmaps and flipbook frames. Formulas and conventions: docs/real-time-rendering.md,
+// "Six-way shading"; shaders: shaders/render/billboard.vert, sixway_shade.frag, shaders/common/
+// sixway_lighting.glsl, shadow.glsl.
+#include <cstdint>
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "gpu/buffer.h"
+#include "gpu/image.h"
+#include "io/scene.h"
+#include "render/camera.h"
+#include "render/projection.h"
+
+namespace sixway::gpu {
+class Context;
+class Pipeline;
+class PipelineCache;
+class Sequence;
+}  // namespace sixway::gpu
+
+namespace sixway::render {
+
+// One light as the shader sees it.
+struct ShadingLight {
+  enum class Type { Directional, Point };
+  Type type = Type::Directional;
+  glm::vec3 vector{0.0f, 1.0f, 0.0f};  // directional: unit direction toward the light; point: its position
+  glm::vec3 radiance{3.14159265f};     // colour · intensity: irradiance (directional) or radiant intensity
+  int shadowTile = -1;                 // tile of the shadow atlas holding its shadow map; −1: no shadow
+  glm::mat4 shadowMatrix{1.0f};        // world → the light's clip space (the view-projection of its tile)
+};
+
+// The scene's light (positioned for the frame, see sceneLights) with its shadow map, if any.
+ShadingLight shadingLight(const io::Light& light, int shadowTile = -1,
+                          const glm::mat4& shadowMatrix = glm::mat4(1.0f));
+
+// Unity's "Lightmap Remap" range: straight (not premultiplied) values in [inMin, inMax] map onto
+// [outMin, outMax] (clamped at the input ends, at least 0).
+struct RemapRange {
+  float inMin = 0.0f, inMax = 1.0f, outMin = 0.0f, outMax = 1.0f;
+};
+
+// A key of the emissive gradient: the colour at an emissive-channel value (position > 0).
+struct GradientKey {
+  float position = 1.0f;
+  glm::vec3 color{1.0f};
+};
+
+constexpr int kMaxGradientKeys = 16;   // shaders/common/sixway_lighting.glsl
+constexpr float kMaxPcfRadius = 4.0f;  // texels, shaders/common/shadow.glsl
+
+// Unity's artistic controls. The defaults (no tint, no remapping, white emission) shade reference lightmaps
+// to the physically meaningful result.
+struct ShadingControls {
+  glm::vec3 color{1.0f};            // tint (plain multiply) or, with absorption, the absorption colour
+  bool absorption = false;          // Unity's colour absorption mode instead of the tint
+  float absorptionStrength = 1.0f;  // 0..1; range r = (1 − 1/π)·strength + 1/π
+  std::optional<RemapRange> lightmapRemap;  // applied to the six light channels
+  std::optional<RemapRange> alphaRemap;     // applied to alpha; the premultiplied channels follow
+  // Emissive colour = multiplier · gradient(emissive channel): linear between keys (increasing positions),
+  // from black at 0 to the first key, proportional beyond the last. Empty: one white key at 1, i.e. the
+  // channel value as grey.
+  std::vector<GradientKey> emissiveGradient;
+  float emissiveMultiplier = 1.0f;
+};
+
+// The default gradient for a scene's emission: the ramp's colours placed at their own luminance (keys that
+// are not brighter than the one before are dropped), so the emissive colour has exactly the luminance the
+// baker wrote into the emissive channel, and the ramp's hue at that brightness. Empty for no emission.
+std::vector<GradientKey> emissiveGradientFromRamp(const io::Emission& emission);
+
+// The obstacle shadow maps: one D32 depth image, `tileSize` wide, a vertical stack of square tiles, tile t
+// holding the light with shadowTile t (docs/real-time-rendering.md, "Obstacles and shadows").
+struct ShadowAtlas {
+  const gpu::Image* depth = nullptr;  // none: every light is unshadowed
+  uint32_t tileSize = 0;
+  float pcfRadiusTexels = 1.5f;  // half-width of the PCF box, 0..kMaxPcfRadius (0: one texel)
+  float depthBias = 0.002f;      // subtracted from the point's depth (depth-buffer units) before comparing
+};
+
+class SixWayShading {
+ public:
+  // `colorFormat`: the format of the colour targets it will draw into.
+  SixWayShading(const gpu::Context& context, const gpu::PipelineCache& cache, VkFormat colorFormat,
+                uint32_t maxLights = 16);
+  ~SixWayShading();
+
+  // The frame's values; call before each submission of the recorded sequence. `frame`: the image-plane
+  // rectangle the colour target covers; `billboard`: the lightmaps' rectangle; `shellRange`: the view depths
+  // the guide's shell depth is encoded in (boxDepthRange of the volume box); `sceneRange`: the depth range
+  // of the obstacle depth buffer. Throws io::InputError (source "shading") for more lights than maxLights
+  // and for controls out of range.
+  void update(const Camera& camera, const ImagePlane& frame, const ImagePlane& billboard,
+              DepthRange shellRange, DepthRange sceneRange, std::span<const ShadingLight> lights,
+              const std::optional<io::Ambient>& ambient, const ShadingControls& controls);
+
+  // Records the draw (timed stage "shade"). Lightmaps A and B: sampled float RGBA images over the billboard;
+  // `guide`: the guiding map (shell depth in B), none: no pixel has a shell; `obstacleDepth`: D32, the colour
+  // target's size, none: nothing hides the smoke. Throws std::invalid_argument for images that do not fit.
+  void record(gpu::Sequence& sequence, const gpu::Image& lightmapA, const gpu::Image& lightmapB,
+              const gpu::Image* guide, const gpu::Image* obstacleDepth, const ShadowAtlas& shadows,
+              const gpu::Image& colorTarget) const;
+
+  uint32_t maxLights() const { return maxLights_; }
+
+ private:
+  const gpu::Context* context_;
+  uint32_t maxLights_;
+  std::unique_ptr<gpu::Pipeline> pipeline_;
+  std::unique_ptr<gpu::Sampler> linear_, nearest_;
+  gpu::Buffer params_, lights_;
+  gpu::Image noGuide_, noDepth_;  // 1×1 stand-ins: no shell (B = 1), depth 1
+};
+
+}  // namespace sixway::render

@@ -1,0 +1,22 @@
+# `sixway render` as a user runs it: 3 frames of the small scene in reference mode with --exr --video, validation
+# on. Every promised output must exist: PNG and EXR per frame, timings.json with per-stage times, the contact
+# sheet, the MP4 (ffmpeg is one of tools/deps.sh's packages).
+file(REMOVE_RECURSE ${OUT})
+execute_process(COMMAND ${SIXWAY} render --scene ${SCENE} --frames 3 --out ${OUT} --mode reference --exr --video
+                        --validate
+                RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT code EQUAL 0 OR err MATCHES "validation:")
+  message(FATAL_ERROR "sixway render failed (${code}):\n${out}\n${err}")
+endif()
+foreach(f frame_0000.png frame_0002.png frame_0000.exr frame_0002.exr timings.json contact_sheet.png video.mp4)
+  if(NOT EXISTS ${OUT}/${f})
+    message(FATAL_ERROR "sixway render did not write ${f}:\n${out}")
+  endif()
+endforeach()
+file(READ ${OUT}/timings.json timings)
+foreach(stage "shade" "guide" "obstacles" "shadow maps" "sim/lbm")
+  string(JSON ms GET "${timings}" median_stage_ms "${stage}")
+  if(NOT ms GREATER 0)
+    message(FATAL_ERROR "timings.json: stage \"${stage}\" has no time (${ms})")
+  endif()
+endforeach()

@@ -1,0 +1,61 @@
+// One end-to-end frame per mode of `sixway render` (tests/data/scenes/small_plume.json, frame 3: simulation,
+// obstacles, shadows, guiding map, network or baker or path tracer, shading) against tests/golden/<mode>.exr.
+// Lavapipe renders the same bits every run; the tolerance (max-abs 2e-3, about one half-float step at 1) only
+// absorbs rounding differences between driver builds. Any change of an algorithm shows far beyond it.
+#include <cstdlib>
+#include <filesystem>
+
+#include "app/frame_pipeline.h"
+#include "app/scene_volumes.h"
+#include "io/exr.h"
+#include "io/scene.h"
+#include "support/gpu_fixture.h"
+#include "support/image_compare.h"
+
+namespace sixway::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kFrame = 3;
+
+class GoldenFrame : public GpuTest, public ::testing::WithParamInterface<app::RenderMode> {};
+
+TEST_P(GoldenFrame, MatchesTheCommittedImage) {
+  const app::RenderMode mode = GetParam();
+  const io::Scene scene = io::loadScene(fs::path(SIXWAY_TEST_DATA_DIR) / "scenes" / "small_plume.json");
+  app::FramePipelineOptions options;
+  options.mode = mode;
+  options.weights = fs::path(SIXWAY_TEST_DATA_DIR) / "nn" / "default.safetensors";  // untrained, fixed
+  options.pathTraceSamples = 16;
+  app::SimulatedVolumes volumes(context(), pipelineCache(), scene, kFrame + 1);
+  app::FramePipeline pipeline(context(), pipelineCache(), scene, options);
+  io::Image frame;
+  for (int i = 0; i <= kFrame; ++i)
+    frame = pipeline.render(i, app::SimulatedVolumes::frameSeconds(scene, i), volumes.volume(i)).image;
+
+  const fs::path golden = fs::path(SIXWAY_GOLDEN_DIR) / (std::string(app::renderModeName(mode)) + ".exr");
+  if (std::getenv("SIXWAY_UPDATE_GOLDEN")) {
+    io::writeExr(golden, frame, io::ExrPixelType::Half, {{"origin", "tests/golden/test_golden_frames.cpp"}});
+    GTEST_SKIP() << "rewrote " << golden;
+  }
+  const io::Image expected = io::readExr(golden).image;
+  ASSERT_EQ(expected.channels.size(), frame.channels.size());
+  // readExr returns the channels in the file's (sorted) order; put the frame in the same order.
+  io::Image actual(frame.width, frame.height, expected.channels);
+  for (int c = 0; c < actual.channelCount(); ++c) {
+    const int from = *frame.channelIndex(expected.channels[c]);
+    for (int y = 0; y < frame.height; ++y)
+      for (int x = 0; x < frame.width; ++x) actual.at(x, y, c) = frame.at(x, y, from);
+  }
+  EXPECT_TRUE(imagesMatch(actual, expected, {.maxAbs = 2e-3}, app::renderModeName(mode)));
+}
+
+INSTANTIATE_TEST_SUITE_P(Modes, GoldenFrame,
+                         ::testing::Values(app::RenderMode::Neural, app::RenderMode::Reference,
+                                           app::RenderMode::Traditional, app::RenderMode::Guide,
+                                           app::RenderMode::PathTrace),
+                         [](const auto& info) { return std::string(app::renderModeName(info.param)); });
+
+}  // namespace
+}  // namespace sixway::test

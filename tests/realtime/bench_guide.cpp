@@ -1,0 +1,167 @@
+// The numbers of docs/real-time-rendering.md, "Guiding map" (not a test): the guiding map's GPU time and its
+// error against the exact baker's Front + Top + Bottom sum, for the default settings and variations of the
+// step and of the light-grid spacing. Time: GPU timestamps of the stage "guide", median of 15 replays after a
+// warm-up. Error: RMS over the pixels where the baker's alpha > 0.01 and the largest error, both relative to
+// the baker's peak; one frame and the mean of 16 frames (the jitter averaged out).
+// Usage: guide_bench VDB [SCENE]: the density of one VDB frame (e.g. of `sixway sim --vdb-out`) on the
+// scene's smoke lattice, seen by its camera with its optics; without a scene, on 128 cells along the longest
+// axis of the active voxels, seen from the front-right-above with the shipped scenes' optics.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gpu/context.h"
+#include "gpu/pipeline.h"
+#include "io/safetensors.h"
+#include "io/scene.h"
+#include "io/vdb.h"
+#include "render/billboard.h"
+#include "render/guiding_map.h"
+#include "render/lightmap_baker.h"
+#include "render/sixway.h"
+
+namespace {
+
+using namespace sixway;
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+struct Result {
+  double ms, oneRms, oneMax, meanRms, meanMax;
+};
+
+Result run(const gpu::Context& context, const gpu::PipelineCache& cache,
+           const render::GuideSettings& settings, const render::Volume& volume, const io::Smoke& smoke,
+           const render::Camera& camera, const std::vector<float>& exact, const std::vector<float>& alpha) {
+  render::GuidingMap map(context, cache, settings);
+  gpu::Image image(context, map.imageDesc());
+  gpu::Sequence sequence(context);
+  map.record(sequence, volume, image);
+  sequence.finish();
+  const render::Box box = volume.grid.bounds();
+  std::vector<double> times;
+  const size_t pixels = size_t(settings.size) * settings.size;
+  std::vector<double> mean(pixels, 0.0), one(pixels);
+  constexpr int kFrames = 16;
+  for (uint32_t frame = 0; frame < kFrames; ++frame) {
+    map.update(camera, render::billboardBounds(camera, box, 1.0f), render::boxDepthRange(camera, box), smoke,
+               frame);
+    sequence.submit();
+    if (frame > 0) times.push_back(sequence.stageTimes().front().milliseconds);  // frame 0: warm-up
+    const io::Tensor half{"", io::DType::F16, {int64_t(image.byteSize() / 2)}, image.download<uint8_t>()};
+    const std::vector<float> texels = half.toFloat();
+    for (size_t i = 0; i < pixels; ++i) {
+      if (frame == 0) one[i] = texels[4 * i];
+      mean[i] += texels[4 * i] / kFrames;
+    }
+  }
+  const double peak = *std::max_element(exact.begin(), exact.end());
+  Result r{median(times), 0, 0, 0, 0};
+  int n = 0;
+  for (size_t i = 0; i < pixels; ++i) {
+    if (alpha[i] <= 0.01f) continue;
+    ++n;
+    r.oneRms += std::pow(one[i] - exact[i], 2);
+    r.meanRms += std::pow(mean[i] - exact[i], 2);
+    r.oneMax = std::max(r.oneMax, std::fabs(one[i] - exact[i]));
+    r.meanMax = std::max(r.meanMax, std::fabs(mean[i] - exact[i]));
+  }
+  r.oneRms = std::sqrt(r.oneRms / n) / peak;
+  r.meanRms = std::sqrt(r.meanRms / n) / peak;
+  r.oneMax /= peak;
+  r.meanMax /= peak;
+  return r;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: guide_bench VDB [SCENE]\n");
+    return 2;
+  }
+  const std::optional<io::Scene> scene = argc > 2 ? std::optional(io::loadScene(argv[2])) : std::nullopt;
+  gpu::Context context;
+  gpu::PipelineCache cache(context);
+  std::printf("device: %s (%s)\n", context.properties().deviceName, context.driver().driverInfo);
+  const std::string file = argv[1];
+  io::DenseRequest request = io::AutoBounds{128};
+  if (scene) {
+    const io::Grid& g = scene->grid;
+    request = io::ExplicitBounds{g.origin, g.origin + glm::vec3(g.size) * g.cellSize, g.size * g.smokeUpres};
+  }
+  const io::DenseGrid density = io::readVdbDense(file, "density", request);
+  const render::DeviceVolume volume = render::uploadVolume(context, density);
+  const render::VolumeGrid& grid = volume.grid();
+  std::printf("volume: %s, %dx%dx%d cells of %.4g\n", file.c_str(), grid.size.x, grid.size.y, grid.size.z,
+              grid.cellSize);
+
+  io::Smoke smoke;  // the shipped scenes' optics: extinction 30 per unit density with 1/30 m cells
+  smoke.extinction = 1.0f / grid.cellSize;
+  smoke.albedo = 0.9f;
+  smoke.phaseG = 0.2f;
+  const render::Box box = grid.bounds();
+  render::Camera camera = render::Camera::lookAt(
+      box.centre() + glm::length(box.size()) * glm::vec3(0.5f, 0.25f, 1.3f), box.centre(), {0, 1, 0}, 40.0f);
+  if (scene) {
+    smoke = scene->smoke;
+    camera = render::Camera::lookAt(scene->camera.position, scene->camera.target, scene->camera.up,
+                                    scene->camera.fovDeg);
+  }
+
+  render::GuideSettings defaults;
+  render::LightmapBaker baker(context, cache);
+  render::BakeSettings bake;
+  bake.width = bake.height = int(defaults.size);
+  const io::Image lightmaps =
+      baker.bake(volume.view(), smoke, camera, render::billboardBounds(camera, box, 1.0f), bake);
+  double bakeMs = 0;
+  for (const gpu::StageTime& t : baker.stageTimes()) bakeMs += t.milliseconds;
+  std::vector<float> exact, front, alpha;
+  for (int y = 0; y < lightmaps.height; ++y)
+    for (int x = 0; x < lightmaps.width; ++x) {
+      exact.push_back(lightmaps.at(x, y, render::Front) + lightmaps.at(x, y, render::Top) +
+                      lightmaps.at(x, y, render::Bottom));
+      front.push_back(lightmaps.at(x, y, render::Front));
+      alpha.push_back(lightmaps.at(x, y, render::Alpha));
+    }
+  std::printf("exact bake (8 channels, 0.5-cell step, 1-cell light grids): %.1f ms; F+T+B peak %.3f\n",
+              bakeMs, *std::max_element(exact.begin(), exact.end()));
+  std::printf("%-30s %9s %22s %22s\n", "guide 128x128", "GPU ms", "1 frame: RMS / max",
+              "16 frames: RMS / max");
+
+  struct Variant {
+    const char* name;
+    float step, spacing;
+    std::vector<io::GuideLight> lights;
+  };
+  const std::vector<io::GuideLight> ftb = defaults.lights;
+  const std::vector<io::GuideLight> frontOnly = {io::GuideLight::Front};
+  const std::vector<Variant> variants = {{"default (step 3, grids 2)", 3, 2, ftb},
+                                         {"step 1.5, grids 2", 1.5f, 2, ftb},
+                                         {"step 6, grids 2", 6, 2, ftb},
+                                         {"step 0.5, grids 1", 0.5f, 1, ftb},
+                                         {"step 3, grids 1", 3, 1, ftb},
+                                         {"step 3, grids 1.5", 3, 1.5f, ftb},
+                                         {"step 3, grids 3", 3, 3, ftb},
+                                         {"step 3, grids 4", 3, 4, ftb},
+                                         {"front only, step 3 (vs Front)", 3, 2, frontOnly},
+                                         {"front only, step 0.5 (vs Front)", 0.5f, 2, frontOnly}};
+  for (const Variant& v : variants) {
+    render::GuideSettings s = defaults;
+    s.stepCells = v.step;
+    s.shadowSpacingCells = v.spacing;
+    s.lights = v.lights;
+    const bool frontOnly = v.lights.size() == 1;
+    const Result r = run(context, cache, s, volume.view(), smoke, camera, frontOnly ? front : exact, alpha);
+    std::printf("%-30s %9.2f %10.4f / %-10.4f %10.4f / %-10.4f\n", v.name, r.ms, r.oneRms, r.oneMax,
+                r.meanRms, r.meanMax);
+  }
+  return 0;
+}

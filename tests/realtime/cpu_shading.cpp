@@ -1,0 +1,232 @@
+#include "cpu_shading.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+
+namespace sixway::test {
+namespace {
+
+using glm::dvec3;
+constexpr double kPi = std::numbers::pi;
+
+// Texture lookup with linear filtering and clamp-to-edge addressing at normalised coordinates (u, v).
+std::array<double, 4> bilinear(const io::Image& image, double u, double v) {
+  const double x = u * image.width - 0.5, y = v * image.height - 0.5;
+  const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+  const double fx = x - x0, fy = y - y0;
+  std::array<double, 4> out{};
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      const int xi = std::clamp(x0 + i, 0, image.width - 1), yj = std::clamp(y0 + j, 0, image.height - 1);
+      const double w = (i ? fx : 1.0 - fx) * (j ? fy : 1.0 - fy);
+      for (int c = 0; c < 4; ++c) out[c] += w * image.at(xi, yj, c);
+    }
+  return out;
+}
+
+double unitClamp(double x) {
+  return std::clamp(x, 0.0, 1.0);
+}
+
+// Unity's "Lightmap Remap" on a straight value.
+double remap(double value, const render::RemapRange& r) {
+  const double unit = unitClamp((value - r.inMin) / (r.inMax - r.inMin));
+  return std::max(0.0, r.outMin + unit * (r.outMax - r.outMin));
+}
+
+// What transmission t (our units: 1 = white Lambertian under irradiance π) becomes under the controls.
+dvec3 response(double t, double alpha, const render::ShadingControls& c) {
+  if (!c.absorption) return t * dvec3(c.color);
+  // DESIGN.md §3 in Unity's units (ours / π), range scaled by alpha for premultiplied lightmaps.
+  const double range = (1.0 - 1.0 / kPi) * c.absorptionStrength + 1.0 / kPi;
+  const double r = range * (alpha > 0.0 ? alpha : 1.0);
+  const double tUnity = t / kPi;
+  dvec3 out;
+  for (int k = 0; k < 3; ++k) {
+    const double s = 1.0 + std::log2(std::max(1e-5, double(c.color[k]))) / std::log2(0.2);
+    out[k] = kPi * std::pow(unitClamp(tUnity / r), s) * r;
+  }
+  return out;
+}
+
+dvec3 gradient(const std::vector<render::GradientKey>& given, double x) {
+  std::vector<render::GradientKey> keys = given;
+  if (keys.empty()) keys.push_back({1.0f, glm::vec3(1.0f)});
+  x = std::max(x, 0.0);
+  // Keys with an implicit black key at 0; past the last key the colour is proportional to x.
+  double p0 = 0.0;
+  dvec3 c0(0.0);
+  for (const render::GradientKey& key : keys) {
+    if (x <= key.position) return c0 + (dvec3(key.color) - c0) * ((x - p0) / (key.position - p0));
+    p0 = key.position;
+    c0 = dvec3(key.color);
+  }
+  return c0 * (x / p0);
+}
+
+// One cell of a shadow tile along an axis, the edge cells reaching to infinity (clamp to edge).
+double cellOverlap(int i, int size, double lo, double hi) {
+  const double a = i == 0 ? -std::numeric_limits<double>::infinity() : double(i);
+  const double b = i == size - 1 ? std::numeric_limits<double>::infinity() : double(i + 1);
+  return std::max(0.0, std::min(b, hi) - std::max(a, lo));
+}
+
+}  // namespace
+
+double cpuShadowVisibility(const io::Image& atlas, int tileSize, int tile, const glm::mat4& shadowMatrix,
+                           const dvec3& world, double radius, double bias) {
+  const glm::dvec4 clip = glm::dmat4(shadowMatrix) * glm::dvec4(world, 1.0);
+  if (clip.w <= 0.0) return 1.0;
+  const dvec3 ndc = dvec3(clip) / clip.w;
+  if (std::abs(ndc.x) > 1.0 || std::abs(ndc.y) > 1.0 || ndc.z < 0.0 || ndc.z > 1.0) return 1.0;
+  const double px = (0.5 + 0.5 * ndc.x) * tileSize, py = (0.5 - 0.5 * ndc.y) * tileSize;
+  const double depth = ndc.z - bias;
+  auto lit = [&](int ix, int iy) { return depth <= atlas.at(ix, tile * tileSize + iy, 0) ? 1.0 : 0.0; };
+  if (radius <= 0.0)
+    return lit(std::clamp(int(std::floor(px)), 0, tileSize - 1),
+               std::clamp(int(std::floor(py)), 0, tileSize - 1));
+  double sum = 0.0;
+  for (int iy = 0; iy < tileSize; ++iy) {
+    const double oy = cellOverlap(iy, tileSize, py - radius, py + radius);
+    if (oy == 0.0) continue;
+    for (int ix = 0; ix < tileSize; ++ix) {
+      const double ox = cellOverlap(ix, tileSize, px - radius, px + radius);
+      if (ox > 0.0) sum += ox * oy * lit(ix, iy);
+    }
+  }
+  return sum / (4.0 * radius * radius);
+}
+
+namespace {
+
+struct PixelPoint {
+  glm::dvec2 q;   // image plane at distance 1
+  glm::dvec2 uv;  // on the billboard
+  bool covered;
+};
+
+PixelPoint pixelPoint(const CpuShadingInputs& in, int width, int height, int x, int y) {
+  const render::ImagePlane& f = in.frame;
+  const render::ImagePlane& b = in.billboard;
+  PixelPoint p;
+  p.q = {f.min.x + (x + 0.5) / width * (f.max.x - f.min.x),
+         f.max.y - (y + 0.5) / height * (f.max.y - f.min.y)};
+  p.uv = {(p.q.x - b.min.x) / (b.max.x - b.min.x), (b.max.y - p.q.y) / (b.max.y - b.min.y)};
+  p.covered = p.uv.x > 0.0 && p.uv.x < 1.0 && p.uv.y > 0.0 && p.uv.y < 1.0;
+  return p;
+}
+
+// View depth of the shaded point: the shell where the guide has one, else the billboard's depth.
+double shadedDepth(const CpuShadingInputs& in, glm::dvec2 uv) {
+  const double billboardDepth = 0.5 * (double(in.shellRange.near) + in.shellRange.far);
+  if (!in.guide) return billboardDepth;
+  const int gx = std::clamp(int(std::floor(uv.x * in.guide->width)), 0, in.guide->width - 1);
+  const int gy = std::clamp(int(std::floor(uv.y * in.guide->height)), 0, in.guide->height - 1);
+  const double encoded = in.guide->at(gx, gy, 2);
+  if (encoded >= 1.0) return billboardDepth;
+  return in.shellRange.near + encoded * (double(in.shellRange.far) - in.shellRange.near);
+}
+
+dvec3 worldPoint(const render::Camera& c, glm::dvec2 q, double depth) {
+  return dvec3(c.position) + depth * (dvec3(c.forward) + q.x * dvec3(c.right) + q.y * dvec3(c.up));
+}
+
+}  // namespace
+
+glm::dvec3 cpuShadedPoint(const CpuShadingInputs& in, int width, int height, int x, int y) {
+  const PixelPoint p = pixelPoint(in, width, height, x, y);
+  return worldPoint(in.camera, p.q, shadedDepth(in, p.uv));
+}
+
+io::Image cpuSixWayShading(const CpuShadingInputs& in, const io::Image& background) {
+  const int width = background.width, height = background.height;
+  const render::ShadingControls& controls = in.controls;
+  const render::Camera& cam = in.camera;
+  const dvec3 axes[3] = {dvec3(cam.right), dvec3(cam.up), dvec3(cam.forward)};
+
+  // Ambient radiance L(w) = L0 + L1·w; L1 along the six-way axes.
+  dvec3 l0(0.0), l1[3] = {dvec3(0.0), dvec3(0.0), dvec3(0.0)};
+  if (in.ambient) {
+    if (const auto* constant = std::get_if<io::AmbientColor>(&*in.ambient)) {
+      l0 = dvec3(constant->color);
+    } else {
+      const auto& sh = std::get<io::AmbientSh>(*in.ambient).coefficients;
+      l0 = dvec3(sh[0]);
+      for (int i = 0; i < 3; ++i)
+        for (int w = 0; w < 3; ++w) l1[i] += dvec3(sh[1 + w]) * axes[i][w];
+    }
+  }
+
+  io::Image out = background;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const PixelPoint p = pixelPoint(in, width, height, x, y);
+      if (!p.covered) continue;
+      const double depth = shadedDepth(in, p.uv);
+      if (in.obstacleDepth) {
+        const double d = in.obstacleDepth->at(x, y, 0), n = in.sceneRange.near, f = in.sceneRange.far;
+        if (n * f / (f - d * (f - n)) < depth) continue;  // hidden: nothing drawn over the background
+      }
+      const dvec3 world = worldPoint(cam, p.q, depth);
+
+      const auto a = bilinear(*in.lightmapA, p.uv.x, p.uv.y), b = bilinear(*in.lightmapB, p.uv.x, p.uv.y);
+      double positive[3] = {a[0], a[1], a[2]}, negative[3] = {b[0], b[1], b[2]};
+      double alpha = a[3], emissive = b[3];
+      if (controls.lightmapRemap && alpha > 0.0)
+        for (int i = 0; i < 3; ++i) {
+          positive[i] = alpha * remap(positive[i] / alpha, *controls.lightmapRemap);
+          negative[i] = alpha * remap(negative[i] / alpha, *controls.lightmapRemap);
+        }
+      if (controls.alphaRemap) {
+        const double remapped = unitClamp(remap(alpha, *controls.alphaRemap));
+        const double scale = alpha > 0.0 ? remapped / alpha : 0.0;
+        for (int i = 0; i < 3; ++i) {
+          positive[i] *= scale;
+          negative[i] *= scale;
+        }
+        emissive *= scale;
+        alpha = remapped;
+      }
+
+      dvec3 radiance(0.0);
+      for (const render::ShadingLight& light : in.lights) {
+        dvec3 toLight = dvec3(light.vector);
+        dvec3 irradiance = dvec3(light.radiance);
+        if (light.type == render::ShadingLight::Type::Point) {
+          toLight -= world;
+          const double r2 = glm::dot(toLight, toLight);
+          irradiance /= r2;
+          toLight /= std::sqrt(r2);
+        }
+        double visibility = 1.0;
+        if (light.shadowTile >= 0 && in.shadowAtlas)
+          visibility = cpuShadowVisibility(*in.shadowAtlas, in.tileSize, light.shadowTile, light.shadowMatrix,
+                                           world, in.pcfRadius, in.depthBias);
+        double t = 0.0;
+        for (int i = 0; i < 3; ++i) {
+          const double d = glm::dot(toLight, axes[i]);
+          t += d * d * (d >= 0.0 ? positive[i] : negative[i]);
+        }
+        radiance += visibility * irradiance / kPi * response(t, alpha, controls);
+      }
+      dvec3 ambient(0.0);
+      for (int i = 0; i < 3; ++i)
+        ambient += response(positive[i], alpha, controls) * (l0 + l1[i]) +
+                   response(negative[i], alpha, controls) * (l0 - l1[i]);
+      radiance += (2.0 / 3.0) * ambient;
+      radiance += double(controls.emissiveMultiplier) * gradient(controls.emissiveGradient, emissive);
+
+      for (int c = 0; c < 4; ++c) {
+        const double source = c < 3 ? radiance[c] : alpha;
+        out.at(x, y, c) = float(source + (1.0 - alpha) * background.at(x, y, c));
+      }
+    }
+  return out;
+}
+
+}  // namespace sixway::test

@@ -1,0 +1,49 @@
+#pragma once
+// CPU oracle of the six-way billboard shading (DESIGN.md §3; docs/real-time-rendering.md, "Six-way shading"),
+// in double precision and written from the documented formulas, pixel by pixel: the pixel centre's point of
+// the image plane, the lightmaps there (bilinear, clamp to edge), the shell point, the obstacle test, Unity's
+// remapping, each light with squared six-way weights and its PCF shadow, L1 ambient, the emissive gradient,
+// premultiplied-over the background.
+#include <optional>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include "io/image.h"
+#include "io/scene.h"
+#include "render/camera.h"
+#include "render/projection.h"
+#include "render/sixway_shading.h"
+
+namespace sixway::test {
+
+struct CpuShadingInputs {
+  render::Camera camera;
+  render::ImagePlane frame, billboard;
+  render::DepthRange shellRange, sceneRange;
+  std::vector<render::ShadingLight> lights;
+  std::optional<io::Ambient> ambient;
+  render::ShadingControls controls;
+  const io::Image* lightmapA = nullptr;      // RGBA
+  const io::Image* lightmapB = nullptr;      // RGBA
+  const io::Image* guide = nullptr;          // RGBA, B = encoded shell depth; none: no shell anywhere
+  const io::Image* obstacleDepth = nullptr;  // one channel, depth-buffer values, the target's size
+  const io::Image* shadowAtlas = nullptr;    // one channel, tileSize wide, tiles stacked vertically
+  int tileSize = 0;
+  double pcfRadius = 1.5, depthBias = 0.002;
+};
+
+// The target (RGBA, premultiplied) after drawing the smoke over `background` (RGBA, the target's size).
+io::Image cpuSixWayShading(const CpuShadingInputs& in, const io::Image& background);
+
+// The lit fraction of `world` for the light whose shadow map is tile `tile` of the atlas: the mean over the
+// box of half-width `radius` texels around the point of "the nearest texel cell under this point lets the
+// (biased) depth through", cells of the tile's edge extending outwards; radius 0: the cell under the point.
+double cpuShadowVisibility(const io::Image& atlas, int tileSize, int tile, const glm::mat4& shadowMatrix,
+                           const glm::dvec3& world, double radius, double bias);
+
+// The world point the shading uses at pixel (x, y): the shell point, else the billboard's plane.
+glm::dvec3 cpuShadedPoint(const CpuShadingInputs& in, int width, int height, int x, int y);
+
+}  // namespace sixway::test
