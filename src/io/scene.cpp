@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/vector_relational.hpp>
 #include <nlohmann/json.hpp>
 
@@ -434,6 +435,14 @@ float kinematicViscosity(const Scene& scene) {
 
 int lbmStepsPerFrame(const Scene& scene) {
   return std::max(scene.time.stepsPerFrame, static_cast<int>(stepsForLatticeVelocity(scene)));
+}
+
+glm::mat3 meshRotation(const MeshObstacle& mesh) {
+  glm::mat4 r(1.0f);
+  r = glm::rotate(r, glm::radians(mesh.rotateDeg.z), glm::vec3(0, 0, 1));
+  r = glm::rotate(r, glm::radians(mesh.rotateDeg.y), glm::vec3(0, 1, 0));
+  r = glm::rotate(r, glm::radians(mesh.rotateDeg.x), glm::vec3(1, 0, 0));
+  return glm::mat3(r);
 }
 
 }  // namespace sixway::io

@@ -13,6 +13,7 @@
 #include <variant>
 #include <vector>
 
+#include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 #include <nlohmann/json_fwd.hpp>
 
@@ -240,5 +241,8 @@ float kinematicViscosity(const Scene& scene);
 // LBM steps per frame: time.stepsPerFrame, or more if needed to keep the fastest inflow at or below
 // fluid.maxLatticeVelocity (lattice speed = speed · dt / cellSize with dt = frameDt / steps).
 int lbmStepsPerFrame(const Scene& scene);
+// The rotation of a mesh obstacle, R = Rz·Ry·Rx of rotate_deg (x applied first): world = translate +
+// R·(scale·p). The one definition the simulation's voxelizer and the renderers' meshes share.
+glm::mat3 meshRotation(const MeshObstacle& mesh);
 
 }  // namespace sixway::io

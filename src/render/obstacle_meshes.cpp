@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstddef>
 #include <glm/geometric.hpp>
-#include <glm/gtc/matrix_transform.hpp>
+#include <glm/trigonometric.hpp>
 #include <limits>
 #include <numbers>
 #include <utility>
@@ -118,21 +118,12 @@ ObstacleTriangles box(const io::BoxObstacle& box, uint32_t index) {
   return b.take();
 }
 
-// R = Rz·Ry·Rx, x applied first (docs/scene-format.md, mesh obstacles).
-glm::mat3 meshRotation(glm::vec3 degrees) {
-  glm::mat4 r(1.0f);
-  r = glm::rotate(r, glm::radians(degrees.z), glm::vec3(0, 0, 1));
-  r = glm::rotate(r, glm::radians(degrees.y), glm::vec3(0, 1, 0));
-  r = glm::rotate(r, glm::radians(degrees.x), glm::vec3(1, 0, 0));
-  return glm::mat3(r);
-}
-
 // The OBJ triangles scaled and turned. A corner's normal is the area-weighted sum of the normals of the faces
 // around its vertex that turn from its own face by less than the crease angle; corners of a vertex with equal
 // normals share one output vertex.
 ObstacleTriangles mesh(const io::MeshObstacle& m, uint32_t index) {
   const io::Mesh obj = io::readObj(m.file);
-  const glm::mat3 turn = meshRotation(m.rotateDeg) * m.scale;
+  const glm::mat3 turn = io::meshRotation(m) * m.scale;
   std::vector<glm::vec3> positions(obj.positions.size());
   std::transform(obj.positions.begin(), obj.positions.end(), positions.begin(),
                  [&](glm::vec3 p) { return turn * p; });

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 #include <string>
 
@@ -19,15 +18,6 @@ template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
 };
-
-// R = Rz·Ry·Rx, x applied first (scene-format.md, mesh obstacles).
-glm::mat3 meshRotation(glm::vec3 degrees) {
-  glm::mat4 r(1.0f);
-  r = glm::rotate(r, glm::radians(degrees.z), glm::vec3(0, 0, 1));
-  r = glm::rotate(r, glm::radians(degrees.y), glm::vec3(0, 1, 0));
-  r = glm::rotate(r, glm::radians(degrees.x), glm::vec3(1, 0, 0));
-  return glm::mat3(r);
-}
 
 struct VoxelizePush {
   glm::vec4 origin;
@@ -76,34 +66,33 @@ ObstacleSet::ObstacleSet(const gpu::Context& context, const gpu::PipelineCache& 
   for (const io::Obstacle& o : scene.obstacles) {
     GpuObstacle g{};
     glm::vec3 extent(0);
-    std::visit(Overloaded{
-                   [&](const io::SphereObstacle& s) {
-                     g.centre = glm::vec4(units.toLattice(s.center, origin_), float(ShapeCode::Sphere));
-                     g.size.x = s.radius * toCells;
-                     extent = glm::vec3(g.size.x);
-                   },
-                   [&](const io::CylinderObstacle& c) {
-                     g.centre = glm::vec4(units.toLattice(c.center, origin_), float(ShapeCode::Cylinder));
-                     g.axis = glm::vec4(c.axis, 0.5f * c.height * toCells);
-                     g.size.x = c.radius * toCells;
-                     extent = g.axis.w * glm::abs(c.axis) + g.size.x * glm::sqrt(1.0f - c.axis * c.axis);
-                   },
-                   [&](const io::BoxObstacle& b) {
-                     g.centre = glm::vec4(units.toLattice(b.center, origin_), float(ShapeCode::Box));
-                     g.size = glm::vec4(0.5f * b.size * toCells, 0.0f);
-                     extent = glm::vec3(g.size);
-                   },
-                   [&](const io::MeshObstacle& m) {
-                     g.centre = glm::vec4(units.toLattice(m.translate, origin_), float(ShapeCode::Mesh));
-                     // lattice offset d → object: Rᵀ · d · cellSize / scale
-                     const glm::mat3 toObject =
-                         glm::transpose(meshRotation(m.rotateDeg)) * (units.cellSize / m.scale);
-                     for (int row = 0; row < 3; ++row)
-                       g.rotation[row] =
-                           glm::vec4(toObject[0][row], toObject[1][row], toObject[2][row], 0.0f);
-                   },
-               },
-               o.shape);
+    std::visit(
+        Overloaded{
+            [&](const io::SphereObstacle& s) {
+              g.centre = glm::vec4(units.toLattice(s.center, origin_), float(ShapeCode::Sphere));
+              g.size.x = s.radius * toCells;
+              extent = glm::vec3(g.size.x);
+            },
+            [&](const io::CylinderObstacle& c) {
+              g.centre = glm::vec4(units.toLattice(c.center, origin_), float(ShapeCode::Cylinder));
+              g.axis = glm::vec4(c.axis, 0.5f * c.height * toCells);
+              g.size.x = c.radius * toCells;
+              extent = g.axis.w * glm::abs(c.axis) + g.size.x * glm::sqrt(1.0f - c.axis * c.axis);
+            },
+            [&](const io::BoxObstacle& b) {
+              g.centre = glm::vec4(units.toLattice(b.center, origin_), float(ShapeCode::Box));
+              g.size = glm::vec4(0.5f * b.size * toCells, 0.0f);
+              extent = glm::vec3(g.size);
+            },
+            [&](const io::MeshObstacle& m) {
+              g.centre = glm::vec4(units.toLattice(m.translate, origin_), float(ShapeCode::Mesh));
+              // lattice offset d → object: Rᵀ · d · cellSize / scale
+              const glm::mat3 toObject = glm::transpose(io::meshRotation(m)) * (units.cellSize / m.scale);
+              for (int row = 0; row < 3; ++row)
+                g.rotation[row] = glm::vec4(toObject[0][row], toObject[1][row], toObject[2][row], 0.0f);
+            },
+        },
+        o.shape);
     obstacles_.push_back({g, o.motion, extent});
   }
   for (const io::Inlet& in : scene.inlets) {
