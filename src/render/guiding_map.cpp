@@ -24,10 +24,6 @@ struct GuideFrame {  // guide_march.comp
   glm::vec4 shell;
 };
 
-struct BrickPush {  // majorant.comp
-  glm::ivec4 size, bricks;
-};
-
 uint32_t groups(int count, int groupSize) {
   return uint32_t((count + groupSize - 1) / groupSize);
 }
@@ -123,17 +119,8 @@ GuidingMap::GuidingMap(const gpu::Context& context, const gpu::PipelineCache& ca
     lightGrids |= int32_t(grid | (gridLights_[grid] != light ? 4 : 0)) << (3 * shadowed++);
   }
   using gpu::BindingType;
-  majorantPass_ = std::make_unique<gpu::Pipeline>(
-      context, cache,
-      gpu::ComputePipelineDesc{"render/majorant.comp",
-                               {BindingType::StorageBuffer, BindingType::StorageBuffer},
-                               sizeof(BrickPush)});
-  depthPass_ = std::make_unique<gpu::Pipeline>(
-      context, cache,
-      gpu::ComputePipelineDesc{"render/light_depth.comp",
-                               {BindingType::UniformBuffer, BindingType::StorageBuffer,
-                                BindingType::StorageBuffer, BindingType::StorageBuffer},
-                               sizeof(uint32_t)});
+  majorantPass_ = std::make_unique<BrickMajorantPass>(context, cache);
+  depthPass_ = lightDepthPipeline(context, cache);
   std::vector<BindingType> march(4 + kMaxGrids + 1, BindingType::StorageBuffer);
   march[0] = march[1] = BindingType::UniformBuffer;
   march.back() = BindingType::StorageImage;
@@ -185,9 +172,7 @@ void GuidingMap::record(gpu::Sequence& sequence, const Volume& volume, const gpu
 
   const gpu::Buffer& density = *volume.density;
   sequence.beginStage("guide");
-  sequence.dispatch(*majorantPass_, {gpu::reads(density), gpu::writes(bricks_)},
-                    BrickPush{glm::ivec4(grid_.size, 0), glm::ivec4(bricks, kBrickCells)},
-                    groups(bricks.x, 4), groups(bricks.y, 4), groups(bricks.z, 4));
+  majorantPass_->record(sequence, volume, kBrickCells, bricks_);
   for (uint32_t light = 0; light < gridLights_.size(); ++light)
     sequence.dispatch(
         *depthPass_,

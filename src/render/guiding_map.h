@@ -13,6 +13,7 @@
 #include "gpu/image.h"
 #include "gpu/sequence.h"
 #include "io/scene.h"
+#include "render/brick_majorants.h"
 #include "render/camera.h"
 #include "render/light_grid.h"
 #include "render/projection.h"
@@ -72,7 +73,8 @@ class GuidingMap {
   const gpu::Context* context_;
   GuideSettings settings_;
   std::vector<io::GuideLight> gridLights_;  // the light each light grid points to, one per axis used
-  std::unique_ptr<gpu::Pipeline> majorantPass_, depthPass_, marchPass_;
+  std::unique_ptr<BrickMajorantPass> majorantPass_;
+  std::unique_ptr<gpu::Pipeline> depthPass_, marchPass_;
   gpu::Buffer params_, frame_, bricks_;
   std::vector<gpu::Buffer> depths_;  // one per light grid (one placeholder when there are none)
   VolumeGrid grid_;                  // of the last record()

@@ -4,6 +4,8 @@
 #include <glm/geometric.hpp>
 #include <limits>
 
+#include "gpu/pipeline.h"
+
 namespace sixway::render {
 
 LightGrid lightGridFor(const VolumeGrid& volume, glm::vec3 toLight, glm::vec3 u, glm::vec3 v, float spacing,
@@ -34,6 +36,17 @@ LightGrid lightGridFor(const VolumeGrid& volume, glm::vec3 toLight, glm::vec3 u,
   const glm::vec3 extent(hi.x - start.x, hi.y - start.y, start.z - lo.z);
   g.nodes = glm::ivec3(glm::ceil(extent / spacing - 1e-4f)) + 1;
   return g;
+}
+
+std::unique_ptr<gpu::Pipeline> lightDepthPipeline(const gpu::Context& context,
+                                                  const gpu::PipelineCache& cache) {
+  using gpu::BindingType;
+  return std::make_unique<gpu::Pipeline>(
+      context, cache,
+      gpu::ComputePipelineDesc{"render/light_depth.comp",
+                               {BindingType::UniformBuffer, BindingType::StorageBuffer,
+                                BindingType::StorageBuffer, BindingType::StorageBuffer},
+                               sizeof(uint32_t)});
 }
 
 }  // namespace sixway::render

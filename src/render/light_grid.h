@@ -5,8 +5,15 @@
 // the same quadrature (see docs/reference-rendering.md). The GPU side is shaders/render/bake_params.glsl.
 #include <cstdint>
 #include <glm/vec3.hpp>
+#include <memory>
 
 #include "render/volume.h"
+
+namespace sixway::gpu {
+class Context;
+class Pipeline;
+class PipelineCache;
+}  // namespace sixway::gpu
 
 namespace sixway::render {
 
@@ -31,5 +38,10 @@ struct LightGrid {
 // optical depth is piecewise smooth between cell centres, and nodes on its kinks interpolate it far better.
 LightGrid lightGridFor(const VolumeGrid& volume, glm::vec3 toLight, glm::vec3 u, glm::vec3 v, float spacing,
                        float maxStep);
+
+// The pass that integrates the optical depth along the columns of a light grid (shaders/render/
+// light_depth.comp; bindings: bake parameters, density, brick majorants, depths; push: the light's index).
+std::unique_ptr<gpu::Pipeline> lightDepthPipeline(const gpu::Context& context,
+                                                  const gpu::PipelineCache& cache);
 
 }  // namespace sixway::render

@@ -42,10 +42,6 @@ std::array<LightGrid, 6> sixLightGrids(const Camera& camera, const VolumeGrid& v
   return grids;
 }
 
-struct BrickPush {  // majorant.comp
-  glm::ivec4 size, bricks;
-};
-
 // Whether the six light grids fit: each in one storage buffer, all together in a quarter of the device's
 // memory.
 bool fits(const std::array<LightGrid, 6>& grids, const gpu::Context& context) {
@@ -66,17 +62,8 @@ LightmapBaker::LightmapBaker(const gpu::Context& context, const gpu::PipelineCac
               gpu::MemoryKind::HostUpload, "bake parameters"),
       sequence_(context) {
   using gpu::BindingType;
-  majorantPass_ = std::make_unique<gpu::Pipeline>(
-      context, cache,
-      gpu::ComputePipelineDesc{"render/majorant.comp",
-                               {BindingType::StorageBuffer, BindingType::StorageBuffer},
-                               sizeof(BrickPush)});
-  depthPass_ = std::make_unique<gpu::Pipeline>(
-      context, cache,
-      gpu::ComputePipelineDesc{"render/light_depth.comp",
-                               {BindingType::UniformBuffer, BindingType::StorageBuffer,
-                                BindingType::StorageBuffer, BindingType::StorageBuffer},
-                               sizeof(uint32_t)});
+  majorantPass_ = std::make_unique<BrickMajorantPass>(context, cache);
+  depthPass_ = lightDepthPipeline(context, cache);
   std::vector<BindingType> march(11, BindingType::StorageBuffer);
   march[0] = BindingType::UniformBuffer;
   marchPass_ = std::make_unique<gpu::Pipeline>(
@@ -92,8 +79,7 @@ void LightmapBaker::ensureCapacity(const VolumeGrid& grid, uint64_t lightmapValu
     if (depths_[i].size() < bytes)
       depths_[i] = gpu::Buffer::storage(*context_, bytes, "optical depths toward the " + names[i] + " light");
   }
-  const glm::ivec3 bricks = (grid.size + kBrickCells - 1) / kBrickCells;
-  const uint64_t brickBytes = uint64_t(bricks.x) * bricks.y * bricks.z * sizeof(float);
+  const uint64_t brickBytes = BrickMajorantPass::bufferBytes(grid, kBrickCells);
   if (bricks_.size() < brickBytes)
     bricks_ = gpu::Buffer::storage(*context_, brickBytes, "empty-space bricks");
   if (lightmaps_.size() < lightmapValues * sizeof(float)) {
@@ -142,9 +128,7 @@ io::Image LightmapBaker::bake(const Volume& volume, const io::Smoke& smoke, cons
                {handleKey(depths_[i].handle()), uint64_t(grids_[i].nodes.x), uint64_t(grids_[i].nodes.y)});
   last_ = &sequence_.get(key, [&](gpu::Sequence& s) {
     s.beginStage("empty-space bricks");
-    s.dispatch(*majorantPass_, {gpu::reads(density), gpu::writes(bricks_)},
-               BrickPush{glm::ivec4(volume.grid.size, 0), glm::ivec4(bricks, kBrickCells)},
-               groups(bricks.x, 4), groups(bricks.y, 4), groups(bricks.z, 4));
+    majorantPass_->record(s, volume, kBrickCells, bricks_);
     s.endStage();
     s.beginStage("light depth");
     for (uint32_t light = 0; light < kSixWayLights; ++light)

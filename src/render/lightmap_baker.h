@@ -13,6 +13,7 @@
 #include "gpu/sequence.h"
 #include "io/image.h"
 #include "io/scene.h"
+#include "render/brick_majorants.h"
 #include "render/camera.h"
 #include "render/light_grid.h"
 #include "render/recorded_sequence.h"
@@ -56,7 +57,8 @@ class LightmapBaker {
   void ensureCapacity(const VolumeGrid& grid, uint64_t lightmapValues);
 
   const gpu::Context* context_;
-  std::unique_ptr<gpu::Pipeline> majorantPass_, depthPass_, marchPass_;
+  std::unique_ptr<BrickMajorantPass> majorantPass_;
+  std::unique_ptr<gpu::Pipeline> depthPass_, marchPass_;
   gpu::Buffer params_, bricks_, lightmaps_, readback_;
   std::array<gpu::Buffer, 6> depths_;
   std::array<LightGrid, 6> grids_;

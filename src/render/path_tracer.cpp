@@ -29,10 +29,6 @@ void checkSettings(const TraceSettings& s, size_t lights) {
     fail(std::to_string(lights) + " lights; at most " + std::to_string(layout::kMaxLights));
 }
 
-struct MajorantPush {
-  glm::ivec4 size, bricks;
-};
-
 layout::PathLight pathLight(const io::Light& light) {
   const glm::vec4 radiance(light.color * light.intensity, 0.0f);
   if (const auto* directional = std::get_if<io::DirectionalLight>(&light.source))
@@ -50,11 +46,7 @@ PathTracer::PathTracer(const gpu::Context& context, const gpu::PipelineCache& ca
       trace_(context),
       read_(context) {
   using gpu::BindingType;
-  majorantPass_ = std::make_unique<gpu::Pipeline>(
-      context, cache,
-      gpu::ComputePipelineDesc{"render/majorant.comp",
-                               {BindingType::StorageBuffer, BindingType::StorageBuffer},
-                               sizeof(MajorantPush)});
+  majorantPass_ = std::make_unique<BrickMajorantPass>(context, cache);
   const std::vector<BindingType> bindings = {BindingType::UniformBuffer, BindingType::StorageBuffer,
                                              BindingType::StorageBuffer, BindingType::StorageBuffer,
                                              BindingType::StorageBuffer};
@@ -125,15 +117,13 @@ void PathTracer::begin(const Volume& volume, const io::Smoke& smoke, const Camer
   p.flags = glm::uvec4(settings.jitter ? 1u : 0u, volume.temperature ? 1u : 0u, 0u, 0u);
 
   const gpu::Buffer& density = *volume.density;
-  const MajorantPush push{glm::ivec4(volume.grid.size, 0), glm::ivec4(bricks, settings.brickCells)};
   prepare_
       .get({handleKey(density.handle()), handleKey(majorants_.handle()), handleKey(accumulation_.handle()),
             uint64_t(volume.grid.size.x), uint64_t(volume.grid.size.y), uint64_t(volume.grid.size.z),
             uint64_t(settings.brickCells)},
            [&](gpu::Sequence& s) {
              s.fill(accumulation_, 0u);
-             s.dispatch(*majorantPass_, {gpu::reads(density), gpu::writes(majorants_)}, push,
-                        groups(bricks.x, 4), groups(bricks.y, 4), groups(bricks.z, 4));
+             majorantPass_->record(s, volume, settings.brickCells, majorants_);
            })
       .submit();
   const gpu::Buffer& temperature = volume.temperature ? *volume.temperature : density;

@@ -14,6 +14,7 @@
 #include "gpu/sequence.h"
 #include "io/image.h"
 #include "io/scene.h"
+#include "render/brick_majorants.h"
 #include "render/camera.h"
 #include "render/recorded_sequence.h"
 #include "render/volume.h"
@@ -67,7 +68,8 @@ class PathTracer {
              const TraceSettings& settings, bool sixWay);
 
   const gpu::Context* context_;
-  std::unique_ptr<gpu::Pipeline> majorantPass_, imagePass_, sixWayPass_;
+  std::unique_ptr<BrickMajorantPass> majorantPass_;
+  std::unique_ptr<gpu::Pipeline> imagePass_, sixWayPass_;
   gpu::Buffer params_, majorants_, accumulation_, readback_;
   RecordedSequence prepare_, trace_;
   mutable RecordedSequence read_;
