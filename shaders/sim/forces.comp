@@ -5,7 +5,8 @@
 // term): a cell the obstacle covers gives it the fluid's ρu, a cell it uncovers takes ρ₀u_w from it.
 // Reads the same post-collision lattice that the coming lbm_step streams from. Each subgroup adds
 // its sum into the step's slot with one float atomic per component (workgroup barriers cost a
-// coroutine switch per invocation on lavapipe); the order of the additions is not fixed.
+// coroutine switch per invocation on lavapipe); the order of the additions is not fixed. Only the
+// cells of the obstacles' swept box run (push.boxMin/boxSize): no link to an obstacle lies outside it.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
@@ -41,18 +42,22 @@ layout(std430, binding = 7) buffer Forces { float forces[]; };  // [slot][obstac
 layout(push_constant) uniform Push {
   uint step;  // StepParams entry
   uint slot;  // where this step's forces go
+  ivec4 boxMin;   // xyz: the first cell of the box visited
+  ivec4 boxSize;  // xyz: its cells per axis
 } push;
 
 void main() {
-  uint cell = gl_GlobalInvocationID.x;
+  uint boxCells = uint(push.boxSize.x * push.boxSize.y * push.boxSize.z);
+  bool inBox = gl_GlobalInvocationID.x < boxCells;
+  ivec3 p = push.boxMin.xyz + cellOf(min(gl_GlobalInvocationID.x, boxCells - 1u), push.boxSize.xyz);
+  uint cell = cellIndex(p, SIZE);
   uint count = params[push.step].counts.x;
-  ivec3 p = cellOf(min(cell, CELLS - 1u), SIZE);
-  uint own = cell < CELLS ? flags[cell] : 0u;
+  uint own = inBox ? flags[cell] : 0u;
   // Cells just uncovered restart from equilibrium: their links carry no momentum this step.
-  bool linked = cell < CELLS && !isSolid(own) && previousObstacleOf(own) == 0u;
+  bool linked = inBox && !isSolid(own) && previousObstacleOf(own) == 0u;
 
   uint neighbour[Q];  // the obstacle (plus one) each population streams from, 0 for fluid
-  vec4 state = cell < CELLS ? macro[cell] : vec4(0.0);  // the previous step's velocity and density
+  vec4 state = inBox ? macro[cell] : vec4(0.0);  // the previous step's velocity and density
   float rho = linked ? state.w : 0.0;
   // Covered this step: the fluid's momentum goes to the obstacle. Uncovered: the cell restarts at
   // ρ₀ = 1 and the velocity it carried as a wall (lbm_step), momentum the obstacle gives away.

@@ -18,8 +18,9 @@ using gpu::BindingType;
 struct StepPush {
   uint32_t slot;
 };
-struct ForcesPush {
-  uint32_t step, slot;
+struct ForcesPush {  // forces.comp
+  uint32_t step, slot, unused[2];
+  glm::ivec4 boxMin, boxSize;
 };
 
 std::vector<BindingType> storageBuffers(int count) {
@@ -119,12 +120,16 @@ void LbmSolver::recordStep(gpu::Sequence& sequence, const gpu::Buffer& params, c
 }
 
 void LbmSolver::recordForces(gpu::Sequence& sequence, const gpu::Buffer& params, const gpu::Buffer& flags,
-                             uint32_t slot, int parity, const gpu::Buffer& forces) const {
+                             uint32_t slot, int parity, const gpu::Buffer& forces,
+                             const std::pair<glm::ivec3, glm::ivec3>& box) const {
   const auto& f = lattices_[parity];
+  const glm::ivec3 size = box.second - box.first;
+  const uint64_t cells = uint64_t(size.x) * uint64_t(size.y) * uint64_t(size.z);
   sequence.dispatch(*forces_,
                     {gpu::reads(params), gpu::reads(flags), gpu::reads(f[0]), gpu::reads(f[1]),
                      gpu::reads(f[2]), gpu::reads(f[3]), gpu::reads(macro_), gpu::readsWrites(forces)},
-                    ForcesPush{slot, slot}, groups_);
+                    ForcesPush{slot, slot, {}, glm::ivec4(box.first, 0), glm::ivec4(size, 0)},
+                    uint32_t((cells + 63) / 64));
 }
 
 }  // namespace sixway::sim

@@ -4,6 +4,7 @@
 #include <array>
 #include <glm/glm.hpp>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "gpu/buffer.h"
@@ -43,9 +44,11 @@ class LbmSolver {
   void recordStep(gpu::Sequence& sequence, const gpu::Buffer& params, const gpu::Buffer& flags,
                   const gpu::Buffer& smoke, uint32_t slot, int parity) const;
   // Momentum-exchange force on each obstacle before the step that streams from lattice `parity`,
-  // added into forces[slot · kMaxObstacles + obstacle] (vec4; zero it before).
+  // added into forces[slot · kMaxObstacles + obstacle] (vec4; zero it before). Only the cells of `box`
+  // ([min, max), ObstacleSet::sweptBox) are visited: no link to an obstacle lies outside it.
   void recordForces(gpu::Sequence& sequence, const gpu::Buffer& params, const gpu::Buffer& flags,
-                    uint32_t slot, int parity, const gpu::Buffer& forces) const;
+                    uint32_t slot, int parity, const gpu::Buffer& forces,
+                    const std::pair<glm::ivec3, glm::ivec3>& box) const;
 
   const gpu::Buffer& macro() const { return macro_; }
   // Read-only view of lattice `parity`'s populations, buffer b of 4 (lbm_lattice.glsl), for tests.

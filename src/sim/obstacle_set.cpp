@@ -190,6 +190,27 @@ glm::vec3 ObstacleSet::centreAt(size_t obstacle, uint64_t step) const {
   return units_.toLattice(evaluateMotion(*p.motion, double(step) * units_.stepSeconds).position, origin_);
 }
 
+std::pair<glm::ivec3, glm::ivec3> ObstacleSet::sweptBox() const {
+  if (obstacles_.empty()) return {glm::ivec3(0), glm::ivec3(0)};
+  // A motion interpolates its keyframes linearly, so it never leaves the box of their positions.
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+  for (const Placed& p : obstacles_) {
+    std::vector<glm::vec3> centres{glm::vec3(p.shape.centre)};
+    if (p.motion)
+      for (const io::Keyframe& k : p.motion->keyframes)
+        centres.push_back(units_.toLattice(k.position, origin_));
+    for (const glm::vec3& c : centres) {
+      lo = glm::min(lo, c - p.halfExtent);
+      hi = glm::max(hi, c + p.halfExtent);
+    }
+  }
+  glm::ivec3 first = glm::ivec3(glm::floor(lo)) - 2, last = glm::ivec3(glm::ceil(hi)) + 2;
+  // A box that reaches a face spans its whole axis: through a periodic face the obstacle's links wrap around.
+  for (int a = 0; a < 3; ++a)
+    if (first[a] <= 0 || last[a] >= size_[a]) first[a] = 0, last[a] = size_[a];
+  return {first, last};
+}
+
 void ObstacleSet::fill(StepParams& params, uint64_t step) const {
   const double seconds = double(step) * units_.stepSeconds;
   // The cells any obstacle covers now or covered a step ago, grown by two cells for the neighbours.

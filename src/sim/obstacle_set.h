@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "gpu/buffer.h"
@@ -26,6 +27,10 @@ class ObstacleSet {
 
   // Obstacles and inlets as they are at lattice step `step` (time = step · stepSeconds).
   void fill(StepParams& params, uint64_t step) const;
+  // The lattice cells [min, max) that any obstacle covers at any time of its motion, or neighbours, grown
+  // like StepParams' solid box: outside it no bounce-back link exists, ever. Empty (min = max) without
+  // obstacles.
+  std::pair<glm::ivec3, glm::ivec3> sweptBox() const;
   // Marks each lattice cell with the obstacle and the inlet covering it at step params[slot].
   void recordFlags(gpu::Sequence& sequence, const gpu::Buffer& params, uint32_t slot) const;
 

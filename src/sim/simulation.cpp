@@ -58,7 +58,7 @@ gpu::Sequence& Simulation::sequenceFor(uint32_t steps, int parity) {
     sequence.endStage();
     if (obstacleCount > 0) {
       sequence.beginStage("forces");
-      lbm_->recordForces(sequence, params_, obstacles_->flags(), s, from, forces_);
+      lbm_->recordForces(sequence, params_, obstacles_->flags(), s, from, forces_, obstacles_->sweptBox());
       sequence.endStage();
     }
     sequence.beginStage("lbm");

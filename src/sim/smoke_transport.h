@@ -40,7 +40,8 @@ class SmokeTransport {
   void upload(const std::vector<glm::vec2>& values);
   std::vector<glm::vec2> download() const { return smoke_.download<glm::vec2>(); }
   // Density and temperature into two float buffers of cells() values each (the renderers' layout).
-  void recordExport(gpu::Sequence& sequence, const gpu::Buffer& density, const gpu::Buffer& temperature) const;
+  void recordExport(gpu::Sequence& sequence, const gpu::Buffer& density,
+                    const gpu::Buffer& temperature) const;
   glm::ivec3 size() const { return settings_.lattice * settings_.upres; }
   uint64_t cells() const { return cells_; }
 
