@@ -18,6 +18,7 @@ layout(constant_id = 7) const uint FACE_YP = 0u;
 layout(constant_id = 8) const uint FACE_ZM = 0u;
 layout(constant_id = 9) const uint FACE_ZP = 0u;
 
+#include "linear_index.glsl"
 #include "sim_grid.glsl"
 #include "sim_smoke.glsl"
 
@@ -107,7 +108,7 @@ mat2 faceFluxes(ivec3 s, int a) {
 }
 
 void main() {
-  uint index = gl_GlobalInvocationID.x;
+  uint index = linearInvocationIndex();
   if (index >= SMOKE_CELLS) return;
   ivec3 s = cellOf(index, SMOKE);
   vec2 q = smoke[index];

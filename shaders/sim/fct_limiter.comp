@@ -14,6 +14,7 @@ layout(constant_id = 4) const bool PERIODIC_X = false;
 layout(constant_id = 5) const bool PERIODIC_Y = false;
 layout(constant_id = 6) const bool PERIODIC_Z = false;
 
+#include "linear_index.glsl"
 #include "sim_grid.glsl"
 #include "sim_smoke.glsl"
 #include "sim_fct.glsl"
@@ -25,7 +26,7 @@ layout(std430, binding = 3) readonly buffer Antidiffusive { vec2 antidiffusive[]
 layout(std430, binding = 4) writeonly buffer Ratios { vec4 ratios[]; };  // R+ (xy), R− (zw)
 
 void main() {
-  uint index = gl_GlobalInvocationID.x;
+  uint index = linearInvocationIndex();
   if (index >= SMOKE_CELLS) return;
   ivec3 s = cellOf(index, SMOKE);
   vec2 qtd = lowOrder[index];

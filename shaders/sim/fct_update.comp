@@ -13,6 +13,7 @@ layout(constant_id = 4) const bool PERIODIC_X = false;
 layout(constant_id = 5) const bool PERIODIC_Y = false;
 layout(constant_id = 6) const bool PERIODIC_Z = false;
 
+#include "linear_index.glsl"
 #include "sim_grid.glsl"
 #include "sim_smoke.glsl"
 #include "sim_fct.glsl"
@@ -29,7 +30,7 @@ vec2 limited(vec2 flux, vec4 left, vec4 right) {
 }
 
 void main() {
-  uint index = gl_GlobalInvocationID.x;
+  uint index = linearInvocationIndex();
   if (index >= SMOKE_CELLS) return;
   ivec3 s = cellOf(index, SMOKE);
   vec4 r = ratios[index];

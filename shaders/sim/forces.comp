@@ -26,6 +26,7 @@ layout(constant_id = 8) const uint FACE_ZP = 0u;
 const uint CELLS = uint(NX * NY * NZ);
 const ivec3 SIZE = ivec3(NX, NY, NZ);
 
+#include "linear_index.glsl"
 #include "lbm_d3q19.glsl"
 #include "lbm_lattice.glsl"
 #include "sim_grid.glsl"
@@ -48,8 +49,9 @@ layout(push_constant) uniform Push {
 
 void main() {
   uint boxCells = uint(push.boxSize.x * push.boxSize.y * push.boxSize.z);
-  bool inBox = gl_GlobalInvocationID.x < boxCells;
-  ivec3 p = push.boxMin.xyz + cellOf(min(gl_GlobalInvocationID.x, boxCells - 1u), push.boxSize.xyz);
+  uint local = linearInvocationIndex();
+  bool inBox = local < boxCells;
+  ivec3 p = push.boxMin.xyz + cellOf(min(local, boxCells - 1u), push.boxSize.xyz);
   uint cell = cellIndex(p, SIZE);
   uint count = params[push.step].counts.x;
   uint own = inBox ? flags[cell] : 0u;

@@ -6,6 +6,7 @@
 layout(local_size_x = 64) in;
 layout(constant_id = 0) const uint CELLS = 1u;
 
+#include "linear_index.glsl"
 #include "lbm_d3q19.glsl"
 #include "lbm_lattice.glsl"
 
@@ -16,7 +17,7 @@ layout(std430, binding = 3) writeonly buffer G2 { float g2[]; };
 layout(std430, binding = 4) writeonly buffer G3 { float g3[]; };
 
 void main() {
-  uint cell = gl_GlobalInvocationID.x;
+  uint cell = linearInvocationIndex();
   if (cell >= CELLS) return;
   vec4 m = macro[cell];
   [[unroll]] for (int i = 0; i < Q; ++i) {

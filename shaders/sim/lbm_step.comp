@@ -33,6 +33,7 @@ layout(constant_id = 23) const bool PARABOLIC_INFLOW = false;
 
 const uint CELLS = uint(NX * NY * NZ);
 
+#include "linear_index.glsl"
 #include "lbm_d3q19.glsl"
 #include "lbm_lattice.glsl"
 #include "sim_grid.glsl"
@@ -121,7 +122,7 @@ vec3 bodyForce(ivec3 p, float rho) {
 }
 
 void main() {
-  uint cell = gl_GlobalInvocationID.x;
+  uint cell = linearInvocationIndex();
   if (cell >= CELLS) return;
   ivec3 p = cellOf(cell, SIZE);
   uint flag = flags[cell];

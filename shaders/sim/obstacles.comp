@@ -8,6 +8,7 @@ layout(constant_id = 0) const int NX = 1;
 layout(constant_id = 1) const int NY = 1;
 layout(constant_id = 2) const int NZ = 1;
 
+#include "linear_index.glsl"
 #include "sim_grid.glsl"
 
 layout(std430, binding = 0) readonly buffer Params { StepParams params[]; };
@@ -21,7 +22,7 @@ bool meshOccupied(uint word) { return bitCount(occupancy[word] & 7u) >= 2; }
 
 void main() {
   const ivec3 size = ivec3(NX, NY, NZ);
-  uint index = gl_GlobalInvocationID.x;
+  uint index = linearInvocationIndex();
   if (index >= uint(NX * NY * NZ)) return;
   vec3 p = vec3(cellOf(index, size)) + 0.5;
   uint previous = flags[index];

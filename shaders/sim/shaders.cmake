@@ -10,4 +10,5 @@ list(APPEND SIXWAY_SHADERS
   sim/fct_limiter.comp
   sim/fct_update.comp
   sim/smoke_export.comp
+  sim/stream_bound.comp
 )

@@ -9,6 +9,7 @@ layout(constant_id = 1) const int NY = 1;
 layout(constant_id = 2) const int NZ = 1;
 layout(constant_id = 3) const int SMOKE_UPRES = 1;
 
+#include "linear_index.glsl"
 #include "sim_grid.glsl"
 #include "sim_smoke.glsl"
 
@@ -17,7 +18,7 @@ layout(std430, binding = 1) writeonly buffer Density { float density[]; };
 layout(std430, binding = 2) writeonly buffer Temperature { float temperature[]; };
 
 void main() {
-  uint index = gl_GlobalInvocationID.x;
+  uint index = linearInvocationIndex();
   if (index >= SMOKE_CELLS) return;
   vec2 q = smoke[index];
   density[index] = q.x;

@@ -10,6 +10,7 @@ layout(constant_id = 2) const int NZ = 1;
 layout(constant_id = 3) const int SMOKE_UPRES = 1;
 layout(constant_id = 4) const float DECAY = 1.0;  // exp(−dissipation · dt) per lattice step
 
+#include "linear_index.glsl"
 #include "sim_grid.glsl"
 #include "sim_smoke.glsl"
 
@@ -19,7 +20,7 @@ layout(std430, binding = 2) buffer Smoke { vec2 smoke[]; };
 layout(push_constant) uniform Push { uint step; } push;
 
 void main() {
-  uint index = gl_GlobalInvocationID.x;
+  uint index = linearInvocationIndex();
   if (index >= SMOKE_CELLS) return;
   uint flag = flags[cellIndex(latticeCellOf(cellOf(index, SMOKE)), LATTICE)];
   uint inlet = inletOf(flag);

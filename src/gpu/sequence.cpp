@@ -202,6 +202,19 @@ void Sequence::dispatch(const Pipeline& pipeline, const std::vector<Binding>& bi
   if (groupsX && groupsY && groupsZ) vkCmdDispatch(commands_, groupsX, groupsY, groupsZ);
 }
 
+void Sequence::dispatchLinear(const Pipeline& pipeline, const std::vector<Binding>& bindings,
+                              std::span<const std::byte> pushConstants, uint64_t invocations,
+                              uint32_t groupSize) {
+  const uint64_t groups = (invocations + groupSize - 1) / groupSize;
+  const uint64_t maxX = context_->limits().maxComputeWorkGroupCount[0];
+  const uint64_t x = std::min(groups, maxX), y = (groups + x - 1) / std::max<uint64_t>(x, 1);
+  if (y > context_->limits().maxComputeWorkGroupCount[1])
+    throw GpuError(pipeline.name() + ": " + std::to_string(invocations) +
+                   " invocations exceed the device's dispatch limit; reduce the grid");
+  dispatch(pipeline, bindings, pushConstants, uint32_t(std::max<uint64_t>(x, 1)),
+           uint32_t(std::max<uint64_t>(y, 1)));
+}
+
 void Sequence::render(const RenderTargets& targets, std::span<const Draw> draws) {
   requireRecording("render");
   const Image* first = targets.colors.empty() ? targets.depth : targets.colors.front();

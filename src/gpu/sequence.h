@@ -118,6 +118,17 @@ class Sequence {
                 uint32_t groupsX, uint32_t groupsY = 1, uint32_t groupsZ = 1) {
     dispatch(pipeline, bindings, std::as_bytes(std::span(&push, 1)), groupsX, groupsY, groupsZ);
   }
+  // A 1D kernel of `invocations` invocations, `groupSize` per workgroup: the workgroups go along x up to the
+  // device's limit and wrap into y beyond it (Vulkan guarantees only 65535 along x: a 128×256×128 lattice at
+  // 64 per group needs 65536). The shader indexes with linearInvocationIndex()
+  // (shaders/common/linear_index.glsl) and skips indices ≥ invocations.
+  void dispatchLinear(const Pipeline& pipeline, const std::vector<Binding>& bindings,
+                      std::span<const std::byte> pushConstants, uint64_t invocations, uint32_t groupSize);
+  template <typename Push>
+  void dispatchLinear(const Pipeline& pipeline, const std::vector<Binding>& bindings, const Push& push,
+                      uint64_t invocations, uint32_t groupSize) {
+    dispatchLinear(pipeline, bindings, std::as_bytes(std::span(&push, 1)), invocations, groupSize);
+  }
   // One dynamic-rendering pass: the barriers for all draws are placed before it begins.
   void render(const RenderTargets& targets, std::span<const Draw> draws);
   void fill(const Buffer& buffer, uint32_t word);

@@ -49,8 +49,7 @@ LbmSolver::LbmSolver(const gpu::Context& context, const gpu::PipelineCache& cach
                      const LbmSettings& settings)
     : context_(&context),
       settings_(settings),
-      cells_(uint64_t(settings.size.x) * settings.size.y * settings.size.z),
-      groups_(uint32_t((cells_ + kGroupSize - 1) / kGroupSize)) {
+      cells_(uint64_t(settings.size.x) * settings.size.y * settings.size.z) {
   if (cells_ > UINT32_MAX / kPopulationsPerBuffer)
     throw io::InputError("grid.size", "the lattice has too many cells for 32-bit population addressing");
   const std::string shape = std::to_string(settings.size.x) + "x" + std::to_string(settings.size.y) + "x" +
@@ -101,10 +100,10 @@ void LbmSolver::initialize(const std::vector<glm::vec4>& macro, int parity) {
   macro_.upload(macro);
   gpu::Sequence sequence(*context_);
   const auto& f = lattices_[parity];
-  sequence.dispatch(
+  sequence.dispatchLinear(
       *init_,
       {gpu::reads(macro_), gpu::writes(f[0]), gpu::writes(f[1]), gpu::writes(f[2]), gpu::writes(f[3])},
-      std::span<const std::byte>(), groups_);
+      std::span<const std::byte>(), cells_, kGroupSize);
   sequence.submit();
 }
 
@@ -112,11 +111,12 @@ void LbmSolver::recordStep(gpu::Sequence& sequence, const gpu::Buffer& params, c
                            const gpu::Buffer& smoke, uint32_t slot, int parity) const {
   const auto& from = lattices_[parity];
   const auto& to = lattices_[1 - parity];
-  sequence.dispatch(*step_,
-                    {gpu::reads(params), gpu::reads(flags), gpu::reads(from[0]), gpu::reads(from[1]),
-                     gpu::reads(from[2]), gpu::reads(from[3]), gpu::writes(to[0]), gpu::writes(to[1]),
-                     gpu::writes(to[2]), gpu::writes(to[3]), gpu::readsWrites(macro_), gpu::reads(smoke)},
-                    StepPush{slot}, groups_);
+  sequence.dispatchLinear(
+      *step_,
+      {gpu::reads(params), gpu::reads(flags), gpu::reads(from[0]), gpu::reads(from[1]), gpu::reads(from[2]),
+       gpu::reads(from[3]), gpu::writes(to[0]), gpu::writes(to[1]), gpu::writes(to[2]), gpu::writes(to[3]),
+       gpu::readsWrites(macro_), gpu::reads(smoke)},
+      StepPush{slot}, cells_, kGroupSize);
 }
 
 void LbmSolver::recordForces(gpu::Sequence& sequence, const gpu::Buffer& params, const gpu::Buffer& flags,
@@ -125,11 +125,11 @@ void LbmSolver::recordForces(gpu::Sequence& sequence, const gpu::Buffer& params,
   const auto& f = lattices_[parity];
   const glm::ivec3 size = box.second - box.first;
   const uint64_t cells = uint64_t(size.x) * uint64_t(size.y) * uint64_t(size.z);
-  sequence.dispatch(*forces_,
-                    {gpu::reads(params), gpu::reads(flags), gpu::reads(f[0]), gpu::reads(f[1]),
-                     gpu::reads(f[2]), gpu::reads(f[3]), gpu::reads(macro_), gpu::readsWrites(forces)},
-                    ForcesPush{slot, slot, {}, glm::ivec4(box.first, 0), glm::ivec4(size, 0)},
-                    uint32_t((cells + 63) / 64));
+  sequence.dispatchLinear(*forces_,
+                          {gpu::reads(params), gpu::reads(flags), gpu::reads(f[0]), gpu::reads(f[1]),
+                           gpu::reads(f[2]), gpu::reads(f[3]), gpu::reads(macro_), gpu::readsWrites(forces)},
+                          ForcesPush{slot, slot, {}, glm::ivec4(box.first, 0), glm::ivec4(size, 0)}, cells,
+                          kGroupSize);
 }
 
 }  // namespace sixway::sim

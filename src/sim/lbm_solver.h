@@ -62,7 +62,6 @@ class LbmSolver {
   const gpu::Context* context_;
   LbmSettings settings_;
   uint64_t cells_;
-  uint32_t groups_;
   std::array<std::array<gpu::Buffer, 4>, 2> lattices_;
   gpu::Buffer macro_;
   std::unique_ptr<gpu::Pipeline> init_, step_, forces_;

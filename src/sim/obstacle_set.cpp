@@ -47,7 +47,7 @@ ObstacleSet::ObstacleSet(const gpu::Context& context, const gpu::PipelineCache& 
                          const LatticeUnits& units)
     : units_(units), origin_(scene.grid.origin), size_(scene.grid.size) {
   const uint64_t cells = uint64_t(scene.grid.size.x) * scene.grid.size.y * scene.grid.size.z;
-  groups_ = uint32_t((cells + 63) / 64);
+  cells_ = cells;
   flags_ = gpu::Buffer::storage(context, cells * sizeof(uint32_t), "cell flags");
   flags_.upload(std::vector<uint32_t>(cells, 0u));
   gpu::ComputePipelineDesc desc;
@@ -180,8 +180,9 @@ void ObstacleSet::voxelizeMeshes(const gpu::Context& context, const gpu::Pipelin
 }
 
 void ObstacleSet::recordFlags(gpu::Sequence& sequence, const gpu::Buffer& params, uint32_t slot) const {
-  sequence.dispatch(*flagsPipeline_, {gpu::reads(params), gpu::reads(occupancy_), gpu::readsWrites(flags_)},
-                    slot, groups_);
+  sequence.dispatchLinear(*flagsPipeline_,
+                          {gpu::reads(params), gpu::reads(occupancy_), gpu::readsWrites(flags_)}, slot,
+                          cells_, 64);
 }
 
 glm::vec3 ObstacleSet::centreAt(size_t obstacle, uint64_t step) const {

@@ -55,7 +55,7 @@ class ObstacleSet {
   LatticeUnits units_;
   glm::vec3 origin_;
   glm::ivec3 size_;
-  uint32_t groups_;
+  uint64_t cells_;  // of the lattice
   gpu::Buffer flags_;
   std::unique_ptr<gpu::Pipeline> flagsPipeline_;
   std::vector<Placed> obstacles_;

@@ -34,7 +34,6 @@ SmokeTransport::SmokeTransport(const gpu::Context& context, const gpu::PipelineC
     : settings_(settings) {
   const glm::ivec3 s = size();
   cells_ = uint64_t(s.x) * s.y * s.z;
-  groups_ = uint32_t((cells_ + kGroupSize - 1) / kGroupSize);
   const std::string shape = std::to_string(s.x) + "x" + std::to_string(s.y) + "x" + std::to_string(s.z);
   smoke_ = gpu::Buffer::storage(context, cells_ * 8, "the " + shape + " smoke grid");
   lowOrder_ = gpu::Buffer::storage(context, cells_ * 8, "the " + shape + " smoke grid (low-order update)");
@@ -70,33 +69,33 @@ void SmokeTransport::upload(const std::vector<glm::vec2>& values) {
 
 void SmokeTransport::recordSources(gpu::Sequence& sequence, const gpu::Buffer& params,
                                    const gpu::Buffer& flags, uint32_t slot) const {
-  sequence.dispatch(*sources_, {gpu::reads(params), gpu::reads(flags), gpu::readsWrites(smoke_)},
-                    SourcesPush{slot}, groups_);
+  sequence.dispatchLinear(*sources_, {gpu::reads(params), gpu::reads(flags), gpu::readsWrites(smoke_)},
+                          SourcesPush{slot}, cells_, kGroupSize);
 }
 
 void SmokeTransport::recordTransport(gpu::Sequence& sequence, const gpu::Buffer& flags,
                                      const gpu::Buffer& macro) const {
   const std::span<const std::byte> none;
   for (int substep = 0; substep < settings_.upres; ++substep) {
-    sequence.dispatch(*fluxes_,
-                      {gpu::reads(flags), gpu::reads(macro), gpu::reads(smoke_), gpu::writes(lowOrder_),
-                       gpu::writes(antidiffusive_)},
-                      none, groups_);
-    sequence.dispatch(*limiter_,
-                      {gpu::reads(flags), gpu::reads(smoke_), gpu::reads(lowOrder_),
-                       gpu::reads(antidiffusive_), gpu::writes(ratios_)},
-                      none, groups_);
-    sequence.dispatch(
+    sequence.dispatchLinear(*fluxes_,
+                            {gpu::reads(flags), gpu::reads(macro), gpu::reads(smoke_), gpu::writes(lowOrder_),
+                             gpu::writes(antidiffusive_)},
+                            none, cells_, kGroupSize);
+    sequence.dispatchLinear(*limiter_,
+                            {gpu::reads(flags), gpu::reads(smoke_), gpu::reads(lowOrder_),
+                             gpu::reads(antidiffusive_), gpu::writes(ratios_)},
+                            none, cells_, kGroupSize);
+    sequence.dispatchLinear(
         *update_,
         {gpu::reads(lowOrder_), gpu::reads(antidiffusive_), gpu::reads(ratios_), gpu::writes(smoke_)}, none,
-        groups_);
+        cells_, kGroupSize);
   }
 }
 
 void SmokeTransport::recordExport(gpu::Sequence& sequence, const gpu::Buffer& density,
                                   const gpu::Buffer& temperature) const {
-  sequence.dispatch(*export_, {gpu::reads(smoke_), gpu::writes(density), gpu::writes(temperature)},
-                    std::span<const std::byte>(), groups_);
+  sequence.dispatchLinear(*export_, {gpu::reads(smoke_), gpu::writes(density), gpu::writes(temperature)},
+                          std::span<const std::byte>(), cells_, kGroupSize);
 }
 
 }  // namespace sixway::sim

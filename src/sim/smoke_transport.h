@@ -48,7 +48,6 @@ class SmokeTransport {
  private:
   SmokeSettings settings_;
   uint64_t cells_;
-  uint32_t groups_;
   gpu::Buffer smoke_, lowOrder_, antidiffusive_, ratios_;
   std::unique_ptr<gpu::Pipeline> sources_, fluxes_, limiter_, update_, export_;
 };

@@ -1,0 +1,46 @@
+#version 460
+// The memory ceiling of a lattice update on this device (tests/sim/bench_stream_bound.cpp, not used by the
+// simulation): the pull-streaming of lbm_step.comp with the same storage layout and the same 19 gathers and
+// 19 stores per cell, and nothing else (no collision, no flags, periodic wrap). Its bandwidth is the most a
+// compute kernel with the LBM's access pattern gets from the device, next to a plain buffer copy. With
+// PULL = false every population stays in its cell: the same traffic without the neighbour gathers.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
+
+layout(local_size_x = 64) in;
+layout(constant_id = 0) const int NX = 1;
+layout(constant_id = 1) const int NY = 1;
+layout(constant_id = 2) const int NZ = 1;
+layout(constant_id = 3) const bool PULL = true;
+
+const uint CELLS = uint(NX * NY * NZ);
+const ivec3 SIZE = ivec3(NX, NY, NZ);
+
+#include "linear_index.glsl"
+#include "lbm_d3q19.glsl"
+#include "lbm_lattice.glsl"
+#include "sim_grid.glsl"
+
+layout(std430, binding = 0) readonly buffer F0 { float f0[]; };
+layout(std430, binding = 1) readonly buffer F1 { float f1[]; };
+layout(std430, binding = 2) readonly buffer F2 { float f2[]; };
+layout(std430, binding = 3) readonly buffer F3 { float f3[]; };
+layout(std430, binding = 4) writeonly buffer G0 { float g0[]; };
+layout(std430, binding = 5) writeonly buffer G1 { float g1[]; };
+layout(std430, binding = 6) writeonly buffer G2 { float g2[]; };
+layout(std430, binding = 7) writeonly buffer G3 { float g3[]; };
+
+void main() {
+  uint cell = linearInvocationIndex();
+  if (cell >= CELLS) return;
+  ivec3 p = cellOf(cell, SIZE);
+  [[unroll]] for (int i = 0; i < Q; ++i) {
+    uint source = PULL ? cellIndex((p - C[i] + SIZE) % SIZE, SIZE) : cell;
+    float value = SIXWAY_LOAD(i, source, f0, f1, f2, f3);
+    uint word = populationWord(i, cell);
+    if (i < 5) g0[word] = value;
+    else if (i < 10) g1[word] = value;
+    else if (i < 15) g2[word] = value;
+    else g3[word] = value;
+  }
+}
