@@ -54,11 +54,16 @@ const Choices<GuideLight> kGuideLights = {{"front", GuideLight::Front},   {"top"
                                           {"bottom", GuideLight::Bottom}, {"left", GuideLight::Left},
                                           {"right", GuideLight::Right},   {"back", GuideLight::Back}};
 
-// Steps per frame that bring the fastest inflow down to fluid.max_lattice_velocity:
-// lattice speed = speed · (frameDt / steps) / cellSize.
+// The lattice speed the buoyant plume's speed bound may reach: under the watchdog's stable limit (0.35,
+// sim/watchdog.h) with a margin; the bound is free fall, which drag and mixing keep the real plume below.
+constexpr double kBuoyantLatticeVelocity = 0.25;
+
+// Steps per frame that bring the fastest inflow down to fluid.max_lattice_velocity and the buoyant plume's
+// speed bound down to kBuoyantLatticeVelocity: lattice speed = speed · (frameDt / steps) / cellSize.
 double stepsForLatticeVelocity(const Scene& s) {
-  return std::ceil(double(s.time.frameDt) * referenceSpeed(s) /
-                   (s.fluid.maxLatticeVelocity * s.grid.cellSize));
+  const double step = double(s.time.frameDt) / s.grid.cellSize;
+  return std::max(std::ceil(step * referenceSpeed(s) / s.fluid.maxLatticeVelocity),
+                  std::ceil(step * buoyantSpeedBound(s) / kBuoyantLatticeVelocity));
 }
 
 glm::vec3 direction(JsonReader& r, std::string_view key, glm::vec3 fallback) {
@@ -406,8 +411,9 @@ Scene parseScene(const nlohmann::json& j, std::string_view sourceName, const fs:
   if (s.fluid.reynolds && referenceSpeed(s) <= 0)
     r.fail("fluid.reynolds", "needs a reference speed, but no inlet has a velocity and no face is inflow");
   if (const double steps = stepsForLatticeVelocity(s); steps > kMaxStepsPerFrame)
-    r.fail("time.frame_dt", "the fastest inflow (" + show(referenceSpeed(s)) + " m/s) would need " +
-                                show(steps) +
+    r.fail("time.frame_dt", "the fastest inflow (" + show(referenceSpeed(s)) +
+                                " m/s) or buoyant plume (up to " + show(buoyantSpeedBound(s)) +
+                                " m/s) would need " + show(steps) +
                                 " LBM steps per frame; reduce time.frame_dt or the inflow speed, or raise "
                                 "grid.cell_size or fluid.max_lattice_velocity");
   return s;
@@ -431,6 +437,16 @@ float referenceSpeed(const Scene& scene) {
 float kinematicViscosity(const Scene& scene) {
   const Fluid& f = scene.fluid;
   return f.viscosity ? *f.viscosity : referenceSpeed(scene) * f.referenceLength / *f.reynolds;
+}
+
+float buoyantSpeedBound(const Scene& scene) {
+  float acceleration = 0;
+  for (const Inlet& inlet : scene.inlets)
+    acceleration = std::max(acceleration, std::abs(scene.fluid.buoyancy.temperature * inlet.temperature +
+                                                   scene.fluid.buoyancy.density * inlet.density));
+  const glm::vec3 up = glm::abs(glm::normalize(scene.fluid.gravity));
+  const float height = glm::dot(up, glm::vec3(scene.grid.size) * scene.grid.cellSize);
+  return std::sqrt(2.0f * acceleration * height);
 }
 
 int lbmStepsPerFrame(const Scene& scene) {

@@ -238,8 +238,12 @@ Scene loadScene(const std::filesystem::path& file);
 float referenceSpeed(const Scene& scene);
 // m²/s: the given viscosity, or referenceSpeed · referenceLength / reynolds.
 float kinematicViscosity(const Scene& scene);
+// The fastest a buoyant plume can get, m/s: free fall through the domain's height along gravity under the
+// strongest buoyant acceleration an inlet injects, sqrt(2 · a · H) (0 without buoyancy).
+float buoyantSpeedBound(const Scene& scene);
 // LBM steps per frame: time.stepsPerFrame, or more if needed to keep the fastest inflow at or below
-// fluid.maxLatticeVelocity (lattice speed = speed · dt / cellSize with dt = frameDt / steps).
+// fluid.maxLatticeVelocity and the buoyant speed bound at or below 0.25 cells per step (lattice speed =
+// speed · dt / cellSize with dt = frameDt / steps).
 int lbmStepsPerFrame(const Scene& scene);
 // The rotation of a mesh obstacle, R = Rz·Ry·Rx of rotate_deg (x applied first): world = translate +
 // R·(scale·p). The one definition the simulation's voxelizer and the renderers' meshes share.

@@ -111,7 +111,10 @@ TEST(SceneTest, ShippedPlumeLoads) {
   EXPECT_TRUE(s.ambient && std::holds_alternative<AmbientColor>(*s.ambient));
   EXPECT_EQ(s.render.width, 512);
   EXPECT_FLOAT_EQ(kinematicViscosity(s), 1.5e-5f);
-  EXPECT_EQ(lbmStepsPerFrame(s), 14);  // 1 m/s · (1/30 s / 14) / 2.5 cm = 0.095 ≤ 0.1
+  // The inflow alone needs 14 (1 m/s · (1/30 s / 14) / 2.5 cm = 0.095 ≤ 0.1); the buoyant plume's bound
+  // sqrt(2 · 2 m/s² · 3.2 m) = 3.58 m/s needs ceil(3.58 · (1/30) / (0.25 · 0.025)) = 20.
+  EXPECT_NEAR(buoyantSpeedBound(s), 3.5777f, 1e-3f);
+  EXPECT_EQ(lbmStepsPerFrame(s), 20);
 }
 
 TEST(SceneTest, MinimalSceneGetsDefaults) {
