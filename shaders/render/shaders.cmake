@@ -11,4 +11,5 @@ list(APPEND SIXWAY_SHADERS
   render/billboard.vert
   render/sixway_shade.frag
   render/guide_march.comp
+  render/motion_field.comp
 )

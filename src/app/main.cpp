@@ -5,8 +5,9 @@
 
 #include "app/bake_command.h"
 #include "app/bench_command.h"
+#include "app/dataset_command.h"
+#include "app/eval_command.h"
 #include "app/info_command.h"
-#include "app/planned_commands.h"
 #include "app/render_command.h"
 #include "app/sim_command.h"
 
@@ -18,7 +19,8 @@ int main(int argc, char** argv) {
   sixway::app::addBakeCommand(app);
   sixway::app::addBenchCommand(app);
   sixway::app::addRenderCommand(app);
-  sixway::app::addPlannedCommands(app);
+  sixway::app::addDatasetCommand(app);
+  sixway::app::addEvalCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -49,7 +49,8 @@ void MotionField::record(gpu::Sequence& sequence, const gpu::Image& guide, const
   velocityGrid_ = velocityGrid;
   const uint32_t groups = (size_ + kGroup - 1) / kGroup;
   sequence.beginStage("motion");
-  sequence.dispatch(*pass_, {gpu::reads(params_), gpu::reads(guide), gpu::reads(velocity), gpu::writes(motion_)},
+  sequence.dispatch(*pass_,
+                    {gpu::reads(params_), gpu::reads(guide), gpu::reads(velocity), gpu::writes(motion_)},
                     std::span<const std::byte>(), groups, groups);
   sequence.endStage();
 }
@@ -63,7 +64,7 @@ void MotionField::update(const Camera& camera, const ImagePlane& billboard, cons
 }
 
 io::Image MotionField::download() const {
-  io::Image out(int(size_), int(size_), {"motion_x", "motion_y"});
+  io::Image out(static_cast<int>(size_), static_cast<int>(size_), {"motion_x", "motion_y"});
   out.pixels = motion_.download<float>();
   return out;
 }

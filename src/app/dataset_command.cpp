@@ -1,0 +1,174 @@
+#include "app/dataset_command.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/dataset_config.h"
+#include "app/dataset_progress.h"
+#include "app/dataset_sequence.h"
+#include "app/options.h"
+#include "app/report.h"
+#include "gpu/context.h"
+#include "gpu/pipeline.h"
+#include "io/error.h"
+#include "io/file_access.h"
+#include "io/json_reader.h"
+#include "render/obstacle_meshes.h"
+#include "sim/watchdog.h"
+
+namespace sixway::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct DatasetOptions {
+  CommonOptions common;
+  fs::path config, out;
+  std::string shard;
+  bool force = false;
+};
+
+// DIR/dataset.json: what every worker of the dataset shares (the same file whichever writes it).
+nlohmann::json datasetIndex(const DatasetConfig& config) {
+  const SequencePlan first = planSequence(config, 0);
+  nlohmann::json cameras = nlohmann::json::array(), shards = nlohmann::json::array();
+  for (const DatasetCamera& c : datasetCameras(config, render::domainBox(first.scene.grid)))
+    cameras.push_back(
+        {{"camera", c.index}, {"azimuth_deg", c.azimuthDeg}, {"elevation_deg", c.elevationDeg}});
+  for (int s = 0; s < config.sequences; ++s) shards.push_back(shardFileName(s));
+  return {{"version", 1},
+          {"config", config.json},
+          {"sequences", config.sequences},
+          {"lightmap_size", config.lightmapSize},
+          {"cameras", cameras},
+          {"heldout", {{"sequences", config.heldoutSequences}, {"cameras", config.heldoutCameras}}},
+          {"shards", shards}};
+}
+
+// The config recorded in an existing dataset.json.
+nlohmann::json indexConfig(const fs::path& file) {
+  const std::vector<uint8_t> bytes = io::readFileBytes(file);
+  const nlohmann::json index = io::parseJsonText(
+      std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), file.string());
+  return index.is_object() && index.contains("config") ? index["config"] : nlohmann::json();
+}
+
+[[noreturn]] void otherConfig(const fs::path& file) {
+  throw io::InputError(file.string(), "was made from another config; pass --force to overwrite it");
+}
+
+// The scene of a sequence that could not be made goes next to the shards (with absolute mesh paths), so that
+// `sixway sim --scene` reproduces the failure.
+[[noreturn]] void failed(const DatasetOptions& o, const DatasetConfig& config, const SequencePlan& plan,
+                         const std::string& failure) {
+  char name[48];
+  std::snprintf(name, sizeof(name), "failed_sequence_%05d.json", plan.sequence);
+  writeReport(o.out / name, standaloneScene(config, plan));
+  throw std::runtime_error(o.config.string() + ": " + failure + "; its scene is " + (o.out / name).string());
+}
+
+void run(const DatasetOptions& o) {
+  const DatasetConfig config = loadDatasetConfig(o.config);
+  const ShardSelection selection = o.shard.empty() ? ShardSelection{} : parseShardSelection(o.shard);
+  if (fs::exists(o.out) && !fs::is_directory(o.out))
+    throw io::InputError(o.out.string(), "exists and is not a directory");
+
+  // Everything is checked before the first frame: every scene of this worker, and that nothing made from
+  // another config would be overwritten. A shard made from this config is complete (files are renamed into
+  // place once written), so it is kept: a worker that is run again resumes.
+  const nlohmann::json index = datasetIndex(config);
+  const fs::path indexFile = o.out / "dataset.json";
+  if (!o.force && fs::exists(indexFile) && indexConfig(indexFile) != config.json) otherConfig(indexFile);
+  std::vector<SequencePlan> plans;
+  int kept = 0;
+  for (int s = 0; s < config.sequences; ++s) {
+    if (!selection.contains(s)) continue;
+    SequencePlan plan = planSequence(config, s);
+    const fs::path file = o.out / shardFileName(s);
+    if (!o.force && fs::exists(file)) {
+      if (shardConfig(file) != config.json) otherConfig(file);
+      ++kept;
+      continue;
+    }
+    plans.push_back(std::move(plan));
+  }
+
+  gpu::Context context(o.common.contextOptions());
+  gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));
+  fs::create_directories(o.out);
+  writeReport(indexFile, index);
+  long totalFrames = 0;
+  for (const SequencePlan& plan : plans) totalFrames += plan.frames.back() + 1;
+  std::printf(
+      "sixway dataset: %s, sequences %d..%d step %d of %d: %zu to make, %d already made; %d cameras, "
+      "%d samples per camera, %d² lightmaps, on %s\n",
+      o.config.string().c_str(), selection.index, config.sequences - 1, selection.count, config.sequences,
+      plans.size(), kept, config.cameraCount(), config.frames.count, config.lightmapSize,
+      context.properties().deviceName);
+  std::fflush(stdout);
+
+  DatasetProgress progress(int(plans.size()), totalFrames);
+  std::map<std::string, int> splits;
+  for (size_t i = 0; i < plans.size(); ++i) {
+    SequencePlan plan = plans[i];
+    DatasetShard shard;
+    for (;;) {
+      try {
+        shard = generateSequence(context, cache, config, plan, [&](int done, int total) {
+          progress.frameDone(plan.sequence, int(i) + 1, done, total);
+        });
+        break;
+      } catch (const sim::WatchdogError& e) {
+        // Random variations can make a flow the lattice cannot hold: draw them again, a fixed number of
+        // times.
+        const std::string failure = "sequence " + std::to_string(plan.sequence) + " (attempt " +
+                                    std::to_string(plan.attempt + 1) + " of " +
+                                    std::to_string(config.attempts) + "): " + e.what();
+        if (plan.attempt + 1 >= config.attempts) {
+          progress.endLine();
+          failed(o, config, plan, failure);
+        }
+        progress.note(failure + "; drawing its variations again");
+        plan = planSequence(config, plan.sequence, plan.attempt + 1);
+        progress.addFrames(plan.frames.back() + 1);
+      } catch (const std::exception& e) {
+        progress.endLine();
+        failed(o, config, plan, "sequence " + std::to_string(plan.sequence) + ": " + e.what());
+      }
+    }
+    const std::string name = shardFileName(plan.sequence);
+    writeShard(o.out / name, shard);
+    for (const nlohmann::json& sample : shard.metadata["samples"])
+      ++splits[sample["split"].get<std::string>()];
+    progress.note("wrote " + name + " (" + std::to_string(shard.metadata["samples"].size()) +
+                  " samples, obstacle " + plan.obstacle + ")");
+  }
+  std::string counts;
+  for (const auto& [split, n] : splits)
+    counts += (counts.empty() ? "" : ", ") + split + " " + std::to_string(n);
+  std::printf("sixway dataset: wrote %zu shards (%s) to %s in %s\n", plans.size(),
+              counts.empty() ? "no samples" : counts.c_str(), o.out.string().c_str(),
+              formatDuration(progress.elapsedSeconds()).c_str());
+  if (context.validationMessageCount() > 0)
+    throw std::runtime_error(std::to_string(context.validationMessageCount()) + " validation messages");
+}
+
+}  // namespace
+
+void addDatasetCommand(CLI::App& app) {
+  auto o = std::make_shared<DatasetOptions>();
+  CLI::App* dataset =
+      app.add_subcommand("dataset", "Training pairs: guiding map → reference lightmaps, per sequence");
+  o->common.addTo(*dataset);
+  dataset->add_option("--config", o->config, "Dataset config JSON (docs/dataset-format.md)")->required();
+  dataset->add_option("--out", o->out, "Output directory (shared by the workers of one dataset)")->required();
+  dataset->add_option("--shard", o->shard, "I/N: make the sequences S with S mod N = I");
+  dataset->add_flag("--force", o->force, "Remake shards that exist, and overwrite those of another config");
+  dataset->callback([o] { run(*o); });
+}
+
+}  // namespace sixway::app

@@ -1,0 +1,170 @@
+#include "app/eval_command.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "app/lightmap_metrics.h"
+#include "app/options.h"
+#include "app/report.h"
+#include "gpu/context.h"
+#include "gpu/image.h"
+#include "gpu/pipeline.h"
+#include "gpu/sequence.h"
+#include "io/error.h"
+#include "io/safetensors.h"
+#include "nn/network.h"
+#include "render/lightmap_images.h"
+
+namespace sixway::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct EvalOptions {
+  CommonOptions common;
+  fs::path scene, dataset, weights, report;
+  int frames = 0;
+  std::vector<std::string> splits{"heldout_sequence", "heldout_camera"};
+  bool force = false;
+};
+
+std::vector<fs::path> shardFiles(const fs::path& directory) {
+  if (!fs::is_directory(directory)) throw io::InputError(directory.string(), "no such dataset directory");
+  std::vector<fs::path> shards;
+  for (const auto& entry : fs::directory_iterator(directory)) {
+    const std::string name = entry.path().filename().string();
+    if (name.starts_with("shard_") && entry.path().extension() == ".safetensors")
+      shards.push_back(entry.path());
+  }
+  if (shards.empty()) throw io::InputError(directory.string(), "holds no shard_*.safetensors files");
+  std::sort(shards.begin(), shards.end());
+  return shards;
+}
+
+// Sample n of an NCHW tensor of `channels` channels, pixel-interleaved (as io::Image and the metrics hold
+// it).
+std::vector<float> interleaved(const std::vector<float>& nchw, int64_t n, int channels, int64_t pixels) {
+  std::vector<float> out(size_t(pixels) * channels);
+  const float* sample = nchw.data() + n * channels * pixels;
+  for (int64_t p = 0; p < pixels; ++p)
+    for (int c = 0; c < channels; ++c) out[size_t(p) * channels + c] = sample[c * pixels + p];
+  return out;
+}
+
+void evaluateDataset(const EvalOptions& o) {
+  requireWritable(o.report, o.force);
+  const std::vector<fs::path> shards = shardFiles(o.dataset);
+  const fs::path weightsPath =
+      o.weights.empty() ? fs::path(SIXWAY_WEIGHTS_DIR) / "sixway-unet.safetensors" : o.weights;
+  const io::SafetensorsFile weights = io::readSafetensors(weightsPath);
+  const std::set<std::string> splits(o.splits.begin(), o.splits.end());
+
+  gpu::Context context(o.common.contextOptions());
+  gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));
+  std::unique_ptr<nn::Network> network;
+  std::unique_ptr<render::LightmapImages> lightmaps;
+  std::unique_ptr<gpu::Image> guide;
+  std::unique_ptr<gpu::Sequence> sequence;
+  int size = 0;
+  std::map<std::string, LightmapMetrics> metrics;
+  std::vector<double> inferenceMs;
+  for (const fs::path& shardPath : shards) {
+    const io::SafetensorsFile shard = io::readSafetensors(shardPath);
+    const auto meta = shard.metadata.find("sixway.dataset");
+    if (meta == shard.metadata.end()) throw io::InputError(shardPath.string(), "no sixway.dataset metadata");
+    const nlohmann::json description = nlohmann::json::parse(meta->second, nullptr, false);
+    if (description.is_discarded() || !description.contains("samples") ||
+        !description.contains("lightmap_size"))
+      throw io::InputError(shardPath.string(), "sixway.dataset metadata is not a dataset description");
+    const int shardSize = description["lightmap_size"].get<int>();
+    if (!network) {
+      size = shardSize;
+      network = std::make_unique<nn::Network>(context, cache, weights, uint32_t(size), uint32_t(size));
+      lightmaps = std::make_unique<render::LightmapImages>(context, uint32_t(size), uint32_t(size));
+      guide = std::make_unique<gpu::Image>(
+          context, gpu::ImageDesc{uint32_t(size), uint32_t(size), 1, VK_FORMAT_R32G32B32A32_SFLOAT,
+                                  VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "guide"});
+      sequence = std::make_unique<gpu::Sequence>(context);
+      sequence->beginStage("network");
+      network->record(*sequence, *guide, lightmaps->a, lightmaps->b);
+      sequence->endStage();
+      sequence->finish();
+    } else if (shardSize != size) {
+      throw io::InputError(shardPath.string(), "lightmap size " + std::to_string(shardSize) +
+                                                   " differs from the first shard's " + std::to_string(size));
+    }
+    const std::vector<float> guides = shard.at("guide").toFloat(), targets = shard.at("target").toFloat();
+    const int64_t pixels = int64_t(size) * size;
+    const nlohmann::json& samples = description["samples"];
+    if (int64_t(guides.size()) != int64_t(samples.size()) * 3 * pixels ||
+        int64_t(targets.size()) != int64_t(samples.size()) * 8 * pixels)
+      throw io::InputError(shardPath.string(),
+                           "tensor shapes do not match its " + std::to_string(samples.size()) + " samples");
+    for (int64_t n = 0; n < int64_t(samples.size()); ++n) {
+      const std::string split = samples[size_t(n)].value("split", "");
+      if (!splits.count(split)) continue;
+      const std::vector<float> g = interleaved(guides, n, 3, pixels);
+      std::vector<float> rgba(size_t(pixels) * 4, 0.0f);
+      for (int64_t p = 0; p < pixels; ++p)
+        for (int c = 0; c < 3; ++c) rgba[size_t(p) * 4 + c] = g[size_t(p) * 3 + c];
+      guide->upload(std::as_bytes(std::span(rgba)));
+      sequence->submit();
+      inferenceMs.push_back(sequence->stageTimes().front().milliseconds);
+      metrics[split].add(lightmaps->download().pixels, interleaved(targets, n, 8, pixels));
+    }
+    std::printf("  %s: %zu samples\n", shardPath.filename().string().c_str(), samples.size());
+    std::fflush(stdout);
+  }
+
+  nlohmann::json report = {{"weights", fs::absolute(weightsPath).string()},
+                           {"dataset", fs::absolute(o.dataset).string()},
+                           {"device", context.properties().deviceName},
+                           {"lightmap_size", size}};
+  for (const auto& [split, m] : metrics) {
+    report["splits"][split] = m.summary();
+    const nlohmann::json s = m.summary();
+    std::printf("sixway eval: %-17s %5llu samples, PSNR %.2f dB masked (%.2f full)\n", split.c_str(),
+                (unsigned long long)m.samples(),
+                s["psnr_masked_db"].is_null() ? NAN : s["psnr_masked_db"].get<double>(),
+                s["psnr_full_db"].is_null() ? NAN : s["psnr_full_db"].get<double>());
+  }
+  if (metrics.empty()) throw io::InputError(o.dataset.string(), "has no samples in the splits asked for");
+  std::sort(inferenceMs.begin(), inferenceMs.end());
+  report["inference_ms_median"] = inferenceMs[inferenceMs.size() / 2];
+  writeReport(o.report, report);
+  if (context.validationMessageCount() > 0)
+    throw std::runtime_error(std::to_string(context.validationMessageCount()) + " validation messages");
+}
+
+void run(const EvalOptions& o) {
+  if (!o.scene.empty())
+    throw io::InputError("--scene", "evaluating a scene's sequence arrives with issue #9; use --dataset DIR");
+  if (o.dataset.empty()) throw io::InputError("eval", "give --dataset DIR (or, with issue #9, --scene S)");
+  evaluateDataset(o);
+}
+
+}  // namespace
+
+void addEvalCommand(CLI::App& app) {
+  auto o = std::make_shared<EvalOptions>();
+  CLI::App* eval =
+      app.add_subcommand("eval", "Lightmap quality of the network, measured by the GLSL pipeline");
+  o->common.addTo(*eval);
+  eval->add_option("--dataset", o->dataset, "Dataset directory (sixway dataset): evaluate its samples");
+  eval->add_option("--scene", o->scene, "Scene JSON (issue #9)");
+  eval->add_option("--frames", o->frames, "Frames (with --scene)")->check(CLI::PositiveNumber);
+  eval->add_option("--weights", o->weights, "Network file (default weights/sixway-unet.safetensors)");
+  eval->add_option("--split", o->splits, "Splits evaluated (default heldout_sequence heldout_camera)");
+  eval->add_option("--report", o->report, "JSON report")->required();
+  eval->add_flag("--force", o->force, "Overwrite an existing report");
+  eval->callback([o] { run(*o); });
+}
+
+}  // namespace sixway::app

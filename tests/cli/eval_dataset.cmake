@@ -1,0 +1,23 @@
+# `sixway eval --dataset` as a user runs it: the tiny dataset (tools/datasets/tiny.json) generated, then every
+# split of it evaluated with the fixed test network, validation on. The report must hold each split with its
+# sample count and finite PSNRs.
+file(REMOVE_RECURSE ${OUT})
+execute_process(COMMAND ${SIXWAY} dataset --config ${CONFIG} --out ${OUT}/dataset
+                RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT code EQUAL 0)
+  message(FATAL_ERROR "sixway dataset failed (${code}):\n${out}\n${err}")
+endif()
+execute_process(COMMAND ${SIXWAY} eval --dataset ${OUT}/dataset --weights ${WEIGHTS} --report ${OUT}/eval.json
+                        --split train heldout_sequence heldout_camera --validate
+                RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT code EQUAL 0 OR err MATCHES "validation:")
+  message(FATAL_ERROR "sixway eval failed (${code}):\n${out}\n${err}")
+endif()
+file(READ ${OUT}/eval.json report)
+foreach(split train heldout_sequence heldout_camera)
+  string(JSON samples GET "${report}" splits ${split} samples)
+  string(JSON psnr GET "${report}" splits ${split} psnr_masked_db)
+  if(NOT samples GREATER 0 OR NOT psnr GREATER 0)
+    message(FATAL_ERROR "eval.json: split ${split}: ${samples} samples, PSNR ${psnr}")
+  endif()
+endforeach()

@@ -1,0 +1,226 @@
+// The config of `sixway dataset` (src/app/dataset_config.h): strict reading with one-line errors, the
+// per-sequence plan (seeded, within the ranges, reproducible), the cameras, the held-out rule and --shard.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+#include <set>
+
+#include "app/dataset_config.h"
+#include "io/error.h"
+#include "render/obstacle_meshes.h"
+#include "support/input_error.h"
+#include "support/temp_dir.h"
+
+namespace sixway::test {
+namespace {
+
+namespace fs = std::filesystem;
+using app::DatasetConfig;
+using ::testing::HasSubstr;
+
+const fs::path kAssets(SIXWAY_ASSETS_DIR);
+
+// A small valid config; tests change one thing at a time.
+nlohmann::json validConfig() {
+  return nlohmann::json::parse(R"({
+    "base_scene": ")" + (kAssets / "scenes" / "plume.json").string() +
+                               R"(",
+    "sequences": 10,
+    "seed": 3,
+    "grid": { "size": [16, 32, 16] },
+    "frames": { "warmup": [4, 9], "count": 3, "stride": 2 },
+    "cameras": { "azimuths_deg": [0, 120, 240], "elevations_deg": [0, 30] },
+    "lightmap_size": 32,
+    "heldout": { "sequences": [2, 5], "cameras": [4] },
+    "variations": { "inlet_speed": [0.5, 1.5], "inlet_radius": [0.1, 0.2], "inlet_offset": [0.2, 0, 0.1],
+                    "buoyancy": [1, 3], "extinction": [10, 40], "albedo": [0.8, 0.9] },
+    "obstacles": { "choices": ["none", "cylinder", "sphere", "bunny", "moving_sphere"],
+                   "radius": [0.1, 0.2], "height": [0.8, 1.6], "offset": 0.2,
+                   "bunny_mesh": ")" +
+                               (kAssets / "meshes" / "stanford-bunny.obj").string() + R"(",
+                   "moving_speed": [0.5, 1], "moving_travel": 0.4 }
+  })");
+}
+
+class DatasetConfigTest : public ::testing::Test {
+ protected:
+  fs::path write(const nlohmann::json& j) {
+    const fs::path file = dir_ / "config.json";
+    std::ofstream(file) << j.dump(2);
+    return file;
+  }
+  std::string error(const nlohmann::json& j) {
+    const fs::path file = write(j);
+    return inputErrorMessage([&] { app::loadDatasetConfig(file); });
+  }
+  TempDir dir_;
+};
+
+TEST_F(DatasetConfigTest, UnknownKeyNamesFileAndKey) {
+  nlohmann::json j = validConfig();
+  j["frames"]["strde"] = 1;
+  EXPECT_THAT(error(j), namesFileAndProblem(dir_ / "config.json", "frames.strde: unknown key"));
+}
+
+TEST_F(DatasetConfigTest, BadRangesAreErrors) {
+  nlohmann::json j = validConfig();
+  j["variations"]["extinction"] = {40, 20};
+  EXPECT_THAT(error(j), namesFileAndProblem(
+                            dir_ / "config.json",
+                            "variations.extinction: expected [min, max] with min <= max (got [40, 20])"));
+  j = validConfig();
+  j["variations"]["albedo"] = {0.5, 1.5};
+  EXPECT_THAT(error(j), namesFileAndProblem(dir_ / "config.json", "variations.albedo: must be in [0, 1]"));
+  j = validConfig();
+  j["obstacles"]["radius"] = {0, 0.1};
+  EXPECT_THAT(error(j), namesFileAndProblem(dir_ / "config.json", "obstacles.radius: must be > 0"));
+  j = validConfig();
+  j["frames"]["warmup"] = {1.5, 3};
+  EXPECT_THAT(error(j), namesFileAndProblem(dir_ / "config.json", "frames.warmup: must be whole frames"));
+  j = validConfig();
+  j["variations"]["inlet_speed"] = {1, 2, 3};
+  EXPECT_THAT(error(j),
+              namesFileAndProblem(dir_ / "config.json", "variations.inlet_speed: expected a number or"));
+}
+
+TEST_F(DatasetConfigTest, MissingBaseSceneIsAnError) {
+  nlohmann::json j = validConfig();
+  j["base_scene"] = "no_such_scene.json";
+  EXPECT_THAT(error(j), namesFileAndProblem(dir_ / "config.json", "base_scene: no such file"));
+  j.erase("base_scene");
+  EXPECT_THAT(error(j), namesFileAndProblem(dir_ / "config.json", "base_scene: required key missing"));
+}
+
+TEST_F(DatasetConfigTest, OtherMistakesAreErrors) {
+  nlohmann::json j = validConfig();
+  j["heldout"]["cameras"] = {6};  // 3 azimuths × 2 elevations
+  EXPECT_THAT(error(j),
+              namesFileAndProblem(dir_ / "config.json", "heldout.cameras: index 6 is outside the 6 cameras"));
+  j = validConfig();
+  j["obstacles"].erase("bunny_mesh");
+  EXPECT_THAT(error(j),
+              namesFileAndProblem(dir_ / "config.json", "obstacles.bunny_mesh: required key missing"));
+  j = validConfig();
+  j["obstacles"]["choices"] = {"sphere"};
+  EXPECT_THAT(error(j), namesFileAndProblem(dir_ / "config.json", "obstacles.bunny_mesh: "));
+  j = validConfig();
+  j["obstacles"]["choices"] = {"cube"};
+  EXPECT_THAT(error(j), namesFileAndProblem(dir_ / "config.json", "obstacles.choices: must be one of"));
+  j = validConfig();
+  j["lightmap_size"] = 40;
+  EXPECT_THAT(error(j), namesFileAndProblem(dir_ / "config.json", "lightmap_size: must be a multiple of 16"));
+  j = validConfig();
+  j["cameras"]["elevations_deg"] = {90};
+  EXPECT_THAT(error(j),
+              namesFileAndProblem(dir_ / "config.json", "cameras.elevations_deg: every value must be in"));
+  j = validConfig();
+  j["cameras"]["distance"] = 0.5;
+  EXPECT_THAT(error(j), namesFileAndProblem(dir_ / "config.json", "cameras.distance: must be more than"));
+  j = validConfig();
+  j.erase("frames");
+  EXPECT_THAT(error(j), namesFileAndProblem(dir_ / "config.json", "frames.count: required key missing"));
+}
+
+TEST_F(DatasetConfigTest, SequencesArePlannedWithinTheRangesAndReproducibly) {
+  const DatasetConfig config = app::loadDatasetConfig(write(validConfig()));
+  std::set<float> speeds;
+  for (int s = 0; s < config.sequences; ++s) {
+    const app::SequencePlan plan = app::planSequence(config, s);
+    EXPECT_EQ(plan.sceneJson, app::planSequence(config, s).sceneJson) << "sequence " << s;
+    const io::Scene& scene = plan.scene;
+    // The grid: 16 cells across the base's 1.6 m, same floor and horizontal centre.
+    EXPECT_EQ(scene.grid.size, glm::ivec3(16, 32, 16));
+    EXPECT_FLOAT_EQ(scene.grid.cellSize, 0.1f);
+    EXPECT_NEAR(glm::length(scene.grid.origin - glm::vec3(-0.8f, 0.0f, -0.8f)), 0.0f, 1e-6f);
+    EXPECT_EQ(scene.render.lightmapSize, 32);
+    const float speed = glm::length(scene.inlets[0].velocity);
+    speeds.insert(speed);
+    EXPECT_GE(speed, 0.5f);
+    EXPECT_LE(speed, 1.5f);
+    const auto& disk = std::get<io::InletDisk>(scene.inlets[0].shape);
+    EXPECT_LE(std::abs(disk.center.x), 0.2f + 1e-4f);
+    EXPECT_LE(std::abs(disk.center.z), 0.1f + 1e-4f);
+    EXPECT_FLOAT_EQ(disk.center.y, 0.05f);
+    EXPECT_GE(scene.smoke.extinction, 10.0f);
+    EXPECT_LE(scene.smoke.extinction, 40.0f);
+    // Obstacles in turn: none, cylinder, sphere, bunny (a mesh), moving sphere.
+    const int choice = s % 5;
+    ASSERT_EQ(scene.obstacles.size(), choice == 0 ? 0u : 1u) << "sequence " << s;
+    if (choice == 1) {
+      EXPECT_TRUE(std::holds_alternative<io::CylinderObstacle>(scene.obstacles[0].shape));
+    }
+    if (choice == 2 || choice == 4) {
+      const auto& sphere = std::get<io::SphereObstacle>(scene.obstacles[0].shape);
+      EXPECT_GE(sphere.radius, 0.1f - 1e-4f);
+      EXPECT_LE(sphere.radius, 0.2f + 1e-4f);
+      EXPECT_EQ(scene.obstacles[0].motion.has_value(), choice == 4);
+    }
+    if (choice == 3) {
+      EXPECT_TRUE(std::holds_alternative<io::MeshObstacle>(scene.obstacles[0].shape));
+    }
+    // Warm-up in [4, 9], then 3 samples 2 frames apart.
+    ASSERT_EQ(plan.frames.size(), 3u);
+    EXPECT_GE(plan.frames[0], 4);
+    EXPECT_LE(plan.frames[0], 9);
+    EXPECT_EQ(plan.frames[2] - plan.frames[0], 4);
+  }
+  EXPECT_EQ(speeds.size(), size_t(config.sequences)) << "every sequence draws its own values";
+  // Another seed, other values.
+  nlohmann::json j = validConfig();
+  j["seed"] = 4;
+  const DatasetConfig other = app::loadDatasetConfig(write(j));
+  EXPECT_NE(app::planSequence(other, 0).sceneJson, app::planSequence(config, 0).sceneJson);
+}
+
+TEST_F(DatasetConfigTest, CamerasLookAtTheVolumeCentreFromTheirAzimuthAndElevation) {
+  const DatasetConfig config = app::loadDatasetConfig(write(validConfig()));
+  const render::Box box = render::domainBox(app::planSequence(config, 0).scene.grid);
+  const std::vector<app::DatasetCamera> cameras = app::datasetCameras(config, box);
+  ASSERT_EQ(cameras.size(), 6u);
+  // The base scene's field of view (45°); the bounding sphere of the box just fills it.
+  const float distance = 0.5f * glm::length(box.size()) / std::sin(glm::radians(22.5f));
+  for (const app::DatasetCamera& c : cameras) {
+    EXPECT_EQ(c.azimuthDeg, config.cameras.azimuthsDeg[c.index % 3]);
+    EXPECT_EQ(c.elevationDeg, config.cameras.elevationsDeg[c.index / 3]);
+    EXPECT_FLOAT_EQ(c.camera.fovYDeg, 45.0f);
+    const float a = glm::radians(c.azimuthDeg), e = glm::radians(c.elevationDeg);
+    const glm::vec3 expected = box.centre() + distance * glm::vec3(std::cos(e) * std::sin(a), std::sin(e),
+                                                                   std::cos(e) * std::cos(a));
+    EXPECT_NEAR(glm::length(c.camera.position - expected), 0.0f, 1e-4f) << "camera " << c.index;
+    EXPECT_NEAR(glm::dot(c.camera.forward, glm::normalize(box.centre() - expected)), 1.0f, 1e-6f);
+    EXPECT_NEAR(c.camera.up.y, std::cos(e), 1e-5f) << "no roll: camera up in the vertical plane";
+  }
+}
+
+TEST_F(DatasetConfigTest, HeldOutRuleBySequenceThenCamera) {
+  const DatasetConfig config = app::loadDatasetConfig(write(validConfig()));
+  for (int s = 0; s < config.sequences; ++s)
+    for (int c = 0; c < config.cameraCount(); ++c) {
+      const std::string expected = (s == 2 || s == 5) ? "heldout_sequence"
+                                   : c == 4           ? "heldout_camera"
+                                                      : "train";
+      EXPECT_EQ(app::sampleSplit(config, s, c), expected) << s << ", " << c;
+    }
+}
+
+TEST(DatasetShards, EverySequenceGoesToExactlyOneWorker) {
+  for (int workers = 1; workers <= 7; ++workers)
+    for (int s = 0; s < 40; ++s) {
+      int owners = 0;
+      for (int i = 0; i < workers; ++i)
+        owners += app::parseShardSelection(std::to_string(i) + "/" + std::to_string(workers)).contains(s);
+      EXPECT_EQ(owners, 1) << "sequence " << s << " of " << workers << " workers";
+    }
+  for (const char* bad : {"3/3", "1/0", "-1/2", "a/b", "1", "1/2/3", ""})
+    EXPECT_THAT(inputErrorMessage([&] { app::parseShardSelection(bad); }),
+                namesFileAndProblem("--shard", "expected I/N with 0 <= I < N"))
+        << bad;
+  EXPECT_EQ(app::shardFileName(42), "shard_00042.safetensors");
+}
+
+}  // namespace
+}  // namespace sixway::test
