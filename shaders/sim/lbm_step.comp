@@ -107,7 +107,15 @@ float fromOutside(int i, ivec3 p, ivec3 source, uint cell, vec4 previous) {
   // Inflow: a wall moving at the inflow velocity, half-way outside (Ladd 1994), second order like
   // the obstacles' bounce-back; an equilibrium inflow falls a few percent short of the set velocity.
   if (inflow) return bounceBack + 6.0 * W[i] * previous.w * dot(vec3(C[i]), inflowVelocity(p, axis));
-  return equilibrium(i, 1.0, previous.xyz);  // outflow: ambient pressure, the cell's own velocity
+  // Outflow: ambient pressure and the cell's own velocity without its component back into the domain. With
+  // it, a cell whose flow turned inward received populations that pushed further inward: the backflow fed
+  // itself (plume tripped the watchdog at step 1520 at the z+ face by the floor).
+  vec3 u = previous.xyz;
+  [[unroll]] for (int a = 0; a < 3; ++a) {
+    if (source[a] < 0) u[a] = min(u[a], 0.0);
+    if (source[a] >= SIZE[a]) u[a] = max(u[a], 0.0);
+  }
+  return equilibrium(i, 1.0, u);
 }
 
 vec3 bodyForce(ivec3 p, float rho) {

@@ -96,7 +96,13 @@ double CpuLbm::fromOutside(int i, glm::ivec3 p, glm::ivec3 source, const CpuStep
     }
     return movingBounceBack(i, bounceBack, macro_[cell].w, u);
   }
-  return d3q19::equilibrium(i, 1.0, glm::dvec3(macro_[cell]));  // outflow
+  // Outflow: ambient pressure, the cell's velocity without its component back into the domain.
+  glm::dvec3 u(macro_[cell]);
+  for (int a = 0; a < 3; ++a) {
+    if (source[a] < 0) u[a] = std::min(u[a], 0.0);
+    if (source[a] >= s.size[a]) u[a] = std::max(u[a], 0.0);
+  }
+  return d3q19::equilibrium(i, 1.0, u);
 }
 
 d3q19::Populations CpuLbm::gather(glm::ivec3 p, const CpuStepInputs& inputs) const {
