@@ -11,6 +11,7 @@ SIXWAY_PACKAGES=(
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   ffmpeg  # sixway render --video
   python3-torch python3-numpy  # tools/nn: the PyTorch network; the test that regenerates its test vectors
+  python3-matplotlib  # tools/train.py: the loss plot
 )
 
 missing=()

@@ -1,0 +1,100 @@
+#!/usr/bin/python3
+"""Tests of tools/nn/dataset.py on synthetic shards (CTest nn.python_dataset; exit 77 without torch)."""
+import json
+import os
+import sys
+import tempfile
+import unittest
+
+try:
+    import numpy as np
+    import torch  # noqa: F401  (dataset.py returns torch tensors)
+except ImportError as missing:
+    print(f"skipped: {missing} (install python3-torch and python3-numpy)")
+    sys.exit(77)
+
+here = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, here)
+sys.path.insert(0, os.path.join(here, "..", "..", "..", "tools", "nn"))
+import synthetic_shards  # noqa: E402
+from dataset import ShardDataset  # noqa: E402
+from losses import warp  # noqa: E402
+from safetensors_io import read_safetensors, write_safetensors  # noqa: E402
+
+
+class DatasetTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        synthetic_shards.write_shards(cls.tmp.name, size=16, cameras=3, frames=4, sequences=2)
+        # A generator's unfinished file must be ignored.
+        open(os.path.join(cls.tmp.name, "shard_00002.safetensors.tmp"), "wb").close()
+        cls.data = ShardDataset(cls.tmp.name)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def test_splits_and_pairs(self):
+        self.assertEqual(len(self.data.paths), 2)
+        self.assertEqual(len(self.data.indices("train")), 2 * 4)  # sequence 0, cameras 0 and 1
+        self.assertEqual(len(self.data.indices("heldout_camera")), 4)
+        self.assertEqual(len(self.data.indices("heldout_sequence")), 3 * 4)
+        self.assertEqual(len(self.data.pairs("train")), 2 * 3)  # every frame but a camera's first
+        for i in self.data.pairs("heldout_sequence"):
+            now, before = self.data.samples[i], self.data.samples[self.data.previous[i]]
+            self.assertEqual((before["sequence"], before["camera"], before["frame"] + synthetic_shards.FRAME_STRIDE),
+                             (now["sequence"], now["camera"], now["frame"]))
+        first = [i for i, s in enumerate(self.data.samples) if s["frame"] == synthetic_shards.FIRST_FRAME]
+        self.assertEqual(len(first), 2 * 3)
+        self.assertTrue(all(self.data.previous[i] == -1 for i in first))
+
+    def test_targets_in_network_order(self):
+        # Baker order Right, Left, Top, Bottom, Back, Front -> network left, right, top, bottom, front, back.
+        _, target, _ = synthetic_shards.sample_tensors(16, 1, 0, 0)
+        batch = self.data.batch(np.array([1]))  # sequence 0, camera 0, frame 1
+        for network, baker in enumerate([1, 0, 2, 3, 5, 4, 6, 7]):
+            np.testing.assert_allclose(batch["target"][0, network].numpy(), target[baker], atol=2e-3)
+
+    def test_mirror_swaps_left_and_right_and_negates_motion_x(self):
+        index = np.array([2])
+        plain = self.data.batch(index)
+        mirrored = self.data.batch(index, mirror=np.array([True]))
+        torch.testing.assert_close(mirrored["target"][0, 0], plain["target"][0, 1].flip(-1))
+        torch.testing.assert_close(mirrored["target"][0, 4], plain["target"][0, 4].flip(-1))
+        torch.testing.assert_close(mirrored["guide"][0], plain["guide"][0].flip(-1))
+        torch.testing.assert_close(mirrored["motion"][0, 0], -plain["motion"][0, 0].flip(-1))
+        torch.testing.assert_close(mirrored["motion"][0, 1], plain["motion"][0, 1].flip(-1))
+
+    def test_pairs_share_the_crop_and_the_motion_still_warps(self):
+        pairs = self.data.pairs("train")
+        current, previous = self.data.pair_batch(pairs, 8, np.random.default_rng(3), mirror=True)
+        self.assertEqual(tuple(current["target"].shape), (len(pairs), 8, 8, 8))
+        # The previous frame's alpha warped with the current motion lands on the current alpha (to the accuracy
+        # of the F16 storage and of the puff's edge, where the motion is zero by construction).
+        warped, valid = warp(previous["target"][:, 6:7], current["motion"])
+        inside = valid * (current["target"][:, 6:7] > 0.05)
+        self.assertLess(float(((warped - current["target"][:, 6:7]).abs() * inside).max()), 0.01)
+
+    def test_bad_shape_names_the_file_and_tensor(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = synthetic_shards.write_shards(tmp, size=8, cameras=1, frames=2, sequences=1)[0]
+            tensors, metadata = read_safetensors(path)
+            tensors["motion"] = tensors["motion"][:, :1]
+            write_safetensors(path, tensors, metadata)
+            with self.assertRaisesRegex(ValueError, r"shard_00000\.safetensors: tensor 'motion' has shape"):
+                ShardDataset(tmp)
+
+    def test_bad_split_is_named(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = synthetic_shards.write_shards(tmp, size=8, cameras=1, frames=2, sequences=1)[0]
+            tensors, metadata = read_safetensors(path)
+            info = json.loads(metadata["sixway.dataset"])
+            info["samples"][1]["split"] = "test"
+            write_safetensors(path, tensors, {"sixway.dataset": json.dumps(info)})
+            with self.assertRaisesRegex(ValueError, r"samples\[1\]\.split is 'test'"):
+                ShardDataset(tmp)
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,119 @@
+#!/usr/bin/python3
+"""Smoke test of tools/train.py (CTest nn.python_train; exit 77 without torch): the tiny config for 6 steps on
+synthetic shards, once straight through and once stopped at step 3 and resumed; the two must give bit-identical
+weights and optimizer state. The straight run's export is left in WORK/straight/ for nn.train_export_bench
+(the C++ runner loads it).
+
+Usage: /usr/bin/python3 tests/nn/python/test_train.py --work DIR
+"""
+import json
+import os
+import subprocess
+import sys
+import unittest
+
+try:
+    import numpy as np
+    import torch
+except ImportError as missing:
+    print(f"skipped: {missing} (install python3-torch and python3-numpy)")
+    sys.exit(77)
+
+here = os.path.dirname(os.path.abspath(__file__))
+root = os.path.normpath(os.path.join(here, "..", "..", ".."))
+sys.path.insert(0, here)
+sys.path.insert(0, os.path.join(root, "tools", "nn"))
+import synthetic_shards  # noqa: E402
+from safetensors_io import read_safetensors  # noqa: E402
+from sixway_net import load_safetensors  # noqa: E402
+
+TRAIN = os.path.join(root, "tools", "train.py")
+CONFIG = os.path.join(root, "tools", "train_configs", "tiny.json")
+WORK = None  # set from --work
+
+
+def train(out, *extra):
+    data = os.path.join(WORK, "data")
+    result = subprocess.run([sys.executable, TRAIN, "--config", CONFIG, "--data", data, "--out", out, *extra],
+                            capture_output=True, text=True)
+    return result
+
+
+class TrainTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        synthetic_shards.write_shards(os.path.join(WORK, "data"), size=16, cameras=3, frames=4, sequences=2)
+        cls.straight = os.path.join(WORK, "straight")
+        cls.resumed = os.path.join(WORK, "resumed")
+        cls.runs = [train(cls.straight, "--force"), train(cls.resumed, "--force", "--stop-at", "3")]
+        cls.runs.append(train(cls.resumed, "--resume"))
+
+    def test_runs_succeed(self):
+        for run in self.runs:
+            self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
+        self.assertNotIn("exported", self.runs[1].stdout)  # stopped at step 3: no export yet
+
+    def test_resume_is_bit_identical(self):
+        a, _ = read_safetensors(os.path.join(self.straight, "sixway-unet.safetensors"))
+        b, _ = read_safetensors(os.path.join(self.resumed, "sixway-unet.safetensors"))
+        self.assertEqual(list(a), list(b))
+        for name in a:
+            self.assertTrue(np.array_equal(a[name], b[name]), name)
+        ca = torch.load(os.path.join(self.straight, "checkpoint.pt"))
+        cb = torch.load(os.path.join(self.resumed, "checkpoint.pt"))
+        self.assertEqual(ca["step"], 6)
+        self.assertEqual(cb["step"], 6)
+        for state_a, state_b in zip(ca["optimizer"]["state"].values(), cb["optimizer"]["state"].values()):
+            self.assertTrue(torch.equal(state_a["exp_avg_sq"], state_b["exp_avg_sq"]))
+
+    def test_training_moved_the_weights(self):
+        torch.manual_seed(5)  # the tiny config's seed: the initial weights of the run
+        from sixway_net import SixwayNet
+        initial = SixwayNet(json.load(open(CONFIG))["model"]).named_tensors()
+        trained, _ = read_safetensors(os.path.join(self.straight, "sixway-unet.safetensors"))
+        moved = sum(float(np.abs(trained[n] - t.numpy()).sum()) for n, t in initial.items())
+        self.assertGreater(moved, 0)
+
+    def test_export_metadata_and_reload(self):
+        path = os.path.join(self.straight, "sixway-unet.safetensors")
+        model, metadata = load_safetensors(path)
+        for key in ("sixway.graph", "sixway.config", "sixway.training", "sixway.metrics"):
+            self.assertIn(key, metadata)
+        training = json.loads(metadata["sixway.training"])
+        self.assertEqual(training["steps"], 6)
+        self.assertEqual(training["dataset"]["samples"], {"train": 8, "heldout_sequence": 12, "heldout_camera": 4})
+        self.assertEqual(training["dataset"]["config"]["synthetic"], True)
+        metrics = json.loads(metadata["sixway.metrics"])["pytorch"]
+        for split in ("train", "heldout_sequence", "heldout_camera"):
+            self.assertGreater(metrics[split]["psnr_masked"], 0)
+            self.assertIn("psnr_masked_left_right", metrics[split])
+        self.assertEqual(model.config["widths"], [4, 8])
+
+    def test_log_and_plot(self):
+        rows = [json.loads(line) for line in open(os.path.join(self.resumed, "log.jsonl"))]
+        self.assertEqual([r["step"] for r in rows if r["kind"] == "train"], [2, 4, 6])
+        self.assertEqual([r["step"] for r in rows if r["kind"] == "heldout"], [3, 6])
+        straight = [json.loads(line) for line in open(os.path.join(self.straight, "log.jsonl"))]
+        self.assertEqual([r["loss"] for r in rows], [r["loss"] for r in straight])
+        with open(os.path.join(self.straight, "loss.png"), "rb") as f:
+            self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+
+    def test_bad_input_is_one_line(self):
+        run = train(os.path.join(WORK, "straight"))  # exists, no --resume or --force
+        self.assertNotEqual(run.returncode, 0)
+        self.assertEqual(run.stderr.strip().count("\n"), 0, run.stderr)
+        self.assertIn("exists and is not empty", run.stderr)
+        bad = os.path.join(WORK, "bad.json")
+        with open(bad, "w") as f:
+            json.dump({"train": {"stpes": 3}}, f)
+        run = subprocess.run([sys.executable, TRAIN, "--config", bad, "--out", os.path.join(WORK, "bad")],
+                             capture_output=True, text=True)
+        self.assertEqual(run.stderr.strip(), f"train: {bad}: unknown key 'train.stpes'")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) < 3 or sys.argv[1] != "--work":
+        sys.exit(__doc__)
+    WORK = sys.argv[2]
+    os.makedirs(WORK, exist_ok=True)
+    unittest.main(argv=sys.argv[:1] + sys.argv[3:])

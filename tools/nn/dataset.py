@@ -1,0 +1,143 @@
+"""The training shards written by `sixway dataset` (docs/dataset-format.md), read with numpy alone.
+
+A directory holds one `shard_SSSSS.safetensors` per simulated sequence: F16 tensors `guide` [N,3,H,W],
+`target` [N,8,H,W] (the baker's channels: Right, Left, Top, Bottom, Back, Front, alpha, emissive) and
+`motion` [N,2,H,W] (lightmap pixels, x right, y down: the smoke at p now was at p - motion(p) one frame
+before), and the metadata `sixway.dataset` that names each sample's camera, frame and split.
+
+    data = ShardDataset("/work/data/cpu_small")
+    pairs = data.pairs("train")                    # samples that have the previous frame of their camera
+    current, previous = data.pair_batch(pairs[:8], crop=64, rng=np.random.default_rng(0))
+
+Targets are reordered here into the network's output order (sixway_net.ADAPTERS: left, right, top, bottom,
+front, back, alpha, emissive), so that everything downstream compares channel i with channel i.
+"""
+import glob
+import json
+import os
+import re
+
+import numpy as np
+import torch
+
+from safetensors_io import read_safetensors
+
+SPLITS = ("train", "heldout_sequence", "heldout_camera")
+SHARD_NAME = re.compile(r"shard_(\d{5})\.safetensors$")
+GUIDE_CHANNELS = 3
+# Network channel i is baker channel TARGET_TO_NETWORK[i] (baker: Right, Left, Top, Bottom, Back, Front, ...).
+TARGET_TO_NETWORK = [1, 0, 2, 3, 5, 4, 6, 7]
+# Mirroring the image left-right swaps the Left and Right lightmaps (network channels 0 and 1).
+MIRRORED_CHANNELS = [1, 0, 2, 3, 4, 5, 6, 7]
+
+
+def shard_paths(directory):
+    """The complete shards of a directory, by sequence (temporary files of a running generator are skipped)."""
+    paths = sorted(p for p in glob.glob(os.path.join(directory, "shard_*.safetensors"))
+                   if SHARD_NAME.search(os.path.basename(p)))
+    if not paths:
+        raise ValueError(f"{directory}: no shard_SSSSS.safetensors files")
+    return paths
+
+
+def read_shard(path):
+    """(tensors, info) of one shard, checked against the format: info is the parsed `sixway.dataset`."""
+    tensors, metadata = read_safetensors(path)
+    if "sixway.dataset" not in metadata:
+        raise ValueError(f"{path}: metadata has no 'sixway.dataset'")
+    info = json.loads(metadata["sixway.dataset"])
+    if info.get("version") != 1:
+        raise ValueError(f"{path}: sixway.dataset.version is {info.get('version')}, this reader knows 1")
+    size = info["lightmap_size"]
+    samples = info["samples"]
+    for name, channels in (("guide", GUIDE_CHANNELS), ("target", 8), ("motion", 2)):
+        if name not in tensors:
+            raise ValueError(f"{path}: no tensor '{name}'")
+        expected = [len(samples), channels, size, size]
+        if list(tensors[name].shape) != expected:
+            raise ValueError(f"{path}: tensor '{name}' has shape {list(tensors[name].shape)}, expected {expected}")
+    for i, sample in enumerate(samples):
+        if sample.get("split") not in SPLITS:
+            raise ValueError(f"{path}: sixway.dataset.samples[{i}].split is {sample.get('split')!r}")
+    return tensors, info
+
+
+class ShardDataset:
+    """Every sample of every shard of a directory, in memory as F16 (a CPU dataset is a few hundred MB)."""
+
+    def __init__(self, directory):
+        self.directory = directory
+        self.paths = shard_paths(directory)
+        guides, targets, motions = [], [], []
+        self.samples = []  # per sample: dict(camera, frame, split, sequence, ...)
+        self.infos = []
+        for path in self.paths:
+            tensors, info = read_shard(path)
+            if self.infos and info["lightmap_size"] != self.infos[0]["lightmap_size"]:
+                raise ValueError(f"{path}: lightmap_size {info['lightmap_size']} differs from "
+                                 f"{self.paths[0]}'s {self.infos[0]['lightmap_size']}")
+            self.infos.append(info)
+            guides.append(tensors["guide"])
+            targets.append(tensors["target"][:, TARGET_TO_NETWORK])
+            motions.append(tensors["motion"])
+            self.samples += [dict(s, sequence=info["sequence"]) for s in info["samples"]]
+        self.guide = np.concatenate(guides)
+        self.target = np.concatenate(targets)
+        self.motion = np.concatenate(motions)
+        self.size = self.infos[0]["lightmap_size"]
+        self.previous = self._previous_frames()
+
+    def _previous_frames(self):
+        """Index of the previous sample of the same sequence and camera (samples are ordered by camera, then
+        frame, so it is the sample before), -1 for a camera's first frame."""
+        previous = np.full(len(self.samples), -1, dtype=np.int64)
+        for i in range(1, len(self.samples)):
+            now, before = self.samples[i], self.samples[i - 1]
+            if (now["sequence"], now["camera"]) == (before["sequence"], before["camera"]):
+                if before["frame"] >= now["frame"]:
+                    raise ValueError(f"{self.directory}: sequence {now['sequence']} camera {now['camera']}: "
+                                     f"frame {now['frame']} follows frame {before['frame']}")
+                previous[i] = i - 1
+        return previous
+
+    def dataset_config(self):
+        """The dataset config that the shards were generated from (the same for every shard)."""
+        return self.infos[0]["config"]
+
+    def indices(self, split):
+        return np.array([i for i, s in enumerate(self.samples) if s["split"] == split], dtype=np.int64)
+
+    def pairs(self, split):
+        """Samples of `split` whose previous frame exists (both are always in the same split)."""
+        return np.array([i for i in self.indices(split) if self.previous[i] >= 0], dtype=np.int64)
+
+    def batch(self, indices, crop=None, offsets=None, mirror=None):
+        """float32 tensors guide [B,3,c,c], target [B,8,c,c], motion [B,2,c,c] of the samples `indices`;
+        `offsets` (B x 2: row, column) place the crops of size `crop`; `mirror` (B booleans) flips left-right."""
+        c = crop or self.size
+        offsets = np.zeros((len(indices), 2), dtype=np.int64) if offsets is None else offsets
+        out = {"guide": [], "target": [], "motion": []}
+        for k, index in enumerate(indices):
+            rows = slice(offsets[k][0], offsets[k][0] + c)
+            cols = slice(offsets[k][1], offsets[k][1] + c)
+            guide = self.guide[index, :, rows, cols]
+            target = self.target[index, :, rows, cols]
+            motion = self.motion[index, :, rows, cols]
+            if mirror is not None and mirror[k]:
+                guide = guide[:, :, ::-1]
+                target = target[MIRRORED_CHANNELS, :, ::-1]
+                motion = motion[:, :, ::-1] * np.array([-1, 1], dtype=motion.dtype)[:, None, None]
+            out["guide"].append(guide)
+            out["target"].append(target)
+            out["motion"].append(motion)
+        return {k: torch.from_numpy(np.stack(v).astype(np.float32)) for k, v in out.items()}
+
+    def pair_batch(self, indices, crop, rng, mirror=False):
+        """(current, previous) batches of the samples `indices` and their previous frames, with the same
+        random crop (when crop < size) and the same random mirroring (when `mirror`) drawn from `rng`."""
+        c = min(crop or self.size, self.size)
+        offsets = rng.integers(0, self.size - c + 1, size=(len(indices), 2))
+        flips = rng.random(len(indices)) < 0.5 if mirror else None
+        current = self.batch(indices, c, offsets, flips)
+        previous = self.batch(self.previous[indices], c, offsets, flips)
+        return current, previous

@@ -1,0 +1,122 @@
+"""The training loss (issue #7): MSE in sRGB space, a perceptual term and a temporal term.
+
+Everything is compared in the "loss space": the six lightmaps and emissive sRGB-encoded (as the paper's MSE
+in sRGB), alpha linear. Channels are in the network's output order (sixway_net.ADAPTERS; alpha is channel 6).
+
+- `mse`: mean squared error in loss space.
+- `ssim`: 1 - SSIM (Wang et al. 2004; 11x11 Gaussian window, sigma 1.5) per channel, and `gradient`: L1 between
+  the images' finite differences. No pretrained network (VGG, LPIPS) can be downloaded here; SSIM compares
+  local mean, contrast and structure, and the gradient term penalises blurred edges, which MSE alone lets
+  through (a blurred edge costs MSE only along the edge).
+- `temporal`: the previous frame's prediction warped along the simulation's screen-space motion should equal
+  the current prediction, where the reference itself is coherent along that motion:
+  w = exp(-k |target_t - warp(target_t-1)|),  loss = mean(w * valid * (pred_t - warp(pred_t-1))^2).
+  Smoke that appears, disappears or changes its lighting has a large reference difference and a small weight,
+  so real changes are not punished; pixels whose source lies outside the image (valid = 0) are left out.
+"""
+import torch
+import torch.nn.functional as F
+
+ALPHA_CHANNEL = 6
+SSIM_C1 = 0.01 ** 2  # (K1 L)^2 with the data range L = 1 of sRGB values
+SSIM_C2 = 0.03 ** 2
+
+
+def srgb_encode(x):
+    """The sRGB transfer function (linear -> encoded); linear below 0.0031308, negative values included."""
+    return torch.where(x <= 0.0031308, 12.92 * x, 1.055 * x.clamp(min=0.0031308) ** (1 / 2.4) - 0.055)
+
+
+def light_channels_mask(channels, device=None):
+    """(1, C, 1, 1): True for the channels that are sRGB-encoded in loss space (all but alpha)."""
+    mask = torch.ones(1, channels, 1, 1, dtype=torch.bool, device=device)
+    mask[:, ALPHA_CHANNEL] = False
+    return mask
+
+
+def target_to_loss_space(target):
+    """Linear targets (N, 8, H, W) -> loss space: light channels sRGB-encoded (clamped at 0 first), alpha linear."""
+    encoded = srgb_encode(target.clamp(min=0))
+    return torch.where(light_channels_mask(target.shape[1], target.device), encoded, target)
+
+
+def prediction_to_loss_space(raw, encoding):
+    """The network's raw outputs -> loss space. With "srgb" outputs (sixway_net "encoding") the light channels
+    already are sRGB values and are used as they are (a negative value is an error the loss should see);
+    with "linear" outputs they are encoded here."""
+    if encoding == "srgb":
+        return raw
+    return torch.where(light_channels_mask(raw.shape[1], raw.device), srgb_encode(raw), raw)
+
+
+def mse(pred, target):
+    return F.mse_loss(pred, target)
+
+
+def _gaussian_window(size, sigma, channels, device):
+    x = torch.arange(size, dtype=torch.float32, device=device) - (size - 1) / 2
+    g = torch.exp(-x * x / (2 * sigma * sigma))
+    g = g / g.sum()
+    return (g[:, None] * g[None, :]).expand(channels, 1, size, size).contiguous()
+
+
+def ssim(x, y, window=11, sigma=1.5):
+    """Mean SSIM over the channels and the valid (unpadded) window positions; window shrinks to the image."""
+    size = min(window, x.shape[2], x.shape[3])
+    w = _gaussian_window(size, sigma, x.shape[1], x.device)
+    blur = lambda t: F.conv2d(t, w, groups=x.shape[1])
+    mx, my = blur(x), blur(y)
+    vx = blur(x * x) - mx * mx
+    vy = blur(y * y) - my * my
+    cxy = blur(x * y) - mx * my
+    s = ((2 * mx * my + SSIM_C1) * (2 * cxy + SSIM_C2)) / ((mx * mx + my * my + SSIM_C1) * (vx + vy + SSIM_C2))
+    return s.mean()
+
+
+def gradient_loss(x, y):
+    """L1 distance between the horizontal and vertical finite differences of x and of y."""
+    dx = lambda t: t[:, :, :, 1:] - t[:, :, :, :-1]
+    dy = lambda t: t[:, :, 1:, :] - t[:, :, :-1, :]
+    return (dx(x) - dx(y)).abs().mean() + (dy(x) - dy(y)).abs().mean()
+
+
+def warp(image, motion):
+    """Backward warp: out(p) = image(p - motion(p)), bilinear; motion (N, 2, H, W) in pixels (x right, y down).
+    Returns (warped, valid) with valid (N, 1, H, W) = 1 where p - motion(p) lies inside the image."""
+    n, _, h, w = image.shape
+    ys, xs = torch.meshgrid(torch.arange(h, dtype=image.dtype, device=image.device),
+                            torch.arange(w, dtype=image.dtype, device=image.device), indexing="ij")
+    sx = xs - motion[:, 0]
+    sy = ys - motion[:, 1]
+    # grid_sample with align_corners=False: pixel centre x sits at (2x + 1) / W - 1.
+    grid = torch.stack([(2 * sx + 1) / w - 1, (2 * sy + 1) / h - 1], dim=-1)
+    warped = F.grid_sample(image, grid, mode="bilinear", padding_mode="zeros", align_corners=False)
+    valid = ((sx >= 0) & (sx <= w - 1) & (sy >= 0) & (sy <= h - 1)).to(image.dtype).unsqueeze(1)
+    return warped, valid
+
+
+def temporal_loss(pred, pred_previous, target, target_previous, motion, k):
+    """The warped-previous-prediction term (module docstring); all images in loss space."""
+    warped_pred, valid = warp(pred_previous, motion)
+    warped_target, _ = warp(target_previous, motion)
+    coherence = torch.exp(-k * (target - warped_target).abs().mean(1, keepdim=True))
+    weight = coherence * valid
+    return (weight * (pred - warped_pred) ** 2).mean()
+
+
+def training_loss(raw, raw_previous, target, target_previous, motion, encoding, weights):
+    """Total loss and its terms (a dict of floats) for a batch of temporal pairs.
+    raw/raw_previous: network outputs of the current and previous frames; targets linear; `weights` maps
+    mse, ssim, gradient, temporal to their factors and temporal_k to k (terms with factor 0 are skipped)."""
+    pred = prediction_to_loss_space(torch.cat([raw, raw_previous]), encoding)
+    ref = target_to_loss_space(torch.cat([target, target_previous]))
+    n = raw.shape[0]
+    terms = {"mse": mse(pred, ref)}
+    if weights.get("ssim", 0):
+        terms["ssim"] = 1 - ssim(pred, ref)
+    if weights.get("gradient", 0):
+        terms["gradient"] = gradient_loss(pred, ref)
+    if weights.get("temporal", 0):
+        terms["temporal"] = temporal_loss(pred[:n], pred[n:], ref[:n], ref[n:], motion, weights["temporal_k"])
+    total = sum(weights[name] * value for name, value in terms.items())
+    return total, {name: float(value) for name, value in terms.items()}

@@ -1,0 +1,451 @@
+#!/usr/bin/python3
+"""Trains the sixway lightmap network (tools/nn/sixway_net.py) on the shards of `sixway dataset` (issue #7).
+
+    /usr/bin/python3 tools/train.py --config tools/train_configs/cpu_small.json --out /work/data/train_cpu_small
+    /usr/bin/python3 tools/train.py --out DIR --resume              # continues exactly where the checkpoint is
+    torchrun --nproc_per_node 8 tools/train.py --config C --out DIR  # DistributedDataParallel, one GPU each
+
+DDP starts when WORLD_SIZE > 1 (NCCL on GPUs, gloo on the CPU). Debian's torch 1.13 launcher fails before
+starting the workers (AttributeError in torch.distributed.elastic's `redirects`); there, start one process per
+rank with MASTER_ADDR, MASTER_PORT, WORLD_SIZE, RANK and LOCAL_RANK set.
+
+Loss (tools/nn/losses.py): MSE in sRGB space + SSIM and/or gradient + the temporal term on temporal pairs.
+Every batch is B pairs (a frame and the previous frame of its camera, the same random crop), so both frames
+train the reconstruction terms and the pair trains the temporal term. Adam with a cosine or step schedule.
+Deterministic from the config and the seed: the model's initialisation comes from torch.manual_seed(seed),
+the data order and the crops from numpy generators keyed by (seed, epoch) and (seed, step, rank), so a run
+resumed from a checkpoint gives bit-identical weights to an uninterrupted one (same device and threads).
+
+DIR receives: config.json (the effective config), log.jsonl (one JSON row per logged step: kind "train" or
+"heldout"), checkpoint.pt (model, optimizer, step, RNG states, every `checkpoint_every` steps and at the end),
+loss.png, metrics.json (per split, tools/nn/metrics.py) and sixway-unet.safetensors (the exported network with
+sixway.training and sixway.metrics in its metadata, docs/network-format.md).
+"""
+import argparse
+import copy
+import json
+import math
+import os
+import platform
+import sys
+import time
+
+import numpy as np
+import torch
+import torch.distributed as dist
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "nn"))
+from bench_torch import node_flops  # noqa: E402
+from dataset import SPLITS, ShardDataset  # noqa: E402
+from losses import training_loss  # noqa: E402
+from metrics import SplitMetrics, evaluate_split  # noqa: E402
+from sixway_net import SixwayNet, decode_output, export_safetensors, full_config  # noqa: E402
+
+DEFAULTS = {
+    "model": {},  # sixway_net.DEFAULT_CONFIG overrides
+    "data": {
+        "dir": None,  # the shards; relative paths are relative to the repository root
+        "crop": None,  # random square crops of this size (None: whole maps)
+        "mirror": True,  # random left-right mirroring (swaps the Left and Right lightmaps)
+    },
+    "train": {
+        "steps": 1000,
+        "batch": 8,  # temporal pairs per step (2 x batch images), over all processes
+        "lr": 1e-3,
+        "schedule": "cosine",  # cosine: warm-up then cosine to min_lr; step: lr x step_gamma every step_every
+        "warmup_steps": 0,
+        "min_lr": 1e-5,
+        "step_every": 1000,
+        "step_gamma": 0.5,
+        "weight_decay": 0.0,
+        "grad_clip": 1.0,  # max gradient norm (0: none)
+        "seed": 0,
+        "threads": 2,  # torch.set_num_threads (CPU)
+        "log_every": 10,
+        "heldout_every": 100,  # the held-out curve: loss and PSNR on heldout_pairs fixed held-out pairs
+        "heldout_pairs": 32,
+        "checkpoint_every": 500,
+    },
+    "loss": {"mse": 1.0, "ssim": 0.1, "gradient": 0.0, "temporal": 0.1, "temporal_k": 20.0},
+}
+REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+EXPORT_NAME = "sixway-unet.safetensors"
+
+
+class ConfigError(Exception):
+    pass
+
+
+def merge_config(config, source):
+    """DEFAULTS overridden by `config` (two levels), unknown keys rejected with the file and key named."""
+    merged = copy.deepcopy(DEFAULTS)
+    for section, values in config.items():
+        if section not in merged:
+            raise ConfigError(f"{source}: unknown key '{section}'")
+        if section == "model":
+            try:
+                full_config(values)
+            except ValueError as error:
+                raise ConfigError(f"{source}: model.{str(error).removeprefix('config: ')}")
+            merged["model"] = values
+            continue
+        for key, value in values.items():
+            if key not in merged[section]:
+                raise ConfigError(f"{source}: unknown key '{section}.{key}'")
+            merged[section][key] = value
+    if merged["train"]["schedule"] not in ("cosine", "step"):
+        raise ConfigError(f"{source}: train.schedule must be cosine or step")
+    return merged
+
+
+def learning_rate(step, train):
+    """The rate for optimizer step `step` (0-based)."""
+    if step < train["warmup_steps"]:
+        return train["lr"] * (step + 1) / train["warmup_steps"]
+    if train["schedule"] == "step":
+        return train["lr"] * train["step_gamma"] ** (step // train["step_every"])
+    progress = (step - train["warmup_steps"]) / max(1, train["steps"] - train["warmup_steps"])
+    return train["min_lr"] + 0.5 * (train["lr"] - train["min_lr"]) * (1 + math.cos(math.pi * progress))
+
+
+class BatchOrder:
+    """The pairs of global step s: positions s*B .. s*B+B-1 of an endless sequence of epochs, each epoch a
+    permutation of the training pairs drawn from numpy's PCG64 keyed by (seed, epoch); stateless, so resuming
+    needs nothing but the step."""
+
+    def __init__(self, pairs, batch, seed):
+        self.pairs, self.batch, self.seed = pairs, batch, seed
+        self.permutations = {}
+
+    def _permutation(self, epoch):
+        if epoch not in self.permutations:
+            self.permutations = {epoch: np.random.default_rng([self.seed, epoch]).permutation(len(self.pairs))}
+        return self.permutations[epoch]
+
+    def indices(self, step):
+        positions = range(step * self.batch, (step + 1) * self.batch)
+        return np.array([self.pairs[self._permutation(p // len(self.pairs))[p % len(self.pairs)]]
+                         for p in positions])
+
+    def epoch(self, step):
+        return step * self.batch / len(self.pairs)
+
+
+def heldout_subset(data, count):
+    """Up to `count` held-out pairs evenly spread over both held-out splits (the held-out curve)."""
+    pairs = np.concatenate([data.pairs(s) for s in SPLITS if s != "train"])
+    if len(pairs) <= count:
+        return pairs
+    return pairs[np.linspace(0, len(pairs) - 1, count).round().astype(np.int64)]
+
+
+@torch.no_grad()
+def heldout_curve_point(net, data, pairs, config, device):
+    """Loss terms and PSNR of the fixed held-out pairs, on whole maps, no augmentation."""
+    net.eval()
+    totals, metrics = {}, SplitMetrics()
+    for start in range(0, len(pairs), 8):
+        current, previous = data.pair_batch(pairs[start:start + 8], None, np.random.default_rng(0))
+        raw = net(torch.cat([current["guide"], previous["guide"]]).to(device))
+        n = len(current["guide"])
+        loss, terms = training_loss(raw[:n], raw[n:], current["target"].to(device), previous["target"].to(device),
+                                    current["motion"].to(device), net.config["encoding"], config["loss"])
+        for name, value in dict(terms, loss=float(loss)).items():
+            totals[name] = totals.get(name, 0.0) + value * n
+        metrics.add(decode_output(raw[:n], net.config).cpu(), current["target"])
+    net.train()
+    result = {name: value / len(pairs) for name, value in totals.items()}
+    result.update({k: v for k, v in metrics.result(len(pairs)).items() if k in ("psnr_masked", "psnr_full")})
+    return result
+
+
+def hardware(device, world):
+    if device.type == "cuda":
+        return {"device": torch.cuda.get_device_name(device), "processes": world}
+    cpu = platform.processor()
+    try:
+        with open("/proc/cpuinfo") as f:
+            cpu = next(line.split(":", 1)[1].strip() for line in f if line.startswith("model name"))
+    except (OSError, StopIteration):
+        pass
+    return {"device": "cpu", "cpu": cpu, "threads": torch.get_num_threads(), "processes": world,
+            "cores": os.cpu_count()}
+
+
+def flops_at(net, size):
+    return sum(node_flops(node, size, size) for node in net.nodes)
+
+
+def save_checkpoint(path, net, optimizer, step, seconds, config, interval):
+    """`interval`: the loss sums since the last log row, so that a resumed run logs what a straight one does."""
+    state = {"step": step, "seconds": seconds, "config": config, "interval": interval, "model": net.state_dict(),
+             "optimizer": optimizer.state_dict(), "torch_rng": torch.get_rng_state(),
+             "numpy_rng": np.random.get_state()}
+    if torch.cuda.is_available():
+        state["cuda_rng"] = torch.cuda.get_rng_state_all()
+    torch.save(state, path + ".tmp")
+    os.replace(path + ".tmp", path)
+
+
+def first_difference(a, b, prefix=""):
+    """The first key path where two configs differ, or None."""
+    for key in sorted(set(a) | set(b)):
+        if isinstance(a.get(key), dict) and isinstance(b.get(key), dict):
+            found = first_difference(a[key], b[key], f"{prefix}{key}.")
+            if found:
+                return found
+        elif a.get(key) != b.get(key):
+            return f"{prefix}{key}"
+    return None
+
+
+def truncate_log(path, step):
+    """Drops rows logged after the checkpoint's step (the interrupted part of a run)."""
+    if not os.path.exists(path):
+        return
+    with open(path) as f:
+        rows = [line for line in f if line.strip() and json.loads(line)["step"] <= step]
+    with open(path, "w") as f:
+        f.writelines(rows)
+
+
+def parse_args():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--config", help="training config JSON (tools/train_configs/); optional with --resume")
+    parser.add_argument("--out", required=True, help="output directory")
+    parser.add_argument("--data", help="shard directory (overrides data.dir)")
+    parser.add_argument("--seed", type=int, help="overrides train.seed")
+    parser.add_argument("--resume", action="store_true", help="continue from OUT/checkpoint.pt")
+    parser.add_argument("--force", action="store_true", help="start afresh in an existing OUT")
+    parser.add_argument("--stop-at", type=int, help="stop (with a checkpoint) after this step, e.g. to fit a "
+                                                    "time slot; continue later with --resume")
+    return parser.parse_args()
+
+
+def load_config(args, checkpoint):
+    """The config file (or the checkpoint's) with --data and --seed applied; a resumed run must keep the
+    checkpoint's config, except data.dir (the shards may have moved)."""
+    if args.config:
+        try:
+            with open(args.config) as f:
+                config = merge_config(json.load(f), args.config)
+        except (OSError, json.JSONDecodeError) as error:
+            raise ConfigError(f"{args.config}: {error}")
+    elif checkpoint is not None:
+        config = copy.deepcopy(checkpoint["config"])
+    else:
+        raise ConfigError("--config is required (unless resuming)")
+    if args.data:
+        config["data"]["dir"] = args.data
+    if args.seed is not None:
+        config["train"]["seed"] = args.seed
+    if config["data"]["dir"] is None:
+        raise ConfigError(f"{args.config}: data.dir is missing (or pass --data)")
+    if checkpoint is not None:
+        differs = first_difference(dict(config, data=dict(config["data"], dir=None)),
+                                   dict(checkpoint["config"], data=dict(checkpoint["config"]["data"], dir=None)))
+        if differs:
+            raise ConfigError(f"{args.config or '--seed'}: '{differs}' differs from the checkpoint's config; "
+                              f"resume with the same config")
+    return config
+
+
+class Trainer:
+    """One run: the data, the model (DDP-wrapped when WORLD_SIZE > 1), the optimizer and the step reached."""
+
+    def __init__(self, args):
+        self.world = int(os.environ.get("WORLD_SIZE", "1"))
+        self.rank = int(os.environ.get("RANK", "0"))
+        local_rank = int(os.environ.get("LOCAL_RANK", "0"))
+        self.device = torch.device(f"cuda:{local_rank}" if torch.cuda.is_available() else "cpu")
+        if self.world > 1:
+            dist.init_process_group("nccl" if self.device.type == "cuda" else "gloo")
+        if self.device.type == "cuda":
+            torch.cuda.set_device(self.device)
+        self.lead = self.rank == 0
+        self.out = args.out
+        self.checkpoint_path = os.path.join(args.out, "checkpoint.pt")
+        self.log_path = os.path.join(args.out, "log.jsonl")
+
+        checkpoint = None
+        if args.resume:
+            if not os.path.exists(self.checkpoint_path):
+                raise ConfigError(f"{self.checkpoint_path}: no checkpoint to resume from")
+            checkpoint = torch.load(self.checkpoint_path, map_location="cpu")
+        elif self.lead and os.path.isdir(args.out) and os.listdir(args.out) and not args.force:
+            raise ConfigError(f"{args.out}: exists and is not empty (use --resume to continue, --force to restart)")
+        self.config = load_config(args, checkpoint)
+        self.train = self.config["train"]
+        torch.set_num_threads(self.train["threads"])
+        self._load_data()
+
+        torch.manual_seed(self.train["seed"])
+        np.random.seed(self.train["seed"])
+        self.net = SixwayNet(self.config["model"]).to(self.device)
+        crop = self.config["data"]["crop"]
+        if (crop or 0) % self.net.size_multiple() or self.data.size % self.net.size_multiple():
+            raise ConfigError(f"data.crop {crop} or the lightmap size {self.data.size} is not a multiple of the "
+                              f"network's size multiple {self.net.size_multiple()}")
+        self.optimizer = torch.optim.Adam(self.net.parameters(), lr=self.train["lr"],
+                                          weight_decay=self.train["weight_decay"])
+        self.step, self.seconds_before, self.interval = 0, 0.0, {}
+        if checkpoint is not None:
+            self._restore(checkpoint)
+        self.model = self.net
+        if self.world > 1:
+            ids = [local_rank] if self.device.type == "cuda" else None
+            self.model = torch.nn.parallel.DistributedDataParallel(self.net, device_ids=ids)
+        self.order = BatchOrder(self.pairs, self.train["batch"], self.train["seed"])
+        self.heldout = heldout_subset(self.data, self.train["heldout_pairs"])
+        if self.lead:
+            self._prepare_out(resumed=checkpoint is not None)
+
+    def _load_data(self):
+        directory = self.config["data"]["dir"]
+        self.data = ShardDataset(directory if os.path.isabs(directory) else os.path.join(REPO_ROOT, directory))
+        self.pairs = self.data.pairs("train")
+        if len(self.pairs) == 0:
+            raise ConfigError(f"{self.data.directory}: no training pairs (split 'train', two consecutive frames)")
+        if self.train["batch"] % self.world:
+            raise ConfigError(f"train.batch {self.train['batch']} is not a multiple of the {self.world} processes")
+
+    def _restore(self, checkpoint):
+        self.net.load_state_dict(checkpoint["model"])
+        self.optimizer.load_state_dict(checkpoint["optimizer"])
+        torch.set_rng_state(checkpoint["torch_rng"])
+        np.random.set_state(checkpoint["numpy_rng"])
+        if "cuda_rng" in checkpoint and self.device.type == "cuda":
+            torch.cuda.set_rng_state_all(checkpoint["cuda_rng"])
+        self.step, self.seconds_before = checkpoint["step"], checkpoint["seconds"]
+        self.interval = checkpoint["interval"]
+
+    def _prepare_out(self, resumed):
+        os.makedirs(self.out, exist_ok=True)
+        with open(os.path.join(self.out, "config.json"), "w") as f:
+            json.dump(self.config, f, indent=2)
+        if resumed:
+            truncate_log(self.log_path, self.step)
+        elif os.path.exists(self.log_path):
+            os.remove(self.log_path)
+        params = sum(p.numel() for p in self.net.parameters())
+        print(f"train: {len(self.data.paths)} shards, {len(self.pairs)} training pairs of {self.data.size}x"
+              f"{self.data.size}, {params} parameters, {flops_at(self.net, 256) / 1e9:.2f} GFLOP at 256x256, "
+              f"device {self.device}, {self.world} process(es), {self.train['threads']} threads; "
+              f"steps {self.step}..{self.train['steps']}", flush=True)
+
+    def seconds(self):
+        return self.seconds_before + time.time() - self.started
+
+    def train_step(self):
+        """One optimizer step on this process's share of the global batch of step `self.step`."""
+        lr = learning_rate(self.step, self.train)
+        for group in self.optimizer.param_groups:
+            group["lr"] = lr
+        indices = self.order.indices(self.step)[self.rank::self.world]
+        rng = np.random.default_rng([self.train["seed"], self.step, self.rank])
+        current, previous = self.data.pair_batch(indices, self.config["data"]["crop"], rng,
+                                                 self.config["data"]["mirror"])
+        raw = self.model(torch.cat([current["guide"], previous["guide"]]).to(self.device))
+        n = len(indices)
+        loss, terms = training_loss(raw[:n], raw[n:], current["target"].to(self.device),
+                                    previous["target"].to(self.device), current["motion"].to(self.device),
+                                    self.net.config["encoding"], self.config["loss"])
+        self.optimizer.zero_grad(set_to_none=True)
+        loss.backward()
+        if self.train["grad_clip"]:
+            torch.nn.utils.clip_grad_norm_(self.net.parameters(), self.train["grad_clip"])
+        self.optimizer.step()
+        for name, value in dict(terms, loss=float(loss), steps=1).items():
+            self.interval[name] = self.interval.get(name, 0.0) + value
+        self.step += 1
+        return lr
+
+    def log_train(self, log, lr):
+        count = self.interval.pop("steps")
+        row = {"kind": "train", "step": self.step, "epoch": round(self.order.epoch(self.step), 4), "lr": lr,
+               **{k: v / count for k, v in self.interval.items()}, "seconds": round(self.seconds(), 2),
+               "load": round(os.getloadavg()[0], 2)}
+        log.write(json.dumps(row) + "\n")
+        log.flush()
+        self.interval = {}
+        print(f"step {self.step}/{self.train['steps']} epoch {row['epoch']:.2f} loss {row['loss']:.5f} "
+              f"lr {lr:.2e} {row['seconds']:.0f}s load {row['load']}", flush=True)
+
+    def log_heldout(self, log):
+        point = heldout_curve_point(self.net, self.data, self.heldout, self.config, self.device)
+        log.write(json.dumps({"kind": "heldout", "step": self.step, **point}) + "\n")
+        log.flush()
+        print(f"  held-out loss {point['loss']:.5f} PSNR masked {point['psnr_masked']:.2f} dB "
+              f"full {point['psnr_full']:.2f} dB", flush=True)
+
+    def run(self, stop):
+        """Trains up to step `stop`; the lead logs, checkpoints, and finishes the run at the last step."""
+        self.started = time.time()
+        steps = self.train["steps"]
+        log = open(self.log_path, "a") if self.lead else None
+        while self.step < stop:
+            lr = self.train_step()
+            if not self.lead:
+                continue
+            if self.step % self.train["log_every"] == 0 or self.step == steps:
+                self.log_train(log, lr)
+            if self.step % self.train["heldout_every"] == 0 or self.step == steps:
+                self.log_heldout(log)
+            if self.step % self.train["checkpoint_every"] == 0 or self.step == stop:
+                save_checkpoint(self.checkpoint_path, self.net, self.optimizer, self.step, self.seconds(),
+                                self.config, self.interval)
+        if log:
+            log.close()
+        if self.lead and self.step == steps:
+            finish(self.out, self.net, self.data, self.config, self.seconds(), self.device, self.world)
+        if self.world > 1:
+            dist.barrier()
+            dist.destroy_process_group()
+
+
+def main():
+    args = parse_args()
+    trainer = Trainer(args)
+    trainer.run(min(trainer.train["steps"], args.stop_at or trainer.train["steps"]))
+
+
+def finish(out, net, data, config, seconds, device, world):
+    """Held-out metrics per split, the export with its metadata, and the loss plot."""
+    net.eval()
+    metrics = {"definition": "DESIGN.md §8: PSNR on decoded linear lightmaps clipped to [0, 1], MSE pooled over "
+                             "all pixels and channels of the split; masked = reference alpha > 0.01; per "
+                             "channel group masked; PyTorch float32, whole maps",
+               "pytorch": {split: evaluate_split(net, data, split, device) for split in SPLITS}}
+    with open(os.path.join(out, "metrics.json"), "w") as f:
+        json.dump(metrics, f, indent=2)
+    for split, m in metrics["pytorch"].items():
+        print(f"{split}: {m['samples']} samples, PSNR masked {m['psnr_masked']} dB, full {m['psnr_full']} dB")
+    training = {
+        "config": config,
+        "steps": config["train"]["steps"],
+        "epochs": config["train"]["steps"] * config["train"]["batch"] / len(data.pairs("train")),
+        "wall_seconds": round(seconds, 1),
+        "hardware": hardware(device, world),
+        "torch": torch.__version__,
+        "parameters": sum(p.numel() for p in net.parameters()),
+        "flops_256": flops_at(net, 256),
+        "dataset": {"dir": data.directory, "shards": len(data.paths), "lightmap_size": data.size,
+                    "samples": {split: len(data.indices(split)) for split in SPLITS},
+                    "config": data.dataset_config()},
+    }
+    export_safetensors(net.cpu(), os.path.join(out, EXPORT_NAME),
+                       {"sixway.training": training, "sixway.metrics": metrics})
+    try:
+        import plot
+        plot.plot_log(os.path.join(out, "log.jsonl"), os.path.join(out, "loss.png"),
+                      f"sixway training: {os.path.basename(os.path.normpath(out))}")
+    except ImportError as missing:
+        print(f"loss plot skipped: {missing} (tools/deps.sh installs python3-matplotlib)")
+    print(f"exported {os.path.join(out, EXPORT_NAME)} after {seconds:.0f} s")
+
+
+if __name__ == "__main__":
+    try:
+        main()
+    except (ConfigError, ValueError) as error:
+        sys.exit(f"train: {error}")
