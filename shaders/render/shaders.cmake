@@ -12,4 +12,5 @@ list(APPEND SIXWAY_SHADERS
   render/sixway_shade.frag
   render/guide_march.comp
   render/motion_field.comp
+  render/guide_lightmaps.comp
 )

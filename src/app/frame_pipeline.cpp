@@ -11,6 +11,7 @@
 #include "nn/network.h"
 #include "render/billboard.h"
 #include "render/camera.h"
+#include "render/guide_lightmaps.h"
 #include "render/guiding_map.h"
 #include "render/lightmap_baker.h"
 #include "render/lightmap_images.h"
@@ -67,10 +68,11 @@ render::ImagePlane facingBillboard(const render::Camera& camera, const render::C
 
 RenderMode parseRenderMode(const std::string& name) {
   for (RenderMode m : {RenderMode::Neural, RenderMode::Reference, RenderMode::Traditional, RenderMode::Guide,
-                       RenderMode::PathTrace})
+                       RenderMode::GuideLit, RenderMode::PathTrace})
     if (name == renderModeName(m)) return m;
   throw io::InputError(
-      "--mode", "unknown mode \"" + name + "\" (known: neural, reference, traditional, guide, pathtrace)");
+      "--mode",
+      "unknown mode \"" + name + "\" (known: neural, reference, traditional, guide, guide-lit, pathtrace)");
 }
 
 const char* renderModeName(RenderMode mode) {
@@ -83,6 +85,8 @@ const char* renderModeName(RenderMode mode) {
       return "traditional";
     case RenderMode::Guide:
       return "guide";
+    case RenderMode::GuideLit:
+      return "guide-lit";
     case RenderMode::PathTrace:
       return "pathtrace";
   }
@@ -108,7 +112,9 @@ struct FramePipeline::Passes {
         lightmaps(context, lightmapSize, lightmapSize),
         meshes(context, scene.obstacles),
         shadowMaps(context, cache, render::kDefaultShadowTileSize,
-                   options.shadows ? render::shadowTileCount(scene.lights, scene.obstacles) : 0),
+                   !options.shadows      ? 0
+                   : options.shadowTiles ? *options.shadowTiles
+                                         : render::shadowTileCount(scene.lights, scene.obstacles)),
         obstacles(context, cache, scene.render.background),
         guiding(context, cache, render::GuideSettings::fromScene(scene)),
         shading(context, cache, kColorFormat),
@@ -126,6 +132,9 @@ struct FramePipeline::Passes {
     if (options.mode == RenderMode::Reference || options.mode == RenderMode::Traditional)
       baker = std::make_unique<render::LightmapBaker>(context, cache);
     if (options.mode == RenderMode::PathTrace) tracer = std::make_unique<render::PathTracer>(context, cache);
+    if (options.mode == RenderMode::GuideLit)
+      guideLit = std::make_unique<render::GuideLightmaps>(context, cache,
+                                                          uint32_t(guiding.settings().lights.size()));
     controls.emissiveGradient = render::emissiveGradientFromRamp(scene.smoke.emission);
   }
 
@@ -142,6 +151,7 @@ struct FramePipeline::Passes {
         network->record(s, guide, lightmaps.a, lightmaps.b);
         s.endStage();
       }
+      if (guideLit) guideLit->record(s, guide, lightmaps);
       shading.record(s, lightmaps.a, lightmaps.b, &guide, &depth,
                      render::ShadowAtlas{&shadowMaps.atlas(), shadowMaps.tileSize()}, color);
     });
@@ -161,6 +171,7 @@ struct FramePipeline::Passes {
   std::unique_ptr<nn::Network> network;
   std::unique_ptr<render::LightmapBaker> baker;
   std::unique_ptr<render::PathTracer> tracer;
+  std::unique_ptr<render::GuideLightmaps> guideLit;
   render::ShadingControls controls;
   render::RecordedSequence sequence;
   std::optional<std::pair<render::Camera, render::ImagePlane>> bakedView;  // traditional: the first frame's
@@ -172,11 +183,20 @@ FramePipeline::FramePipeline(const gpu::Context& context, const gpu::PipelineCac
 
 FramePipeline::~FramePipeline() = default;
 
+FrameView sceneView(const io::Scene& scene, int index) {
+  return {render::sceneCamera(scene.camera, index), render::sceneLights(scene.lights, index)};
+}
+
 RenderedFrame FramePipeline::render(int index, double seconds, const render::Volume& volume) {
+  return render(sceneView(passes_->scene, index), index, seconds, volume);
+}
+
+RenderedFrame FramePipeline::render(const FrameView& view, int index, double seconds,
+                                    const render::Volume& volume) {
   Passes& p = *passes_;
   const io::Scene& scene = p.scene;
-  const render::Camera camera = render::sceneCamera(scene.camera, index);
-  const std::vector<io::Light> lights = render::sceneLights(scene.lights, index);
+  const render::Camera& camera = view.camera;
+  const std::vector<io::Light>& lights = view.lights;
   const render::Box volumeBox = volume.grid.bounds();
 
   // Recording allocates what the passes need for this volume, so it comes before their per-frame values.
@@ -226,6 +246,7 @@ RenderedFrame FramePipeline::render(int index, double seconds, const render::Vol
   sequence.submit();
   result.stages.insert(result.stages.end(), sequence.stageTimes().begin(), sequence.stageTimes().end());
 
+  if (!p.options.download) return result;
   if (p.options.mode == RenderMode::Guide) {
     result.image = guide();
     return result;
@@ -266,6 +287,19 @@ io::Image FramePipeline::guide() const {
 
 io::Image FramePipeline::lightmaps() const {
   return passes_->lightmaps.download();
+}
+
+const gpu::Image& FramePipeline::colorImage() const {
+  return passes_->color;
+}
+const gpu::Image& FramePipeline::guideImage() const {
+  return passes_->guide;
+}
+const gpu::Image& FramePipeline::lightmapImageA() const {
+  return passes_->lightmaps.a;
+}
+const gpu::Image& FramePipeline::lightmapImageB() const {
+  return passes_->lightmaps.b;
 }
 
 }  // namespace sixway::app

@@ -137,9 +137,10 @@ void addRenderCommand(CLI::App& app) {
   render->add_option("--frames", o->frames, "Frames rendered")->required()->check(CLI::Range(1, 100000));
   render->add_option("--out", o->out, "Output directory")->required();
   render->add_flag("--force", o->force, "Write into an existing output directory");
-  render->add_option("--mode", o->mode,
-                     "neural | reference | traditional | guide | pathtrace (default: neural when the weights "
-                     "exist, else reference)");
+  render->add_option(
+      "--mode", o->mode,
+      "neural | reference | traditional | guide | guide-lit | pathtrace (default: neural when the weights "
+      "exist, else reference)");
   render->add_option("--weights", o->weights, "Network file (default weights/sixway-unet.safetensors)");
   render->add_flag("--fp16", o->fp16, "Neural: fp16 feature maps");
   render->add_flag("--no-shadows", o->noShadows, "No obstacle shadows on the smoke");

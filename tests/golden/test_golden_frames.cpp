@@ -2,6 +2,7 @@
 // obstacles, shadows, guiding map, network or baker or path tracer, shading) against tests/golden/<mode>.exr.
 // Lavapipe renders the same bits every run; the tolerance (max-abs 2e-3, about one half-float step at 1) only
 // absorbs rounding differences between driver builds. Any change of an algorithm shows far beyond it.
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 
@@ -54,8 +55,12 @@ TEST_P(GoldenFrame, MatchesTheCommittedImage) {
 INSTANTIATE_TEST_SUITE_P(Modes, GoldenFrame,
                          ::testing::Values(app::RenderMode::Neural, app::RenderMode::Reference,
                                            app::RenderMode::Traditional, app::RenderMode::Guide,
-                                           app::RenderMode::PathTrace),
-                         [](const auto& info) { return std::string(app::renderModeName(info.param)); });
+                                           app::RenderMode::GuideLit, app::RenderMode::PathTrace),
+                         [](const auto& info) {
+                           std::string name = app::renderModeName(info.param);
+                           std::replace(name.begin(), name.end(), '-', '_');  // test names are identifiers
+                           return name;
+                         });
 
 }  // namespace
 }  // namespace sixway::test

@@ -130,6 +130,37 @@ TEST_F(FramePipelineTest, ReferenceMatchesThePathTracerForAnAxisLight) {
   EXPECT_GT(axis.noise, 0.0);
 }
 
+TEST_F(FramePipelineTest, GuideLitLightmapsAreTheGuidesMeanLight) {
+  const io::Scene scene = io::parseScene(sceneJson({1.0f, 0.0f, 0.0f}, 1), "frame_test.json", ".");
+  app::FramePipeline* pipeline = nullptr;
+  render(scene, app::RenderMode::GuideLit, &pipeline);
+  const io::Image guide = pipeline->guide();
+  const io::Image lightmaps = pipeline->lightmaps();
+  // sixWayChannelNames(): right, left, top, bottom, back, front, alpha, emissive.
+  int smoke = 0;
+  for (int y = 0; y < guide.height; ++y)
+    for (int x = 0; x < guide.width; ++x) {
+      const float light = guide.at(x, y, 0) / 3.0f;  // three guide lights: front, top, bottom
+      for (int c = 0; c < 6; ++c) ASSERT_NEAR(lightmaps.at(x, y, c), light, 1e-3f * light + 1e-6f);
+      ASSERT_NEAR(lightmaps.at(x, y, 6), guide.at(x, y, 1), 1e-3f);
+      ASSERT_EQ(lightmaps.at(x, y, 7), 0.0f);
+      smoke += guide.at(x, y, 1) > 0.01f;
+    }
+  EXPECT_GT(smoke, 500);
+}
+
+TEST_F(FramePipelineTest, AUsersViewRendersLikeTheSceneViewItCopies) {
+  const io::Scene scene = io::parseScene(sceneJson({1.0f, 0.0f, 0.0f}, 1), "frame_test.json", ".");
+  const io::Image ofScene = render(scene, app::RenderMode::Reference);
+  app::FrameView view = app::sceneView(scene, 0);
+  const io::Image ofView = pipeline_->render(view, 0, 0.0, volume_.view()).image;
+  EXPECT_EQ(ofScene.pixels, ofView.pixels);
+  // Turning the light to the other side changes the frame.
+  view.lights[0].source = io::DirectionalLight{glm::vec3(-1.0f, 0.0f, 0.0f)};
+  const io::Image turned = pipeline_->render(view, 0, 0.0, volume_.view()).image;
+  EXPECT_NE(ofScene.pixels, turned.pixels);
+}
+
 TEST_F(FramePipelineTest, SphereShadowsExactlyTheShellPointsBehindIt) {
   // A sphere to the right of the blob, in front of its shell; the light comes from the right (+x).
   nlohmann::json j = sceneJson({1.0f, 0.0f, 0.0f}, 1);
