@@ -289,6 +289,10 @@ io::Image FramePipeline::lightmaps() const {
   return passes_->lightmaps.download();
 }
 
+void FramePipeline::setObstacleMotion(size_t obstacle, std::optional<io::Motion> motion) {
+  passes_->meshes.setMotion(obstacle, std::move(motion));
+}
+
 const gpu::Image& FramePipeline::colorImage() const {
   return passes_->color;
 }

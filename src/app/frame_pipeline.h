@@ -75,6 +75,8 @@ class FramePipeline {
   // Of the last frame: the guiding map (guide, alpha, shell depth) and the lightmaps (sixWayChannelNames()
   // order; the network's, the baker's or the flipbook's), for tests and evaluation.
   io::Image guide() const;
+  // Moves obstacle `obstacle` along `motion` from now on (the simulation's, when a user drags it).
+  void setObstacleMotion(size_t obstacle, std::optional<io::Motion> motion);
   io::Image lightmaps() const;
   // The images on the GPU (VK_IMAGE_LAYOUT_GENERAL, sampled), valid until the pipeline is destroyed: the
   // frame (RGBA16F linear, premultiplied, the scene's render size; the path tracer's smoke is composited on

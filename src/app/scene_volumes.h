@@ -33,6 +33,7 @@ class SimulatedVolumes : public render::VolumeSequence {
   render::Volume volume(int index);
   // The simulation itself (e.g. its velocity, lbm().macro(), for `sixway dataset`'s motion field).
   const sim::Simulation& simulation() const { return simulation_; }
+  sim::Simulation& simulation() { return simulation_; }
   // GPU time of the simulation steps of the last frame asked for (ms).
   const sim::StepTimes& frameTimes() const { return frameTimes_; }
   static double frameSeconds(const io::Scene& scene, int index) {

@@ -7,6 +7,7 @@
 // (sim::evaluateMotion). Method and measured errors: docs/real-time-rendering.md, "Obstacles and shadows".
 #include <cstdint>
 #include <glm/vec3.hpp>
+#include <optional>
 #include <vector>
 
 #include "gpu/buffer.h"
@@ -51,6 +52,11 @@ class ObstacleMeshes {
 
   // Places the obstacles at time `seconds` (frame · frame_dt), for every pass recorded with these meshes.
   void update(double seconds);
+  // Replaces the motion of obstacle `obstacle` (the simulation's steered one,
+  // sim::Simulation::steerObstacle), from the next update() on.
+  void setMotion(size_t obstacle, std::optional<io::Motion> motion) {
+    obstacles_.at(obstacle).motion = std::move(motion);
+  }
 
   bool empty() const { return indexCount_ == 0; }
   uint32_t indexCount() const { return indexCount_; }

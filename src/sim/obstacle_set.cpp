@@ -185,6 +185,16 @@ void ObstacleSet::recordFlags(gpu::Sequence& sequence, const gpu::Buffer& params
                           cells_, 64);
 }
 
+void ObstacleSet::setMotion(size_t obstacle, std::optional<io::Motion> motion) {
+  obstacles_.at(obstacle).motion = std::move(motion);
+}
+
+glm::vec3 ObstacleSet::positionAt(size_t obstacle, double seconds) const {
+  const Placed& p = obstacles_.at(obstacle);
+  if (p.motion) return evaluateMotion(*p.motion, seconds).position;
+  return origin_ + glm::vec3(p.shape.centre) * units_.cellSize;
+}
+
 glm::vec3 ObstacleSet::centreAt(size_t obstacle, uint64_t step) const {
   const Placed& p = obstacles_[obstacle];
   if (!p.motion) return glm::vec3(p.shape.centre);
@@ -238,6 +248,7 @@ void ObstacleSet::fill(StepParams& params, uint64_t step) const {
   }
   for (size_t i = 0; i < inlets_.size(); ++i) {
     params.inlets[i] = inlets_[i].inlet;
+    params.inlets[i].velocity *= glm::vec4(glm::vec3(inletStrength_), 1.0f);
     params.inlets[i].smoke.z = (seconds >= inlets_[i].start && seconds < inlets_[i].stop) ? 1.0f : 0.0f;
   }
   params.counts = glm::uvec4(obstacles_.size(), inlets_.size(), uint32_t(step), 0);

@@ -31,6 +31,14 @@ class ObstacleSet {
   // like StepParams' solid box: outside it no bounce-back link exists, ever. Empty (min = max) without
   // obstacles.
   std::pair<glm::ivec3, glm::ivec3> sweptBox() const;
+  // Replaces the motion of `obstacle` (none: at rest where its shape says), e.g. while a user drags it.
+  // sweptBox() follows the new motion: sequences recorded with the old box must be recorded again.
+  void setMotion(size_t obstacle, std::optional<io::Motion> motion);
+  const std::optional<io::Motion>& motion(size_t obstacle) const { return obstacles_.at(obstacle).motion; }
+  // Where the obstacle's centre (a mesh: its translation) is at `seconds`, in world coordinates (m).
+  glm::vec3 positionAt(size_t obstacle, double seconds) const;
+  // Scales every inlet's velocity (not its smoke) from the next step on; 1 is the scene's.
+  void setInletStrength(float strength) { inletStrength_ = strength; }
   // Marks each lattice cell with the obstacle and the inlet covering it at step params[slot].
   void recordFlags(gpu::Sequence& sequence, const gpu::Buffer& params, uint32_t slot) const;
 
@@ -60,6 +68,7 @@ class ObstacleSet {
   std::unique_ptr<gpu::Pipeline> flagsPipeline_;
   std::vector<Placed> obstacles_;
   std::vector<TimedInlet> inlets_;
+  float inletStrength_ = 1.0f;
   gpu::Buffer occupancy_;
 };
 

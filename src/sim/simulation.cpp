@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 
 #include "gpu/context.h"
 #include "gpu/sequence.h"
@@ -42,6 +44,34 @@ void Simulation::setFlow(const std::vector<glm::vec3>& velocity, const std::vect
   for (size_t i = 0; i < macro.size(); ++i)
     macro[i] = glm::vec4(units_.toLatticeVelocity(velocity[i]), density[i]);
   lbm_->initialize(macro, int(step_ % 2));
+}
+
+void Simulation::steerObstacle(size_t obstacle, glm::vec3 target) {
+  const double now = seconds();
+  const glm::vec3 from = obstacles_->positionAt(obstacle, now);
+  const double speedLimit = 0.5 * scene_.fluid.maxLatticeVelocity / units_.velocityScale;  // m/s
+  const double frame = units_.stepSeconds * units_.stepsPerFrame;
+  const double duration = std::max(frame, double(glm::length(target - from)) / speedLimit);
+  io::Motion motion;
+  motion.keyframes = {{float(now), from}, {float(now + duration), target}};
+  obstacles_->setMotion(obstacle, motion);
+  sequences_.clear();  // they hold the forces' swept box of the old motion
+}
+
+float Simulation::maxInletStrength() const {
+  float fastest = 0.0f;
+  for (const io::Inlet& inlet : scene_.inlets)
+    fastest = std::max(fastest, units_.toLatticeVelocity(glm::length(inlet.velocity)));
+  if (fastest <= 0.0f) return 1.0f;
+  return std::clamp(scene_.fluid.maxLatticeVelocity / fastest, 1.0f, 2.0f);
+}
+
+void Simulation::setInletStrength(float strength) {
+  if (!(strength >= 0.0f && strength <= maxInletStrength()))
+    throw std::invalid_argument("inlet strength " + std::to_string(strength) + " outside [0, " +
+                                std::to_string(maxInletStrength()) + "]");
+  inletStrength_ = strength;
+  obstacles_->setInletStrength(strength);
 }
 
 gpu::Sequence& Simulation::sequenceFor(uint32_t steps, int parity) {

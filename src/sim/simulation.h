@@ -6,6 +6,7 @@
 #include <glm/glm.hpp>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,22 @@ class Simulation {
   // populations to their equilibrium; for analytic initial conditions.
   void setFlow(const std::vector<glm::vec3>& velocity, const std::vector<float>& density);
 
+  // Drags obstacle `obstacle` toward `target` (world, m) from where it is now: a straight line at no more
+  // than half the lattice's speed limit (fluid.max_lattice_velocity; the moving wall adds its speed to the
+  // flow's), arriving no sooner than one frame from now; then it stays there. Bounce-back follows the
+  // motion's velocity, and the recorded steps are recorded again for the new swept box.
+  void steerObstacle(size_t obstacle, glm::vec3 target);
+  // The obstacle's motion as the simulation uses it (the scene's, or the steered one).
+  const std::optional<io::Motion>& obstacleMotion(size_t obstacle) const {
+    return obstacles_->motion(obstacle);
+  }
+  // Scales the inlets' velocity, in [0, maxInletStrength()]; throws std::invalid_argument outside.
+  void setInletStrength(float strength);
+  // The largest inlet strength whose fastest inlet stays within fluid.max_lattice_velocity (at least 1, at
+  // most 2; 1 without inlets).
+  float maxInletStrength() const;
+  float inletStrength() const { return inletStrength_; }
+
   // The last submission's measurements (forces of every step in it).
   const AdvanceReport& report() const { return report_; }
   uint64_t step() const { return step_; }
@@ -77,6 +94,7 @@ class Simulation {
   gpu::Buffer params_, forces_;
   std::map<std::pair<uint32_t, int>, std::unique_ptr<gpu::Sequence>> sequences_;
   uint64_t step_ = 0;
+  float inletStrength_ = 1.0f;
   AdvanceReport report_;
 };
 

@@ -83,12 +83,11 @@ CpuSimulation::Motion CpuSimulation::obstacleAt(size_t obstacle, double time) co
   }
   const auto& keys = o.motion->keyframes;
   if (o.motion->loop) throw std::invalid_argument("CpuSimulation: looping motion is not modelled");
-  if (time <= keys.front().time) return {keys.front().position, glm::dvec3(0)};
+  if (time < keys.front().time) return {keys.front().position, glm::dvec3(0)};
   if (time >= keys.back().time) return {keys.back().position, glm::dvec3(0)};
+  // At a keyframe's time the wall moves with the segment the coming step moves along (docs/scene-format.md).
   size_t k = 0;
   while (keys[k + 1].time <= time) ++k;
-  if (time == keys[k].time)
-    throw std::invalid_argument("CpuSimulation: keep the steps off the keyframe times");
   const glm::dvec3 velocity = (glm::dvec3(keys[k + 1].position) - glm::dvec3(keys[k].position)) /
                               double(keys[k + 1].time - keys[k].time);
   return {glm::dvec3(keys[k].position) + velocity * (time - keys[k].time), velocity};

@@ -246,5 +246,87 @@ TEST_F(LbmStepTest, BodyForce) {
   expectMatchesCpu(latticeScene(kSize, kViscosity, pushed), 5, latticeScene(kSize, kViscosity));
 }
 
+// A sphere dragged by sim::Simulation::steerObstacle (the demo) moves like a scene whose keyframes are the
+// steered motion: the CPU reference runs that scene.
+TEST_F(LbmStepTest, SteeredSphereMatchesItsKeyframedMotion) {
+  const glm::vec3 start(5.91f, 5.48f, 5.2f), target(9.6f, 6.4f, 5.2f);
+  const auto sphere = [&](const json& motion) {
+    json s = {{"type", "sphere"}, {"radius", 2.4}};
+    if (motion.is_null())
+      s["center"] = {start.x, start.y, start.z};
+    else
+      s["motion"] = motion;
+    return latticeScene(kSize, kViscosity, {{"obstacles", {s}}});
+  };
+  const io::Scene still = parseLatticeScene(sphere(nullptr));
+  const Initial init = initialState(still);
+  sim::Simulation gpu(context(), pipelineCache(), still);
+  gpu.setFlow(init.velocity, init.density);
+  gpu.smoke().upload(init.smoke);
+  gpu.advance(2);
+  gpu.steerObstacle(0, target);
+  const io::Motion& steered = *gpu.obstacleMotion(0);
+  ASSERT_EQ(steered.keyframes.size(), 2u);
+  EXPECT_EQ(steered.keyframes[0].time, 2.0f);
+  EXPECT_EQ(steered.keyframes[0].position, start);
+  EXPECT_EQ(steered.keyframes[1].position, target);
+  // Half the lattice speed limit (0.1 cells per step by default) at most.
+  const float speed = glm::length(target - start) / (steered.keyframes[1].time - steered.keyframes[0].time);
+  EXPECT_LE(speed, 0.05f + 1e-6f);
+  EXPECT_GE(speed, 0.049f);
+  const int steps = 12;
+  gpu.advance(steps - 2);
+
+  json keyframes = json::array();
+  for (const io::Keyframe& k : steered.keyframes)
+    keyframes.push_back({{"time", k.time}, {"position", {k.position.x, k.position.y, k.position.z}}});
+  const io::Scene keyframed = parseLatticeScene(sphere({{"keyframes", keyframes}}));
+  const CpuSimulation probe(keyframed);
+  for (int s = 0; s <= steps; ++s) ASSERT_GT(probe.surfaceMargin(s), kSurfaceMargin) << "step " << s;
+  const std::vector<glm::vec4> gpuMacro = gpu.lbm().macro().download<glm::vec4>();
+  const std::vector<glm::dvec4> expected = cpuMacro(keyframed, steps);
+  const FieldError u = velocityError(gpuMacro, expected), rho = densityError(gpuMacro, expected);
+  EXPECT_LE(u.max, kTolerance) << "velocity" << describe(u, keyframed, gpuMacro, expected);
+  EXPECT_LE(rho.max, kTolerance) << "density" << describe(rho, keyframed, gpuMacro, expected);
+  const FieldError effect = maxDifference(expected, cpuMacro(still, steps));
+  EXPECT_GT(effect.max, 10 * kTolerance) << "the drag hardly changes the flow";
+  std::cout << "[ measured ] max |Δu| " << u.max << ", max |Δρ| " << rho.max << "; drag effect " << effect.max
+            << "\n";
+}
+
+// The demo's inlet strength s runs the scene as if its inlets blew at s times their velocity.
+TEST_F(LbmStepTest, InletStrengthScalesTheInletVelocity) {
+  const auto withInlet = [](double velocity) {
+    return latticeScene(kSize, kViscosity,
+                        {{"inlets",
+                          {{{"shape", "disk"},
+                            {"center", {8.0, 2.2, 5.4}},
+                            {"radius", 2.3},
+                            {"normal", {0.0, 1.0, 0.0}},
+                            {"velocity", velocity},
+                            {"noise", 0.0},
+                            {"density", 1.5},
+                            {"temperature", 0.5}}}}});
+  };
+  const io::Scene scene = parseLatticeScene(withInlet(0.07));
+  const Initial init = initialState(scene);
+  sim::Simulation gpu(context(), pipelineCache(), scene);
+  // The fastest inlet may go up to the lattice speed limit: 0.1 / 0.07.
+  EXPECT_NEAR(gpu.maxInletStrength(), 0.1f / 0.07f, 1e-5f);
+  EXPECT_THROW(gpu.setInletStrength(1.5f), std::invalid_argument);
+  EXPECT_THROW(gpu.setInletStrength(-0.1f), std::invalid_argument);
+  gpu.setInletStrength(0.5f);
+  gpu.setFlow(init.velocity, init.density);
+  gpu.smoke().upload(init.smoke);
+  gpu.advance(5);
+  const std::vector<glm::vec4> gpuMacro = gpu.lbm().macro().download<glm::vec4>();
+  const io::Scene halved = parseLatticeScene(withInlet(0.035));
+  const std::vector<glm::dvec4> expected = cpuMacro(halved, 5);
+  const FieldError u = velocityError(gpuMacro, expected);
+  EXPECT_LE(u.max, kTolerance) << "velocity" << describe(u, halved, gpuMacro, expected);
+  const FieldError effect = maxDifference(expected, cpuMacro(scene, 5));
+  EXPECT_GT(effect.max, 10 * kTolerance);
+}
+
 }  // namespace
 }  // namespace sixway::test
