@@ -54,9 +54,10 @@ Sequence::Sequence(const Context& context, uint32_t maxStages) : context_(&conte
   if (context.capabilities().timestamps) {
     VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
-    queryInfo.queryCount = 2 * maxStages_;
+    queryInfo.queryCount = 2 * maxStages_ + 1;  // the last: resolveTimestampNow()'s scratch
     SIXWAY_VK(vkCreateQueryPool(device, &queryInfo, nullptr, &queries_));
-    vkCmdResetQueryPool(commands_, queries_, 0, 2 * maxStages_);
+    vkCmdResetQueryPool(commands_, queries_, 0, 2 * maxStages_ + 1);
+    resolveEachTimestamp_ = context.driver().driverID == VK_DRIVER_ID_MESA_LLVMPIPE;
   }
 }
 
@@ -76,19 +77,29 @@ void Sequence::beginStage(std::string name) {
   if (stageOpen_) throw GpuError("stage '" + name + "' begins inside stage '" + stageNames_.back() + "'");
   if (stageNames_.size() == maxStages_)
     throw GpuError("more than " + std::to_string(maxStages_) + " timed stages");
-  if (queries_)
-    vkCmdWriteTimestamp2(commands_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_,
-                         2 * static_cast<uint32_t>(stageNames_.size()));
+  writeTimestamp(2 * static_cast<uint32_t>(stageNames_.size()));
   stageNames_.push_back(std::move(name));
   stageOpen_ = true;
 }
 
 void Sequence::endStage() {
   if (!stageOpen_) throw GpuError("endStage without beginStage");
-  if (queries_)
-    vkCmdWriteTimestamp2(commands_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_,
-                         2 * static_cast<uint32_t>(stageNames_.size()) - 1);
+  writeTimestamp(2 * static_cast<uint32_t>(stageNames_.size()) - 1);
   stageOpen_ = false;
+}
+
+void Sequence::writeTimestamp(uint32_t query) {
+  if (!queries_) return;
+  vkCmdWriteTimestamp2(commands_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_, query);
+  if (!resolveEachTimestamp_) return;
+  // Lavapipe (Mesa 22.3) bins a timestamp into llvmpipe's current scene, which takes the time only when the
+  // scene is next flushed, and a timestamp write flushes the scene *before* binning its own query. Compute
+  // dispatches run at once, so a stage's opening timestamp was taken after the stage's work: a path-trace
+  // dispatch of 4.8 s measured 17 ms. A second timestamp right after flushes the first one's scene now. The
+  // scratch query is reset before each use (a query is written once between resets).
+  const uint32_t scratch = 2 * maxStages_;
+  vkCmdResetQueryPool(commands_, queries_, scratch, 1);
+  vkCmdWriteTimestamp2(commands_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_, scratch);
 }
 
 void Sequence::addTouch(Touch& touch, const Binding& binding) const {

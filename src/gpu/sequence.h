@@ -150,6 +150,7 @@ class Sequence {
   void barrierIfHazard(const Touch& touch);
   void pushBindings(const Pipeline& pipeline, const std::vector<Binding>& bindings);
   void requireRecording(const char* what) const;
+  void writeTimestamp(uint32_t query);
 
   const Context* context_;
   VkCommandPool pool_ = VK_NULL_HANDLE;
@@ -160,6 +161,7 @@ class Sequence {
   std::vector<std::string> stageNames_;
   bool stageOpen_ = false;
   bool finished_ = false;
+  bool resolveEachTimestamp_ = false;  // lavapipe: see writeTimestamp()
   std::set<uint64_t> writtenSinceBarrier_, readSinceBarrier_;
   std::vector<StageTime> times_;
   uint32_t barriers_ = 0;
