@@ -10,6 +10,7 @@ SIXWAY_PACKAGES=(
   libstb-dev nlohmann-json3-dev libcli11-dev libtinyobjloader-dev
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   ffmpeg  # sixway render --video
+  libimgui-dev xvfb xauth  # sixway-demo: its panel; the demo test runs it in a virtual X server
   python3-torch python3-numpy  # tools/nn: the PyTorch network; the test that regenerates its test vectors
   python3-matplotlib  # tools/train.py: the loss plot
 )

@@ -1,170 +1,180 @@
 #include "app/bench_command.h"
 
-#include <sys/resource.h>
-
 #include <algorithm>
-#include <cmath>
+#include <chrono>
 #include <cstdio>
-#include <filesystem>
+#include <cstdlib>
+#include <ctime>
+#include <fstream>
 #include <functional>
-#include <map>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <string>
+#include <thread>
 #include <vector>
 
-#include "app/options.h"
+#include "app/bench_options.h"
+#include "app/bench_scene.h"
 #include "app/report.h"
 #include "gpu/context.h"
-#include "gpu/image.h"
 #include "gpu/pipeline.h"
-#include "gpu/sequence.h"
-#include "io/safetensors.h"
-#include "nn/network.h"
+#include "io/error.h"
+#include "nn/graph.h"
 
 namespace sixway::app {
 namespace {
 
-struct BenchOptions {
-  CommonOptions common;
-  std::filesystem::path report;
-  bool force = false;
-  std::filesystem::path weights = SIXWAY_DEFAULT_BENCH_WEIGHTS;
-  std::vector<uint32_t> sizes = {128, 256};
-  int warmup = 3, repeats = 10;
-  bool fp16 = false;
-};
-
-// One benchmarked stage: its name in the report and the function that measures it.
+// One benchmarked group of stages: its name (in --sections and the report) and what measures it.
 struct BenchSection {
   const char* name;
-  std::function<nlohmann::json(const gpu::Context&, const gpu::PipelineCache&, const BenchOptions&)> run;
+  bool needsWeights;
+  std::function<nlohmann::json(const gpu::Context&, const gpu::PipelineCache&, const BenchOptions&,
+                               const BenchInputs&)>
+      run;
 };
 
-// CPU time of the whole process (all threads: lavapipe runs the work on its own threads), in milliseconds.
-double processCpuMs() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return (usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) * 1e3 +
-         (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) * 1e-3;
+const std::vector<BenchSection> kSections = {{"sim", false, benchSimulation},
+                                             {"lightmaps", true, benchLightmaps},
+                                             {"frame", true, benchFrame},
+                                             {"network", true, benchNetwork}};
+
+std::string knownSections() {
+  std::string names;
+  for (const BenchSection& s : kSections) names += (names.empty() ? "" : ", ") + std::string(s.name);
+  return names;
 }
 
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+// "64x128x64" → (64, 128, 64); throws io::InputError naming --grid.
+glm::ivec3 parseLattice(const std::string& text) {
+  glm::ivec3 n(0);
+  char x1 = 0, x2 = 0, rest = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c%d%c", &n.x, &x1, &n.y, &x2, &n.z, &rest) != 5 || x1 != 'x' ||
+      x2 != 'x')
+    throw io::InputError("--grid", "expected NXxNYxNZ, e.g. 64x128x64 (got \"" + text + "\")");
+  if (glm::any(glm::lessThan(n, glm::ivec3(8))))
+    throw io::InputError("--grid " + text, "every axis needs at least 8 cells");
+  if (uint64_t(n.x) * uint64_t(n.y) * uint64_t(n.z) > (uint64_t(1) << 31))
+    throw io::InputError("--grid " + text, "more than 2^31 cells; reduce its size");
+  return n;
 }
 
-// A smooth guide-like image (the network's cost does not depend on the values).
-gpu::Image benchGuide(const gpu::Context& context, uint32_t size) {
-  gpu::Image guide(context, {size, size, 1, VK_FORMAT_R32G32B32A32_SFLOAT,
-                             VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT, "guide"});
-  std::vector<float> texels(size_t(size) * size * 4);
-  for (uint32_t y = 0; y < size; ++y)
-    for (uint32_t x = 0; x < size; ++x) {
-      const float u = (x + 0.5f) / size - 0.5f, v = (y + 0.5f) / size - 0.5f;
-      const float blob = std::exp(-8.0f * (u * u + v * v));
-      float* t = &texels[(size_t(y) * size + x) * 4];
-      t[0] = blob, t[1] = std::min(1.0f, 1.5f * blob), t[2] = 0.5f + 0.3f * u, t[3] = 0.0f;
+void requireAtLeast(const char* option, int value, int least) {
+  if (value < least)
+    throw io::InputError(
+        option, "must be at least " + std::to_string(least) + " (got " + std::to_string(value) + ")");
+}
+
+void requireLightmapSize(const char* option, uint32_t size) {
+  if (size < 16 || size > 4096 || size % 16 != 0)
+    throw io::InputError(
+        option, "a lightmap size is a multiple of 16 from 16 to 4096 (got " + std::to_string(size) + ")");
+}
+
+// The options checked and the inputs read before any section runs: bad input fails in a second, not after
+// minutes of benchmarks.
+BenchInputs prepare(BenchOptions& o) {
+  std::vector<std::string> sections;
+  for (const std::string& name : o.sections) {
+    const auto known = std::find_if(kSections.begin(), kSections.end(),
+                                    [&](const BenchSection& s) { return name == s.name; });
+    if (known == kSections.end())
+      throw io::InputError("--sections", "unknown section \"" + name + "\" (known: " + knownSections() + ")");
+    if (std::find(sections.begin(), sections.end(), name) == sections.end()) sections.push_back(name);
+  }
+  if (sections.empty())
+    throw io::InputError("--sections", "names no section (known: " + knownSections() + ")");
+  o.sections = sections;
+  requireAtLeast("--warmup", o.warmup, 0);
+  requireAtLeast("--repeats", o.repeats, 1);
+  requireAtLeast("--repeats-large", o.repeatsLarge, 1);
+  requireAtLeast("--sim-steps", o.simSteps, 1);
+  if (o.simSteps > 64)
+    throw io::InputError("--sim-steps",
+                         "at most 64 steps per submission (got " + std::to_string(o.simSteps) + ")");
+  for (uint32_t size : o.sizes) requireLightmapSize("--size", size);
+  requireLightmapSize("--frame-lightmaps", o.frameLightmapSize);
+  if (!o.report.empty()) requireWritable(o.report, o.force);
+
+  BenchInputs inputs;
+  for (const std::string& grid : o.grids) inputs.lattices.push_back(parseLattice(grid));
+  benchScene(o.scene, inputs.lattices.front());  // the scene file parses
+  const bool needsWeights = std::any_of(kSections.begin(), kSections.end(), [&](const BenchSection& s) {
+    return s.needsWeights && std::find(sections.begin(), sections.end(), s.name) != sections.end();
+  });
+  if (needsWeights) {
+    if (!std::filesystem::exists(o.weights)) throw io::InputError(o.weights.string(), "no such weights file");
+    inputs.weights = io::readSafetensors(o.weights);
+    nn::parseGraph(inputs.weights);  // the graph is valid
+  }
+  return inputs;
+}
+
+// The machine, for the report: a number is only comparable with the machine and its load named.
+nlohmann::json machine() {
+  std::string cpu = "unknown";
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  for (std::string line; std::getline(cpuinfo, line);)
+    if (line.rfind("model name", 0) == 0) {
+      cpu = line.substr(line.find(':') + 2);
+      break;
     }
-  guide.upload(std::as_bytes(std::span(texels)));
-  return guide;
+  return {{"cpu", cpu}, {"logical_cores", std::thread::hardware_concurrency()}};
 }
 
-nlohmann::json benchNetworkSize(const gpu::Context& context, const gpu::PipelineCache& cache,
-                                const io::SafetensorsFile& weights, const BenchOptions& o, uint32_t size) {
-  nn::Network network(context, cache, weights, size, size,
-                      {o.fp16 ? nn::Precision::Fp16 : nn::Precision::Fp32});
-  const gpu::Image guide = benchGuide(context, size);
-  const gpu::ImageDesc lightmap{size,
-                                size,
-                                1,
-                                VK_FORMAT_R16G16B16A16_SFLOAT,
-                                VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
-                                "lightmap"};
-  const gpu::Image a(context, lightmap), b(context, lightmap);
-  gpu::Sequence sequence(context, network.stageCount());
-  network.record(sequence, guide, a, b, true);
-  for (int i = 0; i < o.warmup; ++i) sequence.submit();
-
-  // Stages in record order: one per layer, or one per part of a layer that has parts.
-  struct Stage {
-    std::string name, kind;
-    double flops;
-    std::vector<double> ms;
-  };
-  std::vector<Stage> stages;
-  for (const nn::LayerInfo& layer : network.layers()) {
-    if (layer.parts.empty()) stages.push_back({layer.name, layer.kind, layer.flops, {}});
-    for (const auto& part : layer.parts)
-      stages.push_back({layer.name + "/" + part.name, layer.kind + "/" + part.name, part.flops, {}});
-  }
-  std::vector<double> totals, cpuMs;
-  for (int r = 0; r < o.repeats; ++r) {
-    const double cpuBefore = processCpuMs();
-    sequence.submit();
-    cpuMs.push_back(processCpuMs() - cpuBefore);
-    double total = 0.0;
-    for (size_t i = 0; i < stages.size(); ++i) {
-      stages[i].ms.push_back(sequence.stageTimes().at(i).milliseconds);
-      total += stages[i].ms.back();
-    }
-    totals.push_back(total);
-  }
-
-  nlohmann::json layerReport = nlohmann::json::array();
-  std::map<std::string, std::pair<double, double>>
-      byKind;  // kind -> (ms, flops), parts also under their layer's
-  double flops = 0.0;
-  for (const Stage& stage : stages) {
-    const double ms = median(stage.ms);
-    layerReport.push_back({{"name", stage.name},
-                           {"kind", stage.kind},
-                           {"ms", ms},
-                           {"flops", stage.flops},
-                           {"gflops_per_s", stage.flops / ms * 1e-6}});
-    for (const std::string& kind : {stage.kind, stage.kind.substr(0, stage.kind.find('/'))}) {
-      byKind[kind].first += ms;
-      byKind[kind].second += stage.flops;
-      if (kind == stage.kind.substr(0, stage.kind.find('/'))) break;
-    }
-    flops += stage.flops;
-  }
-  const double total = median(totals), cpu = median(cpuMs);
-  std::printf(
-      "\n%ux%u, %s maps: %.2f ms (median of %d), %.2f GFLOP, %.1f GFLOP/s; process CPU time %.2f ms\n", size,
-      size, o.fp16 ? "fp16" : "fp32", total, o.repeats, flops * 1e-9, flops / total * 1e-6, cpu);
-  std::printf("  %-24s %-20s %9s %9s\n", "layer", "kind", "ms", "GFLOP/s");
-  for (const auto& l : layerReport)
-    std::printf("  %-24s %-20s %9.3f %9.1f\n", l["name"].get<std::string>().c_str(),
-                l["kind"].get<std::string>().c_str(), l["ms"].get<double>(), l["gflops_per_s"].get<double>());
-  nlohmann::json kindReport = nlohmann::json::object();
-  std::printf("  per layer type:\n");
-  for (const auto& [kind, msFlops] : byKind) {
-    const double rate = msFlops.second / msFlops.first * 1e-6;
-    kindReport[kind] = {{"ms", msFlops.first}, {"flops", msFlops.second}, {"gflops_per_s", rate}};
-    std::printf("  %-45s %9.3f %9.1f\n", kind.c_str(), msFlops.first, rate);
-  }
-  return {{"size", size},          {"total_ms", total},
-          {"flops", flops},        {"gflops_per_s", flops / total * 1e-6},
-          {"layers", layerReport}, {"by_kind", kindReport}};
+nlohmann::json loadAverage() {
+  double load[3] = {0, 0, 0};
+  if (getloadavg(load, 3) != 3) return nullptr;
+  return {load[0], load[1], load[2]};
 }
 
-nlohmann::json benchNetwork(const gpu::Context& context, const gpu::PipelineCache& cache,
-                            const BenchOptions& o) {
-  const io::SafetensorsFile weights = io::readSafetensors(o.weights);
-  std::printf("neural lightmaps: %s\n", o.weights.string().c_str());
-  nlohmann::json sizes = nlohmann::json::array();
-  for (uint32_t size : o.sizes) sizes.push_back(benchNetworkSize(context, cache, weights, o, size));
-  return {{"weights", o.weights.string()},
-          {"precision", o.fp16 ? "fp16" : "fp32"},
-          {"warmup", o.warmup},
-          {"repeats", o.repeats},
-          {"sizes", sizes}};
+std::string utcNow() {
+  const std::time_t now = std::time(nullptr);
+  char text[32];
+  std::strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return text;
 }
 
-// The stages with a benchmark; the simulation and the renderer add theirs here.
-const std::vector<BenchSection> kSections = {{"neural", benchNetwork}};
+void run(BenchOptions& o) {
+  const BenchInputs inputs = prepare(o);
+  gpu::Context context(o.common.contextOptions());
+  gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));
+  const uint32_t api = context.properties().apiVersion;
+  const std::string vulkan = std::to_string(VK_API_VERSION_MAJOR(api)) + "." +
+                             std::to_string(VK_API_VERSION_MINOR(api)) + "." +
+                             std::to_string(VK_API_VERSION_PATCH(api));
+  const nlohmann::json host = machine(), loadStart = loadAverage();
+  std::printf("device: %s (%s %s), Vulkan %s; %s, %u logical cores, load average %s\n",
+              context.properties().deviceName, context.driver().driverName, context.driver().driverInfo,
+              vulkan.c_str(), host["cpu"].get<std::string>().c_str(), host["logical_cores"].get<unsigned>(),
+              loadStart.dump().c_str());
+  std::printf("bench scene %s; warm-up %d, repeats %d (%d for lattices over %.1f M cells)\n\n",
+              o.scene.string().c_str(), o.warmup, o.repeats, o.repeatsLarge, kLargeLatticeCells * 1e-6);
+  std::fflush(stdout);
+  nlohmann::json report = {
+      {"device", context.properties().deviceName},
+      {"driver", std::string(context.driver().driverName) + " " + context.driver().driverInfo},
+      {"vulkan", vulkan},
+      {"machine", host},
+      {"date_utc", utcNow()},
+      {"load_average_start", loadStart},
+      {"scene", o.scene.string()},
+      {"warmup", o.warmup},
+      {"repeats", o.repeats},
+      {"repeats_large", o.repeatsLarge},
+      {"sim_steps", o.simSteps},
+      {"sections", o.sections}};
+  const auto start = std::chrono::steady_clock::now();
+  for (const BenchSection& section : kSections)
+    if (std::find(o.sections.begin(), o.sections.end(), section.name) != o.sections.end())
+      report[section.name] = section.run(context, cache, o, inputs);
+  report["load_average_end"] = loadAverage();
+  report["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!o.report.empty()) {
+    writeReport(o.report, report);
+    std::printf("\nwrote %s\n", o.report.string().c_str());
+  }
+  if (context.validationMessageCount() > 0)
+    throw std::runtime_error(std::to_string(context.validationMessageCount()) + " validation messages");
+}
 
 }  // namespace
 
@@ -174,33 +184,31 @@ void addBenchCommand(CLI::App& app) {
   o->common.addTo(*command);
   command->add_option("--report", o->report, "JSON report");
   command->add_flag("--force", o->force, "Overwrite an existing report");
-  command->add_option("--weights", o->weights, "Network weights (safetensors)")
-      ->capture_default_str()
-      ->check(CLI::ExistingFile);
-  command->add_option("--size", o->sizes, "Square guide sizes in pixels")
-      ->capture_default_str()
-      ->check(CLI::Range(16, 4096));
-  command->add_option("--warmup", o->warmup, "Submits before timing")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  command->add_option("--repeats", o->repeats, "Timed submits (the median is reported)")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  command->add_flag("--fp16", o->fp16, "Feature maps stored as fp16 (arithmetic stays fp32)");
-  command->callback([o] {
-    if (!o->report.empty()) requireWritable(o->report, o->force);
-    gpu::Context context(o->common.contextOptions());
-    gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));
-    std::printf("device: %s (%s %s)\n", context.properties().deviceName, context.driver().driverName,
-                context.driver().driverInfo);
-    nlohmann::json report = {
-        {"device", context.properties().deviceName},
-        {"driver", std::string(context.driver().driverName) + " " + context.driver().driverInfo}};
-    for (const BenchSection& section : kSections) report[section.name] = section.run(context, cache, *o);
-    if (!o->report.empty()) writeReport(o->report, report);
-    if (context.validationMessageCount() > 0)
-      throw std::runtime_error(std::to_string(context.validationMessageCount()) + " validation messages");
-  });
+  command->add_option("--sections", o->sections, "What to time: " + knownSections())
+      ->delimiter(',')
+      ->capture_default_str();
+  command
+      ->add_option("--grid", o->grids,
+                   "Simulation lattices NXxNYxNZ (the first also for lightmaps and frame)")
+      ->capture_default_str();
+  command->add_option("--size", o->sizes, "Square lightmap sizes in pixels (lightmaps and network)")
+      ->capture_default_str();
+  command->add_option("--frame-lightmaps", o->frameLightmapSize, "Lightmap size of the end-to-end frame")
+      ->capture_default_str();
+  command->add_option("--weights", o->weights, "Network weights (safetensors)")->capture_default_str();
+  command->add_option("--warmup", o->warmup, "Untimed runs first (at most 1 for the large lattices)")
+      ->capture_default_str();
+  command->add_option("--repeats", o->repeats, "Timed runs (median, min and max are reported)")
+      ->capture_default_str();
+  command
+      ->add_option("--repeats-large", o->repeatsLarge,
+                   "Timed runs of lattices over 2 M cells (128x256x128: seconds per step on lavapipe)")
+      ->capture_default_str();
+  command
+      ->add_option("--sim-steps", o->simSteps, "Lattice steps per timed submission of the sim section (1-64)")
+      ->capture_default_str();
+  command->add_flag("--fp16", o->fp16, "Network section: fp16 feature maps (arithmetic stays fp32)");
+  command->callback([o] { run(*o); });
 }
 
 }  // namespace sixway::app

@@ -13,6 +13,7 @@
 #include "app/lightmap_metrics.h"
 #include "app/options.h"
 #include "app/report.h"
+#include "app/scene_eval.h"
 #include "gpu/context.h"
 #include "gpu/image.h"
 #include "gpu/pipeline.h"
@@ -29,10 +30,9 @@ namespace fs = std::filesystem;
 
 struct EvalOptions {
   CommonOptions common;
-  fs::path scene, dataset, weights, report;
-  int frames = 0;
+  fs::path dataset;
   std::vector<std::string> splits{"heldout_sequence", "heldout_camera"};
-  bool force = false;
+  SceneEvalSettings scene;  // --scene, and the report, weights and --force of both paths
 };
 
 std::vector<fs::path> shardFiles(const fs::path& directory) {
@@ -59,10 +59,9 @@ std::vector<float> interleaved(const std::vector<float>& nchw, int64_t n, int ch
 }
 
 void evaluateDataset(const EvalOptions& o) {
-  requireWritable(o.report, o.force);
+  requireWritable(o.scene.report, o.scene.force);
   const std::vector<fs::path> shards = shardFiles(o.dataset);
-  const fs::path weightsPath =
-      o.weights.empty() ? fs::path(SIXWAY_WEIGHTS_DIR) / "sixway-unet.safetensors" : o.weights;
+  const fs::path weightsPath = o.scene.weights;
   const io::SafetensorsFile weights = io::readSafetensors(weightsPath);
   const std::set<std::string> splits(o.splits.begin(), o.splits.end());
 
@@ -138,32 +137,57 @@ void evaluateDataset(const EvalOptions& o) {
   if (metrics.empty()) throw io::InputError(o.dataset.string(), "has no samples in the splits asked for");
   std::sort(inferenceMs.begin(), inferenceMs.end());
   report["inference_ms_median"] = inferenceMs[inferenceMs.size() / 2];
-  writeReport(o.report, report);
+  writeReport(o.scene.report, report);
   if (context.validationMessageCount() > 0)
     throw std::runtime_error(std::to_string(context.validationMessageCount()) + " validation messages");
 }
 
-void run(const EvalOptions& o) {
-  if (!o.scene.empty())
-    throw io::InputError("--scene", "evaluating a scene's sequence arrives with issue #9; use --dataset DIR");
-  if (o.dataset.empty()) throw io::InputError("eval", "give --dataset DIR (or, with issue #9, --scene S)");
-  evaluateDataset(o);
+void run(EvalOptions o) {
+  if (o.scene.weights.empty()) o.scene.weights = fs::path(SIXWAY_WEIGHTS_DIR) / "sixway-unet.safetensors";
+  if (!o.dataset.empty() && !o.scene.scene.empty())
+    throw io::InputError("eval", "give --dataset DIR or --scene S, not both");
+  if (!o.dataset.empty()) return evaluateDataset(o);
+  if (o.scene.scene.empty()) throw io::InputError("eval", "give --dataset DIR or --scene S");
+  evaluateScene(o.common, o.scene);
 }
 
 }  // namespace
 
 void addEvalCommand(CLI::App& app) {
   auto o = std::make_shared<EvalOptions>();
-  CLI::App* eval =
-      app.add_subcommand("eval", "Lightmap quality of the network, measured by the GLSL pipeline");
+  CLI::App* eval = app.add_subcommand(
+      "eval", "Quality and speed: the network on a dataset, or every method on a scene's sequence");
   o->common.addTo(*eval);
   eval->add_option("--dataset", o->dataset, "Dataset directory (sixway dataset): evaluate its samples");
-  eval->add_option("--scene", o->scene, "Scene JSON (issue #9)");
-  eval->add_option("--frames", o->frames, "Frames (with --scene)")->check(CLI::PositiveNumber);
-  eval->add_option("--weights", o->weights, "Network file (default weights/sixway-unet.safetensors)");
-  eval->add_option("--split", o->splits, "Splits evaluated (default heldout_sequence heldout_camera)");
-  eval->add_option("--report", o->report, "JSON report")->required();
-  eval->add_flag("--force", o->force, "Overwrite an existing report");
+  eval->add_option("--split", o->splits,
+                   "Dataset: splits evaluated (default heldout_sequence heldout_camera)");
+  SceneEvalSettings& s = o->scene;
+  eval->add_option("--scene", s.scene, "Scene JSON: evaluate its sequence against the path tracer");
+  eval->add_option("--frames", s.frames, "Scene: frames evaluated");
+  eval->add_option("--out", s.out, "Scene: directory for the side-by-side strip (strip.png)");
+  eval->add_option("--spp", s.samples,
+                   "Scene: path-tracer samples per pixel of the ground truth (default 64)")
+      ->check(CLI::Range(1, 1 << 20));
+  eval->add_option("--orders", s.orders, "Scene: path-tracer scattering orders (default 64)")
+      ->check(CLI::Range(1, 100000));
+  eval->add_option("--density-scale", s.densityScale,
+                   "Scene: the smoke's extinction (optical density) x this");
+  eval->add_flag(
+      "--draw-obstacles", s.drawObstacles,
+      "Scene: draw the obstacles in every method (the path tracer does not shadow the smoke by them)");
+  eval->add_flag(
+      "--no-shadows", [&s](int64_t) { s.shadows = false; },
+      "Scene: no obstacle shadows on the smoke (with --draw-obstacles)");
+  eval->add_option("--camera-orbit", s.cameraOrbitDeg,
+                   "Scene: replace the camera path by an orbit of this many degrees per frame");
+  eval->add_option("--strip-frame", s.stripFrame,
+                   "Scene: frame of the strip and the equal-time study (default the last)");
+  eval->add_option("--equal-time-reference-spp", s.equalTimeReferenceSamples,
+                   "Scene: samples per pixel of the equal-time study's reference (default 256)")
+      ->check(CLI::Range(4, 1 << 20));
+  eval->add_option("--weights", s.weights, "Network file (default weights/sixway-unet.safetensors)");
+  eval->add_option("--report", s.report, "JSON report")->required();
+  eval->add_flag("--force", s.force, "Overwrite an existing report (and --out directory)");
   eval->callback([o] { run(*o); });
 }
 

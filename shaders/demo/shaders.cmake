@@ -1,0 +1,5 @@
+# The interactive demo (#8): its view of the frame pipeline's images.
+list(APPEND SIXWAY_SHADERS
+  demo/display.vert
+  demo/display.frag
+)

@@ -1,0 +1,163 @@
+// `sixway bench` section "network": the lightmap network alone (issue #6) with a timed stage per layer (a
+// NAFBlock is four), on a synthetic guide (the network's cost does not depend on the values), FLOPs counted
+// from the graph (docs/benchmarks.md, "Neural inference"). The same network recorded as one timed stage runs
+// alternately with it: on lavapipe the per-layer stages were seen to add up to much less than the whole.
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "app/bench_options.h"
+#include "app/bench_stats.h"
+#include "gpu/context.h"
+#include "gpu/image.h"
+#include "gpu/sequence.h"
+#include "nn/network.h"
+
+namespace sixway::app {
+namespace {
+
+// CPU time of the whole process (all threads: lavapipe runs the work on its own threads), in milliseconds.
+double processCpuMs() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return (usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) * 1e3 +
+         (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) * 1e-3;
+}
+
+// A smooth guide-like image.
+gpu::Image benchGuide(const gpu::Context& context, uint32_t size) {
+  gpu::Image guide(context, {size, size, 1, VK_FORMAT_R32G32B32A32_SFLOAT,
+                             VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT, "guide"});
+  std::vector<float> texels(size_t(size) * size * 4);
+  for (uint32_t y = 0; y < size; ++y)
+    for (uint32_t x = 0; x < size; ++x) {
+      const float u = (x + 0.5f) / size - 0.5f, v = (y + 0.5f) / size - 0.5f;
+      const float blob = std::exp(-8.0f * (u * u + v * v));
+      float* t = &texels[(size_t(y) * size + x) * 4];
+      t[0] = blob, t[1] = std::min(1.0f, 1.5f * blob), t[2] = 0.5f + 0.3f * u, t[3] = 0.0f;
+    }
+  guide.upload(std::as_bytes(std::span(texels)));
+  return guide;
+}
+
+nlohmann::json benchNetworkSize(const gpu::Context& context, const gpu::PipelineCache& cache,
+                                const io::SafetensorsFile& weights, const BenchOptions& o, uint32_t size) {
+  nn::Network network(context, cache, weights, size, size,
+                      {o.fp16 ? nn::Precision::Fp16 : nn::Precision::Fp32});
+  const gpu::Image guide = benchGuide(context, size);
+  const gpu::ImageDesc lightmap{size,
+                                size,
+                                1,
+                                VK_FORMAT_R16G16B16A16_SFLOAT,
+                                VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                                "lightmap"};
+  const gpu::Image a(context, lightmap), b(context, lightmap);
+  gpu::Sequence sequence(context, network.stageCount());
+  network.record(sequence, guide, a, b, true);
+  gpu::Sequence whole(context);
+  whole.beginStage("network");
+  network.record(whole, guide, a, b);
+  whole.endStage();
+  whole.finish();
+  for (int i = 0; i < o.warmup; ++i) {
+    sequence.submit();
+    whole.submit();
+  }
+
+  // Stages in record order: one per layer, or one per part of a layer that has parts.
+  struct Stage {
+    std::string name, kind;
+    double flops;
+    std::vector<double> ms;
+  };
+  std::vector<Stage> stages;
+  for (const nn::LayerInfo& layer : network.layers()) {
+    if (layer.parts.empty()) stages.push_back({layer.name, layer.kind, layer.flops, {}});
+    for (const auto& part : layer.parts)
+      stages.push_back({layer.name + "/" + part.name, layer.kind + "/" + part.name, part.flops, {}});
+  }
+  std::vector<double> totals, cpuMs, wholeMs;
+  for (int r = 0; r < o.repeats; ++r) {
+    whole.submit();
+    wholeMs.push_back(whole.stageTimes().front().milliseconds);
+    const double cpuBefore = processCpuMs();
+    sequence.submit();
+    cpuMs.push_back(processCpuMs() - cpuBefore);
+    double total = 0.0;
+    for (size_t i = 0; i < stages.size(); ++i) {
+      stages[i].ms.push_back(sequence.stageTimes().at(i).milliseconds);
+      total += stages[i].ms.back();
+    }
+    totals.push_back(total);
+  }
+
+  nlohmann::json layerReport = nlohmann::json::array();
+  std::map<std::string, std::pair<double, double>>
+      byKind;  // kind -> (ms, flops), parts also under their layer's
+  double flops = 0.0;
+  for (const Stage& stage : stages) {
+    const double ms = summarize(stage.ms).median;
+    layerReport.push_back({{"name", stage.name},
+                           {"kind", stage.kind},
+                           {"ms", ms},
+                           {"flops", stage.flops},
+                           {"gflops_per_s", stage.flops / ms * 1e-6}});
+    for (const std::string& kind : {stage.kind, stage.kind.substr(0, stage.kind.find('/'))}) {
+      byKind[kind].first += ms;
+      byKind[kind].second += stage.flops;
+      if (kind == stage.kind.substr(0, stage.kind.find('/'))) break;
+    }
+    flops += stage.flops;
+  }
+  const Timing total = summarize(totals);
+  const double cpu = summarize(cpuMs).median;
+  const Timing wholeTime = summarize(wholeMs);
+  std::printf(
+      "\n%ux%u, %s maps: layers add up to %.2f ms (median of %d; min %.2f, max %.2f), %.2f GFLOP, %.1f "
+      "GFLOP/s; "
+      "process CPU time %.2f ms; as one stage %.2f ms (min %.2f, max %.2f)\n",
+      size, size, o.fp16 ? "fp16" : "fp32", total.median, o.repeats, total.min, total.max, flops * 1e-9,
+      flops / total.median * 1e-6, cpu, wholeTime.median, wholeTime.min, wholeTime.max);
+  std::printf("  %-24s %-20s %9s %9s\n", "layer", "kind", "ms", "GFLOP/s");
+  for (const auto& l : layerReport)
+    std::printf("  %-24s %-20s %9.3f %9.1f\n", l["name"].get<std::string>().c_str(),
+                l["kind"].get<std::string>().c_str(), l["ms"].get<double>(), l["gflops_per_s"].get<double>());
+  nlohmann::json kindReport = nlohmann::json::object();
+  std::printf("  per layer type:\n");
+  for (const auto& [kind, msFlops] : byKind) {
+    const double rate = msFlops.second / msFlops.first * 1e-6;
+    kindReport[kind] = {{"ms", msFlops.first}, {"flops", msFlops.second}, {"gflops_per_s", rate}};
+    std::printf("  %-45s %9.3f %9.1f\n", kind.c_str(), msFlops.first, rate);
+  }
+  std::fflush(stdout);
+  return {{"size", size},
+          {"total_ms", total.median},
+          {"total", timingJson(totals)},
+          {"whole", timingJson(wholeMs)},
+          {"process_cpu_ms", cpu},
+          {"flops", flops},
+          {"gflops_per_s", flops / total.median * 1e-6},
+          {"layers", layerReport},
+          {"by_kind", kindReport}};
+}
+
+}  // namespace
+
+nlohmann::json benchNetwork(const gpu::Context& context, const gpu::PipelineCache& cache,
+                            const BenchOptions& o, const BenchInputs& inputs) {
+  std::printf("\nneural lightmaps, layer by layer: %s\n", o.weights.string().c_str());
+  nlohmann::json sizes = nlohmann::json::array();
+  for (uint32_t size : o.sizes) sizes.push_back(benchNetworkSize(context, cache, inputs.weights, o, size));
+  return {{"weights", o.weights.string()},
+          {"precision", o.fp16 ? "fp16" : "fp32"},
+          {"warmup", o.warmup},
+          {"repeats", o.repeats},
+          {"sizes", sizes}};
+}
+
+}  // namespace sixway::app
