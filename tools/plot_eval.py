@@ -67,7 +67,7 @@ def plot_stages(report, out):
     ax.set_ylabel("median GPU time per frame (ms)")
     ax.tick_params(axis="x", labelsize=8, rotation=20)
     ax.legend(fontsize=6, ncol=2, loc="upper left", bbox_to_anchor=(1.0, 1.0))
-    ax.set_title("time per stage (GPU timestamps; the path tracer's read low on lavapipe)", fontsize=9)
+    ax.set_title("time per stage (GPU timestamps)", fontsize=9)
     ax.grid(alpha=0.3, axis="y")
     fig.tight_layout()
     fig.savefig(out, dpi=100)

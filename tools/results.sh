@@ -7,7 +7,8 @@
 # at 128x128 with 64x64 lightmaps, 16 frames per study (the camera orbit: 0-90 degrees in 7.5-degree steps, 13
 # frames), ground truth 64 spp. Override with FRAMES=N SPP=N ORBIT_STEP=DEG; SIXWAY=path/to/sixway uses that
 # binary (no build); BENCH_ARGS="..." are
-# passed to `sixway bench` (its defaults otherwise), SKIP_BENCH=1 leaves it out.
+# passed to `sixway bench` (its defaults otherwise), SKIP_BENCH=1 leaves it out; ABLATIONS=1 first runs
+# tools/ablations.sh (the retrained networks, 1.5-2 hours), whose table docs/results.md includes.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 frames="${FRAMES:-16}"
@@ -21,6 +22,8 @@ started=$(date +%s)
 load_before=$(cut -d' ' -f1-3 /proc/loadavg)
 
 [ -x "$sixway" ] || source "$root/tools/build.sh"
+# The retrained ablations (hours, so only when asked): they write docs/results/ablations.md, included below.
+[ -n "${ABLATIONS:-}" ] && SIXWAY="$sixway" bash "$root/tools/ablations.sh"
 rm -rf "$out"
 mkdir -p "$out" "$root/docs/results"
 

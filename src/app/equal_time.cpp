@@ -49,14 +49,16 @@ nlohmann::json equalTimeStudy(const gpu::Context& context, const gpu::PipelineCa
         return p;
       };
 
-  // Time against samples: 1, 2, 4, ... spp, until a render takes longer than the budget.
+  // Time against samples: 1, 2, 4, ... spp, until a render takes longer than the budget, and at least up to
+  // 16 spp, so the curve shows how the noise falls even where one sample already costs more than the budget.
+  constexpr uint32_t kCurveSamples = 16;
   std::vector<std::pair<uint32_t, double>> times;  // (spp, ms)
   std::vector<io::Image> images;
   for (uint32_t spp = 1; spp <= (1u << 16); spp *= 2) {
     auto [image, ms] = trace(spp, passOf(spp), spp);
     times.emplace_back(spp, ms);
     images.push_back(std::move(image));
-    if (ms > budgetMs) break;
+    if (ms > budgetMs && spp >= kCurveSamples) break;
   }
   // The sample count at the budget, linear in time between the two renders around it (at least one).
   double equal = 1;

@@ -2,9 +2,8 @@
 // The path tracer at equal time (issue #9 item 2; the paper's comparison with Monte Carlo rendering): how
 // many samples per pixel the path tracer takes in the neural frame's GPU time on this device, and how noisy
 // its image is then, measured against a high-sample render of the same frame traced with other random
-// numbers. Time is the host's clock around the work, on both sides: on lavapipe the GPU timestamps around the
-// path tracer's lone dispatch read about a thousandth of its run time (1024 spp of small_plume: 9 ms
-// stamped, 8.8 s on the wall clock), so they cannot set its budget.
+// numbers. Time is the host's clock around the work, on both sides: what a user waits for, submissions and
+// readbacks included.
 #include <nlohmann/json.hpp>
 #include <optional>
 
@@ -26,7 +25,8 @@ struct EqualTimeSettings {
 };
 
 // Frame `index` of `scene` (camera and lights on their paths) over the scene's background: renders of 1, 2,
-// 4, ... spp (each from the start, in passes of up to 16 samples) until one takes longer than the budget; the
+// 4, ... spp (each from the start, in passes of up to 16 samples) until one takes longer than the budget and
+// at least 16 spp; the
 // count at the budget, interpolated linearly in time, rendered and timed; all against the stand-in. `neural`:
 // the neural frame, compared with the stand-in too when given (meaningful only when it shows no obstacles).
 // Returns {budget_ms, reference_spp, curve: [{spp, ms, image error}], equal_time_spp, equal_time_ms,

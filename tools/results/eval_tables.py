@@ -183,8 +183,8 @@ network adds to its input.
 
 Median per frame over the multiple-scattering run, milliseconds of GPU timestamps (`gpu::Sequence` stages; the
 simulation's `StepTimes`), and the wall clock of each method's `FramePipeline::render` call (upload, submit, wait,
-readback). On lavapipe the timestamps around a lone dispatch read far too low (the path tracer: 9 ms stamped
-for 1024 spp of this scene, 8.8 s on the wall clock), so compare the wall-clock row where they disagree.
+readback). The timestamps are taken as each stage ends (on lavapipe too, since `gpu::Sequence` resolves each
+one at once, docs/benchmarks.md), so the wall clock exceeds their sum by the host's uploads, waits and readbacks.
 
 {timing_table(multiple)}
 
@@ -230,6 +230,24 @@ here measure how much the shadows change the image against an unshadowed truth, 
 
 {shadow_table(on, off)}
 """
+    ablations = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "docs", "results",
+                             "ablations.md")
+    out += """
+## Ablations: guide lights and channel adapters
+
+Networks retrained for the same budget (1,000 steps of the shipped recipe, `tools/train_configs/ablations/`) on
+the same sequences, cameras and targets (`tools/datasets/cpu_small.json`; the guide-light variants only change
+the guiding map, `tools/datasets/ablations/`), measured on the held-out splits by the C++ pipeline
+(`sixway eval --dataset`, lightmap PSNR against the baker, masked). Made by `tools/ablations.sh` (1.5–2 hours
+here, so not part of the default run; `ABLATIONS=1 tools/results.sh` runs it first). The baseline here is the
+shipped architecture at this shorter budget, not the shipped weights (2,500 steps).
+
+"""
+    if os.path.exists(ablations):
+        with open(ablations) as f:
+            out += f.read()
+    else:
+        out += "Not run yet on this machine: `tools/ablations.sh`.\n"
     if len(argv) == 4 and os.path.exists(argv[3]):
         with open(argv[3]) as f:
             out += "\n## Benchmarks (`sixway bench`)\n\n" + f.read()

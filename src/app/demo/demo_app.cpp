@@ -187,7 +187,8 @@ std::vector<gpu::StageTime> Demo::renderViews() {
             {inB ? &p.lightmapImageB() : &p.lightmapImageA(), PanelKind::Channel, component, component < 3}};
       }
     }
-  } catch (const io::InputError& e) {  // neural mode without weights
+  } catch (const io::InputError& e) {  // neural mode without weights: fall back once to reference
+    if (mode_ == RenderMode::Reference && !split_) throw;
     say(e.what(), true);
     split_ = false;
     mode_ = RenderMode::Reference;
