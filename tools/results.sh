@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates docs/results.md and its plots (docs/results/*.png) from scratch on this machine (issue #9): builds
 # sixway if needed, runs the `sixway eval --scene` studies into out/results/, plots them, writes the tables, and
-# appends the `sixway bench` tables when tools/results/bench_tables.py exists.
+# appends the `sixway bench` tables (to docs/results.md and, between its markers, docs/benchmarks.md) when
+# tools/results/bench_tables.py exists.
 #
 # Default sizes (about 15-25 minutes on the 2-core lavapipe machine): tests/data/scenes/small_plume.json rendered
 # at 128x128 with 64x64 lightmaps, 16 frames per study (the camera orbit: 0-90 degrees in 7.5-degree steps, 13
@@ -58,6 +59,19 @@ if [ -z "${SKIP_BENCH:-}" ] && [ -f "$root/tools/results/bench_tables.py" ]; the
   "$sixway" bench --report "$out/bench.json" ${BENCH_ARGS:-}
   "$python" "$root/tools/results/bench_tables.py" "$out/bench.json" >"$out/bench_tables.md"
   bench_tables="$out/bench_tables.md"
+  # The same tables into docs/benchmarks.md, between its "bench tables" markers (the text around them is
+  # written by hand and may need updating to the new figures).
+  "$python" - "$root/docs/benchmarks.md" "$bench_tables" <<'EOF'
+import re, sys
+doc, tables = open(sys.argv[1]).read(), open(sys.argv[2]).read()
+begin = "<!-- bench tables: begin (written by tools/results.sh from its sixway bench run) -->\n"
+end = "<!-- bench tables: end -->"
+if begin not in doc or end not in doc:
+    sys.exit("results.sh: docs/benchmarks.md has no bench tables markers")
+body = re.sub(r"^(#+) ", lambda m: "#" + m.group(1) + " ", tables.split("### Simulation", 1)[-1], flags=re.M)
+head, rest = doc.split(begin, 1)
+open(sys.argv[1], "w").write(head + begin + "#### Simulation" + body.rstrip() + "\n" + end + rest.split(end, 1)[1])
+EOF
 fi
 
 plot="$root/tools/plot_eval.py"
