@@ -8,8 +8,8 @@
 # docs/results/ablations.md, which docs/results.md includes.
 #
 # About 1.5-2 hours on the 2-core machine (three datasets of 7 minutes, four trainings of 10-20 minutes, the
-# evaluations); the datasets are kept in DATA (default data/) and reused, a finished training is reused unless
-# FORCE=1. Not part of tools/results.sh's default run: ABLATIONS=1 tools/results.sh runs it too.
+# evaluations); the datasets are kept in DATA (default data/) and reused, a finished training is reused and an
+# interrupted one resumed from its last checkpoint (every 250 steps) unless FORCE=1. Not part of tools/results.sh's default run: ABLATIONS=1 tools/results.sh runs it too.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 data="${DATA:-$root/data}"
@@ -31,9 +31,11 @@ for entry in "${variants[@]}"; do
   echo "ablations.sh: $variant"
   # Resumable: a complete dataset is only checked.
   "$sixway" dataset --config "$root/$config" --out "$data/$dataset"
-  if [ -n "${FORCE:-}" ] || [ ! -f "$out/$variant/sixway-unet.safetensors" ]; then
+  if [ -n "${FORCE:-}" ] || { [ ! -f "$out/$variant/sixway-unet.safetensors" ] && [ ! -f "$out/$variant/checkpoint.pt" ]; }; then
     "$python" "$root/tools/train.py" --config "$root/tools/train_configs/ablations/$variant.json" \
       --data "$data/$dataset" --out "$out/$variant" --force
+  elif [ ! -f "$out/$variant/sixway-unet.safetensors" ]; then  # an interrupted training goes on where it stopped
+    "$python" "$root/tools/train.py" --resume --data "$data/$dataset" --out "$out/$variant"
   fi
   "$sixway" eval --dataset "$data/$dataset" --weights "$out/$variant/sixway-unet.safetensors" \
     --report "$out/$variant/eval.json" --force
