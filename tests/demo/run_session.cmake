@@ -49,6 +49,12 @@ expect_differ(08_guide 09_split "the view changed to the split screen")
 expect_same(10_ten_frames 11_ten_frames_again "reset replays the same frames")
 expect_differ(11_ten_frames_again 12_sphere_dragged "the sphere was dragged")
 hash_of(13_window h)  # exists
+# The PNG header's width and height (IHDR, bytes 16..23): the window's size before and after `resize`.
+file(READ ${OUT}/13_window.png before OFFSET 16 LIMIT 8 HEX)
+file(READ ${OUT}/14_resized.png after OFFSET 16 LIMIT 8 HEX)
+if(NOT before STREQUAL "00000140000000f0" OR NOT after STREQUAL "000000c800000096")
+  message(FATAL_ERROR "expected 320 x 240 then 200 x 150 screenshots, got IHDR ${before} and ${after}")
+endif()
 foreach(i 00000 00001 00002)
   if(NOT EXISTS ${OUT}/recording/frame_${i}.png)
     message(FATAL_ERROR "the recording has no frame_${i}.png")

@@ -6,6 +6,7 @@
 #include "app/demo/demo_app.h"
 #include "app/demo/display_pass.h"
 #include "app/demo/live_scene.h"
+#include "app/demo/window.h"
 #include "io/error.h"
 #include "io/png.h"
 #include "render/sixway.h"
@@ -207,6 +208,9 @@ void Demo::runScriptCommand(const ScriptCommand& c) {
     exposure_ = std::max(c.number(0), 0.0f);
   } else if (c.name == "vsync") {
     vsync_ = on();
+  } else if (c.name == "resize") {
+    if (c.number(0) < 64 || c.number(1) < 64) throw std::invalid_argument("a window is at least 64 x 64");
+    window_->resize(int(c.number(0)), int(c.number(1)));
   } else if (c.name == "screenshot") {
     if (c.words.size() == 2)
       windowScreenshot(c.words[0]);

@@ -37,6 +37,7 @@ const std::map<std::string, std::vector<std::vector<std::string>>>& grammar() {
       {"inlet", {{"#"}}},
       {"exposure", {{"#"}}},
       {"vsync", {{"on"}, {"off"}}},
+      {"resize", {{"#", "#"}}},
       {"screenshot", {{"*"}, {"*", "window"}}},
       {"record", {{"stop"}, {"*"}}},
       {"scene", {{"*"}}},

@@ -51,6 +51,10 @@ void Window::requestClose() {
   glfwSetWindowShouldClose(window_, GLFW_TRUE);
 }
 
+void Window::resize(int width, int height) {
+  glfwSetWindowSize(window_, width, height);
+}
+
 void Window::setTitle(const std::string& title) {
   glfwSetWindowTitle(window_, title.c_str());
 }

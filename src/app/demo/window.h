@@ -21,6 +21,8 @@ class Window {
   bool shouldClose() const;
   void requestClose();
   void setTitle(const std::string& title);
+  // Asks the window system for a new size (the swapchain follows on the next frame).
+  void resize(int width, int height);
 
  private:
   GLFWwindow* window_ = nullptr;
