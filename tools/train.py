@@ -35,6 +35,7 @@ import torch
 import torch.distributed as dist
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "nn"))
+from atomic_file import atomic_open, atomic_path  # noqa: E402
 from bench_torch import node_flops  # noqa: E402
 from dataset import SPLITS, ShardDataset  # noqa: E402
 from losses import training_loss  # noqa: E402
@@ -183,8 +184,8 @@ def save_checkpoint(path, net, optimizer, step, seconds, config, interval):
              "numpy_rng": np.random.get_state()}
     if torch.cuda.is_available():
         state["cuda_rng"] = torch.cuda.get_rng_state_all()
-    torch.save(state, path + ".tmp")
-    os.replace(path + ".tmp", path)
+    with atomic_path(path) as temporary:
+        torch.save(state, temporary)
 
 
 def first_difference(a, b, prefix=""):
@@ -205,7 +206,7 @@ def truncate_log(path, step):
         return
     with open(path) as f:
         rows = [line for line in f if line.strip() and json.loads(line)["step"] <= step]
-    with open(path, "w") as f:
+    with atomic_open(path) as f:
         f.writelines(rows)
 
 
@@ -321,7 +322,7 @@ class Trainer:
 
     def _prepare_out(self, resumed):
         os.makedirs(self.out, exist_ok=True)
-        with open(os.path.join(self.out, "config.json"), "w") as f:
+        with atomic_open(os.path.join(self.out, "config.json")) as f:
             json.dump(self.config, f, indent=2)
         if resumed:
             truncate_log(self.log_path, self.step)
@@ -416,7 +417,7 @@ def finish(out, net, data, config, seconds, device, world):
                              "all pixels and channels of the split; masked = reference alpha > 0.01; per "
                              "channel group masked; PyTorch float32, whole maps",
                "pytorch": {split: evaluate_split(net, data, split, device) for split in SPLITS}}
-    with open(os.path.join(out, "metrics.json"), "w") as f:
+    with atomic_open(os.path.join(out, "metrics.json")) as f:
         json.dump(metrics, f, indent=2)
     for split, m in metrics["pytorch"].items():
         print(f"{split}: {m['samples']} samples, PSNR masked {m['psnr_masked']} dB, full {m['psnr_full']} dB")

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "app/device_limits.h"
 #include "app/options.h"
 #include "app/report.h"
 #include "app/scene_volumes.h"
@@ -16,6 +17,7 @@
 #include "io/error.h"
 #include "io/scene.h"
 #include "render/bake_flipbook.h"
+#include "render/flipbook.h"
 #include "render/scene_frame.h"
 #include "render/vdb_sequence.h"
 
@@ -104,17 +106,26 @@ void run(const BakeOptions& o) {
   const auto [tileWidth, tileHeight] = o.tile.empty() ? std::pair(scene ? scene->render.lightmapSize : 128,
                                                                   scene ? scene->render.lightmapSize : 128)
                                                       : parseTile(o.tile);
+  // The flipbook's size is known before anything is simulated or loaded (a scene bakes 16 frames unless
+  // told).
+  const int frameCount = o.frames.value_or(scene ? 16 : int(o.vdb.size()) - o.first);
+  render::requireFlipbookFits(
+      render::flipbookLayout(frameCount, tileWidth, tileHeight, o.columns.value_or(0)), "--frames/--tile");
 
   gpu::Context context(o.common.contextOptions());
   gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));
   std::unique_ptr<render::VolumeSequence> sequence;
   nlohmann::json provenance;
   if (scene) {
-    sequence = std::make_unique<SimulatedVolumes>(context, cache, *scene, o.first + o.frames.value_or(16));
+    sequence = withinDeviceLimits(o.scene.string(), gridSetting(scene->grid), [&] {
+      return std::make_unique<SimulatedVolumes>(context, cache, *scene, o.first + frameCount);
+    });
     provenance["source"] = {{"scene", fs::absolute(o.scene).string()}};
   } else {
-    auto vdb = std::make_unique<render::VdbSequence>(context, o.vdb, o.voxels.value_or(128),
-                                                     smoke.emission.intensity > 0.0f);
+    auto vdb = withinDeviceLimits("--voxels " + std::to_string(o.voxels.value_or(128)), "--voxels", [&] {
+      return std::make_unique<render::VdbSequence>(context, o.vdb, o.voxels.value_or(128),
+                                                   smoke.emission.intensity > 0.0f);
+    });
     nlohmann::json files = nlohmann::json::array();
     for (const fs::path& f : o.vdb) files.push_back(fs::absolute(f).string());
     const render::VolumeGrid& lattice = vdb->lattice();
@@ -129,7 +140,7 @@ void run(const BakeOptions& o) {
   render::FlipbookBake job;
   job.out = o.out;
   job.firstFrame = o.first;
-  job.frameCount = o.frames.value_or(sequence->frameCount() - o.first);
+  job.frameCount = frameCount;
   job.columns = o.columns.value_or(0);
   job.camera = chooseCamera(o, scene ? &*scene : nullptr, sequence->bounds());
   job.smoke = smoke;
@@ -149,11 +160,12 @@ void run(const BakeOptions& o) {
   std::printf("sixway bake: %d frames, tiles of %dx%d, %s scattering\n", job.frameCount, tileWidth,
               tileHeight, job.multipleScattering ? "multiple" : "single");
   std::fflush(stdout);
-  const render::FlipbookBakeResult result =
-      render::bakeFlipbook(context, cache, *sequence, job, [](const std::string& line) {
-        std::printf("  %s\n", line.c_str());
-        std::fflush(stdout);
-      });
+  const render::FlipbookBakeResult result = withinDeviceLimits("--tile", "--tile", [&] {
+    return render::bakeFlipbook(context, cache, *sequence, job, [](const std::string& line) {
+      std::printf("  %s\n", line.c_str());
+      std::fflush(stdout);
+    });
+  });
   if (const auto* vdb = dynamic_cast<const render::VdbSequence*>(sequence.get()))
     for (const std::string& note : vdb->notes()) std::printf("  note: %s\n", note.c_str());
   std::printf("sixway bake: wrote %s\n", result.sidecar.string().c_str());
@@ -171,11 +183,11 @@ void addBakeCommand(CLI::App& app) {
   bake->add_option("--vdb", o->vdb, "OpenVDB files, one per frame")->excludes(sceneOption);
   bake->add_option("--out", o->out, "Output directory")->required();
   bake->add_flag("--force", o->force, "Write into an existing output directory");
-  bake->add_option("--first", o->first, "First frame baked (default 0)")->check(CLI::NonNegativeNumber);
+  bake->add_option("--first", o->first, "First frame baked (default 0)")->check(CLI::Range(0, 100000));
   bake->add_option("--frames", o->frames, "Frames baked (default: every VDB file; 16 for a scene)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 100000));
   bake->add_option("--columns", o->columns, "Flipbook columns (default: a near-square grid)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, render::kMaxFlipbookSide));
   bake->add_option("--tile", o->tile,
                    "Tile size N or WxH in pixels (default: the scene's lightmap_size, or 128)");
   bake->add_option("--camera-position", o->cameraPosition, "Camera position X Y Z (with --camera-target)")
@@ -202,7 +214,7 @@ void addBakeCommand(CLI::App& app) {
       ->check(CLI::Range(0.1f, 8.0f));
   bake->add_flag("--multiple-scattering", o->multipleScattering, "Path-traced multiple scattering");
   bake->add_option("--spp", o->samples, "Multiple scattering: samples per pixel (default 256)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 1 << 20));
   bake->add_option("--orders", o->orders, "Multiple scattering: scattering orders (default 64)")
       ->check(CLI::Range(1, 100000));
   bake->add_option("--seed", o->seed, "Multiple scattering: random seed (default: the scene's, or 1)");

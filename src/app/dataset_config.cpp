@@ -381,6 +381,15 @@ DatasetConfig parseDatasetConfig(const nlohmann::json& j, const fs::path& file) 
   });
   c.lightmapSize = r.optional<int>("lightmap_size", base.render.lightmapSize,
                                    io::both(io::inRange(16, 4096), io::multipleOf(16)));
+  const double shardBytes =
+      double(c.frames.count) * c.cameraCount() * kShardChannels * 2.0 * c.lightmapSize * c.lightmapSize;
+  if (shardBytes > kMaxShardBytes)
+    r.fail("frames.count", std::to_string(c.frames.count) + " frames x " + std::to_string(c.cameraCount()) +
+                               " cameras of " + std::to_string(c.lightmapSize) +
+                               "² lightmaps make shards of " +
+                               io::show(std::round(shardBytes / (1 << 30) * 10) / 10) +
+                               " GiB, more than 4 GiB; reduce frames.count, the cameras or lightmap_size "
+                               "(more sequences hold more samples)");
   r.object("heldout", [&](io::JsonReader& h) {
     c.heldoutSequences =
         h.optional<IndexList>("sequences", {}, indicesBelow(c.sequences, "sequences")).values;

@@ -54,6 +54,12 @@ struct DatasetCameras {
   std::optional<float> distance;  // m from the volume centre; default: the bounding sphere fills the view
 };
 
+// A shard holds per sample the guide (3), target (8) and motion (2) channels as F16 (dataset_sequence.h). It
+// is built in host memory whole and read whole by the trainer, so its size is bounded when the config is
+// read.
+inline constexpr int kShardChannels = 3 + 8 + 2;
+inline constexpr double kMaxShardBytes = 4.0 * (1 << 30);
+
 struct DatasetConfig {
   std::filesystem::path file;       // as given, for messages
   nlohmann::json json;              // the file's content, recorded in every shard

@@ -7,6 +7,7 @@
 
 #include "io/error.h"
 #include "io/exr.h"
+#include "io/file_access.h"
 #include "io/png.h"
 
 namespace sixway::app {
@@ -48,6 +49,12 @@ FrameWriter::FrameWriter(fs::path directory, const FrameWriterOptions& options)
   if (options_.video && !ffmpegInstalled())
     throw io::InputError("--video", "ffmpeg is not installed (apt-get install ffmpeg)");
   fs::create_directories(directory_);
+  // --force into an earlier render: its frames beyond this one's must not linger (nor run on in the video),
+  // nor its video when this render makes none.
+  for (const auto& entry : fs::directory_iterator(directory_)) {
+    const std::string name = entry.path().filename().string();
+    if (name.starts_with("frame_") || name == "video.mp4") fs::remove(entry.path());
+  }
 }
 
 std::string FrameWriter::frameName(int index) {
@@ -82,13 +89,17 @@ std::vector<std::string> FrameWriter::finish() {
     files.push_back("contact_sheet.png");
   }
   if (options_.video && !thumbnails_.empty()) {
-    // yuv420p needs even sides; the scale filter rounds them down.
-    const std::string command = "ffmpeg -loglevel error -y -framerate " + std::to_string(options_.fps) +
-                                " -i '" + (directory_ / "frame_%04d.png").string() +
-                                "' -vf 'scale=trunc(iw/2)*2:trunc(ih/2)*2' -c:v libx264 -pix_fmt yuv420p '" +
-                                (directory_ / "video.mp4").string() + "'";
+    // yuv420p needs even sides; the scale filter rounds them down. ffmpeg writes the temporary file (-f: its
+    // name does not end in .mp4), renamed once ffmpeg has finished.
+    io::AtomicFile video(directory_ / "video.mp4");
+    const std::string command =
+        "ffmpeg -loglevel error -y -framerate " + std::to_string(options_.fps) + " -i '" +
+        (directory_ / "frame_%04d.png").string() +
+        "' -vf 'scale=trunc(iw/2)*2:trunc(ih/2)*2' -c:v libx264 -pix_fmt yuv420p -f mp4 '" +
+        video.temporaryPath().string() + "'";
     if (std::system(command.c_str()) != 0)
       throw io::InputError((directory_ / "video.mp4").string(), "ffmpeg failed to encode the frames");
+    video.commit();
     files.push_back("video.mp4");
   }
   return files;

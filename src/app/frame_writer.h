@@ -19,7 +19,8 @@ struct FrameWriterOptions {
 
 class FrameWriter {
  public:
-  // Throws io::InputError naming ffmpeg when a video is asked for and ffmpeg is not installed.
+  // Throws io::InputError naming ffmpeg when a video is asked for and ffmpeg is not installed. Removes the
+  // frames of an earlier render in `directory` (the command line has checked --force).
   FrameWriter(std::filesystem::path directory, const FrameWriterOptions& options);
 
   // Writes frame `index` (RGB or RGBA, linear, alpha ignored in the PNG) and keeps its thumbnail.

@@ -24,7 +24,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    // A bad option is one line too (CLI11's own adds "Run with --help ..."); CLI11's exit code is kept.
+    std::fprintf(stderr, "sixway: error: %s\n", e.what());
+    return e.get_exit_code();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "sixway: error: %s\n", e.what());
     return 1;

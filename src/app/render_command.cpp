@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "app/device_limits.h"
 #include "app/frame_pipeline.h"
 #include "app/frame_writer.h"
 #include "app/options.h"
@@ -63,8 +64,12 @@ void run(const RenderOptions& o) {
 
   gpu::Context context(o.common.contextOptions());
   gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));
-  SimulatedVolumes volumes(context, cache, scene, o.frames);
-  FramePipeline pipeline(context, cache, scene, options);
+  SimulatedVolumes volumes = withinDeviceLimits(o.scene.string(), gridSetting(scene.grid), [&] {
+    return SimulatedVolumes(context, cache, scene, o.frames);
+  });
+  FramePipeline pipeline =
+      withinDeviceLimits(o.scene.string(), "render.lightmap_size, render.width or render.height",
+                         [&] { return FramePipeline(context, cache, scene, options); });
   // The output directory appears only once everything it needs has been checked.
   FrameWriterOptions writerOptions;
   writerOptions.exr = o.exr;

@@ -1,9 +1,9 @@
 #include "app/report.h"
 
-#include <unistd.h>
 #include <fstream>
 
 #include "io/error.h"
+#include "io/file_access.h"
 
 namespace sixway::app {
 
@@ -13,14 +13,17 @@ void requireWritable(const std::filesystem::path& path, bool force) {
 }
 
 void writeReport(const std::filesystem::path& path, const nlohmann::json& report) {
-  std::filesystem::path temporary = path;
-  temporary += ".tmp" + std::to_string(::getpid());
+  io::AtomicFile file(path);
   {
-    std::ofstream out(temporary);
-    out << report.dump(2) << '\n';
-    if (!out) throw io::InputError(path.string(), "cannot be written");
+    std::ofstream out(file.temporaryPath());
+    try {
+      out << report.dump(2) << '\n';
+    } catch (const nlohmann::json::type_error& e) {  // a string that is not UTF-8
+      throw io::InputError(path.string(), std::string("cannot write the report: ") + e.what());
+    }
+    if (!out.flush()) throw io::InputError(path.string(), "cannot be written");
   }
-  std::filesystem::rename(temporary, path);
+  file.commit();
 }
 
 }  // namespace sixway::app

@@ -6,6 +6,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "app/device_limits.h"
 #include "app/options.h"
 #include "app/report.h"
 #include "gpu/bandwidth.h"
@@ -48,7 +49,8 @@ void run(const SimOptions& o) {
   prepareOutputs(o);
   gpu::Context context(o.common.contextOptions());
   gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));
-  sim::Simulation simulation(context, cache, scene);
+  sim::Simulation simulation = withinDeviceLimits(o.scene.string(), gridSetting(scene.grid),
+                                                  [&] { return sim::Simulation(context, cache, scene); });
   const sim::LatticeUnits& units = simulation.units();
   const glm::ivec3 size = scene.grid.size;
   std::printf("%s: %dx%dx%d lattice, %d steps per frame of %.4g s, tau %.5f, on %s\n", scene.name.c_str(),

@@ -14,6 +14,9 @@ Buffer::Buffer(const Context& context, uint64_t bytes, VkBufferUsageFlags usage,
     : context_(&context), size_(bytes), name_(std::move(name)) {
   if (bytes == 0) throw GpuError(name_ + ": a buffer cannot be empty");
   if (usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) context.requireStorageBufferFits(bytes, name_);
+  if (bytes > context.capabilities().deviceLocalHeapBytes)  // staging and uniform buffers too
+    throw LimitError(name_ + " needs " + formatBytes(bytes) + ", more than the device's " +
+                     formatBytes(context.capabilities().deviceLocalHeapBytes) + " of memory");
 
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   info.size = bytes;
@@ -42,7 +45,7 @@ Buffer::Buffer(const Context& context, uint64_t bytes, VkBufferUsageFlags usage,
   VkResult result = vkAllocateMemory(context.device(), &alloc, nullptr, &memory_);
   if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY) {
     release();
-    throw GpuError(name_ + ": out of device memory allocating " + formatBytes(bytes) + "; reduce its size");
+    throw LimitError(name_ + ": out of device memory allocating " + formatBytes(bytes));
   }
   SIXWAY_VK(result);
   SIXWAY_VK(vkBindBufferMemory(context.device(), buffer_, memory_, 0));

@@ -13,6 +13,19 @@ class GpuError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A buffer or image that the device cannot hold or bind, refused before allocation. what() ends in
+// "; reduce its size"; problem() is the message without it, for callers that can name the setting to reduce
+// (the command line: the scene's grid.size, --voxels, ...).
+class LimitError : public GpuError {
+ public:
+  explicit LimitError(const std::string& problem)
+      : GpuError(problem + "; reduce its size"), problem_(problem) {}
+  const std::string& problem() const { return problem_; }
+
+ private:
+  std::string problem_;
+};
+
 const char* resultName(VkResult result);
 void throwOnFailure(VkResult result, const char* call);
 

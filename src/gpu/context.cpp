@@ -297,11 +297,11 @@ uint32_t Context::findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags requir
 void Context::requireStorageBufferFits(uint64_t bytes, const std::string& what) const {
   const uint64_t range = properties_.limits.maxStorageBufferRange;
   if (bytes > range)
-    throw GpuError(what + " needs a storage buffer of " + formatBytes(bytes) + ", more than the " +
-                   formatBytes(range) + " that " + properties_.deviceName + " can bind; reduce its size");
+    throw LimitError(what + " needs a storage buffer of " + formatBytes(bytes) + ", more than the " +
+                     formatBytes(range) + " that " + properties_.deviceName + " can bind");
   if (bytes > capabilities_.deviceLocalHeapBytes)
-    throw GpuError(what + " needs " + formatBytes(bytes) + ", more than the device's " +
-                   formatBytes(capabilities_.deviceLocalHeapBytes) + " of memory; reduce its size");
+    throw LimitError(what + " needs " + formatBytes(bytes) + ", more than the device's " +
+                     formatBytes(capabilities_.deviceLocalHeapBytes) + " of memory");
 }
 
 std::vector<std::string> listPhysicalDevices(VkInstance instance) {

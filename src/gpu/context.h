@@ -70,7 +70,7 @@ class Context {
   PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
 
   uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required) const;
-  // Throws a GpuError that says what to reduce when a storage buffer of `bytes` cannot be bound.
+  // Throws a LimitError naming `what` when a storage buffer of `bytes` cannot be bound or held.
   void requireStorageBufferFits(uint64_t bytes, const std::string& what) const;
 
  private:

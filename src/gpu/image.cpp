@@ -44,11 +44,12 @@ Image::Image(const Context& context, const ImageDesc& desc) : context_(&context)
   const uint32_t maxSide = is3d ? limits.maxImageDimension3D : limits.maxImageDimension2D;
   if (desc.width == 0 || desc.height == 0 || desc.depth == 0 || desc.width > maxSide ||
       desc.height > maxSide || desc.depth > maxSide)
-    throw GpuError(desc.name + ": image of " + std::to_string(desc.width) + "x" +
-                   std::to_string(desc.height) + (is3d ? "x" + std::to_string(desc.depth) : "") +
-                   " is outside the device's 1.." + std::to_string(maxSide) + " per side; reduce its size");
+    throw LimitError(desc.name + ": image of " + std::to_string(desc.width) + "x" +
+                     std::to_string(desc.height) + (is3d ? "x" + std::to_string(desc.depth) : "") +
+                     " is outside the device's 1.." + std::to_string(maxSide) + " per side");
   if (byteSize() > context.capabilities().deviceLocalHeapBytes)
-    throw GpuError(desc.name + ": image of " + formatBytes(byteSize()) + " exceeds the device's memory");
+    throw LimitError(desc.name + ": image of " + formatBytes(byteSize()) + " is more than the device's " +
+                     formatBytes(context.capabilities().deviceLocalHeapBytes) + " of memory");
 
   VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
   info.imageType = is3d ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
@@ -69,7 +70,12 @@ Image::Image(const Context& context, const ImageDesc& desc) : context_(&context)
   alloc.allocationSize = requirements.size;
   alloc.memoryTypeIndex =
       context.findMemoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  SIXWAY_VK(vkAllocateMemory(context.device(), &alloc, nullptr, &memory_));
+  const VkResult result = vkAllocateMemory(context.device(), &alloc, nullptr, &memory_);
+  if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY) {
+    release();
+    throw LimitError(desc.name + ": out of device memory allocating " + formatBytes(requirements.size));
+  }
+  SIXWAY_VK(result);
   SIXWAY_VK(vkBindImageMemory(context.device(), image_, memory_, 0));
 
   const VkImageAspectFlags aspect =

@@ -8,6 +8,7 @@
 //   g.cellSize = r.required<float>("cell_size", positive());
 //   s.albedo = r.optional<float>("albedo", s.albedo, inRange(0, 1));
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <set>
 #include <string>
@@ -218,13 +219,17 @@ class JsonReader {
 
   // An array of objects, each read by parse(JsonReader&); absent reads as empty.
   template <class Parse>
-  auto objects(std::string_view key, Parse parse, std::size_t minCount = 0) {
+  auto objects(std::string_view key, Parse parse, std::size_t minCount = 0,
+               std::size_t maxCount = std::numeric_limits<std::size_t>::max()) {
     std::vector<decltype(parse(*this))> result;
     const nlohmann::json* value = find(key);
     if (!value) return result;
     if (!value->is_array()) failType(key, "an array of objects", *value);
     if (value->size() < minCount)
       fail(key, "needs at least " + std::to_string(minCount) + " elements (got " +
+                    std::to_string(value->size()) + ")");
+    if (value->size() > maxCount)
+      fail(key, "at most " + std::to_string(maxCount) + " elements are supported (got " +
                     std::to_string(value->size()) + ")");
     for (std::size_t i = 0; i < value->size(); ++i)
       result.push_back(readObject(std::string(key) + "[" + std::to_string(i) + "]", (*value)[i], parse));

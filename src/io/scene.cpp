@@ -20,7 +20,6 @@ namespace {
 constexpr std::int64_t kMaxCells = 512LL * 512 * 512;
 constexpr int kMaxAxisCells = 2048;
 constexpr std::int64_t kMaxSmokeCells = 1024LL * 1024 * 1024;
-constexpr double kMaxStepsPerFrame = 10000;
 
 const Choices<BoundaryType> kBoundaryTypes = {{"no_slip", BoundaryType::NoSlip},
                                               {"free_slip", BoundaryType::FreeSlip},
@@ -105,7 +104,7 @@ Grid parseGrid(JsonReader& r) {
 TimeStepping parseTime(JsonReader& r) {
   TimeStepping t;
   t.frameDt = r.optional<float>("frame_dt", t.frameDt, positive());
-  t.stepsPerFrame = r.optional<int>("steps_per_frame", t.stepsPerFrame, atLeast(1));
+  t.stepsPerFrame = r.optional<int>("steps_per_frame", t.stepsPerFrame, inRange(1, kMaxStepsPerFrame));
   return t;
 }
 
@@ -275,7 +274,7 @@ Emission parseEmission(JsonReader& r) {
   Emission e;
   e.intensity = r.optional<float>("intensity", e.intensity, atLeast(0));
   if (e.intensity > 0 && !r.has("ramp")) r.fail("ramp", "required key missing (intensity > 0 needs it)");
-  e.ramp = r.objects("ramp", parseEmissionKey, 2);
+  e.ramp = r.objects("ramp", parseEmissionKey, 2, kMaxRampKeys);
   for (std::size_t i = 1; i < e.ramp.size(); ++i)
     if (e.ramp[i].temperature <= e.ramp[i - 1].temperature)
       r.fail("ramp[" + std::to_string(i) + "].temperature", "ramp temperatures must increase: got " +
@@ -398,11 +397,12 @@ Scene parseScene(const nlohmann::json& j, std::string_view sourceName, const fs:
   s.time = r.object("time", parseTime);
   s.fluid = r.object("fluid", parseFluid);
   s.boundaries = r.object("boundaries", parseBoundaries);
-  s.inlets = r.objects("inlets", parseInlet);
-  s.obstacles = r.objects("obstacles", [&baseDir](JsonReader& o) { return parseObstacle(o, baseDir); });
+  s.inlets = r.objects("inlets", parseInlet, 0, kMaxSceneInlets);
+  s.obstacles = r.objects(
+      "obstacles", [&baseDir](JsonReader& o) { return parseObstacle(o, baseDir); }, 0, kMaxSceneObstacles);
   s.smoke = r.object("smoke", parseSmoke);
   s.camera = r.object("camera", parseCamera);
-  s.lights = r.objects("lights", parseLight);
+  s.lights = r.objects("lights", parseLight, 0, kMaxSceneLights);
   s.ambient = r.optionalObject("ambient", parseAmbient);
   s.render = r.object("render", parseRender);
   r.finish();

@@ -19,6 +19,14 @@
 
 namespace sixway::io {
 
+// The most of each list a scene may hold: the fixed-size arrays of the shaders and parameter blocks that
+// take them (checked against those at compile time in tests/app/test_scene_limits.cpp).
+inline constexpr std::size_t kMaxSceneInlets = 8;      // sim::kMaxInlets
+inline constexpr std::size_t kMaxSceneObstacles = 16;  // sim::kMaxObstacles
+inline constexpr std::size_t kMaxSceneLights = 8;      // shaders/render/path_trace.comp, obstacle_params.glsl
+inline constexpr std::size_t kMaxRampKeys = 16;        // shaders/common/emission.glsl
+inline constexpr int kMaxStepsPerFrame = 10000;        // LBM steps in one frame
+
 // The LBM lattice. Cell (i,j,k) has its centre at origin + (i+0.5, j+0.5, k+0.5)·cellSize.
 struct Grid {
   glm::ivec3 size{0};

@@ -54,6 +54,7 @@ FlipbookBakeResult bakeFlipbook(const gpu::Context& context, const gpu::Pipeline
                                        std::to_string(available - 1));
   const int width = job.settings.width, height = job.settings.height;
   const FlipbookLayout layout = flipbookLayout(job.frameCount, width, height, job.columns);
+  requireFlipbookFits(layout, "flipbook");
   FlipbookBakeResult result;
   result.billboard = billboardBounds(job.camera, sequence.bounds(), float(width) / float(height));
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 
@@ -93,6 +94,18 @@ FlipbookLayout flipbookLayout(int frames, int tileWidth, int tileHeight, int col
   l.tileWidth = tileWidth;
   l.tileHeight = tileHeight;
   return l;
+}
+
+void requireFlipbookFits(const FlipbookLayout& layout, const std::string& source) {
+  const int64_t width = int64_t(layout.columns) * layout.tileWidth;
+  const int64_t height = int64_t(layout.rows) * layout.tileHeight;
+  if (width > kMaxFlipbookSide || height > kMaxFlipbookSide)
+    throw io::InputError(
+        source, std::to_string(layout.frames) + " tiles of " + std::to_string(layout.tileWidth) + "x" +
+                    std::to_string(layout.tileHeight) + " in " + std::to_string(layout.columns) +
+                    " columns make a " + std::to_string(width) + "x" + std::to_string(height) +
+                    " flipbook, more than " + std::to_string(kMaxFlipbookSide) +
+                    " per side; reduce the frames or the tile size");
 }
 
 ChannelPacking unityPacking() {

@@ -24,6 +24,13 @@ struct FlipbookLayout {
 // A near-square grid for `frames` tiles: `columns` columns (0: ceil(√frames)) and as many rows as needed.
 FlipbookLayout flipbookLayout(int frames, int tileWidth, int tileHeight, int columns = 0);
 
+// The largest flipbook texture side: Unity's and Unreal's largest texture (16384); a packed RGBA float
+// texture of that size is already 4 GiB on the host while it is written.
+inline constexpr int kMaxFlipbookSide = 16384;
+// Throws io::InputError naming `source` when the layout's textures would be wider or taller than
+// kMaxFlipbookSide, with what to reduce.
+void requireFlipbookFits(const FlipbookLayout& layout, const std::string& source);
+
 // Where each six-way channel lives: a texture (by index into `textures`) and a component 0..3 (R, G, B, A).
 // A channel without a texture reads as 0 (only emissive may be absent).
 struct ChannelPacking {

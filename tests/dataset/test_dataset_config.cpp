@@ -125,6 +125,19 @@ TEST_F(DatasetConfigTest, OtherMistakesAreErrors) {
   EXPECT_THAT(error(j), namesFileAndProblem(dir_ / "config.json", "frames.count: required key missing"));
 }
 
+TEST_F(DatasetConfigTest, ShardsBeyondTheLimitAreRefused) {
+  nlohmann::json j = validConfig();
+  j["frames"]["count"] = 1000;  // x 6 cameras x 13 F16 channels of 1024² = 152 GiB
+  j["lightmap_size"] = 1024;
+  EXPECT_THAT(error(j),
+              namesFileAndProblem(dir_ / "config.json",
+                                  "frames.count: 1000 frames x 6 cameras of 1024² lightmaps make shards "
+                                  "of 152.3 GiB, more than 4 GiB; reduce frames.count"));
+  j["frames"]["count"] = 100;  // of 256²: 0.95 GiB
+  j["lightmap_size"] = 256;
+  EXPECT_NO_THROW(app::loadDatasetConfig(write(j)));
+}
+
 TEST_F(DatasetConfigTest, SequencesArePlannedWithinTheRangesAndReproducibly) {
   const DatasetConfig config = app::loadDatasetConfig(write(validConfig()));
   std::set<float> speeds;

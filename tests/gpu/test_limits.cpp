@@ -22,9 +22,10 @@ TEST_F(LimitsTest, StorageBufferBeyondTheBindableRangeIsRefused) {
   try {
     gpu::Buffer buffer = gpu::Buffer::storage(context(), tooBig, "density grid");
     FAIL() << "no error";
-  } catch (const gpu::GpuError& e) {
+  } catch (const gpu::LimitError& e) {  // a GpuError, whose problem() callers can rephrase
     EXPECT_THAT(e.what(), HasSubstr("density grid needs a storage buffer of"));
     EXPECT_THAT(e.what(), HasSubstr("reduce its size"));
+    EXPECT_EQ(e.problem() + "; reduce its size", e.what());
   }
 }
 
@@ -34,10 +35,21 @@ TEST_F(LimitsTest, ImageLargerThanTheDeviceAllowsIsRefused) {
     gpu::Image image(context(),
                      {side, 4, 1, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_STORAGE_BIT, "lightmap"});
     FAIL() << "no error";
-  } catch (const gpu::GpuError& e) {
+  } catch (const gpu::LimitError& e) {
     EXPECT_THAT(e.what(), HasSubstr("lightmap: image of"));
     EXPECT_THAT(e.what(), HasSubstr("reduce its size"));
   }
+}
+
+TEST_F(LimitsTest, AnyBufferBeyondTheDeviceHeapIsRefused) {
+  const uint64_t tooBig = context().capabilities().deviceLocalHeapBytes + 4;
+  EXPECT_THROW(gpu::Buffer(context(), tooBig, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryKind::HostUpload,
+                           "staging"),
+               gpu::LimitError);
+  const uint32_t side = context().limits().maxImageDimension3D;
+  EXPECT_THROW(gpu::Image(context(), {side, side, side, VK_FORMAT_R32G32B32A32_SFLOAT,
+                                      VK_IMAGE_USAGE_STORAGE_BIT, "volume"}),
+               gpu::LimitError);
 }
 
 TEST_F(LimitsTest, EmptyBufferIsRefused) {

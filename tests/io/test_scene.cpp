@@ -385,6 +385,33 @@ TEST(SceneParse, TooManyStepsPerFrame) {
   EXPECT_TRUE(rejected(scene, "time.frame_dt", "LBM steps per frame"));
 }
 
+TEST(SceneParse, AbsurdStepsPerFrame) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"time": {"steps_per_frame": 1000000000}})"_json),
+                       "time.steps_per_frame", "must be in [1, 10000] (got 1000000000)"));
+}
+
+// Lists beyond the shaders' fixed arrays are refused when the scene is read, not when a pass meets them.
+TEST(SceneParse, MoreListEntriesThanTheShadersHold) {
+  auto repeated = [](const json& element, std::size_t count) {
+    return json(std::vector<json>(count, element));
+  };
+  const json light = R"({"type": "point", "position": [0, 1, 0]})"_json;
+  EXPECT_TRUE(rejected(minimalWith({{"lights", repeated(light, kMaxSceneLights + 1)}}), "lights",
+                       "at most 8 elements are supported (got 9)"));
+  EXPECT_NO_THROW(parseScene(minimalWith({{"lights", repeated(light, kMaxSceneLights)}}), "ok.json", "."));
+  const json sphere = R"({"type": "sphere", "center": [0, 0.5, 0], "radius": 0.1})"_json;
+  EXPECT_TRUE(rejected(minimalWith({{"obstacles", repeated(sphere, kMaxSceneObstacles + 1)}}), "obstacles",
+                       "at most 16 elements are supported (got 17)"));
+  const json inlet =
+      R"({"shape": "disk", "center": [0, 0, 0], "radius": 0.1, "normal": [0, 1, 0], "velocity": 0.1})"_json;
+  EXPECT_TRUE(rejected(minimalWith({{"inlets", repeated(inlet, kMaxSceneInlets + 1)}}), "inlets",
+                       "at most 8 elements are supported (got 9)"));
+  json ramp = json::array();
+  for (std::size_t i = 0; i <= kMaxRampKeys; ++i) ramp.push_back({{"temperature", i}, {"color", {1, 1, 1}}});
+  EXPECT_TRUE(rejected(minimalWith({{"smoke", {{"emission", {{"intensity", 1}, {"ramp", ramp}}}}}}),
+                       "smoke.emission.ramp", "at most 16 elements are supported (got 17)"));
+}
+
 TEST(SceneParse, CameraTargetEqualsPosition) {
   EXPECT_TRUE(rejected(minimalWith(R"({"camera": {"target": [0, 1, 3]}})"_json), "camera.target",
                        "must differ from camera.position"));

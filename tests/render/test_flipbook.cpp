@@ -58,6 +58,19 @@ TEST(FlipbookLayoutTest, IsANearSquareRowMajorGrid) {
   EXPECT_EQ(strip.rows, 1);
 }
 
+TEST(FlipbookLayoutTest, TexturesBeyondTheLargestSideAreRefused) {
+  EXPECT_NO_THROW(render::requireFlipbookFits(render::flipbookLayout(64, 2048, 2048), "--frames/--tile"));
+  EXPECT_THAT(inputErrorMessage([] {
+                render::requireFlipbookFits(render::flipbookLayout(64, 4096, 4096), "--frames/--tile");
+              }),
+              namesFileAndProblem("--frames/--tile",
+                                  "make a 32768x32768 flipbook, more than 16384 per side; "
+                                  "reduce the frames or the tile size"));
+  // One long row: the width alone.
+  EXPECT_THROW(render::requireFlipbookFits(render::flipbookLayout(100, 256, 256, 100), "flipbook"),
+               io::InputError);
+}
+
 // Unity: A = (Right, Top, Back, alpha), B = (Left, Bottom, Front, emissive); frame f at column f % columns,
 // row f / columns, row 0 at the top of the texture.
 TEST(FlipbookPackingTest, PlacesFramesAndChannelsAsUnityExpects) {

@@ -18,6 +18,7 @@ import time
 import torch
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from atomic_file import atomic_open  # noqa: E402
 from sixway_net import load_safetensors  # noqa: E402
 
 
@@ -100,7 +101,7 @@ def main():
         for kind, entry in sorted(result["by_kind"].items()):
             print(f"  {kind:45s} {entry['ms']:9.3f} {entry['gflops_per_s']:9.1f}")
     if args.report:
-        with open(args.report, "w") as f:
+        with atomic_open(args.report) as f:
             json.dump(report, f, indent=2)
 
 

@@ -6,6 +6,8 @@ Usage: /usr/bin/python3 tools/nn/plot.py LOG.jsonl OUT.png
 import json
 import sys
 
+from atomic_file import atomic_path
+
 
 def read_log(path):
     with open(path) as f:
@@ -46,7 +48,8 @@ def plot_log(log_path, png_path, title="training"):
     ax_psnr.legend(fontsize=8)
     fig.suptitle(title)
     fig.tight_layout()
-    fig.savefig(png_path, dpi=100)
+    with atomic_path(png_path) as temporary:
+        fig.savefig(temporary, dpi=100, format="png")
     plt.close(fig)
 
 

@@ -29,7 +29,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);              // --help
+    std::fprintf(stderr, "sixway-demo: error: %s\n", e.what());  // one line, CLI11's exit code
+    return e.get_exit_code();
   }
   try {
     if (!script.empty()) options.script = script;
