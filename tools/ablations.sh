@@ -19,12 +19,14 @@ sixway="${SIXWAY:-$root/build/src/app/sixway}"
 [ -x "$sixway" ] || source "$root/tools/build.sh"
 mkdir -p "$data" "$out" "$root/docs/results"
 
-# variant, dataset config, dataset directory
+# variant, dataset config, dataset directory. Every dataset is made here with the current simulation (the
+# baseline's too, rather than reusing data/cpu_small, which an older build may have made), so that the variants
+# differ only in what they ablate.
 variants=(
-  "baseline tools/datasets/cpu_small.json cpu_small"
+  "baseline tools/datasets/cpu_small.json cpu_small_guide_front_top_bottom"
   "guide_front tools/datasets/ablations/cpu_small_guide_front.json cpu_small_guide_front"
   "guide_front_left_right tools/datasets/ablations/cpu_small_guide_front_left_right.json cpu_small_guide_front_left_right"
-  "no_adapters tools/datasets/cpu_small.json cpu_small"
+  "no_adapters tools/datasets/cpu_small.json cpu_small_guide_front_top_bottom"
 )
 for entry in "${variants[@]}"; do
   read -r variant config dataset <<<"$entry"
