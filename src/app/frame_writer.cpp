@@ -69,7 +69,8 @@ void FrameWriter::write(int index, const io::Image& frame) {
   io::writePng(fs::path(base) += ".png", rgb);
   if (options_.exr)
     io::writeExr(fs::path(base) += ".exr", frame, io::ExrPixelType::Half, {{"colorspace", "linear"}});
-  thumbnails_.push_back(thumbnail(rgb, options_.thumbnailWidth));
+  const int stride = std::max(1, (options_.frames + kMaxSheetCells - 1) / kMaxSheetCells);
+  if (index % stride == 0) thumbnails_.push_back(thumbnail(rgb, options_.thumbnailWidth));
 }
 
 std::vector<std::string> FrameWriter::finish() {

@@ -15,7 +15,11 @@ struct FrameWriterOptions {
   bool video = false;
   int fps = 30;
   int thumbnailWidth = 160;  // of each contact-sheet cell, pixels
+  // Frames the sequence will have: the contact sheet shows at most kMaxSheetCells of them, evenly spaced, so
+  // a run of 10,000 frames keeps 64 thumbnails in memory, not 10,000.
+  int frames = 0;
 };
+inline constexpr int kMaxSheetCells = 64;
 
 class FrameWriter {
  public:

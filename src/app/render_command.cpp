@@ -15,8 +15,10 @@
 #include "app/frame_pipeline.h"
 #include "app/frame_writer.h"
 #include "app/options.h"
+#include "app/process_memory.h"
 #include "app/report.h"
 #include "app/scene_volumes.h"
+#include "app/timings_log.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "io/error.h"
@@ -41,12 +43,6 @@ struct RenderOptions {
 // The default network, next to the executable's source tree.
 fs::path defaultWeights() {
   return fs::path(SIXWAY_WEIGHTS_DIR) / "sixway-unet.safetensors";
-}
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
 void run(const RenderOptions& o) {
@@ -75,14 +71,14 @@ void run(const RenderOptions& o) {
   writerOptions.exr = o.exr;
   writerOptions.video = o.video;
   writerOptions.fps = o.fps;
+  writerOptions.frames = o.frames;
   FrameWriter writer(o.out, writerOptions);
   std::printf("sixway render: %s, %d frames, mode %s, %dx%d (lightmaps %d²), on %s\n", scene.name.c_str(),
               o.frames, renderModeName(options.mode), scene.render.width, scene.render.height,
               scene.render.lightmapSize, context.properties().deviceName);
   std::fflush(stdout);
 
-  nlohmann::json frames = nlohmann::json::array();
-  std::map<std::string, std::vector<double>> perStage;
+  TimingsLog timings(o.frames);
   const auto started = std::chrono::steady_clock::now();
   for (int i = 0; i < o.frames; ++i) {
     const render::Volume volume = volumes.volume(i);
@@ -96,17 +92,9 @@ void run(const RenderOptions& o) {
                                           {"sim/smoke", sim.smoke},
                                           {"sim/forces+watchdog", sim.forces + sim.watchdog}};
     stages.insert(stages.end(), frame.stages.begin(), frame.stages.end());
-    nlohmann::json stageJson = nlohmann::json::object();
-    double total = 0;
-    for (const gpu::StageTime& s : stages) {
-      stageJson[s.name] = stageJson.value(s.name, 0.0) + s.milliseconds;
-      total += s.milliseconds;
-    }
-    for (const auto& [name, ms] : stageJson.items()) perStage[name].push_back(ms.get<double>());
-    frames.push_back({{"frame", i},
-                      {"seconds", SimulatedVolumes::frameSeconds(scene, i)},
-                      {"stages_ms", stageJson},
-                      {"total_ms", total}});
+    // Memory in use, for long-run checks: flat from the first frames on, or something leaks.
+    const double total = timings.add(i, SimulatedVolumes::frameSeconds(scene, i), stages, context.memoryUse(),
+                                     residentSetBytes());
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     std::printf("  frame %d/%d: %.1f ms GPU, %.1f s elapsed, ETA %.0f s\n", i + 1, o.frames, total, elapsed,
                 elapsed / (i + 1) * (o.frames - i - 1));
@@ -114,15 +102,13 @@ void run(const RenderOptions& o) {
   }
   const std::vector<std::string> extras = writer.finish();
 
-  nlohmann::json medians = nlohmann::json::object();
-  for (const auto& [name, values] : perStage) medians[name] = median(values);
   nlohmann::json report = {{"scene", fs::absolute(o.scene).string()},
                            {"mode", renderModeName(options.mode)},
                            {"device", context.properties().deviceName},
                            {"size", {scene.render.width, scene.render.height}},
                            {"lightmap_size", scene.render.lightmapSize},
-                           {"median_stage_ms", medians},
-                           {"frames", frames}};
+                           {"median_stage_ms", timings.medianStageMs()},
+                           {"frames", timings.frames()}};
   if (options.mode == RenderMode::Neural) report["weights"] = fs::absolute(options.weights).string();
   writeReport(o.out / "timings.json", report);
   std::printf("sixway render: wrote %d frames, timings.json", o.frames);

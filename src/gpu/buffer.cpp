@@ -48,6 +48,7 @@ Buffer::Buffer(const Context& context, uint64_t bytes, VkBufferUsageFlags usage,
     throw LimitError(name_ + ": out of device memory allocating " + formatBytes(bytes));
   }
   SIXWAY_VK(result);
+  context.countAllocation(int64_t(bytes));
   SIXWAY_VK(vkBindBufferMemory(context.device(), buffer_, memory_, 0));
   // New memory holds whatever was there before (after a free: another run's data, even NaN), so
   // every buffer starts as zeros.
@@ -90,7 +91,10 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
 void Buffer::release() {
   if (!context_) return;
   if (buffer_) vkDestroyBuffer(context_->device(), buffer_, nullptr);
-  if (memory_) vkFreeMemory(context_->device(), memory_, nullptr);
+  if (memory_) {
+    vkFreeMemory(context_->device(), memory_, nullptr);
+    context_->countAllocation(-int64_t(size_));
+  }
   buffer_ = VK_NULL_HANDLE;
   memory_ = VK_NULL_HANDLE;
   mapped_ = nullptr;

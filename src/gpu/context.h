@@ -31,6 +31,12 @@ struct DeviceCapabilities {
   uint64_t deviceLocalHeapBytes = 0;
 };
 
+// The device memory of our live gpu::Buffer and gpu::Image objects (their requested sizes), for long-run checks.
+struct MemoryUse {
+  uint64_t allocations = 0;
+  uint64_t bytes = 0;
+};
+
 // Counts the messages of the validation layer (and prints them, prefixed "validation:").
 class ValidationLog {
  public:
@@ -70,6 +76,12 @@ class Context {
   PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
 
   uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required) const;
+  MemoryUse memoryUse() const { return {uint64_t(liveAllocations_.load()), uint64_t(liveBytes_.load())}; }
+  // Buffer and Image call this with +bytes when they allocate and −bytes when they free.
+  void countAllocation(int64_t bytes) const {
+    liveAllocations_ += bytes >= 0 ? 1 : -1;
+    liveBytes_ += bytes;
+  }
   // Throws a LimitError naming `what` when a storage buffer of `bytes` cannot be bound or held.
   void requireStorageBufferFits(uint64_t bytes, const std::string& what) const;
 
@@ -89,6 +101,7 @@ class Context {
   VkPhysicalDeviceDriverProperties driver_{};
   VkPhysicalDeviceMemoryProperties memory_{};
   DeviceCapabilities capabilities_{};
+  mutable std::atomic<int64_t> liveAllocations_{0}, liveBytes_{0};
 };
 
 // One line per physical device: "index: name (type)", for --device and `sixway info`.

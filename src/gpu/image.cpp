@@ -76,6 +76,7 @@ Image::Image(const Context& context, const ImageDesc& desc) : context_(&context)
     throw LimitError(desc.name + ": out of device memory allocating " + formatBytes(requirements.size));
   }
   SIXWAY_VK(result);
+  context.countAllocation(int64_t(byteSize()));
   SIXWAY_VK(vkBindImageMemory(context.device(), image_, memory_, 0));
 
   const VkImageAspectFlags aspect =
@@ -129,7 +130,10 @@ void Image::release() {
   if (!context_) return;
   if (view_) vkDestroyImageView(context_->device(), view_, nullptr);
   if (image_) vkDestroyImage(context_->device(), image_, nullptr);
-  if (memory_) vkFreeMemory(context_->device(), memory_, nullptr);
+  if (memory_) {
+    vkFreeMemory(context_->device(), memory_, nullptr);
+    context_->countAllocation(-int64_t(byteSize()));
+  }
   view_ = VK_NULL_HANDLE;
   image_ = VK_NULL_HANDLE;
   memory_ = VK_NULL_HANDLE;
