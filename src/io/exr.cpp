@@ -19,6 +19,8 @@ namespace sixway::io {
 
 namespace {
 
+constexpr int kRowsPerBlock = 64;
+
 // OpenEXR's messages may span lines; ours are one line.
 std::string oneLine(std::string text) {
   std::replace(text.begin(), text.end(), '\n', ' ');
@@ -113,17 +115,29 @@ ExrImage readExr(const std::filesystem::path& path, const std::vector<std::strin
     }
 
     const Imath::Box2i dataWindow = header.dataWindow();
+    const int64_t width = int64_t(dataWindow.max.x) - dataWindow.min.x + 1;
+    const int64_t height = int64_t(dataWindow.max.y) - dataWindow.min.y + 1;
+    if (width < 1 || height < 1) throw InputError(source, "empty data window");
+    requireReadableSize(source, width, height);
     Image& image = result.image;
-    image = Image(dataWindow.max.x - dataWindow.min.x + 1, dataWindow.max.y - dataWindow.min.y + 1, names);
+    image.width = static_cast<int>(width);
+    image.height = static_cast<int>(height);
+    image.channels = names;
+    // The image grows by blocks of rows as they are read: a header may claim any size up to the limit, but
+    // memory goes only to rows the file holds (a truncated or corrupt file fails at its first bad block).
     const std::size_t xStride = names.size() * sizeof(float);
     const std::size_t yStride = xStride * image.width;
-    Imf::FrameBuffer frameBuffer;
-    for (std::size_t c = 0; c < names.size(); ++c) {
-      frameBuffer.insert(names[c],
-                         Imf::Slice::Make(Imf::FLOAT, image.pixels.data() + c, dataWindow, xStride, yStride));
+    for (int row = 0; row < image.height; row += kRowsPerBlock) {
+      const int rows = std::min(kRowsPerBlock, image.height - row);
+      image.pixels.resize((static_cast<std::size_t>(row) + rows) * image.width * names.size());
+      Imf::FrameBuffer frameBuffer;
+      for (std::size_t c = 0; c < names.size(); ++c) {
+        frameBuffer.insert(
+            names[c], Imf::Slice::Make(Imf::FLOAT, image.pixels.data() + c, dataWindow, xStride, yStride));
+      }
+      file.setFrameBuffer(frameBuffer);
+      file.readPixels(dataWindow.min.y + row, dataWindow.min.y + row + rows - 1);
     }
-    file.setFrameBuffer(frameBuffer);
-    file.readPixels(dataWindow.min.y, dataWindow.max.y);
 
     for (auto it = header.begin(); it != header.end(); ++it) {
       if (const auto* text = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) {

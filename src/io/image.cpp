@@ -4,6 +4,14 @@
 
 namespace sixway::io {
 
+void requireReadableSize(std::string_view source, int64_t width, int64_t height) {
+  if (width > kMaxImageSide || height > kMaxImageSide) {
+    throw InputError(source, "image of " + std::to_string(width) + "x" + std::to_string(height) +
+                                 " pixels, more than " + std::to_string(kMaxImageSide) +
+                                 " per side (corrupt, or too large to read)");
+  }
+}
+
 void requireConsistentImage(std::string_view source, const Image& image) {
   if (image.width <= 0 || image.height <= 0) {
     throw InputError(source, "image size " + std::to_string(image.width) + "x" +

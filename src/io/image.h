@@ -1,6 +1,7 @@
 #pragma once
 // A float image with named channels, shared by the PNG and EXR code.
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -37,6 +38,13 @@ struct Image {
     return std::nullopt;
   }
 };
+
+// The largest image side read from a file: the largest texture game engines take, as for flipbooks
+// (render::kMaxFlipbookSide). An RGBA float image of that size is already 4 GiB.
+inline constexpr int kMaxImageSide = 16384;
+// Throws InputError naming `source` when a file's header claims an image wider or taller than kMaxImageSide,
+// before anything is allocated for it.
+void requireReadableSize(std::string_view source, int64_t width, int64_t height);
 
 // Throws InputError naming `source` unless the image has a positive size, at least one channel and
 // width * height * channels pixel values.

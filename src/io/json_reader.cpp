@@ -160,8 +160,9 @@ nlohmann::json parseJsonText(std::string_view text, std::string_view source) {
   };
   try {
     return nlohmann::json::parse(text.begin(), text.end(), callback);
-  } catch (const nlohmann::json::parse_error& e) {
-    // Drop the "[json.exception.parse_error.101] " prefix; the rest names line and column.
+  } catch (const nlohmann::json::exception& e) {
+    // A syntax error (parse_error) or a number beyond double (out_of_range 406, e.g. 1e999). Drop the
+    // "[json.exception.parse_error.101] " prefix; the rest names line and column, or the number.
     std::string what = e.what();
     if (const std::size_t end = what.find("] "); end != std::string::npos) what.erase(0, end + 2);
     throw InputError(source, "invalid JSON: " + what);

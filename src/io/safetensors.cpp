@@ -313,6 +313,8 @@ SafetensorsFile readSafetensors(const std::filesystem::path& path) {
   } catch (const json::parse_error& error) {
     throw InputError(
         source, "header is not valid JSON (error at byte " + std::to_string(error.byte) + " of the header)");
+  } catch (const json::out_of_range&) {  // a number beyond double, e.g. 1e999
+    throw InputError(source, "header is not valid JSON (a number is out of range)");
   }
   if (!header.is_object()) throw InputError(source, "header is not a JSON object");
 

@@ -35,6 +35,8 @@ Image readTga(const std::filesystem::path& path) {
   const std::string source = path.string();
   requireRegularFile(path);
   int width = 0, height = 0, channels = 0;
+  // stb accepts sides up to 2^24 and allocates the whole image before it decodes a row.
+  if (stbi_info(path.c_str(), &width, &height, &channels)) requireReadableSize(source, width, height);
   const std::unique_ptr<stbi_uc, void (*)(void*)> bytes(
       stbi_load(path.c_str(), &width, &height, &channels, 0), stbi_image_free);
   if (!bytes)

@@ -21,6 +21,9 @@ template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
 };
+// Clang 14 (the fuzz build) does not deduce aggregate template arguments without a guide.
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
 
 // Two unit vectors completing `axis` to a right-handed frame (u × v = axis).
 void perpendiculars(glm::vec3 axis, glm::vec3& u, glm::vec3& v) {

@@ -198,6 +198,11 @@ TEST_F(SafetensorsTest, HeaderIsNotJson) {
               namesFileAndProblem(file, "header is not valid JSON"));
 }
 
+TEST_F(SafetensorsTest, HeaderNumberBeyondDouble) {
+  EXPECT_THAT(errorForHeader(R"({"w": 1e999})", 0),
+              namesFileAndProblem(file, "header is not valid JSON (a number is out of range)"));
+}
+
 TEST_F(SafetensorsTest, HeaderIsNotAnObject) {
   EXPECT_THAT(errorForHeader("[1, 2]", 0), namesFileAndProblem(file, "header is not a JSON object"));
 }

@@ -444,6 +444,14 @@ TEST(SceneTest, InvalidJsonNamesLineAndColumn) {
   EXPECT_EQ(message.find('\n'), std::string::npos) << message;
 }
 
+// Found by fuzzing (tests/fuzz/): a number beyond double is nlohmann's out_of_range, not a parse_error, and
+// escaped parseJsonText.
+TEST(SceneTest, NumberBeyondDoubleIsInvalidJson) {
+  const fs::path file = fs::path(SIXWAY_TEST_DATA_DIR) / "fuzz" / "scene_number_overflow.json";
+  const std::string message = errorOf([&] { loadScene(file); });
+  EXPECT_EQ(message, file.string() + ": invalid JSON: number overflow parsing '0.033e333'");
+}
+
 TEST(SceneTest, DuplicateJsonKeyNamesItsPath) {
   TempDir dir;
   const fs::path file = dir / "twice.json";

@@ -1,0 +1,14 @@
+# Runs one fuzz target for SECONDS over its committed seeds (SEEDS, read only) and what earlier runs found
+# (WORK/corpus), with the target's own libFuzzer FLAGS and LEAK_SUPPRESSIONS; a crash, hang (> 10 s per
+# input), leak or sanitizer report fails with the input saved in WORK.
+file(MAKE_DIRECTORY ${WORK}/corpus)
+if(LEAK_SUPPRESSIONS)
+  set(ENV{LSAN_OPTIONS} "suppressions=${LEAK_SUPPRESSIONS}:print_suppressions=0")
+endif()
+execute_process(
+  COMMAND ${FUZZER} ${WORK}/corpus ${SEEDS} -max_total_time=${SECONDS} -timeout=10 -rss_limit_mb=2048
+          -artifact_prefix=${WORK}/ -print_final_stats=1 ${FLAGS}
+  RESULT_VARIABLE result)
+if(NOT result EQUAL 0)
+  message(FATAL_ERROR "${FUZZER} failed (${result}); the input is in ${WORK}/")
+endif()
