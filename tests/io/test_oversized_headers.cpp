@@ -60,5 +60,17 @@ TEST(OversizedHeaderTest, TgaClaimingTwentyThousandSquare) {
   EXPECT_LT(peakResidentMiB() - before, 100.0);
 }
 
+TEST(OversizedHeaderTest, TgaClaimingMorePixelsThanItHolds) {
+  // Within the side limit, but 34 bytes cannot hold 16000² RGBA pixels (1 GiB, 4 GiB as floats, were stb
+  // left to fill the rest with zeros).
+  const auto file = kData / "tga_16000x16000_no_data.tga";
+  const double before = peakResidentMiB();
+  EXPECT_THAT(inputErrorMessage([&] { readTga(file); }),
+              namesFileAndProblem(file,
+                                  "16000x16000 pixels need at least 1024000000 bytes of pixel data, "
+                                  "the file holds 16"));
+  EXPECT_LT(peakResidentMiB() - before, 100.0);
+}
+
 }  // namespace
 }  // namespace sixway::io
