@@ -47,7 +47,7 @@ def main():
     if len(sys.argv) != 2:
         fail("usage: ablation_table.py OUT_DIR")
     out = sys.argv[1]
-    rows = []
+    rows, baseline = [], None
     for name, lights, adapters in VARIANTS:
         directory = os.path.join(out, name)
         ev = load_json(os.path.join(directory, "eval.json"))
@@ -56,18 +56,21 @@ def main():
         seq, cam = ev["splits"].get("heldout_sequence"), ev["splits"].get("heldout_camera")
         if seq is None or cam is None:
             fail(f"{directory}/eval.json: both held-out splits are needed")
+        if baseline is None:
+            baseline = (seq["psnr_masked_db"], cam["psnr_masked_db"])
+        delta = f"{seq['psnr_masked_db'] - baseline[0]:+.2f} / {cam['psnr_masked_db'] - baseline[1]:+.2f}"
         pairs = seq["pairs_psnr_masked_db"]
         held = metrics["heldout_sequence"]
         flicker = held["mean_abs_frame_difference_prediction"] / held["mean_abs_frame_difference_reference"]
         rows.append(
             f"| {name} | {lights} | {adapters} | {training['parameters']:,} | {training['wall_seconds'] / 60:.1f} | "
-            f"**{db(seq['psnr_masked_db'])}** | {db(cam['psnr_masked_db'])} | {db(pairs['right_left'])} / "
+            f"**{db(seq['psnr_masked_db'])}** | {db(cam['psnr_masked_db'])} | {delta} | {db(pairs['right_left'])} / "
             f"{db(pairs['top_bottom'])} / {db(pairs['back_front'])} / {db(pairs['alpha_emissive'])} | "
             f"{flicker:.2f} |")
     print("| variant | guide lights | adapters | parameters | training, min | held-out sequences: PSNR masked, dB | "
-          "held-out camera | per pair (sequences): right-left / top-bottom / back-front / alpha-emissive | "
+          "held-out camera | vs baseline, dB (sequences / camera) | per pair (sequences): right-left / top-bottom / back-front / alpha-emissive | "
           "flicker (prediction ÷ reference) |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for row in rows:
         print(row)
 

@@ -240,7 +240,10 @@ the same sequences, cameras and targets (`tools/datasets/cpu_small.json`; the gu
 the guiding map, `tools/datasets/ablations/`), measured on the held-out splits by the C++ pipeline
 (`sixway eval --dataset`, lightmap PSNR against the baker, masked). Made by `tools/ablations.sh` (1.5–2 hours
 here, so not part of the default run; `ABLATIONS=1 tools/results.sh` runs it first). The baseline here is the
-shipped architecture at this shorter budget, not the shipped weights (2,500 steps).
+shipped architecture at this shorter budget, not the shipped weights (2,500 steps). Trained and measured on
+the machine above (one CPU thread per training, shared with other jobs, so the training minutes vary with the
+load). One training run per variant: the spread between runs with other seeds was not measured, so differences
+of a few tenths of a dB are no evidence of a difference.
 
 """
     if os.path.exists(ablations):
