@@ -137,7 +137,7 @@ void Buffer::download(std::span<std::byte> data, uint64_t offset) const {
 }
 
 BufferView::BufferView(const Context& context, const Buffer& buffer, VkFormat format)
-    : context_(&context), buffer_(&buffer) {
+    : context_(&context), buffer_(buffer.handle()) {
   VkBufferViewCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
   info.buffer = buffer.handle();
   info.format = format;
@@ -157,7 +157,7 @@ BufferView& BufferView::operator=(BufferView&& other) noexcept {
   if (this != &other) {
     release();
     context_ = std::exchange(other.context_, nullptr);
-    buffer_ = std::exchange(other.buffer_, nullptr);
+    buffer_ = std::exchange(other.buffer_, VK_NULL_HANDLE);
     view_ = std::exchange(other.view_, VK_NULL_HANDLE);
   }
   return *this;

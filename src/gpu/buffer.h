@@ -68,13 +68,15 @@ class BufferView {
   BufferView& operator=(BufferView&& other) noexcept;
 
   VkBufferView handle() const { return view_; }
-  const Buffer& buffer() const { return *buffer_; }
+  // The viewed buffer's handle, not its Buffer: a Buffer may move (a FeatureMap holding both moved in a
+  // vector), its handle does not; barriers follow the handle.
+  VkBuffer bufferHandle() const { return buffer_; }
 
  private:
   void release();
 
   const Context* context_ = nullptr;
-  const Buffer* buffer_ = nullptr;
+  VkBuffer buffer_ = VK_NULL_HANDLE;
   VkBufferView view_ = VK_NULL_HANDLE;
 };
 

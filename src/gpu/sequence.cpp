@@ -109,7 +109,7 @@ void Sequence::addTouch(Touch& touch, const Binding& binding) const {
         if constexpr (std::is_same_v<B, BufferBinding>)
           return {key(b.buffer->handle()), b.access};
         else if constexpr (std::is_same_v<B, TexelBufferBinding>)
-          return {key(b.view->buffer().handle()), b.access};
+          return {key(b.view->bufferHandle()), b.access};
         else
           return {key(b.image->handle()), b.access};
       },

@@ -51,6 +51,28 @@ TEST_F(TexelBufferTest, ReadsTexelsWrittenAsAStorageBufferAfterABarrier) {
   for (size_t i = 0; i < values.size(); ++i) EXPECT_EQ(result[i], 4.0f * values[i]) << i;
 }
 
+TEST_F(TexelBufferTest, AViewKeepsItsBarriersWhenItsBufferMoves) {
+  // A network feature map holds a buffer and a view of it, and maps move (into vectors). The view once
+  // followed the Buffer object, so after a move the barrier was keyed to the moved-from object (found by
+  // AddressSanitizer: stack-use-after-scope in tools/sanitize.sh) and the write→read barrier went missing.
+  std::vector<float> values(kTexels * 4, 3.0f);
+  gpu::Buffer first = texelBuffer("first"), third = texelBuffer("third");
+  first.upload(values);
+  const gpu::BufferView firstView(context(), first, VK_FORMAT_R32G32B32A32_SFLOAT);
+  gpu::Buffer original = texelBuffer("second");
+  const gpu::BufferView secondView(context(), original, VK_FORMAT_R32G32B32A32_SFLOAT);
+  const gpu::Buffer second = std::move(original);
+  gpu::Pipeline pipeline = scalePipeline(2.0f);
+
+  gpu::Sequence sequence(context());
+  sequence.dispatch(pipeline, {gpu::reads(firstView), gpu::writes(second)}, kTexels, 2);
+  sequence.dispatch(pipeline, {gpu::reads(secondView), gpu::writes(third)}, kTexels, 2);
+  sequence.submit();
+  EXPECT_EQ(sequence.barrierCount(), 1u);
+  const std::vector<float> result = third.download<float>();
+  for (size_t i = 0; i < values.size(); ++i) EXPECT_EQ(result[i], 12.0f) << i;
+}
+
 TEST_F(TexelBufferTest, ABufferBoundWhereATexelViewIsExpectedIsRefused) {
   gpu::Buffer buffer = texelBuffer("plain");
   gpu::Pipeline pipeline = scalePipeline(1.0f);
