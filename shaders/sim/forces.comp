@@ -1,8 +1,9 @@
 #version 460
 // Force of the fluid on each obstacle by momentum exchange over the bounce-back links, in the
-// Galilean-invariant form of Wen et al. (2014): per link F = (c_ī − u_w) f*_ī − (c_i − u_w) f_i;
-// plus, for moving obstacles, the momentum of the cells that change sides (Wen et al.'s refilling
-// term): a cell the obstacle covers gives it the fluid's ρu, a cell it uncovers takes ρ₀u_w from it.
+// Galilean-invariant form of Wen et al. (2014): per link F = (c_ī − u_w) f*_ī − (c_i − u_w) f_i, with
+// f_i the population the wall sends back by the rule lbm_step uses (sim_bounce_back.glsl); plus, for
+// moving obstacles, the momentum of the cells that change sides (Wen et al.'s refilling term): a cell
+// the obstacle covers gives it the fluid's ρu, a cell it uncovers takes ρ₀u_w from it.
 // Reads the same post-collision lattice that the coming lbm_step streams from. Each subgroup adds
 // its sum into the step's slot with one float atomic per component (workgroup barriers cost a
 // coroutine switch per invocation on lavapipe); the order of the additions is not fixed. Only the
@@ -22,6 +23,7 @@ layout(constant_id = 5) const uint FACE_YM = 0u;
 layout(constant_id = 6) const uint FACE_YP = 0u;
 layout(constant_id = 7) const uint FACE_ZM = 0u;
 layout(constant_id = 8) const uint FACE_ZP = 0u;
+layout(constant_id = 9) const bool INTERPOLATED_BOUNCE_BACK = false;  // as lbm_step's
 
 const uint CELLS = uint(NX * NY * NZ);
 const ivec3 SIZE = ivec3(NX, NY, NZ);
@@ -30,7 +32,6 @@ const ivec3 SIZE = ivec3(NX, NY, NZ);
 #include "lbm_d3q19.glsl"
 #include "lbm_lattice.glsl"
 #include "sim_grid.glsl"
-#include "sim_faces.glsl"
 
 layout(std430, binding = 0) readonly buffer Params { StepParams params[]; };
 layout(std430, binding = 1) readonly buffer Flags { uint flags[]; };
@@ -47,6 +48,8 @@ layout(push_constant) uniform Push {
   ivec4 boxSize;  // xyz: its cells per axis
 } push;
 
+#include "sim_bounce_back.glsl"
+
 void main() {
   uint boxCells = uint(push.boxSize.x * push.boxSize.y * push.boxSize.z);
   uint local = linearInvocationIndex();
@@ -59,6 +62,7 @@ void main() {
   bool linked = inBox && !isSolid(own) && previousObstacleOf(own) == 0u;
 
   uint neighbour[Q];  // the obstacle (plus one) each population streams from, 0 for fluid
+  bool wallCovers[Q];  // whether that obstacle covers the source cell now (not just a step ago)
   vec4 state = inBox ? macro[cell] : vec4(0.0);  // the previous step's velocity and density
   float rho = linked ? state.w : 0.0;
   // Covered this step: the fluid's momentum goes to the obstacle. Uncovered: the cell restarts at
@@ -66,20 +70,21 @@ void main() {
   uint covered = (isSolid(own) && previousObstacleOf(own) == 0u) ? obstacleOf(own) : 0u;
   uint uncovered = (!isSolid(own) && previousObstacleOf(own) != 0u) ? previousObstacleOf(own) : 0u;
   [[unroll]] for (int i = 0; i < Q; ++i) {
-    ivec3 source = p - C[i];  // wrapped on periodic axes exactly as lbm_step streams
-    [[unroll]] for (int a = 0; a < 3; ++a)
-      if (faceType(2 * a) == FACE_PERIODIC) source[a] = (source[a] + SIZE[a]) % SIZE[a];
+    ivec3 source = wrapPeriodic(p - C[i]);  // exactly as lbm_step streams
     bool inside = all(greaterThanEqual(source, ivec3(0))) && all(lessThan(source, SIZE));
     bool near = inside && nearSolid(params[push.step], source);  // else the source is fluid
-    neighbour[i] = (linked && i > 0 && near) ? wallOf(flags[cellIndex(source, SIZE)]) : 0u;
+    uint sourceFlags = (linked && i > 0 && near) ? flags[cellIndex(source, SIZE)] : 0u;
+    neighbour[i] = wallOf(sourceFlags);
+    wallCovers[i] = isSolid(sourceFlags);
   }
   for (uint o = 0u; o < count; ++o) {
     vec3 force = vec3(0.0);
-    vec3 wall = params[push.step].obstacles[o].velocity.xyz;
+    Obstacle obstacle = params[push.step].obstacles[o];
+    vec3 wall = obstacle.velocity.xyz;
     [[unroll]] for (int i = 1; i < Q; ++i) {
       if (neighbour[i] != o + 1u) continue;
       float toWall = SIXWAY_LOAD(opposite(i), cell, f0, f1, f2, f3);
-      float back = toWall + 6.0 * W[i] * rho * dot(vec3(C[i]), wall);
+      float back = bounceBack(i, p, cell, wrapPeriodic(p - C[i]), wallCovers[i], obstacle, rho);
       force += (vec3(-C[i]) - wall) * toWall - (vec3(C[i]) - wall) * back;
     }
     if (covered == o + 1u) force += state.w * state.xyz;

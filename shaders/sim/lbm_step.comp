@@ -30,6 +30,7 @@ layout(constant_id = 20) const float WIND_X = 0.0;  // lattice velocity on inflo
 layout(constant_id = 21) const float WIND_Y = 0.0;
 layout(constant_id = 22) const float WIND_Z = 0.0;
 layout(constant_id = 23) const bool PARABOLIC_INFLOW = false;
+layout(constant_id = 24) const bool INTERPOLATED_BOUNCE_BACK = false;  // obstacles (sim_bounce_back.glsl)
 
 const uint CELLS = uint(NX * NY * NZ);
 
@@ -54,6 +55,7 @@ layout(push_constant) uniform Push { uint step; } push;
 
 const ivec3 SIZE = ivec3(NX, NY, NZ);
 #include "sim_faces.glsl"
+#include "sim_bounce_back.glsl"
 
 float loadPost(int i, uint cell) { return SIXWAY_LOAD(i, cell, f0, f1, f2, f3); }
 
@@ -146,20 +148,18 @@ void main() {
     [[unroll]] for (int i = 0; i < Q; ++i) f[i] = equilibrium(i, 1.0, previous.xyz);
   } else {
     [[unroll]] for (int i = 0; i < Q; ++i) {
-      ivec3 source = p - C[i];
-      [[unroll]] for (int a = 0; a < 3; ++a)
-        if (faceType(2 * a) == FACE_PERIODIC) source[a] = (source[a] + SIZE[a]) % SIZE[a];
+      ivec3 source = wrapPeriodic(p - C[i]);
       if (any(lessThan(source, ivec3(0))) || any(greaterThanEqual(source, SIZE))) {
         f[i] = fromOutside(i, p, source, cell, previous);
         continue;
       }
       uint sourceCell = cellIndex(source, SIZE);
       // Outside the obstacles' box no cell is or was solid: no flags to read (the box holds wrapped cells).
-      uint wallIndex = nearSolid(params[push.step], source) ? wallOf(flags[sourceCell]) : 0u;
+      uint sourceFlags = nearSolid(params[push.step], source) ? flags[sourceCell] : 0u;
+      uint wallIndex = wallOf(sourceFlags);
       if (wallIndex != 0u) {
-        // Half-way bounce-back from a wall moving at u_w: f_i = f*_ī + 6 w_i ρ c_i·u_w (Ladd 1994).
-        vec3 wall = params[push.step].obstacles[wallIndex - 1u].velocity.xyz;
-        f[i] = loadPost(opposite(i), cell) + 6.0 * W[i] * previous.w * dot(vec3(C[i]), wall);
+        Obstacle wall = params[push.step].obstacles[wallIndex - 1u];
+        f[i] = bounceBack(i, p, cell, source, isSolid(sourceFlags), wall, previous.w);
       } else {
         f[i] = loadPost(i, sourceCell);
       }

@@ -28,6 +28,8 @@ const Choices<BoundaryType> kBoundaryTypes = {{"no_slip", BoundaryType::NoSlip},
                                               {"inflow", BoundaryType::Inflow}};
 const Choices<InflowProfile> kInflowProfiles = {{"uniform", InflowProfile::Uniform},
                                                 {"parabolic", InflowProfile::Parabolic}};
+const Choices<ObstacleBoundary> kObstacleBoundaries = {{"half_way", ObstacleBoundary::HalfWay},
+                                                       {"interpolated", ObstacleBoundary::Interpolated}};
 constexpr std::array<std::string_view, 6> kFaceNames = {"x-", "x+", "y-", "y+", "z-", "z+"};
 
 enum class InletShape { Disk, Box };
@@ -122,6 +124,7 @@ Fluid parseFluid(JsonReader& r) {
   const std::optional<float> referenceLength = r.maybe<float>("reference_length", positive());
   f.smagorinsky = r.optional<float>("smagorinsky", f.smagorinsky, inRange(0, 0.5));
   f.maxLatticeVelocity = r.optional<float>("max_lattice_velocity", f.maxLatticeVelocity, inRange(0.01, 0.3));
+  f.obstacleBoundary = r.choice("obstacle_boundary", kObstacleBoundaries, f.obstacleBoundary);
   f.buoyancy = r.object("buoyancy", parseBuoyancy);
   f.gravity = r.optional<glm::vec3>("gravity", f.gravity, nonZero());
   f.bodyForce = r.optional<glm::vec3>("body_force", f.bodyForce);

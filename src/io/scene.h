@@ -46,6 +46,10 @@ struct Buoyancy {
   float density = 0;      // m/s² per unit density; negative: heavy smoke sinks
 };
 
+// How obstacles bounce populations back: from a wall half-way along every link to a solid cell, or from
+// where the link crosses the obstacle's analytic surface (interpolated; meshes stay half-way).
+enum class ObstacleBoundary { HalfWay, Interpolated };
+
 struct Fluid {
   // Exactly one of viscosity and reynolds is set; kinematicViscosity() resolves them.
   std::optional<float> viscosity;  // m²/s
@@ -53,6 +57,7 @@ struct Fluid {
   float referenceLength = 0;       // m, only with reynolds
   float smagorinsky = 0.1f;
   float maxLatticeVelocity = 0.1f;  // lattice speed of the fastest inflow (at most)
+  ObstacleBoundary obstacleBoundary = ObstacleBoundary::HalfWay;
   Buoyancy buoyancy;
   glm::vec3 gravity{0, -9.81f, 0};  // only its direction is used
   glm::vec3 bodyForce{0};           // m/s², a constant acceleration (e.g. a driving pressure gradient)

@@ -42,6 +42,7 @@ LbmSettings lbmSettings(const io::Scene& scene, const LatticeUnits& units) {
   s.bodyForce = units.toLatticeAcceleration(scene.fluid.bodyForce);
   s.wind = units.toLatticeVelocity(scene.boundaries.wind);
   s.parabolicInflow = scene.boundaries.inflowProfile == io::InflowProfile::Parabolic;
+  s.interpolatedBounceBack = scene.fluid.obstacleBoundary == io::ObstacleBoundary::Interpolated;
   return s;
 }
 
@@ -81,7 +82,7 @@ LbmSolver::LbmSolver(const gpu::Context& context, const gpu::PipelineCache& cach
   step.spec.set(14, settings.up.x).set(15, settings.up.y).set(16, settings.up.z);
   step.spec.set(17, settings.bodyForce.x).set(18, settings.bodyForce.y).set(19, settings.bodyForce.z);
   step.spec.set(20, settings.wind.x).set(21, settings.wind.y).set(22, settings.wind.z);
-  step.spec.set(23, settings.parabolicInflow);
+  step.spec.set(23, settings.parabolicInflow).set(24, settings.interpolatedBounceBack);
   step_ = std::make_unique<gpu::Pipeline>(context, cache, step);
 
   gpu::ComputePipelineDesc forces;
@@ -90,6 +91,7 @@ LbmSolver::LbmSolver(const gpu::Context& context, const gpu::PipelineCache& cach
   forces.pushConstantBytes = sizeof(ForcesPush);
   forces.spec.set(0, sz.x).set(1, sz.y).set(2, sz.z);
   for (uint32_t f = 0; f < 6; ++f) forces.spec.set(3 + f, uint32_t(settings.faces[f]));
+  forces.spec.set(9, settings.interpolatedBounceBack);
   forces_ = std::make_unique<gpu::Pipeline>(context, cache, forces);
 }
 

@@ -29,6 +29,7 @@ struct LbmSettings {
   glm::vec3 bodyForce{0};  // lattice acceleration
   glm::vec3 wind{0};       // lattice velocity on inflow faces
   bool parabolicInflow = false;
+  bool interpolatedBounceBack = false;  // obstacles: io::ObstacleBoundary::Interpolated
 };
 
 LbmSettings lbmSettings(const io::Scene& scene, const LatticeUnits& units);

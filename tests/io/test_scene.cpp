@@ -130,6 +130,7 @@ TEST(SceneTest, MinimalSceneGetsDefaults) {
   EXPECT_FALSE(s.fluid.reynolds);
   EXPECT_FLOAT_EQ(s.fluid.smagorinsky, 0.1f);
   EXPECT_FLOAT_EQ(s.fluid.maxLatticeVelocity, 0.1f);
+  EXPECT_EQ(s.fluid.obstacleBoundary, ObstacleBoundary::HalfWay);
   EXPECT_EQ(s.fluid.buoyancy.temperature, 0);
   EXPECT_EQ(s.fluid.buoyancy.density, 0);
   expectVec(s.fluid.gravity, {0, -9.81f, 0});
@@ -218,6 +219,15 @@ TEST(SceneTest, ReynoldsUsesTheFastestInlet) {
   EXPECT_EQ(lbmStepsPerFrame(s), 14);  // ceil(2 m/s · 1/30 s / (0.1 · 0.05 m)) = ceil(13.3)
 }
 
+TEST(SceneTest, ObstacleBoundaryIsRead) {
+  const auto boundary = [](const char* name) {
+    return parseScene(minimalWith({{"fluid", {{"obstacle_boundary", name}}}}), "s.json", ".")
+        .fluid.obstacleBoundary;
+  };
+  EXPECT_EQ(boundary("half_way"), ObstacleBoundary::HalfWay);
+  EXPECT_EQ(boundary("interpolated"), ObstacleBoundary::Interpolated);
+}
+
 TEST(SceneTest, MeshPathIsResolvedAgainstTheSceneFile) {
   TempDir dir;
   writeFile(dir / "meshes" / "rock.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
@@ -296,6 +306,12 @@ TEST(SceneParse, MissingRequiredKey) {
 TEST(SceneParse, UnknownChoice) {
   EXPECT_TRUE(rejected(minimalWith(R"({"obstacles": [{"type": "cone"}]})"_json), "obstacles[0].type",
                        "must be one of \"sphere\", \"cylinder\", \"box\", \"mesh\" (got \"cone\")"));
+}
+
+TEST(SceneParse, UnknownObstacleBoundary) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"fluid": {"obstacle_boundary": "bouzidi"}})"_json),
+                       "fluid.obstacle_boundary",
+                       "must be one of \"half_way\", \"interpolated\" (got \"bouzidi\")"));
 }
 
 TEST(SceneParse, NegativeRadius) {

@@ -1,5 +1,6 @@
 #include "cpu_lbm.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -36,6 +37,41 @@ glm::ivec3 wrapPeriodic(glm::ivec3 p, glm::ivec3 size, const std::array<io::Boun
   for (int a = 0; a < 3; ++a)
     if (faces[2 * a] == BoundaryType::Periodic) p[a] = ((p[a] % size[a]) + size[a]) % size[a];
   return p;
+}
+
+// Where the link from x (outside obstacle o) to x − c (inside it) enters the obstacle, as a fraction of the
+// link: bisection of the inside test, to far below float rounding (the shapes are convex: one crossing).
+// ½ when x lies inside too (an obstacle cut by a periodic face is not wrapped around it).
+double wallFraction(const CpuStepInputs& in, int o, glm::dvec3 x, glm::dvec3 c) {
+  if (in.insideObstacle(o, x) || !in.insideObstacle(o, x - c)) return 0.5;
+  double outside = 0, inside = 1;
+  for (int k = 0; k < 60; ++k) {
+    const double t = 0.5 * (outside + inside);
+    (in.insideObstacle(o, x - t * c) ? inside : outside) = t;
+  }
+  return std::clamp(inside, 1e-3, 1.0);
+}
+
+// The population f_i that the wall in cell `from` = p − c_i (wrapped) sends back to the fluid cell p, by
+// the rule of the settings (cpu_lbm.h). `post` and `macro`: the state the step streams from.
+double bounceBack(const CpuLbmSettings& s, const std::vector<d3q19::Populations>& post,
+                  const std::vector<glm::dvec4>& macro, const CpuStepInputs& in, glm::ivec3 p, int i,
+                  int from) {
+  const int cell = cellIndex(p, s.size);
+  const int o = in.flags[from].wall();
+  const glm::dvec3 wall = in.obstacleVelocity[o];
+  const double rho = macro[cell].w;
+  const double toWall = post[cell][d3q19::opposite(i)];
+  const double halfWay = movingBounceBack(i, toWall, rho, wall);
+  if (!s.interpolatedBounceBack || !in.flags[from].solid()) return halfWay;
+  const glm::dvec3 c(d3q19::velocity(i));
+  // The fluid cell's centre on the wall cell's side of a periodic face.
+  const double q = wallFraction(in, o, glm::dvec3(cellOf(from, s.size)) + c + 0.5, c);
+  if (q >= 0.5) return (halfWay + (2 * q - 1) * post[cell][i]) / (2 * q);
+  const glm::ivec3 beyond = wrapPeriodic(p + d3q19::velocity(i), s.size, s.faces);
+  if (!insideGrid(beyond, s.size) || in.flags[cellIndex(beyond, s.size)].wall() >= 0) return halfWay;
+  const double farther = post[cellIndex(beyond, s.size)][d3q19::opposite(i)];
+  return movingBounceBack(i, 2 * q * toWall + (1 - 2 * q) * farther, rho, wall);
 }
 
 }  // namespace
@@ -117,10 +153,7 @@ d3q19::Populations CpuLbm::gather(glm::ivec3 p, const CpuStepInputs& inputs) con
       continue;
     }
     const int from = cellIndex(source, s.size);
-    const int wall = inputs.flags[from].wall();
-    f[i] = wall >= 0 ? movingBounceBack(i, post_[cell][d3q19::opposite(i)], macro_[cell].w,
-                                        inputs.obstacleVelocity[wall])
-                     : post_[from][i];
+    f[i] = inputs.flags[from].wall() >= 0 ? bounceBack(s, post_, macro_, inputs, p, i, from) : post_[from][i];
   }
   return f;
 }
@@ -189,12 +222,13 @@ LinkForces momentumExchange(const CpuLbmSettings& settings, const std::vector<d3
     for (int i = 1; i < d3q19::kQ; ++i) {
       const glm::ivec3 source = wrapPeriodic(p - d3q19::velocity(i), settings.size, settings.faces);
       if (!insideGrid(source, settings.size)) continue;
-      const int o = inputs.flags[cellIndex(source, settings.size)].wall();
+      const int from = cellIndex(source, settings.size);
+      const int o = inputs.flags[from].wall();
       if (o < 0) continue;
       const glm::dvec3 wall = inputs.obstacleVelocity[o];
       const glm::dvec3 c(d3q19::velocity(i));
       const double toWall = post[cell][d3q19::opposite(i)];
-      const double back = movingBounceBack(i, toWall, macro[cell].w, wall);
+      const double back = bounceBack(settings, post, macro, inputs, p, i, from);
       out.force[o] += (-c - wall) * toWall - (c - wall) * back;
       out.magnitude[o] += glm::abs(-c - wall) * std::abs(toWall) + glm::abs(c - wall) * std::abs(back);
     }

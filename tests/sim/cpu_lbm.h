@@ -7,6 +7,13 @@
 //     link that crosses a wall bounces back;
 //   - obstacles: half-way bounce-back from a wall moving at u_w, f_i = f*_ī + 2 w_i ρ_prev c_i·u_w / c_s²
 //     (Ladd 1994); solid cells carry (u_w, 1) as their macro state;
+//   - or, with interpolatedBounceBack, the linear interpolated bounce-back of Bouzidi, Firdaouss & Lallemand
+//     (2001), the wall at the fraction q of the link x → x − c_i where it enters the obstacle (bisection of
+//     the inside test), q clamped to [1e-3, 1], m = 2 w_i ρ_prev c_i·u_w / c_s²:
+//       q < ½: f_i = 2q f*_ī(x) + (1 − 2q) f*_ī(x + c_i) + m;
+//       q ≥ ½: f_i = [f*_ī(x) + (2q − 1) f*_i(x) + m] / (2q);
+//     half-way when x + c_i is not a fluid cell (q < ½), the wall cell was uncovered this step, or x itself
+//     lies inside the obstacle (cut by a periodic face, whose image across it is not an obstacle);
 //   - inflow faces: the same moving-wall bounce-back with u_w = wind · 4s(1 − s) per no-slip channel axis
 //     when parabolic; outflow faces: f_i = f_i^eq(1, u_prev); at edges and corners a wall wins over
 //     inflow, inflow over outflow;
@@ -16,6 +23,7 @@
 //   - velocity inlets: the populations become f^eq(ρ, u_inlet);
 //   - force ρ a per cell, a = (b_T T + b_ρ D) up + body, T and D averaged over the cell's smoke cells.
 #include <array>
+#include <functional>
 #include <glm/glm.hpp>
 #include <vector>
 
@@ -47,6 +55,7 @@ struct CpuLbmSettings {
   glm::dvec3 bodyAcceleration{0};
   glm::dvec3 wind{0};
   bool parabolicInflow = false;
+  bool interpolatedBounceBack = false;
 };
 
 // The moving parts at one step, lattice units.
@@ -54,6 +63,8 @@ struct CpuStepInputs {
   std::vector<CellFlags> flags;
   std::vector<glm::dvec3> obstacleVelocity;
   std::vector<glm::dvec3> inletVelocity;
+  // Whether a point (lattice coordinates) lies inside obstacle o at this step; for interpolated bounce-back.
+  std::function<bool(int o, glm::dvec3 p)> insideObstacle;
 };
 
 class CpuLbm {
@@ -86,7 +97,8 @@ bool insideGrid(glm::ivec3 p, glm::ivec3 size);
 // bounces back (Galilean-invariant form, Wen et al. 2014): per link from a fluid cell x (not one just
 // uncovered) along c_i to a wall cell (CellFlags::wall), F += (c_ī − u_w) f*_ī(x) − (c_i − u_w) f_i(x)
 // with f_i(x) the bounced-back population; plus the momentum of the cells a moving obstacle covers
-// (their ρu, to the obstacle) and uncovers (the refill's ρ₀u_w, from it).
+// (their ρu, to the obstacle) and uncovers (the refill's ρ₀u_w, from it). f_i(x) follows the bounce-back
+// rule of `settings`.
 // `post` is the state the step streams from, `macro` the macro state before it, `flags` the step's.
 struct LinkForces {
   std::vector<glm::dvec3> force;

@@ -31,6 +31,16 @@ bool insideInlet(const io::Inlet& inlet, glm::dvec3 p) {
          glm::all(glm::lessThan(p, glm::dvec3(box.max)));
 }
 
+ShapeTest shapeTest(const io::Obstacle& obstacle, glm::dvec3 centre, glm::dvec3 p) {
+  const auto& shape = obstacle.shape;
+  if (const auto* s = std::get_if<io::SphereObstacle>(&shape)) return sphereTest(p, centre, s->radius);
+  if (const auto* c = std::get_if<io::CylinderObstacle>(&shape))
+    return cylinderTest(p, centre, glm::dvec3(c->axis), c->radius, 0.5 * c->height);
+  if (const auto* b = std::get_if<io::BoxObstacle>(&shape))
+    return boxTest(p, centre, 0.5 * glm::dvec3(b->size));
+  throw std::invalid_argument("CpuSimulation: mesh obstacles are not modelled");
+}
+
 }  // namespace
 
 CpuLbmSettings cpuLbmSettings(const io::Scene& scene) {
@@ -47,6 +57,7 @@ CpuLbmSettings cpuLbmSettings(const io::Scene& scene) {
   s.bodyAcceleration = scene.fluid.bodyForce;
   s.wind = scene.boundaries.wind;
   s.parabolicInflow = scene.boundaries.inflowProfile == io::InflowProfile::Parabolic;
+  s.interpolatedBounceBack = scene.fluid.obstacleBoundary == io::ObstacleBoundary::Interpolated;
   return s;
 }
 
@@ -93,23 +104,14 @@ CpuSimulation::Motion CpuSimulation::obstacleAt(size_t obstacle, double time) co
   return {glm::dvec3(keys[k].position) + velocity * (time - keys[k].time), velocity};
 }
 
-ShapeTest CpuSimulation::obstacleTest(size_t obstacle, glm::dvec3 centre, glm::dvec3 p) const {
-  const auto& shape = scene_.obstacles[obstacle].shape;
-  if (const auto* s = std::get_if<io::SphereObstacle>(&shape)) return sphereTest(p, centre, s->radius);
-  if (const auto* c = std::get_if<io::CylinderObstacle>(&shape))
-    return cylinderTest(p, centre, glm::dvec3(c->axis), c->radius, 0.5 * c->height);
-  if (const auto* b = std::get_if<io::BoxObstacle>(&shape))
-    return boxTest(p, centre, 0.5 * glm::dvec3(b->size));
-  throw std::invalid_argument("CpuSimulation: mesh obstacles are not modelled");
-}
-
 double CpuSimulation::surfaceMargin(uint64_t step) const {
   double margin = INFINITY;
   const glm::ivec3 n = scene_.grid.size;
   for (size_t o = 0; o < scene_.obstacles.size(); ++o) {
     const glm::dvec3 centre = obstacleAt(o, double(step)).position;
     for (int c = 0; c < n.x * n.y * n.z; ++c)
-      margin = std::min(margin, obstacleTest(o, centre, glm::dvec3(cellOf(c, n)) + 0.5).margin);
+      margin =
+          std::min(margin, shapeTest(scene_.obstacles[o], centre, glm::dvec3(cellOf(c, n)) + 0.5).margin);
   }
   return margin;
 }
@@ -124,6 +126,9 @@ CpuStepInputs CpuSimulation::inputsAt(uint64_t step, const std::vector<CellFlags
     in.obstacleVelocity.push_back(m.velocity);
   }
   for (const io::Inlet& inlet : scene_.inlets) in.inletVelocity.push_back(inlet.velocity);
+  in.insideObstacle = [obstacles = scene_.obstacles, centres](int o, glm::dvec3 p) {
+    return shapeTest(obstacles[o], centres[o], p).inside;
+  };
   const glm::ivec3 n = scene_.grid.size;
   in.flags.resize(cellCount(n));
   for (int c = 0; c < int(in.flags.size()); ++c) {
@@ -131,7 +136,7 @@ CpuStepInputs CpuSimulation::inputsAt(uint64_t step, const std::vector<CellFlags
     CellFlags& f = in.flags[c];
     f.previousObstacle = previous[c].obstacle;
     for (size_t o = 0; o < centres.size() && !f.solid(); ++o)
-      if (obstacleTest(o, centres[o], p).inside) f.obstacle = int(o);
+      if (shapeTest(scene_.obstacles[o], centres[o], p).inside) f.obstacle = int(o);
     for (size_t i = 0; i < scene_.inlets.size() && f.inlet < 0 && !f.solid(); ++i) {
       const io::Inlet& inlet = scene_.inlets[i];
       if (time >= inlet.start && time < inlet.stop && insideInlet(inlet, p)) f.inlet = int(i);

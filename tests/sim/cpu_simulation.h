@@ -39,7 +39,6 @@ class CpuSimulation {
     glm::dvec3 position, velocity;
   };
   Motion obstacleAt(size_t obstacle, double time) const;
-  ShapeTest obstacleTest(size_t obstacle, glm::dvec3 centre, glm::dvec3 p) const;
 
   io::Scene scene_;
   CpuLbm lbm_;

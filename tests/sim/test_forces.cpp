@@ -7,8 +7,11 @@
 // ≥ 1e-3 Σ|term| on these grids.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "cpu_simulation.h"
 #include "gpu_state.h"
@@ -59,7 +62,8 @@ class ForcesTest : public GpuTest {
     const std::vector<d3q19::Populations> post = downloadPopulations(gpu.lbm(), before % 2);
     const std::vector<glm::vec4> macroFloat = gpu.lbm().macro().download<glm::vec4>();
     const std::vector<glm::dvec4> macro(macroFloat.begin(), macroFloat.end());
-    const LinkForces expected = momentumExchange(cpuLbmSettings(scene), post, macro, in);
+    const CpuLbmSettings settings = cpuLbmSettings(scene);
+    const LinkForces expected = momentumExchange(settings, post, macro, in);
     try {
       gpu.advance(1);
     } catch (const sim::WatchdogError& e) {  // the forces of the step are reported before the watchdog
@@ -81,12 +85,26 @@ class ForcesTest : public GpuTest {
                   << std::abs(got[o][a] - expected.force[o][a]) / expected.magnitude[o][a] << "\n";
       }
     }
+    if (!settings.interpolatedBounceBack) return;
+    // The rule must matter: half-way bounce-back of the same state gives forces 100 × the tolerance away.
+    CpuLbmSettings halfWay = settings;
+    halfWay.interpolatedBounceBack = false;
+    const LinkForces other = momentumExchange(halfWay, post, macro, in);
+    double effect = 0;
+    for (size_t o = 0; o < got.size(); ++o)
+      for (int a = 0; a < 3; ++a)
+        effect =
+            std::max(effect, std::abs(other.force[o][a] - expected.force[o][a]) / expected.magnitude[o][a]);
+    EXPECT_GT(effect, 100 * kRelativeTolerance)
+        << "interpolated and half-way bounce-back give the same forces";
+    std::cout << "[ measured ] half-way vs interpolated: |Δ|/Σ|term| up to " << effect << "\n";
   }
 };
 
-json latticeSceneWith(const json& obstacles) {
+json latticeSceneWith(const json& obstacles, const std::string& boundary = "half_way") {
   return latticeScene(kSize, 0.02,
-                      {{"fluid", {{"body_force", {2e-4, 0.0, -1e-4}}}}, {"obstacles", obstacles}});
+                      {{"fluid", {{"body_force", {2e-4, 0.0, -1e-4}}, {"obstacle_boundary", boundary}}},
+                       {"obstacles", obstacles}});
 }
 
 TEST_F(ForcesTest, StaticSphereAndBox) {
@@ -113,6 +131,31 @@ TEST_F(ForcesTest, SphereCutByAPeriodicFace) {
   // Fluid cells at x = 15 bounce back from the solid cells at x = 0 across the periodic face.
   const json obstacles = {{{"type", "sphere"}, {"center", {0.7, 6.2, 4.9}}, {"radius", 2.6}}};
   expectForcesMatch(latticeSceneWith(obstacles), 1);
+}
+
+// Interpolated bounce-back (fluid.obstacle_boundary "interpolated"): the links' populations come from the
+// same rule as the flow's (sim_bounce_back.glsl).
+TEST_F(ForcesTest, InterpolatedStaticSphereTiltedCylinderAndBox) {
+  const json obstacles = {{{"type", "sphere"}, {"center", {4.3, 3.7, 4.9}}, {"radius", 2.23}},
+                          {{"type", "cylinder"},
+                           {"center", {5.17, 8.6, 5.3}},
+                           {"radius", 1.7},
+                           {"height", 3.6},
+                           {"axis", {1.0, 0.2, -0.3}}},
+                          {{"type", "box"}, {"center", {11.6, 5.45, 5.3}}, {"size", {2.7, 4.3, 3.1}}}};
+  expectForcesMatch(latticeSceneWith(obstacles, "interpolated"), 3);
+}
+
+TEST_F(ForcesTest, InterpolatedMovingSphere) {
+  const json keyframes = {{{"time", -10.0}, {"position", {6.3, 7.0, 5.2}}},
+                          {{"time", 100.0}, {"position", {22.8, 2.6, 8.5}}}};
+  const json obstacles = {{{"type", "sphere"}, {"radius", 3.1}, {"motion", {{"keyframes", keyframes}}}}};
+  expectForcesMatch(latticeSceneWith(obstacles, "interpolated"), 1);
+}
+
+TEST_F(ForcesTest, InterpolatedSphereCutByAPeriodicFace) {
+  const json obstacles = {{{"type", "sphere"}, {"center", {0.7, 6.2, 4.9}}, {"radius", 2.6}}};
+  expectForcesMatch(latticeSceneWith(obstacles, "interpolated"), 1);
 }
 
 }  // namespace

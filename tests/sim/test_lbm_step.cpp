@@ -183,6 +183,61 @@ TEST_F(LbmStepTest, MovingSphereBounceBackAndRefill) {
   expectMatchesCpu(scene, 5, still);
 }
 
+// Interpolated bounce-back (fluid.obstacle_boundary "interpolated"): each link to an obstacle ends where it
+// crosses the analytic surface; against half-way bounce-back on the same obstacles.
+json interpolated(const json& scene) {
+  return withPatch(scene, {{"fluid", {{"obstacle_boundary", "interpolated"}}}});
+}
+
+TEST_F(LbmStepTest, InterpolatedBounceBackOnASphere) {
+  const json sphere = {{"obstacles", {{{"type", "sphere"}, {"center", {7.8, 6.3, 5.15}}, {"radius", 3.1}}}}};
+  const json halfWay = latticeScene(kSize, kViscosity, sphere);
+  expectMatchesCpu(interpolated(halfWay), 5, halfWay);
+}
+
+TEST_F(LbmStepTest, InterpolatedBounceBackOnATiltedCylinderAndABox) {
+  // The cylinder's links cross its side and its caps; the box's its faces, edges and corners.
+  const json obstacles = {{"obstacles",
+                           {{{"type", "cylinder"},
+                             {"center", {5.13, 6.2, 5.3}},
+                             {"radius", 2.2},
+                             {"height", 5.0},
+                             {"axis", {0.3, 1.0, 0.2}}},
+                            {{"type", "box"}, {"center", {11.6, 5.45, 5.3}}, {"size", {2.7, 4.3, 3.1}}}}}};
+  const json halfWay = latticeScene(kSize, kViscosity, obstacles);
+  expectMatchesCpu(interpolated(halfWay), 5, halfWay);
+}
+
+TEST_F(LbmStepTest, InterpolatedBounceBackAcrossAPeriodicFace) {
+  // Links from x = 15 to solid cells at x = 0 measure the wall from the fluid cell's periodic image.
+  const json sphere = {{"obstacles", {{{"type", "sphere"}, {"center", {0.7, 6.3, 5.15}}, {"radius", 2.6}}}}};
+  const json halfWay = latticeScene(kSize, kViscosity, sphere);
+  expectMatchesCpu(interpolated(halfWay), 3, halfWay);
+}
+
+TEST_F(LbmStepTest, InterpolatedBounceBackInOneCellGaps) {
+  // Links with q < ½ whose next cell away from the wall is not fluid stay half-way: a sphere 0.2 cells above
+  // the y− wall (x + c_i lies outside the lattice) and a box and a sphere one cell apart (x + c_i is solid).
+  const json gaps = {{"boundaries", {{"y-", "no_slip"}, {"y+", "no_slip"}}},
+                     {"obstacles",
+                      {{{"type", "sphere"}, {"center", {3.6, 2.9, 5.15}}, {"radius", 2.2}},
+                       {{"type", "box"}, {"center", {8.2, 7.0, 5.3}}, {"size", {4.0, 4.3, 3.1}}},
+                       {{"type", "sphere"}, {"center", {13.5, 7.2, 5.15}}, {"radius", 2.2}}}}};
+  const json halfWay = latticeScene(kSize, kViscosity, gaps);
+  expectMatchesCpu(interpolated(halfWay), 5, halfWay);
+}
+
+TEST_F(LbmStepTest, InterpolatedBounceBackOnAMovingSphere) {
+  // Cells covered and uncovered within the five steps (MovingSphereBounceBackAndRefill): links to a cell
+  // uncovered this step stay half-way.
+  const json keyframes = {{{"time", -10.0}, {"position", {6.6, 7.04, 4.6}}},
+                          {{"time", 100.0}, {"position", {19.8, -0.66, 10.1}}}};
+  const json moving = {
+      {"obstacles", {{{"type", "sphere"}, {"radius", 3.1}, {"motion", {{"keyframes", keyframes}}}}}}};
+  const json halfWay = latticeScene(kSize, kViscosity, moving);
+  expectMatchesCpu(interpolated(halfWay), 5, halfWay);
+}
+
 TEST_F(LbmStepTest, VelocityInletDisk) {
   const json inlet = {{"inlets",
                        {{{"shape", "disk"},

@@ -1,11 +1,14 @@
 // Schäfer & Turek (1996), "flow around a cylinder", case 2D-1 as a quasi-2D run (one periodic cell
 // deep): channel 2.2 × 0.41 m, cylinder of diameter D = 0.1 m centred at (0.2, 0.2), parabolic inflow
 // of peak 0.3 m/s (mean Ū = 0.2), ν = 1e-3 m²/s, Re = Ū D / ν = 20. Published drag coefficient
-// c_D = 2 F_x / (ρ Ū² D) ∈ [5.57, 5.59]. docs/validation.md shows the grid convergence.
+// c_D = 2 F_x / (ρ Ū² D) ∈ [5.57, 5.59]. docs/validation.md shows the grid convergence. Run with both
+// obstacle boundary rules (fluid.obstacle_boundary): half-way and interpolated (Bouzidi) bounce-back.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "sim/simulation.h"
 #include "support/gpu_fixture.h"
@@ -17,13 +20,19 @@ namespace {
 // `flowThroughs` channel lengths (at the mean speed). The channel starts filled with the inflow's
 // Poiseuille profile: from rest, a slowly damped acoustic mode between inlet and outlet (1/e in
 // ~10⁵ steps at this viscosity) would sway the drag for many flow-throughs.
+// `maxLatticeVelocity`: the inflow's peak in cells/step (its Mach number / √3).
 double dragCoefficient(const gpu::Context& context, const gpu::PipelineCache& cache, int cellsPerDiameter,
-                       double flowThroughs) {
+                       double flowThroughs, const std::string& obstacleBoundary = "half_way",
+                       double maxLatticeVelocity = 0.1) {
   const double dx = 0.1 / cellsPerDiameter;
   const nlohmann::json j = {
       {"grid", {{"size", {22 * cellsPerDiameter, int(std::lround(0.41 / dx)), 1}}, {"cell_size", dx}}},
       {"time", {{"frame_dt", 0.1}}},
-      {"fluid", {{"viscosity", 1e-3}, {"smagorinsky", 0.0}, {"max_lattice_velocity", 0.1}}},
+      {"fluid",
+       {{"viscosity", 1e-3},
+        {"smagorinsky", 0.0},
+        {"max_lattice_velocity", maxLatticeVelocity},
+        {"obstacle_boundary", obstacleBoundary}}},
       {"boundaries",
        {{"x-", "inflow"},
         {"x+", "outflow"},
@@ -70,6 +79,38 @@ TEST_F(GpuTest, SchaeferTurek2D1DragAtTenCellsPerDiameter) {
   // interval as the grid is refined (LONG_ test and docs/validation.md). Allowed: 10% above.
   EXPECT_GT(cd, 5.57) << "c_D at D = 10 cells";
   EXPECT_LT(cd, 1.10 * 5.59) << "c_D at D = 10 cells";
+}
+
+// Interpolated (Bouzidi) bounce-back puts the wall where each link crosses the circle, which removes the
+// staircase's first-order excess: c_D must come out below half-way bounce-back's 6.067 on the same grid
+// (measured 5.93, docs/validation.md). What remains above the published interval is mostly the
+// compressibility of the lattice at this Mach number (0.17 at the inflow's peak), which refining the grid
+// at a fixed lattice velocity does not remove (LONG_ tests below).
+TEST_F(GpuTest, SchaeferTurek2D1InterpolatedDragAtTenCellsPerDiameter) {
+  const double cd = dragCoefficient(context(), pipelineCache(), 10, 2, "interpolated");
+  RecordProperty("drag_coefficient", std::to_string(cd));
+  std::printf("interpolated, D = 10 cells: c_D = %.4f\n", cd);
+  EXPECT_GT(cd, 5.57) << "c_D at D = 10 cells";
+  EXPECT_LT(cd, 5.99) << "c_D at D = 10 cells (half-way bounce-back: 6.067)";
+}
+
+// Ten minutes on lavapipe (CTest label "long"): D = 20 cells, below half-way bounce-back's 5.882 there.
+TEST_F(GpuTest, LONG_SchaeferTurek2D1InterpolatedDragAtTwentyCellsPerDiameter) {
+  const double cd = dragCoefficient(context(), pipelineCache(), 20, 2, "interpolated");
+  RecordProperty("drag_coefficient", std::to_string(cd));
+  std::printf("interpolated, D = 20 cells: c_D = %.4f\n", cd);
+  EXPECT_GT(cd, 5.57) << "c_D at D = 20 cells";
+  EXPECT_LT(cd, 5.85) << "c_D at D = 20 cells (half-way bounce-back: 5.882)";
+}
+
+// The same at half the lattice velocity (Mach 0.087, twice the steps): a compressibility error, ∝ Ma²,
+// falls to a quarter and c_D moves toward the published interval.
+TEST_F(GpuTest, LONG_SchaeferTurek2D1InterpolatedDragAtTwentyCellsPerDiameterAndHalfTheMach) {
+  const double cd = dragCoefficient(context(), pipelineCache(), 20, 2, "interpolated", 0.05);
+  RecordProperty("drag_coefficient", std::to_string(cd));
+  std::printf("interpolated, D = 20 cells, lattice velocity 0.05: c_D = %.4f\n", cd);
+  EXPECT_GT(cd, 5.57) << "c_D at D = 20 cells, Mach 0.087";
+  EXPECT_LT(cd, 5.72) << "c_D at D = 20 cells, Mach 0.087";
 }
 
 // The grid-convergence runs (minutes each on lavapipe); CTest label "long". The error against the
