@@ -35,6 +35,28 @@ bool hasPngSignature(const std::filesystem::path& path) {
   return in && head == kPngSignature;
 }
 
+// Debian's stb_image grows its buffer to a chunk's stated length before it reads the chunk, so a 128-byte
+// file whose IDAT claims 1.3 GB allocated 2 GiB (found by fuzzing). Every chunk (length, type, data, CRC: PNG
+// spec §5.3) must lie inside the file; the signature is already checked.
+void requireChunksInsideFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  const uint64_t size = std::filesystem::file_size(path);
+  uint64_t at = kPngSignature.size();
+  std::array<unsigned char, 8> head{};
+  while (at + head.size() <= size &&
+         in.seekg(std::streamoff(at)).read(reinterpret_cast<char*>(head.data()), 8)) {
+    const uint64_t length = uint64_t(head[0]) << 24 | head[1] << 16 | head[2] << 8 | head[3];
+    const std::string type(head.begin() + 4, head.end());
+    if (at + 12 + length > size)
+      throw InputError(path.string(), "corrupt or truncated PNG file (chunk " + type + " of " +
+                                          std::to_string(length) + " bytes at byte " + std::to_string(at) +
+                                          " runs past the end of the file, " + std::to_string(size) +
+                                          " bytes)");
+    if (type == "IEND") return;
+    at += 12 + length;
+  }
+}
+
 std::vector<std::string> channelNames(int count) {
   switch (count) {
     case 1:
@@ -77,6 +99,7 @@ Image readPng(const std::filesystem::path& path) {
   const std::string source = path.string();
   requireRegularFile(path);
   if (!hasPngSignature(path)) throw InputError(source, "not a PNG file (no PNG signature)");
+  requireChunksInsideFile(path);
 
   int width = 0, height = 0, channels = 0;
   // stb accepts sides up to 2^24 and allocates the whole image before it decodes a row.

@@ -80,7 +80,6 @@ Network::Network(const gpu::Context& context, const gpu::PipelineCache& cache,
       inputs.push_back(graph_.indexOf(name));
       channels.push_back(graph_.nodes[inputs.back()].outChannels);
     }
-    const MapShape in = inputs.empty() ? MapShape{} : valuesOf(inputs[0]).shape();
     const std::string label = weights.path.filename().string() + " " + node.name;
     auto addLayer = [&](auto kernel, std::optional<MapShape> out, double flops) {
       Layer layer{&node, std::move(kernel), std::nullopt, inputs, flops};
@@ -95,6 +94,8 @@ Network::Network(const gpu::Context& context, const gpu::PipelineCache& cache,
       layers_.push_back({&node, std::monostate{}, std::nullopt, inputs, 0.0});
       continue;
     }
+    // After the fused check: a fused projection's input block holds no map of its own (found by ASan).
+    const MapShape in = inputs.empty() ? MapShape{} : valuesOf(inputs[0]).shape();
     switch (node.op) {
       case Op::Input: {
         const MapShape out{mapWidth_, mapHeight_, uint32_t(node.outChannels)};

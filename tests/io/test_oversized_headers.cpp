@@ -50,6 +50,17 @@ TEST(OversizedHeaderTest, PngWiderThanTheLimit) {
               namesFileAndProblem(file, "image of 20000x10 pixels, more than 16384 per side"));
 }
 
+TEST(OversizedHeaderTest, PngChunkLongerThanTheFile) {
+  // 128 bytes whose second IDAT chunk states 1,300,824,138 bytes: stb_image grew its buffer to 2 GiB for it.
+  const auto file = kData / "png_idat_claims_1300824138_bytes.png";
+  const double before = peakResidentMiB();
+  EXPECT_THAT(inputErrorMessage([&] { readPng(file); }),
+              namesFileAndProblem(file,
+                                  "chunk IDAT of 1300824138 bytes at byte 71 runs past the end of the file, "
+                                  "128 bytes"));
+  EXPECT_LT(peakResidentMiB() - before, 100.0);
+}
+
 TEST(OversizedHeaderTest, TgaClaimingTwentyThousandSquare) {
   // A 34-byte TGA: stb_image reads missing bytes as zeros, so it would return a 20000² RGBA image (1.5 GiB,
   // 6 GiB as floats) from nothing.
