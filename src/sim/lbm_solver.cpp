@@ -1,5 +1,6 @@
 #include "sim/lbm_solver.h"
 
+#include <algorithm>
 #include <string>
 
 #include "gpu/context.h"
@@ -15,8 +16,9 @@ constexpr uint32_t kPopulationsPerBuffer = 5;  // lbm_lattice.glsl
 
 using gpu::BindingType;
 
-struct StepPush {
-  uint32_t slot;
+struct StepPush {  // lbm_step.comp
+  uint32_t slot, unused[3];
+  glm::ivec4 boxMin, boxSize;
 };
 struct ForcesPush {  // forces.comp
   uint32_t step, slot, unused[2];
@@ -83,7 +85,10 @@ LbmSolver::LbmSolver(const gpu::Context& context, const gpu::PipelineCache& cach
   step.spec.set(17, settings.bodyForce.x).set(18, settings.bodyForce.y).set(19, settings.bodyForce.z);
   step.spec.set(20, settings.wind.x).set(21, settings.wind.y).set(22, settings.wind.z);
   step.spec.set(23, settings.parabolicInflow).set(24, settings.interpolatedBounceBack);
-  step_ = std::make_unique<gpu::Pipeline>(context, cache, step);
+  step_ = std::make_unique<gpu::Pipeline>(context, cache, step);  // the interior (BOUNDARY_CELLS false)
+  gpu::ComputePipelineDesc boundary = step;
+  boundary.spec.set(25, true);
+  stepBoundary_ = std::make_unique<gpu::Pipeline>(context, cache, boundary);
 
   gpu::ComputePipelineDesc forces;
   forces.shader = "sim/forces.comp";
@@ -110,15 +115,28 @@ void LbmSolver::initialize(const std::vector<glm::vec4>& macro, int parity) {
 }
 
 void LbmSolver::recordStep(gpu::Sequence& sequence, const gpu::Buffer& params, const gpu::Buffer& flags,
-                           const gpu::Buffer& smoke, uint32_t slot, int parity) const {
+                           const gpu::Buffer& smoke, uint32_t slot, int parity,
+                           const std::pair<glm::ivec3, glm::ivec3>& box) const {
   const auto& from = lattices_[parity];
   const auto& to = lattices_[1 - parity];
-  sequence.dispatchLinear(
-      *step_,
-      {gpu::reads(params), gpu::reads(flags), gpu::reads(from[0]), gpu::reads(from[1]), gpu::reads(from[2]),
-       gpu::reads(from[3]), gpu::writes(to[0]), gpu::writes(to[1]), gpu::writes(to[2]), gpu::writes(to[3]),
-       gpu::readsWrites(macro_), gpu::reads(smoke)},
-      StepPush{slot}, cells_, kGroupSize);
+  const std::vector<gpu::Binding> bindings{gpu::reads(params),  gpu::reads(flags),        gpu::reads(from[0]),
+                                           gpu::reads(from[1]), gpu::reads(from[2]),      gpu::reads(from[3]),
+                                           gpu::writes(to[0]),  gpu::writes(to[1]),       gpu::writes(to[2]),
+                                           gpu::writes(to[3]),  gpu::readsWrites(macro_), gpu::reads(smoke)};
+  const glm::ivec3 boxSize = box.second - box.first;
+  const StepPush push{slot, {}, glm::ivec4(box.first, 0), glm::ivec4(boxSize, 0)};
+  // The cells lbm_step.comp's two pipelines visit (cellVisited there): the interior box, and the face slabs
+  // across each axis followed by the obstacles' swept box.
+  const glm::ivec3 size = settings_.size;
+  uint64_t interior = 1, boundary = uint64_t(boxSize.x) * uint64_t(boxSize.y) * uint64_t(boxSize.z);
+  for (int a = 0; a < 3; ++a) {
+    const bool oneCellPeriodic = size[a] == 1 && settings_.faces[2 * a] == io::BoundaryType::Periodic;
+    interior *= uint64_t(std::max(size[a] - (oneCellPeriodic ? 0 : 2), 0));
+    if (!oneCellPeriodic) boundary += cells_ / uint64_t(size[a]) * (size[a] > 1 ? 2 : 1);
+  }
+  // A lattice at most two cells deep along a walled axis has no interior, a periodic 1×1×1 one no face slabs.
+  if (interior > 0) sequence.dispatchLinear(*step_, bindings, push, interior, kGroupSize);
+  if (boundary > 0) sequence.dispatchLinear(*stepBoundary_, bindings, push, boundary, kGroupSize);
 }
 
 void LbmSolver::recordForces(gpu::Sequence& sequence, const gpu::Buffer& params, const gpu::Buffer& flags,

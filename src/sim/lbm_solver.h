@@ -41,9 +41,12 @@ class LbmSolver {
   // Sets the populations of lattice `parity` to the equilibrium of `macro` (velocity xyz, density w
   // per cell) and keeps `macro` as the current macroscopic state. Blocks.
   void initialize(const std::vector<glm::vec4>& macro, int parity);
-  // One step: stream from lattice `parity`, collide, write lattice 1 − parity and the macro state.
+  // One step: stream from lattice `parity`, collide, write lattice 1 − parity and the macro state. `box`
+  // ([min, max), ObstacleSet::sweptBox) holds every cell next to an obstacle: those, and the cells on the
+  // lattice's faces, are updated by a second dispatch with the boundary conditions.
   void recordStep(gpu::Sequence& sequence, const gpu::Buffer& params, const gpu::Buffer& flags,
-                  const gpu::Buffer& smoke, uint32_t slot, int parity) const;
+                  const gpu::Buffer& smoke, uint32_t slot, int parity,
+                  const std::pair<glm::ivec3, glm::ivec3>& box) const;
   // Momentum-exchange force on each obstacle before the step that streams from lattice `parity`,
   // added into forces[slot · kMaxObstacles + obstacle] (vec4; zero it before). Only the cells of `box`
   // ([min, max), ObstacleSet::sweptBox) are visited: no link to an obstacle lies outside it.
@@ -65,7 +68,7 @@ class LbmSolver {
   uint64_t cells_;
   std::array<std::array<gpu::Buffer, 4>, 2> lattices_;
   gpu::Buffer macro_;
-  std::unique_ptr<gpu::Pipeline> init_, step_, forces_;
+  std::unique_ptr<gpu::Pipeline> init_, step_, stepBoundary_, forces_;
 };
 
 }  // namespace sixway::sim

@@ -92,7 +92,8 @@ gpu::Sequence& Simulation::sequenceFor(uint32_t steps, int parity) {
       sequence.endStage();
     }
     sequence.beginStage("lbm");
-    lbm_->recordStep(sequence, params_, obstacles_->flags(), smoke_->smoke(), s, from);
+    lbm_->recordStep(sequence, params_, obstacles_->flags(), smoke_->smoke(), s, from,
+                     obstacles_->sweptBox());
     sequence.endStage();
     sequence.beginStage("smoke");
     smoke_->recordSources(sequence, params_, obstacles_->flags(), s);

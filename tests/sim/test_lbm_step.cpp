@@ -105,6 +105,28 @@ TEST_F(LbmStepTest, PeriodicBox) {
   expectMatchesCpu(scene, 5, withPatch(scene, {{"fluid", {{"viscosity", 1.0}}}}));
 }
 
+// lbm_step runs as two dispatches, the interior and the cells next to faces and obstacles (cellVisited):
+// on thin lattices too every cell must be updated exactly once. One cell deep between periodic faces (the
+// quasi-2D validation runs: that axis has no boundary cells) with a cylinder across it; one cell deep
+// between walls (a single face slab); two cells deep (no interior at all).
+TEST_F(LbmStepTest, ThinLattices) {
+  const json cylinder = {{"boundaries", {{"y-", "no_slip"}, {"y+", "no_slip"}}},
+                         {"obstacles",
+                          {{{"type", "cylinder"},
+                            {"center", {6.3, 5.7, 0.5}},
+                            {"radius", 2.2},
+                            {"height", 4.0},
+                            {"axis", {0.0, 0.0, 1.0}}}}}};
+  const json walls = {{"boundaries", {{"z-", "no_slip"}, {"z+", "free_slip"}}}};
+  for (const auto& [size, patch] :
+       {std::pair{glm::ivec3(16, 12, 1), cylinder}, std::pair{glm::ivec3(16, 12, 1), walls},
+        std::pair{glm::ivec3(16, 2, 10), walls}}) {
+    SCOPED_TRACE(std::to_string(size.x) + "x" + std::to_string(size.y) + "x" + std::to_string(size.z));
+    const json scene = latticeScene(size, kViscosity, patch);
+    expectMatchesCpu(scene, 4, withPatch(scene, {{"fluid", {{"viscosity", 1.0}}}}));
+  }
+}
+
 TEST_F(LbmStepTest, NoSlipAndFreeSlipWallsInAClosedBox) {
   const json walls = {{"boundaries",
                        {{"x-", "no_slip"},
