@@ -143,9 +143,9 @@ TEST_F(GpuTest, LONG_SchaeferTurek2D1InterpolatedDragDiffusiveScaling) {
 }
 
 // The third grid of the diffusive series (label "long"): D = 40 cells at 0.025 cells/step (τ = 0.6 again,
-// Mach 0.043), 16 times the D = 20 run's work: about 2.5 hours on lavapipe (105,600 steps at ~85 ms), not run
-// yet (docs/validation.md). From the two coarser grids, second-order convergence predicts 5.607; allowed:
-// within 0.5% of the published interval.
+// Mach 0.043), 16 times the D = 20 run's work: 105,600 steps at 38–53 ms on lavapipe, 1–1.5 hours; not run to
+// the end yet (docs/validation.md). From the two coarser grids, second-order convergence predicts 5.607;
+// allowed: within 0.5% of the published interval.
 TEST_F(GpuTest, LONG_SchaeferTurek2D1InterpolatedDragAtFortyCellsPerDiameter) {
   const Drag d = drag(context(), pipelineCache(), 40, 2, "interpolated", 0.025);
   record(d, "interpolated, D = 40 cells, lattice velocity 0.025");
