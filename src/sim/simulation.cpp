@@ -55,7 +55,7 @@ void Simulation::steerObstacle(size_t obstacle, glm::vec3 target) {
   io::Motion motion;
   motion.keyframes = {{float(now), from}, {float(now + duration), target}};
   obstacles_->setMotion(obstacle, motion);
-  sequences_.clear();  // they hold the forces' swept box of the old motion
+  sequences_.clear();  // they hold the old motion's swept box (forces, the LBM's boundary dispatch)
 }
 
 float Simulation::maxInletStrength() const {
