@@ -10,16 +10,16 @@
 
 #include "app/device_limits.h"
 #include "app/options.h"
-#include "app/report.h"
-#include "app/scene_volumes.h"
+#include "io/report.h"
+#include "runtime/scene_volumes.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "io/error.h"
 #include "io/scene.h"
-#include "render/bake_flipbook.h"
-#include "render/flipbook.h"
+#include "reference/bake_flipbook.h"
+#include "reference/flipbook.h"
 #include "render/scene_frame.h"
-#include "render/vdb_sequence.h"
+#include "reference/vdb_sequence.h"
 
 namespace sixway::app {
 namespace {
@@ -88,7 +88,7 @@ void run(const BakeOptions& o) {
   if (o.scene.empty() && o.vdb.empty()) throw io::InputError("bake", "give --scene S or --vdb F...");
   if (o.cameraPosition.empty() != o.cameraTarget.empty())
     throw io::InputError("--camera-position", "--camera-position and --camera-target go together");
-  requireWritable(o.out, o.force);
+  io::requireWritable(o.out, o.force);
 
   std::optional<io::Scene> scene;
   if (!o.scene.empty()) scene = io::loadScene(o.scene);
@@ -118,7 +118,7 @@ void run(const BakeOptions& o) {
   nlohmann::json provenance;
   if (scene) {
     sequence = withinDeviceLimits(o.scene.string(), gridSetting(scene->grid), [&] {
-      return std::make_unique<SimulatedVolumes>(context, cache, *scene, o.first + frameCount);
+      return std::make_unique<runtime::SimulatedVolumes>(context, cache, *scene, o.first + frameCount);
     });
     provenance["source"] = {{"scene", fs::absolute(o.scene).string()}};
   } else {

@@ -14,7 +14,7 @@
 
 #include "app/bench_options.h"
 #include "app/bench_scene.h"
-#include "app/report.h"
+#include "io/report.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "io/error.h"
@@ -92,7 +92,7 @@ BenchInputs prepare(BenchOptions& o) {
                          "at most 64 steps per submission (got " + std::to_string(o.simSteps) + ")");
   for (uint32_t size : o.sizes) requireLightmapSize("--size", size);
   requireLightmapSize("--frame-lightmaps", o.frameLightmapSize);
-  if (!o.report.empty()) requireWritable(o.report, o.force);
+  if (!o.report.empty()) io::requireWritable(o.report, o.force);
 
   BenchInputs inputs;
   for (const std::string& grid : o.grids) inputs.lattices.push_back(parseLattice(grid));
@@ -169,7 +169,7 @@ void run(BenchOptions& o) {
   report["load_average_end"] = loadAverage();
   report["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!o.report.empty()) {
-    writeReport(o.report, report);
+    io::writeReport(o.report, report);
     std::printf("\nwrote %s\n", o.report.string().c_str());
   }
   if (context.validationMessageCount() > 0)

@@ -9,7 +9,7 @@
 #include "app/bench_options.h"
 #include "app/bench_scene.h"
 #include "app/bench_stats.h"
-#include "app/frame_pipeline.h"
+#include "eval/frame_pipeline.h"
 #include "gpu/check.h"
 #include "gpu/context.h"
 #include "io/error.h"
@@ -19,9 +19,9 @@
 namespace sixway::app {
 namespace {
 
-FramePipelineOptions neural(const BenchOptions& o, bool fp16) {
-  FramePipelineOptions options;
-  options.mode = RenderMode::Neural;
+eval::FramePipelineOptions neural(const BenchOptions& o, bool fp16) {
+  eval::FramePipelineOptions options;
+  options.mode = eval::RenderMode::Neural;
   options.weights = o.weights;
   options.fp16 = fp16;
   return options;
@@ -61,11 +61,11 @@ nlohmann::json benchLightmaps(const gpu::Context& context, const gpu::PipelineCa
   nlohmann::json sizes = nlohmann::json::array();
   for (uint32_t size : o.sizes) {
     scene.render.lightmapSize = int(size);
-    FramePipeline pipeline(context, cache, scene, neural(o, false));
-    std::unique_ptr<FramePipeline> half;
-    if (fp16) half = std::make_unique<FramePipeline>(context, cache, scene, neural(o, true));
+    eval::FramePipeline pipeline(context, cache, scene, neural(o, false));
+    std::unique_ptr<eval::FramePipeline> half;
+    if (fp16) half = std::make_unique<eval::FramePipeline>(context, cache, scene, neural(o, true));
     const auto render = [&](StageTimes* times) {
-      const RenderedFrame frame = pipeline.render(0, 0.0, volume.view());
+      const eval::RenderedFrame frame = pipeline.render(0, 0.0, volume.view());
       const std::vector<gpu::StageTime> halfStages =
           half ? half->render(0, 0.0, volume.view()).stages : std::vector<gpu::StageTime>{};
       if (!times) return;
@@ -120,13 +120,13 @@ nlohmann::json benchFrame(const gpu::Context& context, const gpu::PipelineCache&
   simulation->smoke().recordExport(exportSmoke, volume.density(), volume.temperature());
   exportSmoke.endStage();
   exportSmoke.finish();
-  FramePipeline pipeline(context, cache, scene, neural(o, false));
+  eval::FramePipeline pipeline(context, cache, scene, neural(o, false));
 
   int index = 0;
   const auto frame = [&](StageTimes* times) {
     simulation->advance(steps);
     exportSmoke.submit();
-    const RenderedFrame rendered = pipeline.render(index, simulation->seconds(), volume.view());
+    const eval::RenderedFrame rendered = pipeline.render(index, simulation->seconds(), volume.view());
     ++index;
     if (!times) return;
     const sim::StepTimes& t = simulation->report().times;

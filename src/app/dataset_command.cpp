@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "app/dataset_config.h"
+#include "dataset/dataset_config.h"
 #include "app/dataset_progress.h"
-#include "app/dataset_sequence.h"
+#include "dataset/dataset_sequence.h"
 #include "app/options.h"
-#include "app/report.h"
+#include "io/report.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "io/error.h"
@@ -33,13 +33,13 @@ struct DatasetOptions {
 };
 
 // DIR/dataset.json: what every worker of the dataset shares (the same file whichever writes it).
-nlohmann::json datasetIndex(const DatasetConfig& config) {
-  const SequencePlan first = planSequence(config, 0);
+nlohmann::json datasetIndex(const dataset::DatasetConfig& config) {
+  const dataset::SequencePlan first = dataset::planSequence(config, 0);
   nlohmann::json cameras = nlohmann::json::array(), shards = nlohmann::json::array();
-  for (const DatasetCamera& c : datasetCameras(config, render::domainBox(first.scene.grid)))
+  for (const dataset::DatasetCamera& c : dataset::datasetCameras(config, render::domainBox(first.scene.grid)))
     cameras.push_back(
         {{"camera", c.index}, {"azimuth_deg", c.azimuthDeg}, {"elevation_deg", c.elevationDeg}});
-  for (int s = 0; s < config.sequences; ++s) shards.push_back(shardFileName(s));
+  for (int s = 0; s < config.sequences; ++s) shards.push_back(dataset::shardFileName(s));
   return {{"version", 1},
           {"config", config.json},
           {"sequences", config.sequences},
@@ -63,17 +63,17 @@ nlohmann::json indexConfig(const fs::path& file) {
 
 // The scene of a sequence that could not be made goes next to the shards (with absolute mesh paths), so that
 // `sixway sim --scene` reproduces the failure.
-[[noreturn]] void failed(const DatasetOptions& o, const DatasetConfig& config, const SequencePlan& plan,
+[[noreturn]] void failed(const DatasetOptions& o, const dataset::DatasetConfig& config, const dataset::SequencePlan& plan,
                          const std::string& failure) {
   char name[48];
   std::snprintf(name, sizeof(name), "failed_sequence_%05d.json", plan.sequence);
-  writeReport(o.out / name, standaloneScene(config, plan));
+  io::writeReport(o.out / name, dataset::standaloneScene(config, plan));
   throw std::runtime_error(o.config.string() + ": " + failure + "; its scene is " + (o.out / name).string());
 }
 
 void run(const DatasetOptions& o) {
-  const DatasetConfig config = loadDatasetConfig(o.config);
-  const ShardSelection selection = o.shard.empty() ? ShardSelection{} : parseShardSelection(o.shard);
+  const dataset::DatasetConfig config = dataset::loadDatasetConfig(o.config);
+  const dataset::ShardSelection selection = o.shard.empty() ? dataset::ShardSelection{} : dataset::parseShardSelection(o.shard);
   if (fs::exists(o.out) && !fs::is_directory(o.out))
     throw io::InputError(o.out.string(), "exists and is not a directory");
 
@@ -83,14 +83,14 @@ void run(const DatasetOptions& o) {
   const nlohmann::json index = datasetIndex(config);
   const fs::path indexFile = o.out / "dataset.json";
   if (!o.force && fs::exists(indexFile) && indexConfig(indexFile) != config.json) otherConfig(indexFile);
-  std::vector<SequencePlan> plans;
+  std::vector<dataset::SequencePlan> plans;
   int kept = 0;
   for (int s = 0; s < config.sequences; ++s) {
     if (!selection.contains(s)) continue;
-    SequencePlan plan = planSequence(config, s);
-    const fs::path file = o.out / shardFileName(s);
+    dataset::SequencePlan plan = dataset::planSequence(config, s);
+    const fs::path file = o.out / dataset::shardFileName(s);
     if (!o.force && fs::exists(file)) {
-      if (shardConfig(file) != config.json) otherConfig(file);
+      if (dataset::shardConfig(file) != config.json) otherConfig(file);
       ++kept;
       continue;
     }
@@ -100,9 +100,9 @@ void run(const DatasetOptions& o) {
   gpu::Context context(o.common.contextOptions());
   gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));
   fs::create_directories(o.out);
-  writeReport(indexFile, index);
+  io::writeReport(indexFile, index);
   long totalFrames = 0;
-  for (const SequencePlan& plan : plans) totalFrames += plan.frames.back() + 1;
+  for (const dataset::SequencePlan& plan : plans) totalFrames += plan.frames.back() + 1;
   std::printf(
       "sixway dataset: %s, sequences %d..%d step %d of %d: %zu to make, %d already made; %d cameras, "
       "%d samples per camera, %d² lightmaps, on %s\n",
@@ -114,11 +114,11 @@ void run(const DatasetOptions& o) {
   DatasetProgress progress(int(plans.size()), totalFrames);
   std::map<std::string, int> splits;
   for (size_t i = 0; i < plans.size(); ++i) {
-    SequencePlan plan = plans[i];
-    DatasetShard shard;
+    dataset::SequencePlan plan = plans[i];
+    dataset::DatasetShard shard;
     for (;;) {
       try {
-        shard = generateSequence(context, cache, config, plan, [&](int done, int total) {
+        shard = dataset::generateSequence(context, cache, config, plan, [&](int done, int total) {
           progress.frameDone(plan.sequence, int(i) + 1, done, total);
         });
         break;
@@ -133,15 +133,15 @@ void run(const DatasetOptions& o) {
           failed(o, config, plan, failure);
         }
         progress.note(failure + "; drawing its variations again");
-        plan = planSequence(config, plan.sequence, plan.attempt + 1);
+        plan = dataset::planSequence(config, plan.sequence, plan.attempt + 1);
         progress.addFrames(plan.frames.back() + 1);
       } catch (const std::exception& e) {
         progress.endLine();
         failed(o, config, plan, "sequence " + std::to_string(plan.sequence) + ": " + e.what());
       }
     }
-    const std::string name = shardFileName(plan.sequence);
-    writeShard(o.out / name, shard);
+    const std::string name = dataset::shardFileName(plan.sequence);
+    dataset::writeShard(o.out / name, shard);
     for (const nlohmann::json& sample : shard.metadata["samples"])
       ++splits[sample["split"].get<std::string>()];
     progress.note("wrote " + name + " (" + std::to_string(shard.metadata["samples"].size()) +

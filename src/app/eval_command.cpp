@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "app/lightmap_metrics.h"
+#include "eval/lightmap_metrics.h"
 #include "app/options.h"
-#include "app/report.h"
-#include "app/scene_eval.h"
+#include "io/report.h"
+#include "eval/scene_eval.h"
 #include "gpu/context.h"
 #include "gpu/image.h"
 #include "gpu/pipeline.h"
@@ -32,7 +32,7 @@ struct EvalOptions {
   CommonOptions common;
   fs::path dataset;
   std::vector<std::string> splits{"heldout_sequence", "heldout_camera"};
-  SceneEvalSettings scene;  // --scene, and the report, weights and --force of both paths
+  eval::SceneEvalSettings scene;  // --scene, and the report, weights and --force of both paths
 };
 
 std::vector<fs::path> shardFiles(const fs::path& directory) {
@@ -59,7 +59,7 @@ std::vector<float> interleaved(const std::vector<float>& nchw, int64_t n, int ch
 }
 
 void evaluateDataset(const EvalOptions& o) {
-  requireWritable(o.scene.report, o.scene.force);
+  io::requireWritable(o.scene.report, o.scene.force);
   const std::vector<fs::path> shards = shardFiles(o.dataset);
   const fs::path weightsPath = o.scene.weights;
   const io::SafetensorsFile weights = io::readSafetensors(weightsPath);
@@ -72,7 +72,7 @@ void evaluateDataset(const EvalOptions& o) {
   std::unique_ptr<gpu::Image> guide;
   std::unique_ptr<gpu::Sequence> sequence;
   int size = 0;
-  std::map<std::string, LightmapMetrics> metrics;
+  std::map<std::string, eval::LightmapMetrics> metrics;
   std::vector<double> inferenceMs;
   for (const fs::path& shardPath : shards) {
     const io::SafetensorsFile shard = io::readSafetensors(shardPath);
@@ -137,7 +137,7 @@ void evaluateDataset(const EvalOptions& o) {
   if (metrics.empty()) throw io::InputError(o.dataset.string(), "has no samples in the splits asked for");
   std::sort(inferenceMs.begin(), inferenceMs.end());
   report["inference_ms_median"] = inferenceMs[inferenceMs.size() / 2];
-  writeReport(o.scene.report, report);
+  io::writeReport(o.scene.report, report);
   if (context.validationMessageCount() > 0)
     throw std::runtime_error(std::to_string(context.validationMessageCount()) + " validation messages");
 }
@@ -148,7 +148,7 @@ void run(EvalOptions o) {
     throw io::InputError("eval", "give --dataset DIR or --scene S, not both");
   if (!o.dataset.empty()) return evaluateDataset(o);
   if (o.scene.scene.empty()) throw io::InputError("eval", "give --dataset DIR or --scene S");
-  evaluateScene(o.common, o.scene);
+  eval::evaluateScene(o.common.contextOptions(), o.scene);
 }
 
 }  // namespace
@@ -161,7 +161,7 @@ void addEvalCommand(CLI::App& app) {
   eval->add_option("--dataset", o->dataset, "Dataset directory (sixway dataset): evaluate its samples");
   eval->add_option("--split", o->splits,
                    "Dataset: splits evaluated (default heldout_sequence heldout_camera)");
-  SceneEvalSettings& s = o->scene;
+  eval::SceneEvalSettings& s = o->scene;
   eval->add_option("--scene", s.scene, "Scene JSON: evaluate its sequence against the path tracer");
   eval->add_option("--frames", s.frames, "Scene: frames evaluated");
   eval->add_option("--out", s.out, "Scene: directory for the side-by-side strip (strip.png)");

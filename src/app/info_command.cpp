@@ -7,7 +7,7 @@
 #include <string>
 
 #include "app/options.h"
-#include "app/report.h"
+#include "io/report.h"
 #include "gpu/context.h"
 
 namespace sixway::app {
@@ -88,11 +88,11 @@ void addInfoCommand(CLI::App& app) {
   command->add_option("--report", options->report, "Also write the device description as JSON");
   command->add_flag("--force", options->force, "Overwrite an existing report");
   command->callback([options] {
-    if (!options->report.empty()) requireWritable(options->report, options->force);
+    if (!options->report.empty()) io::requireWritable(options->report, options->force);
     gpu::Context context(options->common.contextOptions());
     nlohmann::json info = describe(context);
     printInfo(info);
-    if (!options->report.empty()) writeReport(options->report, info);
+    if (!options->report.empty()) io::writeReport(options->report, info);
     if (context.validationMessageCount() > 0)
       throw std::runtime_error(std::to_string(context.validationMessageCount()) + " validation messages");
   });

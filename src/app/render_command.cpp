@@ -12,12 +12,12 @@
 #include <vector>
 
 #include "app/device_limits.h"
-#include "app/frame_pipeline.h"
+#include "eval/frame_pipeline.h"
 #include "app/frame_writer.h"
 #include "app/options.h"
 #include "app/process_memory.h"
-#include "app/report.h"
-#include "app/scene_volumes.h"
+#include "io/report.h"
+#include "runtime/scene_volumes.h"
 #include "app/timings_log.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
@@ -47,25 +47,25 @@ fs::path defaultWeights() {
 
 void run(const RenderOptions& o) {
   const io::Scene scene = io::loadScene(o.scene);
-  FramePipelineOptions options;
+  eval::FramePipelineOptions options;
   options.weights = o.weights.empty() ? defaultWeights() : o.weights;
   // Without --mode: the network when its weights exist, else the reference lightmaps (said on the terminal).
-  options.mode = o.mode ? parseRenderMode(*o.mode)
-                        : (fs::exists(options.weights) ? RenderMode::Neural : RenderMode::Reference);
+  options.mode = o.mode ? eval::parseRenderMode(*o.mode)
+                        : (fs::exists(options.weights) ? eval::RenderMode::Neural : eval::RenderMode::Reference);
   options.fp16 = o.fp16;
   options.shadows = !o.noShadows;
   options.pathTraceSamples = o.samples;
   options.pathTraceOrders = o.orders;
-  requireWritable(o.out, o.force);
+  io::requireWritable(o.out, o.force);
 
   gpu::Context context(o.common.contextOptions());
   gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));
-  SimulatedVolumes volumes = withinDeviceLimits(o.scene.string(), gridSetting(scene.grid), [&] {
-    return SimulatedVolumes(context, cache, scene, o.frames);
+  runtime::SimulatedVolumes volumes = withinDeviceLimits(o.scene.string(), gridSetting(scene.grid), [&] {
+    return runtime::SimulatedVolumes(context, cache, scene, o.frames);
   });
-  FramePipeline pipeline =
+  eval::FramePipeline pipeline =
       withinDeviceLimits(o.scene.string(), "render.lightmap_size, render.width or render.height",
-                         [&] { return FramePipeline(context, cache, scene, options); });
+                         [&] { return eval::FramePipeline(context, cache, scene, options); });
   // The output directory appears only once everything it needs has been checked.
   FrameWriterOptions writerOptions;
   writerOptions.exr = o.exr;
@@ -74,7 +74,7 @@ void run(const RenderOptions& o) {
   writerOptions.frames = o.frames;
   FrameWriter writer(o.out, writerOptions);
   std::printf("sixway render: %s, %d frames, mode %s, %dx%d (lightmaps %d²), on %s\n", scene.name.c_str(),
-              o.frames, renderModeName(options.mode), scene.render.width, scene.render.height,
+              o.frames, eval::renderModeName(options.mode), scene.render.width, scene.render.height,
               scene.render.lightmapSize, context.properties().deviceName);
   std::fflush(stdout);
 
@@ -82,7 +82,7 @@ void run(const RenderOptions& o) {
   const auto started = std::chrono::steady_clock::now();
   for (int i = 0; i < o.frames; ++i) {
     const render::Volume volume = volumes.volume(i);
-    const RenderedFrame frame = pipeline.render(i, SimulatedVolumes::frameSeconds(scene, i), volume);
+    const eval::RenderedFrame frame = pipeline.render(i, runtime::SimulatedVolumes::frameSeconds(scene, i), volume);
     writer.write(i, frame.image);
     for (const std::string& note : frame.notes) std::printf("  note: %s\n", note.c_str());
 
@@ -93,7 +93,7 @@ void run(const RenderOptions& o) {
                                           {"sim/forces+watchdog", sim.forces + sim.watchdog}};
     stages.insert(stages.end(), frame.stages.begin(), frame.stages.end());
     // Memory in use, for long-run checks: flat from the first frames on, or something leaks.
-    const double total = timings.add(i, SimulatedVolumes::frameSeconds(scene, i), stages, context.memoryUse(),
+    const double total = timings.add(i, runtime::SimulatedVolumes::frameSeconds(scene, i), stages, context.memoryUse(),
                                      residentSetBytes());
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     std::printf("  frame %d/%d: %.1f ms GPU, %.1f s elapsed, ETA %.0f s\n", i + 1, o.frames, total, elapsed,
@@ -103,14 +103,14 @@ void run(const RenderOptions& o) {
   const std::vector<std::string> extras = writer.finish();
 
   nlohmann::json report = {{"scene", fs::absolute(o.scene).string()},
-                           {"mode", renderModeName(options.mode)},
+                           {"mode", eval::renderModeName(options.mode)},
                            {"device", context.properties().deviceName},
                            {"size", {scene.render.width, scene.render.height}},
                            {"lightmap_size", scene.render.lightmapSize},
                            {"median_stage_ms", timings.medianStageMs()},
                            {"frames", timings.frames()}};
-  if (options.mode == RenderMode::Neural) report["weights"] = fs::absolute(options.weights).string();
-  writeReport(o.out / "timings.json", report);
+  if (options.mode == eval::RenderMode::Neural) report["weights"] = fs::absolute(options.weights).string();
+  io::writeReport(o.out / "timings.json", report);
   std::printf("sixway render: wrote %d frames, timings.json", o.frames);
   for (const std::string& f : extras) std::printf(", %s", f.c_str());
   std::printf(" to %s\n", o.out.string().c_str());

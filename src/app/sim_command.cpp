@@ -8,7 +8,7 @@
 
 #include "app/device_limits.h"
 #include "app/options.h"
-#include "app/report.h"
+#include "io/report.h"
 #include "gpu/bandwidth.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
@@ -36,12 +36,12 @@ nlohmann::json vec(glm::vec3 v) {
 // Outputs are checked before any work: an existing directory or report needs --force.
 void prepareOutputs(const SimOptions& o) {
   if (!o.vdbOut.empty()) {
-    requireWritable(o.vdbOut, o.force);
+    io::requireWritable(o.vdbOut, o.force);
     std::error_code error;
     fs::create_directories(o.vdbOut, error);
     if (error) throw io::InputError(o.vdbOut.string(), "cannot create the directory: " + error.message());
   }
-  if (!o.report.empty()) requireWritable(o.report, o.force);
+  if (!o.report.empty()) io::requireWritable(o.report, o.force);
 }
 
 void run(const SimOptions& o) {
@@ -117,7 +117,7 @@ void run(const SimOptions& o) {
     const double lbmBandwidth = mlups * 1e6 * sim::LbmSolver::kBytesPerCellUpdate / 1e9;
     nlohmann::json obstacles = nlohmann::json::array();
     for (auto& f : forcesPerObstacle) obstacles.push_back({{"force_lattice_per_step", f}});
-    writeReport(o.report,
+    io::writeReport(o.report,
                 {{"scene", scene.name},
                  {"device", context.properties().deviceName},
                  {"lattice", {size.x, size.y, size.z}},

@@ -11,8 +11,12 @@ namespace sixway::gpu {
 
 Buffer::Buffer(const Context& context, uint64_t bytes, VkBufferUsageFlags usage, MemoryKind kind,
                std::string name)
-    : context_(&context), size_(bytes), name_(std::move(name)) {
+    : context_(&context), size_(bytes), kind_(kind), name_(std::move(name)) {
   if (bytes == 0) throw GpuError(name_ + ": a buffer cannot be empty");
+  if (kind == MemoryKind::FrameParameters) {
+    if (bytes % 4 != 0) throw GpuError(name_ + ": frame parameters are whole 32-bit words");
+    usage |= VK_BUFFER_USAGE_TRANSFER_DST_BIT;  // written by vkCmdUpdateBuffer
+  }
   if (usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) context.requireStorageBufferFits(bytes, name_);
   if (bytes > context.capabilities().deviceLocalHeapBytes)  // staging and uniform buffers too
     throw LimitError(name_ + " needs " + formatBytes(bytes) + ", more than the device's " +
@@ -52,7 +56,11 @@ Buffer::Buffer(const Context& context, uint64_t bytes, VkBufferUsageFlags usage,
   SIXWAY_VK(vkBindBufferMemory(context.device(), buffer_, memory_, 0));
   // New memory holds whatever was there before (after a free: another run's data, even NaN), so
   // every buffer starts as zeros.
-  if (kind != MemoryKind::Device) {
+  if (kind == MemoryKind::FrameParameters) {
+    hostCopy_.assign(bytes, std::byte{0});
+    mapped_ = hostCopy_.data();
+    submitOnce(context, [&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, buffer_, 0, VK_WHOLE_SIZE, 0); });
+  } else if (kind != MemoryKind::Device) {
     SIXWAY_VK(vkMapMemory(context.device(), memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
     std::memset(mapped_, 0, bytes);
   } else if (usage & VK_BUFFER_USAGE_TRANSFER_DST_BIT) {
@@ -83,6 +91,8 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
     memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
     size_ = std::exchange(other.size_, 0);
     mapped_ = std::exchange(other.mapped_, nullptr);
+    kind_ = other.kind_;
+    hostCopy_ = std::move(other.hostCopy_);  // keeps its storage, so mapped_ stays valid
     name_ = std::move(other.name_);
   }
   return *this;

@@ -1,6 +1,9 @@
 #pragma once
 // A VkBuffer with its own memory, zero-filled on creation. Device buffers are filled and read through
-// staging copies; host buffers stay mapped.
+// staging copies; host buffers stay mapped. Frame-parameter buffers are device buffers with a host copy
+// that mapped() exposes: a gpu::Sequence writes that copy into the command buffer when it records a frame
+// (vkCmdUpdateBuffer), so the values a frame sees are the ones set before it was recorded, however many
+// frames are in flight.
 #include <vulkan/vulkan.h>
 
 #include <cstddef>
@@ -13,7 +16,7 @@ namespace sixway::gpu {
 
 class Context;
 
-enum class MemoryKind { Device, HostUpload, HostReadback };
+enum class MemoryKind { Device, HostUpload, HostReadback, FrameParameters };
 
 class Buffer {
  public:
@@ -30,6 +33,7 @@ class Buffer {
   uint64_t size() const { return size_; }
   const std::string& name() const { return name_; }
   void* mapped() const { return mapped_; }
+  MemoryKind kind() const { return kind_; }
 
   void upload(std::span<const std::byte> data, uint64_t offset = 0);
   void download(std::span<std::byte> data, uint64_t offset = 0) const;
@@ -53,6 +57,8 @@ class Buffer {
   VkDeviceMemory memory_ = VK_NULL_HANDLE;
   uint64_t size_ = 0;
   void* mapped_ = nullptr;
+  MemoryKind kind_ = MemoryKind::Device;
+  std::vector<std::byte> hostCopy_;  // FrameParameters: the values of the next recorded frame
   std::string name_;
 };
 

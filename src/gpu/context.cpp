@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "gpu/check.h"
+#include "gpu/device_features.h"
 
 namespace sixway::gpu {
 namespace {
@@ -124,7 +125,46 @@ Context::Context(const ContextOptions& options) {
   createDevice(options);
 }
 
+Context::Context(const ExternalDevice& external)
+    : instance_(external.instance),
+      physicalDevice_(external.physicalDevice),
+      device_(external.device),
+      queue_(external.queue),
+      queueFamily_(external.queueFamily),
+      ownsDevice_(false),
+      framesInFlight_(external.framesInFlight) {
+  if (!instance_ || !physicalDevice_ || !device_ || !queue_)
+    throw GpuError("external device: instance, physical device, device and queue must all be given");
+  if (framesInFlight_ < 1 || framesInFlight_ > 8)
+    throw GpuError("external device: framesInFlight must be in [1, 8] (got " + std::to_string(framesInFlight_) + ")");
+  readProperties();
+  const std::string name = properties_.deviceName;
+  if (properties_.apiVersion < VK_API_VERSION_1_3) throw GpuError("external device " + name + ": needs Vulkan 1.3");
+  uint32_t familyCount = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, nullptr);
+  std::vector<VkQueueFamilyProperties> families(familyCount);
+  vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, families.data());
+  const VkQueueFlags needed = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+  if (queueFamily_ >= familyCount || (families[queueFamily_].queueFlags & needed) != needed)
+    throw GpuError("external device " + name + ": queue family " + std::to_string(queueFamily_) +
+                   " does not do both graphics and compute");
+  for (const char* extension : requiredDeviceExtensions())
+    if (std::find(external.enabledExtensions.begin(), external.enabledExtensions.end(), extension) ==
+        external.enabledExtensions.end())
+      throw GpuError("external device " + name + ": extension " + extension +
+                     " is not enabled (enable sixway::deviceRequirements())");
+  const DeviceFeatures enabled = DeviceFeatures::fromChain(external.enabledFeatures);
+  if (const auto missing = enabled.missingRequired(); !missing.empty())
+    throw GpuError("external device " + name + ": feature " + missing.front() +
+                   " is not enabled (enable sixway::deviceRequirements())");
+  capabilities_.shaderFloat16 = enabled.vulkan12().shaderFloat16;
+  capabilities_.storage16Bit = enabled.vulkan11().storageBuffer16BitAccess;
+  cmdPushDescriptorSet = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
+      vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
+}
+
 Context::~Context() {
+  if (!ownsDevice_) return;
   if (device_) vkDestroyDevice(device_, nullptr);
   if (messenger_) {
     auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
@@ -203,6 +243,10 @@ void Context::pickPhysicalDevice(const ContextOptions& options) {
       throw GpuError("no Vulkan device has what sixway needs (" + unsuitability(devices[0]) + ")");
   }
   queueFamily_ = *computeGraphicsFamily(physicalDevice_);
+  readProperties();
+}
+
+void Context::readProperties() {
 
   driver_ = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
   VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES,
@@ -228,47 +272,15 @@ void Context::pickPhysicalDevice(const ContextOptions& options) {
 }
 
 void Context::createDevice(const ContextOptions& options) {
-  VkPhysicalDeviceShaderAtomicFloatFeaturesEXT supportedAtomics{
-      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT};
-  VkPhysicalDeviceVulkan11Features supported11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES,
-                                               &supportedAtomics};
-  VkPhysicalDeviceVulkan12Features supported12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
-                                               &supported11};
-  VkPhysicalDeviceVulkan13Features supported13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
-                                               &supported12};
-  VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &supported13};
-  vkGetPhysicalDeviceFeatures2(physicalDevice_, &supported);
-  if (!supported13.synchronization2 || !supported13.dynamicRendering || !supported13.maintenance4)
-    throw GpuError(std::string(properties_.deviceName) +
-                   ": needs synchronization2, dynamicRendering, maintenance4");
-
+  const DeviceFeatures supported = DeviceFeatures::supportedBy(physicalDevice_);
+  if (const auto missing = supported.missingRequired(); !missing.empty())
+    throw GpuError(std::string(properties_.deviceName) + ": needs " + missing.front());
   // Enable what the stages use; the optional 16-bit paths only where the device has them.
-  if (!supportedAtomics.shaderBufferFloat32AtomicAdd)
-    throw GpuError(std::string(properties_.deviceName) + ": needs float atomic add on storage buffers");
-  // Float atomic add: the simulation sums obstacle forces with it.
-  VkPhysicalDeviceShaderAtomicFloatFeaturesEXT enableAtomics{
-      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT};
-  enableAtomics.shaderBufferFloat32AtomicAdd = VK_TRUE;
-  VkPhysicalDeviceVulkan11Features enable11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES, &enableAtomics};
-  enable11.storageBuffer16BitAccess = supported11.storageBuffer16BitAccess;
-  VkPhysicalDeviceVulkan12Features enable12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &enable11};
-  enable12.shaderFloat16 = supported12.shaderFloat16;
-  enable12.hostQueryReset = supported12.hostQueryReset;
-  VkPhysicalDeviceVulkan13Features enable13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES, &enable12};
-  enable13.synchronization2 = VK_TRUE;
-  enable13.dynamicRendering = VK_TRUE;
-  enable13.subgroupSizeControl = supported13.subgroupSizeControl;
-  enable13.maintenance4 = VK_TRUE;  // workgroup sizes as specialization constants (LocalSizeId)
-  VkPhysicalDeviceFeatures2 enable{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &enable13};
-  enable.features.shaderInt64 = supported.features.shaderInt64;
-  enable.features.fragmentStoresAndAtomics = supported.features.fragmentStoresAndAtomics;
-  enable.features.shaderStorageImageWriteWithoutFormat =
-      supported.features.shaderStorageImageWriteWithoutFormat;
-  capabilities_.shaderFloat16 = supported12.shaderFloat16;
-  capabilities_.storage16Bit = supported11.storageBuffer16BitAccess;
+  DeviceFeatures enable = DeviceFeatures::toEnable(supported);
+  capabilities_.shaderFloat16 = enable.vulkan12().shaderFloat16;
+  capabilities_.storage16Bit = enable.vulkan11().storageBuffer16BitAccess;
 
-  std::vector<const char*> extensions = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME,
-                                         VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME};
+  std::vector<const char*> extensions = requiredDeviceExtensions();
   if (options.presentation) extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
 
   float priority = 1.0f;
@@ -277,7 +289,7 @@ void Context::createDevice(const ContextOptions& options) {
   queueInfo.queueCount = 1;
   queueInfo.pQueuePriorities = &priority;
 
-  VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &enable};
+  VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, enable.chain()};
   info.queueCreateInfoCount = 1;
   info.pQueueCreateInfos = &queueInfo;
   info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());

@@ -20,6 +20,20 @@ struct ContextOptions {
   bool presentation = false;                    // enable VK_KHR_swapchain on the device
 };
 
+// A device the caller created and owns (an engine's): sixway borrows it, checks that it has the extensions
+// and features sixway needs (gpu/device_features.h) and destroys nothing.
+struct ExternalDevice {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  VkQueue queue = VK_NULL_HANDLE;  // of queueFamily, with graphics and compute
+  uint32_t queueFamily = 0;
+  std::vector<std::string> enabledExtensions;  // as passed to vkCreateDevice
+  const void* enabledFeatures = nullptr;       // the VkPhysicalDeviceFeatures2 chain passed to vkCreateDevice
+  // Frames the caller has in flight: when it records frame n, frame n − framesInFlight has completed.
+  uint32_t framesInFlight = 2;
+};
+
 // What the stages need to know about the device to size their work.
 struct DeviceCapabilities {
   bool shaderFloat16 = false;  // fp16 arithmetic in shaders
@@ -54,6 +68,8 @@ class ValidationLog {
 class Context {
  public:
   explicit Context(const ContextOptions& options = {});
+  // Throws GpuError naming what the device lacks (a Vulkan version, an extension, a feature).
+  explicit Context(const ExternalDevice& device);
   ~Context();
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
@@ -82,12 +98,21 @@ class Context {
     liveAllocations_ += bytes >= 0 ? 1 : -1;
     liveBytes_ += bytes;
   }
+  // Every place the host blocks on the GPU (a fence, an idle queue, a query result) counts itself here, so
+  // tests can check that the real-time path records without blocking.
+  void countHostWait() const { ++hostWaits_; }
+  // When frame n is recorded, frame n − framesInFlight() has completed (1 on sixway's own device, which
+  // waits for each submission).
+  uint32_t framesInFlight() const { return framesInFlight_; }
+  uint64_t hostWaits() const { return hostWaits_.load(); }
+
   // Throws a LimitError naming `what` when a storage buffer of `bytes` cannot be bound or held.
   void requireStorageBufferFits(uint64_t bytes, const std::string& what) const;
 
  private:
   void createInstance(const ContextOptions& options);
   void pickPhysicalDevice(const ContextOptions& options);
+  void readProperties();
   void createDevice(const ContextOptions& options);
 
   std::unique_ptr<ValidationLog> validation_;
@@ -101,7 +126,10 @@ class Context {
   VkPhysicalDeviceDriverProperties driver_{};
   VkPhysicalDeviceMemoryProperties memory_{};
   DeviceCapabilities capabilities_{};
+  bool ownsDevice_ = true;
+  uint32_t framesInFlight_ = 1;
   mutable std::atomic<int64_t> liveAllocations_{0}, liveBytes_{0};
+  mutable std::atomic<uint64_t> hostWaits_{0};
 };
 
 // One line per physical device: "index: name (type)", for --device and `sixway info`.

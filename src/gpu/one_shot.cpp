@@ -32,6 +32,7 @@ void submitOnce(const Context& context, const std::function<void(VkCommandBuffer
     submit.commandBufferCount = 1;
     submit.pCommandBuffers = &cmd;
     SIXWAY_VK(vkQueueSubmit(context.queue(), 1, &submit, fence));
+    context.countHostWait();
     SIXWAY_VK(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX));
   } catch (...) {
     if (fence) vkDestroyFence(device, fence, nullptr);

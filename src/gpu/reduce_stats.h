@@ -45,6 +45,8 @@ class ReduceStats {
   void record(Sequence& sequence, const Buffer& values, uint32_t count);
   // The result of the last submitted recording.
   Stats result() const;
+  // Where the last recorded pass writes its Stats, e.g. for Sequence::addReadback.
+  const Buffer& resultBuffer() const { return levels_[resultLevel_]; }
 
  private:
   static constexpr uint32_t kGroupSize = 256;

@@ -39,17 +39,24 @@ VkRenderingAttachmentInfo attachment(const Image& image, bool clear, VkClearValu
 Sequence::Sequence(const Context& context, uint32_t maxStages) : context_(&context), maxStages_(maxStages) {
   VkDevice device = context.device();
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;  // submit() re-records primary_
   poolInfo.queueFamilyIndex = context.queueFamily();
   SIXWAY_VK(vkCreateCommandPool(device, &poolInfo, nullptr, &pool_));
   VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
   allocInfo.commandPool = pool_;
-  allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  allocInfo.level = VK_COMMAND_BUFFER_LEVEL_SECONDARY;
   allocInfo.commandBufferCount = 1;
   SIXWAY_VK(vkAllocateCommandBuffers(device, &allocInfo, &commands_));
+  allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  SIXWAY_VK(vkAllocateCommandBuffers(device, &allocInfo, &primary_));
   VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
   SIXWAY_VK(vkCreateFence(device, &fenceInfo, nullptr, &fence_));
 
+  // Simultaneous use: an engine may have the same frame's work in flight twice (frames in flight).
+  VkCommandBufferInheritanceInfo inheritance{VK_STRUCTURE_TYPE_COMMAND_BUFFER_INHERITANCE_INFO};
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  begin.flags = VK_COMMAND_BUFFER_USAGE_SIMULTANEOUS_USE_BIT;
+  begin.pInheritanceInfo = &inheritance;
   SIXWAY_VK(vkBeginCommandBuffer(commands_, &begin));
   if (context.capabilities().timestamps) {
     VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
@@ -100,6 +107,16 @@ void Sequence::writeTimestamp(uint32_t query) {
   const uint32_t scratch = 2 * maxStages_;
   vkCmdResetQueryPool(commands_, queries_, scratch, 1);
   vkCmdWriteTimestamp2(commands_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_, scratch);
+}
+
+void Sequence::noteFrameParameters(const Binding& binding) {
+  const auto* b = std::get_if<BufferBinding>(&binding);
+  if (!b || b->buffer->kind() != MemoryKind::FrameParameters) return;
+  const VkBuffer handle = b->buffer->handle();
+  if (std::none_of(frameParameters_.begin(), frameParameters_.end(),
+                   [&](const FrameParameters& f) { return f.buffer == handle; }))
+    frameParameters_.push_back(
+        {handle, static_cast<const std::byte*>(b->buffer->mapped()), b->buffer->size()});
 }
 
 void Sequence::addTouch(Touch& touch, const Binding& binding) const {
@@ -203,7 +220,10 @@ void Sequence::dispatch(const Pipeline& pipeline, const std::vector<Binding>& bi
                    std::to_string(groupsY) + "x" + std::to_string(groupsZ) +
                    " groups exceeds the device's limit; reduce the grid");
   Touch touch;
-  for (const Binding& b : bindings) addTouch(touch, b);
+  for (const Binding& b : bindings) {
+    addTouch(touch, b);
+    noteFrameParameters(b);
+  }
   barrierIfHazard(touch);
   vkCmdBindPipeline(commands_, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
   pushBindings(pipeline, bindings);
@@ -242,7 +262,10 @@ void Sequence::render(const RenderTargets& targets, std::span<const Draw> draws)
   for (const Image* color : targets.colors) addTouch(touch, readsWrites(*color));
   if (targets.depth) addTouch(touch, readsWrites(*targets.depth));
   for (const Draw& draw : draws) {
-    for (const Binding& b : draw.bindings) addTouch(touch, b);
+    for (const Binding& b : draw.bindings) {
+      addTouch(touch, b);
+      noteFrameParameters(b);
+    }
     if (draw.vertices) addTouch(touch, reads(*draw.vertices));
     if (draw.indices) addTouch(touch, reads(*draw.indices));
   }
@@ -328,21 +351,79 @@ void Sequence::finish() {
   finished_ = true;
 }
 
-void Sequence::submit() {
+void Sequence::addReadback(const Buffer& source) {
+  Readback readback{source.handle(), source.size(), {}};
+  for (uint32_t i = 0; i <= context_->framesInFlight(); ++i)
+    readback.slots.emplace_back(*context_, source.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                MemoryKind::HostReadback, source.name() + " (readback)");
+  readbacks_.push_back(std::move(readback));
+}
+
+std::span<const std::byte> Sequence::readback(const Buffer& source, uint64_t frame) const {
+  for (const Readback& r : readbacks_)
+    if (r.source == source.handle()) {
+      const Buffer& slot = r.slots[frame % r.slots.size()];
+      return {static_cast<const std::byte*>(slot.mapped()), r.bytes};
+    }
+  throw GpuError(source.name() + ": not a readback of this sequence");
+}
+
+void Sequence::record(VkCommandBuffer commands, uint64_t frame) {
   if (!finished_) finish();
+  if (recorded_++ > 0) collectTimes(false);  // an earlier execution's, if it has completed
+  recordFullBarrier(commands);  // after the caller's earlier work, and before our last frame's reads end
+  if (!frameParameters_.empty()) {
+    constexpr uint64_t kMaxUpdate = 65536;  // vkCmdUpdateBuffer's limit per command
+    for (const FrameParameters& f : frameParameters_)
+      for (uint64_t offset = 0; offset < f.bytes; offset += kMaxUpdate)
+        vkCmdUpdateBuffer(commands, f.buffer, offset, std::min(kMaxUpdate, f.bytes - offset), f.values + offset);
+    recordFullBarrier(commands);
+  }
+  vkCmdExecuteCommands(commands, 1, &commands_);
+  recordFullBarrier(commands);
+  if (readbacks_.empty()) return;
+  for (const Readback& r : readbacks_) {
+    VkBufferCopy region{0, 0, r.bytes};
+    vkCmdCopyBuffer(commands, r.source, r.slots[frame % r.slots.size()].handle(), 1, &region);
+  }
+  VkMemoryBarrier2 toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  toHost.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+  toHost.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+  toHost.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+  toHost.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dependency.memoryBarrierCount = 1;
+  dependency.pMemoryBarriers = &toHost;
+  vkCmdPipelineBarrier2(commands, &dependency);
+}
+
+void Sequence::submit() {
+  SIXWAY_VK(vkResetCommandBuffer(primary_, 0));
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  SIXWAY_VK(vkBeginCommandBuffer(primary_, &begin));
+  record(primary_, submissions_++);
+  SIXWAY_VK(vkEndCommandBuffer(primary_));
   VkSubmitInfo submitInfo{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   submitInfo.commandBufferCount = 1;
-  submitInfo.pCommandBuffers = &commands_;
+  submitInfo.pCommandBuffers = &primary_;
   SIXWAY_VK(vkResetFences(context_->device(), 1, &fence_));
   SIXWAY_VK(vkQueueSubmit(context_->queue(), 1, &submitInfo, fence_));
+  context_->countHostWait();
   SIXWAY_VK(vkWaitForFences(context_->device(), 1, &fence_, VK_TRUE, UINT64_MAX));
+  collectTimes(true);
+}
 
-  times_.clear();
+void Sequence::collectTimes(bool wait) {
+  if (wait) times_.clear();
   if (!queries_ || stageNames_.empty()) return;
   std::vector<uint64_t> ticks(2 * stageNames_.size());
-  SIXWAY_VK(vkGetQueryPoolResults(context_->device(), queries_, 0, static_cast<uint32_t>(ticks.size()),
-                                  ticks.size() * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
-                                  VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  const VkResult result = vkGetQueryPoolResults(
+      context_->device(), queries_, 0, static_cast<uint32_t>(ticks.size()), ticks.size() * sizeof(uint64_t),
+      ticks.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | (wait ? VK_QUERY_RESULT_WAIT_BIT : 0));
+  if (result == VK_NOT_READY) return;  // not executed yet, or still running: keep the last times
+  SIXWAY_VK(result);
+  times_.clear();
   const uint32_t bits = context_->capabilities().timestampValidBits;
   const uint64_t mask = bits >= 64 ? ~0ull : (1ull << bits) - 1;
   for (size_t i = 0; i < stageNames_.size(); ++i) {

@@ -1,6 +1,7 @@
 #pragma once
-// A recorded sequence of GPU work: dispatches, draws and copies in one command buffer, recorded
-// once and submitted as often as needed (once per frame). Barriers are inserted where a command
+// A recorded sequence of GPU work: dispatches, draws and copies in one (secondary) command buffer, recorded
+// once and replayed as often as needed (once per frame): submitted on its own with submit(), which waits,
+// or recorded into a caller's command buffer with record(), which does not (docs/embedding.md). Barriers are inserted where a command
 // reads or writes what an earlier one wrote (or writes what an earlier one read), from the access
 // each binding declares. Named stages are bracketed by GPU timestamps.
 #include <vulkan/vulkan.h>
@@ -138,6 +139,17 @@ class Sequence {
   void finish();
   // Submits, waits for completion and collects the stage times.
   void submit();
+  // Records the sequence into `commands`, a primary command buffer being recorded outside a render pass, as
+  // frame number `frame` (any increasing count): the frame-parameter buffers it binds are written into the
+  // command buffer from their host copies (MemoryKind::FrameParameters), the work runs, and each readback
+  // source is copied into the host slot of `frame`. Full barriers open and close it. Nothing waits: the stage
+  // times of an earlier execution are collected now if they are ready.
+  void record(VkCommandBuffer commands, uint64_t frame);
+  // Copies `source` (a device buffer) to the host after every execution, for readback().
+  void addReadback(const Buffer& source);
+  // The host copy of `source` made by the execution recorded as `frame`: valid once that execution has
+  // completed. The slots are reused after Context::framesInFlight() further frames.
+  std::span<const std::byte> readback(const Buffer& source, uint64_t frame) const;
   const std::vector<StageTime>& stageTimes() const { return times_; }
   uint32_t barrierCount() const { return barriers_; }
 
@@ -151,11 +163,28 @@ class Sequence {
   void pushBindings(const Pipeline& pipeline, const std::vector<Binding>& bindings);
   void requireRecording(const char* what) const;
   void writeTimestamp(uint32_t query);
+  void collectTimes(bool wait);
+  void noteFrameParameters(const Binding& binding);
 
   const Context* context_;
   VkCommandPool pool_ = VK_NULL_HANDLE;
-  VkCommandBuffer commands_ = VK_NULL_HANDLE;
+  VkCommandBuffer commands_ = VK_NULL_HANDLE;  // secondary: the recorded work
+  VkCommandBuffer primary_ = VK_NULL_HANDLE;   // submit()'s command buffer around it
   VkFence fence_ = VK_NULL_HANDLE;
+  uint64_t submissions_ = 0, recorded_ = 0;
+  // Frame-parameter buffers bound by the work: handle, host copy, bytes (a Buffer may move; these do not).
+  struct FrameParameters {
+    VkBuffer buffer;
+    const std::byte* values;
+    uint64_t bytes;
+  };
+  std::vector<FrameParameters> frameParameters_;
+  struct Readback {
+    VkBuffer source;
+    uint64_t bytes;
+    std::vector<Buffer> slots;  // host memory, one per frame in flight + 1
+  };
+  std::vector<Readback> readbacks_;
   VkQueryPool queries_ = VK_NULL_HANDLE;
   uint32_t maxStages_;
   std::vector<std::string> stageNames_;

@@ -13,6 +13,8 @@
 #include <variant>
 #include <vector>
 
+#include "io/dense_grid.h"
+
 namespace sixway::io {
 
 struct VdbGridInfo {
@@ -34,21 +36,6 @@ struct VdbFile {
 // Lists the grids of a VDB file. Throws InputError naming the file when it is missing, not a VDB file,
 // truncated or corrupt.
 VdbFile readVdbInfo(const std::filesystem::path& path);
-
-// A dense grid: cell (i, j, k) has its centre at origin + (i + 0.5, j + 0.5, k + 0.5) * dx.
-struct DenseGrid {
-  glm::ivec3 size{0};
-  glm::vec3 origin{0.0f};     // world position of the corner of cell (0, 0, 0)
-  glm::vec3 dx{1.0f};         // cell size per axis
-  std::vector<float> values;  // x fastest, then y, then z
-
-  std::size_t index(int i, int j, int k) const {
-    return (static_cast<std::size_t>(k) * size.y + j) * size.x + i;
-  }
-  float& at(int i, int j, int k) { return values[index(i, j, k)]; }
-  float at(int i, int j, int k) const { return values[index(i, j, k)]; }
-  glm::vec3 cellCentre(int i, int j, int k) const { return origin + (glm::vec3(i, j, k) + 0.5f) * dx; }
-};
 
 // The world box covered by the active voxels of the grid(s) read, with cubic cells and `longestAxisCells`
 // cells along its longest axis (the box is extended at its max side to a whole number of cells).

@@ -103,8 +103,8 @@ GuidingMap::GuidingMap(const gpu::Context& context, const gpu::PipelineCache& ca
     : context_(&context),
       settings_(settings),
       params_(context, sizeof(layout::BakeParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-              gpu::MemoryKind::HostUpload, "guide parameters"),
-      frame_(context, sizeof(GuideFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryKind::HostUpload,
+              gpu::MemoryKind::FrameParameters, "guide parameters"),
+      frame_(context, sizeof(GuideFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryKind::FrameParameters,
              "guide frame") {
   checkSettings(settings_);
   // One light grid per axis of the six-way frame that a guide light other than front lies on; the shader's

@@ -9,8 +9,8 @@
 #include <numbers>
 #include <utility>
 
+#include "io/motion.h"
 #include "io/obj.h"
-#include "sim/obstacle_set.h"
 
 namespace sixway::render {
 namespace {
@@ -173,7 +173,7 @@ ObstacleTriangles triangulate(const io::Obstacle& obstacle, uint32_t index) {
 }
 
 glm::vec3 placementAt(const io::Obstacle& obstacle, double seconds) {
-  if (obstacle.motion) return sim::evaluateMotion(*obstacle.motion, seconds).position;
+  if (obstacle.motion) return io::evaluateMotion(*obstacle.motion, seconds).position;
   return std::visit(Overloaded{[](const io::SphereObstacle& s) { return s.center; },
                                [](const io::CylinderObstacle& c) { return c.center; },
                                [](const io::BoxObstacle& x) { return x.center; },
@@ -212,7 +212,7 @@ ObstacleMeshes::ObstacleMeshes(const gpu::Context& context, const std::vector<io
                          gpu::MemoryKind::Device, "obstacle indices");
   indices_.upload(indices);
   placements_ = gpu::Buffer(context, obstacles.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                            gpu::MemoryKind::HostUpload, "obstacle placements");
+                            gpu::MemoryKind::FrameParameters, "obstacle placements");
   update(0.0);
 }
 

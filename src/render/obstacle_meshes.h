@@ -4,7 +4,7 @@
 // obstacle's placement point (a shape's centre, a mesh's translation). Obstacles move rigidly without turning
 // (docs/scene-format.md, motion), so a frame only changes one translation per obstacle: update() writes them
 // into a host-visible buffer that the recorded draws read, at the positions the simulation voxelizes
-// (sim::evaluateMotion). Method and measured errors: docs/real-time-rendering.md, "Obstacles and shadows".
+// (io::evaluateMotion). Method and measured errors: docs/real-time-rendering.md, "Obstacles and shadows".
 #include <cstdint>
 #include <glm/vec3.hpp>
 #include <optional>

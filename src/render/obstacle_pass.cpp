@@ -46,7 +46,7 @@ ObstaclePass::ObstaclePass(const gpu::Context& context, const gpu::PipelineCache
     : background_(background),
       nearest_(std::make_unique<gpu::Sampler>(context, VK_FILTER_NEAREST)),
       params_(context, sizeof(ObstacleParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-              gpu::MemoryKind::HostUpload, "obstacle pass parameters") {
+              gpu::MemoryKind::FrameParameters, "obstacle pass parameters") {
   gpu::GraphicsPipelineDesc desc;
   desc.vertexShader = "render/obstacle.vert";
   desc.fragmentShader = "render/obstacle.frag";

@@ -154,7 +154,7 @@ ShadowMaps::ShadowMaps(const gpu::Context& context, const gpu::PipelineCache& ca
                 VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "shadow atlas"});
   matrices_ =
       gpu::Buffer(context, std::max(tiles, 1u) * sizeof(glm::mat4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                  gpu::MemoryKind::HostUpload, "light view-projections");
+                  gpu::MemoryKind::FrameParameters, "light view-projections");
   gpu::GraphicsPipelineDesc desc;
   desc.vertexShader = "render/shadow_depth.vert";
   desc.fragmentShader = "render/shadow_depth.frag";

@@ -136,10 +136,10 @@ SixWayShading::SixWayShading(const gpu::Context& context, const gpu::PipelineCac
       maxLights_(maxLights),
       linear_(std::make_unique<gpu::Sampler>(context, VK_FILTER_LINEAR)),
       nearest_(std::make_unique<gpu::Sampler>(context, VK_FILTER_NEAREST)),
-      params_(context, sizeof(ShadeParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryKind::HostUpload,
+      params_(context, sizeof(ShadeParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryKind::FrameParameters,
               "six-way shading parameters"),
       lights_(context, std::max<uint32_t>(maxLights, 1) * sizeof(ShadeLight),
-              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryKind::HostUpload, "six-way shading lights"),
+              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryKind::FrameParameters, "six-way shading lights"),
       noGuide_(context, {1, 1, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT, "no guide"}),
       noDepth_(context, {1, 1, 1, VK_FORMAT_D32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT, "no depth"}) {
   using gpu::BindingType;

@@ -7,7 +7,7 @@
 
 #include "gpu/context.h"
 #include "io/error.h"
-#include "io/vdb.h"
+#include "io/dense_grid.h"
 
 namespace sixway::render {
 

@@ -9,6 +9,7 @@
 #include "gpu/pipeline.h"
 #include "gpu/sequence.h"
 #include "io/error.h"
+#include "io/motion.h"
 #include "io/obj.h"
 
 namespace sixway::sim {
@@ -29,22 +30,6 @@ struct VoxelizePush {
 };
 
 }  // namespace
-
-MotionState evaluateMotion(const io::Motion& motion, double seconds) {
-  const auto& keys = motion.keyframes;
-  const double first = keys.front().time, last = keys.back().time;
-  if (motion.loop)
-    seconds = first + std::fmod(std::fmod(seconds - first, last - first) + (last - first), last - first);
-  if (seconds < first) return {keys.front().position, glm::vec3(0)};
-  if (seconds >= last) return {keys.back().position, glm::vec3(0)};
-  // The segment [t_k, t_k+1) holding the time: at a keyframe, the one the coming step moves along.
-  size_t k = 0;
-  while (keys[k + 1].time <= seconds) ++k;
-  const float span = keys[k + 1].time - keys[k].time;
-  const float t = float(seconds - keys[k].time) / span;
-  return {glm::mix(keys[k].position, keys[k + 1].position, t),
-          (keys[k + 1].position - keys[k].position) / span};
-}
 
 ObstacleSet::ObstacleSet(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
                          const LatticeUnits& units)
@@ -194,14 +179,14 @@ void ObstacleSet::setMotion(size_t obstacle, std::optional<io::Motion> motion) {
 
 glm::vec3 ObstacleSet::positionAt(size_t obstacle, double seconds) const {
   const Placed& p = obstacles_.at(obstacle);
-  if (p.motion) return evaluateMotion(*p.motion, seconds).position;
+  if (p.motion) return io::evaluateMotion(*p.motion, seconds).position;
   return origin_ + glm::vec3(p.shape.centre) * units_.cellSize;
 }
 
 glm::vec3 ObstacleSet::centreAt(size_t obstacle, uint64_t step) const {
   const Placed& p = obstacles_[obstacle];
   if (!p.motion) return glm::vec3(p.shape.centre);
-  return units_.toLattice(evaluateMotion(*p.motion, double(step) * units_.stepSeconds).position, origin_);
+  return units_.toLattice(io::evaluateMotion(*p.motion, double(step) * units_.stepSeconds).position, origin_);
 }
 
 std::pair<glm::ivec3, glm::ivec3> ObstacleSet::sweptBox() const {
@@ -243,7 +228,7 @@ void ObstacleSet::fill(StepParams& params, uint64_t step) const {
   for (size_t i = 0; i < obstacles_.size(); ++i) {
     GpuObstacle g = obstacles_[i].shape;
     if (obstacles_[i].motion) {
-      const MotionState state = evaluateMotion(*obstacles_[i].motion, seconds);
+      const io::MotionState state = io::evaluateMotion(*obstacles_[i].motion, seconds);
       g.centre = glm::vec4(units_.toLattice(state.position, origin_), g.centre.w);
       g.velocity = glm::vec4(units_.toLatticeVelocity(state.velocity), 0.0f);
     }

@@ -72,12 +72,4 @@ class ObstacleSet {
   gpu::Buffer occupancy_;
 };
 
-// Position and velocity of a keyframed motion at time t (linear between keyframes, held at the
-// ends or repeated with `loop`).
-struct MotionState {
-  glm::vec3 position;
-  glm::vec3 velocity;
-};
-MotionState evaluateMotion(const io::Motion& motion, double seconds);
-
 }  // namespace sixway::sim

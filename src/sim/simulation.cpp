@@ -29,7 +29,7 @@ Simulation::Simulation(const gpu::Context& context, const gpu::PipelineCache& ca
   // A frame at a time, and at least 64 steps per submission for long runs (each submission waits).
   capacity_ = uint32_t(std::max(units_.stepsPerFrame, 64));
   params_ = gpu::Buffer(context, uint64_t(capacity_) * sizeof(StepParams), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                        gpu::MemoryKind::HostUpload, "step parameters");
+                        gpu::MemoryKind::FrameParameters, "step parameters");
   forces_ = gpu::Buffer::storage(context, uint64_t(capacity_) * kMaxObstacles * 16, "obstacle forces");
   smoke_->upload(std::vector<glm::vec2>(smoke_->cells(), glm::vec2(0)));
   lbm_->initialize(std::vector<glm::vec4>(lbm_->cells(), glm::vec4(0, 0, 0, 1)), 0);

@@ -13,7 +13,7 @@
 #include "gpu/buffer.h"
 #include "gpu/reduce_stats.h"
 #include "io/scene.h"
-#include "io/vdb.h"
+#include "io/dense_grid.h"
 #include "sim/lattice_units.h"
 #include "sim/lbm_solver.h"
 #include "sim/obstacle_set.h"

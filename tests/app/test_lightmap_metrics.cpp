@@ -1,11 +1,11 @@
-// LightmapMetrics against PSNRs worked out by hand (DESIGN.md §8): linear values clipped to [0, 1],
+// eval::LightmapMetrics against PSNRs worked out by hand (DESIGN.md §8): linear values clipped to [0, 1],
 // 10·log10(1 / MSE), masked to the pixels where the reference alpha > 0.01.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
-#include "app/lightmap_metrics.h"
+#include "eval/lightmap_metrics.h"
 
 namespace sixway::test {
 namespace {
@@ -26,7 +26,7 @@ TEST(LightmapMetrics, AConstantErrorGivesItsPsnrAndTheMaskLeavesOutEmptyPixels) 
   for (int p = 2; p < 4; ++p) {
     for (int c = 0; c < 8; ++c) reference[p * 8 + c] = 0.0f, predicted[p * 8 + c] = 0.3f;
   }
-  app::LightmapMetrics m;
+  eval::LightmapMetrics m;
   m.add(predicted, reference);
   const nlohmann::json s = m.summary();
   // Masked: 7 channels off by 0.1, alpha exact → MSE = 7/8 · 0.01.
@@ -41,13 +41,13 @@ TEST(LightmapMetrics, ValuesAreClippedToTheUnitRangeAndNanCountsAsZero) {
   const std::vector<float> reference = image(1, 1.0f, 1.0f);
   std::vector<float> predicted = image(1, 7.0f, 1.0f);  // over-bright: clipped to 1, no error
   predicted[0] = NAN;                                   // NaN: 0, an error of 1 in one channel of eight
-  app::LightmapMetrics m;
+  eval::LightmapMetrics m;
   m.add(predicted, reference);
   EXPECT_NEAR(m.summary()["psnr_masked_db"].get<double>(), 10 * std::log10(8.0), kDb);
 }
 
 TEST(LightmapMetrics, PoolsPixelsAcrossSamplesAndAveragesSamplePsnrs) {
-  app::LightmapMetrics m;
+  eval::LightmapMetrics m;
   m.add(image(1, 0.6f, 1.0f), image(1, 0.5f, 1.0f));  // 7 of 8 channels off by 0.1 (alpha exact)
   m.add(image(1, 0.5f, 1.0f), image(1, 0.5f, 1.0f));  // exact: counted as 100 dB in the mean
   const nlohmann::json s = m.summary();

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "app/report.h"
+#include "io/report.h"
 #include "support/input_error.h"
 #include "support/temp_dir.h"
 
@@ -22,7 +22,7 @@ int entriesIn(const fs::path& directory) {
 
 TEST(ReportTest, IsWrittenWhole) {
   TempDir dir;
-  app::writeReport(dir / "r.json", {{"psnr", 30.5}});
+  io::writeReport(dir / "r.json", {{"psnr", 30.5}});
   std::ifstream in(dir / "r.json");
   EXPECT_EQ(nlohmann::json::parse(in)["psnr"], 30.5);
   EXPECT_EQ(entriesIn(dir.path()), 1);
@@ -32,15 +32,15 @@ TEST(ReportTest, AWriteThatThrowsMidwayLeavesNoFile) {
   TempDir dir;
   // Not UTF-8: nlohmann throws while the report is being written, after its temporary file is open.
   const nlohmann::json bad = {{"name", std::string("\xff\xfe")}};
-  EXPECT_THAT(inputErrorMessage([&] { app::writeReport(dir / "r.json", bad); }),
+  EXPECT_THAT(inputErrorMessage([&] { io::writeReport(dir / "r.json", bad); }),
               namesFileAndProblem(dir / "r.json", "cannot write the report"));
   EXPECT_EQ(entriesIn(dir.path()), 0);
 }
 
 TEST(ReportTest, AFailedRewriteKeepsTheEarlierReport) {
   TempDir dir;
-  app::writeReport(dir / "r.json", {{"run", 1}});
-  EXPECT_THROW(app::writeReport(dir / "r.json", {{"name", std::string("\xff")}}), io::InputError);
+  io::writeReport(dir / "r.json", {{"run", 1}});
+  EXPECT_THROW(io::writeReport(dir / "r.json", {{"name", std::string("\xff")}}), io::InputError);
   std::ifstream in(dir / "r.json");
   EXPECT_EQ(nlohmann::json::parse(in)["run"], 1);
   EXPECT_EQ(entriesIn(dir.path()), 1);
@@ -48,11 +48,11 @@ TEST(ReportTest, AFailedRewriteKeepsTheEarlierReport) {
 
 TEST(ReportTest, ExistingOutputsNeedForce) {
   TempDir dir;
-  app::writeReport(dir / "r.json", {{"run", 1}});
-  EXPECT_THAT(inputErrorMessage([&] { app::requireWritable(dir / "r.json", false); }),
+  io::writeReport(dir / "r.json", {{"run", 1}});
+  EXPECT_THAT(inputErrorMessage([&] { io::requireWritable(dir / "r.json", false); }),
               namesFileAndProblem(dir / "r.json", "exists already; pass --force"));
-  EXPECT_NO_THROW(app::requireWritable(dir / "r.json", true));
-  EXPECT_NO_THROW(app::requireWritable(dir / "absent.json", false));
+  EXPECT_NO_THROW(io::requireWritable(dir / "r.json", true));
+  EXPECT_NO_THROW(io::requireWritable(dir / "absent.json", false));
 }
 
 }  // namespace

@@ -9,7 +9,7 @@
 #include <glm/trigonometric.hpp>
 #include <set>
 
-#include "app/dataset_config.h"
+#include "dataset/dataset_config.h"
 #include "io/error.h"
 #include "render/obstacle_meshes.h"
 #include "support/input_error.h"
@@ -19,7 +19,7 @@ namespace sixway::test {
 namespace {
 
 namespace fs = std::filesystem;
-using app::DatasetConfig;
+using dataset::DatasetConfig;
 using ::testing::HasSubstr;
 
 const fs::path kAssets(SIXWAY_ASSETS_DIR);
@@ -55,7 +55,7 @@ class DatasetConfigTest : public ::testing::Test {
   }
   std::string error(const nlohmann::json& j) {
     const fs::path file = write(j);
-    return inputErrorMessage([&] { app::loadDatasetConfig(file); });
+    return inputErrorMessage([&] { dataset::loadDatasetConfig(file); });
   }
   TempDir dir_;
 };
@@ -135,15 +135,15 @@ TEST_F(DatasetConfigTest, ShardsBeyondTheLimitAreRefused) {
                                   "of 152.3 GiB, more than 4 GiB; reduce frames.count"));
   j["frames"]["count"] = 100;  // of 256²: 0.95 GiB
   j["lightmap_size"] = 256;
-  EXPECT_NO_THROW(app::loadDatasetConfig(write(j)));
+  EXPECT_NO_THROW(dataset::loadDatasetConfig(write(j)));
 }
 
 TEST_F(DatasetConfigTest, SequencesArePlannedWithinTheRangesAndReproducibly) {
-  const DatasetConfig config = app::loadDatasetConfig(write(validConfig()));
+  const dataset::DatasetConfig config = dataset::loadDatasetConfig(write(validConfig()));
   std::set<float> speeds;
   for (int s = 0; s < config.sequences; ++s) {
-    const app::SequencePlan plan = app::planSequence(config, s);
-    EXPECT_EQ(plan.sceneJson, app::planSequence(config, s).sceneJson) << "sequence " << s;
+    const dataset::SequencePlan plan = dataset::planSequence(config, s);
+    EXPECT_EQ(plan.sceneJson, dataset::planSequence(config, s).sceneJson) << "sequence " << s;
     const io::Scene& scene = plan.scene;
     // The grid: 16 cells across the base's 1.6 m, same floor and horizontal centre.
     EXPECT_EQ(scene.grid.size, glm::ivec3(16, 32, 16));
@@ -185,18 +185,18 @@ TEST_F(DatasetConfigTest, SequencesArePlannedWithinTheRangesAndReproducibly) {
   // Another seed, other values.
   nlohmann::json j = validConfig();
   j["seed"] = 4;
-  const DatasetConfig other = app::loadDatasetConfig(write(j));
-  EXPECT_NE(app::planSequence(other, 0).sceneJson, app::planSequence(config, 0).sceneJson);
+  const dataset::DatasetConfig other = dataset::loadDatasetConfig(write(j));
+  EXPECT_NE(dataset::planSequence(other, 0).sceneJson, dataset::planSequence(config, 0).sceneJson);
 }
 
 TEST_F(DatasetConfigTest, CamerasLookAtTheVolumeCentreFromTheirAzimuthAndElevation) {
-  const DatasetConfig config = app::loadDatasetConfig(write(validConfig()));
-  const render::Box box = render::domainBox(app::planSequence(config, 0).scene.grid);
-  const std::vector<app::DatasetCamera> cameras = app::datasetCameras(config, box);
+  const dataset::DatasetConfig config = dataset::loadDatasetConfig(write(validConfig()));
+  const render::Box box = render::domainBox(dataset::planSequence(config, 0).scene.grid);
+  const std::vector<dataset::DatasetCamera> cameras = dataset::datasetCameras(config, box);
   ASSERT_EQ(cameras.size(), 6u);
   // The base scene's field of view (45°); the bounding sphere of the box just fills it.
   const float distance = 0.5f * glm::length(box.size()) / std::sin(glm::radians(22.5f));
-  for (const app::DatasetCamera& c : cameras) {
+  for (const dataset::DatasetCamera& c : cameras) {
     EXPECT_EQ(c.azimuthDeg, config.cameras.azimuthsDeg[c.index % 3]);
     EXPECT_EQ(c.elevationDeg, config.cameras.elevationsDeg[c.index / 3]);
     EXPECT_FLOAT_EQ(c.camera.fovYDeg, 45.0f);
@@ -210,13 +210,13 @@ TEST_F(DatasetConfigTest, CamerasLookAtTheVolumeCentreFromTheirAzimuthAndElevati
 }
 
 TEST_F(DatasetConfigTest, HeldOutRuleBySequenceThenCamera) {
-  const DatasetConfig config = app::loadDatasetConfig(write(validConfig()));
+  const dataset::DatasetConfig config = dataset::loadDatasetConfig(write(validConfig()));
   for (int s = 0; s < config.sequences; ++s)
     for (int c = 0; c < config.cameraCount(); ++c) {
       const std::string expected = (s == 2 || s == 5) ? "heldout_sequence"
                                    : c == 4           ? "heldout_camera"
                                                       : "train";
-      EXPECT_EQ(app::sampleSplit(config, s, c), expected) << s << ", " << c;
+      EXPECT_EQ(dataset::sampleSplit(config, s, c), expected) << s << ", " << c;
     }
 }
 
@@ -225,14 +225,14 @@ TEST(DatasetShards, EverySequenceGoesToExactlyOneWorker) {
     for (int s = 0; s < 40; ++s) {
       int owners = 0;
       for (int i = 0; i < workers; ++i)
-        owners += app::parseShardSelection(std::to_string(i) + "/" + std::to_string(workers)).contains(s);
+        owners += dataset::parseShardSelection(std::to_string(i) + "/" + std::to_string(workers)).contains(s);
       EXPECT_EQ(owners, 1) << "sequence " << s << " of " << workers << " workers";
     }
   for (const char* bad : {"3/3", "1/0", "-1/2", "a/b", "1", "1/2/3", ""})
-    EXPECT_THAT(inputErrorMessage([&] { app::parseShardSelection(bad); }),
+    EXPECT_THAT(inputErrorMessage([&] { dataset::parseShardSelection(bad); }),
                 namesFileAndProblem("--shard", "expected I/N with 0 <= I < N"))
         << bad;
-  EXPECT_EQ(app::shardFileName(42), "shard_00042.safetensors");
+  EXPECT_EQ(dataset::shardFileName(42), "shard_00042.safetensors");
 }
 
 }  // namespace

@@ -11,15 +11,15 @@
 #include <glm/trigonometric.hpp>
 #include <memory>
 
-#include "app/dataset_config.h"
-#include "app/dataset_sequence.h"
-#include "app/scene_volumes.h"
+#include "dataset/dataset_config.h"
+#include "dataset/dataset_sequence.h"
+#include "runtime/scene_volumes.h"
 #include "cpu_motion.h"
 #include "gpu/sequence.h"
 #include "io/safetensors.h"
 #include "render/billboard.h"
 #include "render/guiding_map.h"
-#include "render/lightmap_baker.h"
+#include "reference/lightmap_baker.h"
 #include "render/obstacle_meshes.h"
 #include "support/gpu_fixture.h"
 #include "support/temp_dir.h"
@@ -59,16 +59,16 @@ render::Camera expectedCamera(const render::Box& box, float azimuthDeg, float el
 class DatasetEndToEnd : public GpuTest {};
 
 TEST_F(DatasetEndToEnd, ShardsMatchDirectRendersFollowTheRuleAndAreReproducible) {
-  const app::DatasetConfig config = app::loadDatasetConfig(kTinyConfig);
+  const dataset::DatasetConfig config = dataset::loadDatasetConfig(kTinyConfig);
   ASSERT_EQ(config.sequences, 2);
   const int size = config.lightmapSize, cameras = config.cameraCount(), count = config.frames.count;
   const int samples = cameras * count;
   TempDir dir;
   for (int s = 0; s < config.sequences; ++s) {
     SCOPED_TRACE("sequence " + std::to_string(s));
-    const app::SequencePlan plan = app::planSequence(config, s);
-    const fs::path file = dir / app::shardFileName(s);
-    app::writeShard(file, app::generateSequence(context(), pipelineCache(), config, plan));
+    const dataset::SequencePlan plan = dataset::planSequence(config, s);
+    const fs::path file = dir / dataset::shardFileName(s);
+    dataset::writeShard(file, dataset::generateSequence(context(), pipelineCache(), config, plan));
     const io::SafetensorsFile shard = io::readSafetensors(file);
 
     // Shapes and types.
@@ -98,7 +98,7 @@ TEST_F(DatasetEndToEnd, ShardsMatchDirectRendersFollowTheRuleAndAreReproducible)
 
     // Direct renders of the same frames, from the scene the shard records.
     const io::Scene scene = io::parseScene(meta["scene"], "shard scene", kTinyConfig.parent_path());
-    app::SimulatedVolumes volumes(context(), pipelineCache(), scene, plan.frames.back() + 1);
+    runtime::SimulatedVolumes volumes(context(), pipelineCache(), scene, plan.frames.back() + 1);
     const render::Box box = render::domainBox(scene.grid);
     render::GuidingMap guiding(context(), pipelineCache(), render::GuideSettings::fromScene(scene));
     gpu::Image guideImage(context(), guiding.imageDesc());
@@ -155,9 +155,9 @@ TEST_F(DatasetEndToEnd, ShardsMatchDirectRendersFollowTheRuleAndAreReproducible)
   }
 
   // Determinism: sequence 0 again, byte for byte.
-  const io::SafetensorsFile first = io::readSafetensors(dir / app::shardFileName(0));
-  const app::DatasetShard again =
-      app::generateSequence(context(), pipelineCache(), config, app::planSequence(config, 0));
+  const io::SafetensorsFile first = io::readSafetensors(dir / dataset::shardFileName(0));
+  const dataset::DatasetShard again =
+      dataset::generateSequence(context(), pipelineCache(), config, dataset::planSequence(config, 0));
   ASSERT_EQ(again.tensors.size(), first.tensors.size());
   for (size_t t = 0; t < first.tensors.size(); ++t)
     EXPECT_TRUE(again.tensors[t].bytes == first.tensors[t].bytes) << first.tensors[t].name;

@@ -9,7 +9,7 @@
 #include "cpu_motion.h"
 #include "gpu/sequence.h"
 #include "render/billboard.h"
-#include "render/motion_field.h"
+#include "dataset/motion_field.h"
 #include "support/gpu_fixture.h"
 
 namespace sixway::test {
@@ -43,7 +43,7 @@ class MotionFieldTest : public GpuTest {
     for (const glm::dvec3& v : velocity) cells.emplace_back(glm::vec3(v), 1.0f);
     gpu::Buffer buffer = gpu::Buffer::storage(context(), cells.size() * sizeof(glm::vec4), "test velocity");
     buffer.upload(cells);
-    render::MotionField motion(context(), pipelineCache(), kSize);
+    dataset::MotionField motion(context(), pipelineCache(), kSize);
     gpu::Image guide(context(), {kSize, kSize, 1, VK_FORMAT_R16G16B16A16_SFLOAT,
                                  VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "test guide"});
     const std::vector<uint16_t> texels = guideTexels();

@@ -1,10 +1,10 @@
-// Dataset configs (app::loadDatasetConfig), which also read the base scene they name: the fuzzed config lies
+// Dataset configs (dataset::loadDatasetConfig), which also read the base scene they name: the fuzzed config lies
 // next to base.json (a copy of assets/scenes/plume.json) and the bunny mesh, which the seeds name.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
 
-#include "app/dataset_config.h"
+#include "dataset/dataset_config.h"
 #include "fuzz_input_file.h"
 #include "io/error.h"
 
@@ -17,7 +17,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
   try {
-    sixway::app::loadDatasetConfig(sixway::fuzz::writeInput("config.json", data, size));
+    sixway::dataset::loadDatasetConfig(sixway::fuzz::writeInput("config.json", data, size));
   } catch (const sixway::io::InputError&) {
   }
   return 0;

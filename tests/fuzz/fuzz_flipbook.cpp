@@ -7,7 +7,7 @@
 
 #include "fuzz_input_file.h"
 #include "io/error.h"
-#include "render/flipbook.h"
+#include "reference/flipbook.h"
 
 namespace {
 

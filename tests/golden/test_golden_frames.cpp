@@ -6,8 +6,8 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "app/frame_pipeline.h"
-#include "app/scene_volumes.h"
+#include "eval/frame_pipeline.h"
+#include "runtime/scene_volumes.h"
 #include "io/exr.h"
 #include "io/scene.h"
 #include "support/gpu_fixture.h"
@@ -20,22 +20,22 @@ namespace fs = std::filesystem;
 
 constexpr int kFrame = 3;
 
-class GoldenFrame : public GpuTest, public ::testing::WithParamInterface<app::RenderMode> {};
+class GoldenFrame : public GpuTest, public ::testing::WithParamInterface<eval::RenderMode> {};
 
 TEST_P(GoldenFrame, MatchesTheCommittedImage) {
-  const app::RenderMode mode = GetParam();
+  const eval::RenderMode mode = GetParam();
   const io::Scene scene = io::loadScene(fs::path(SIXWAY_TEST_DATA_DIR) / "scenes" / "small_plume.json");
-  app::FramePipelineOptions options;
+  eval::FramePipelineOptions options;
   options.mode = mode;
   options.weights = fs::path(SIXWAY_TEST_DATA_DIR) / "nn" / "default.safetensors";  // untrained, fixed
   options.pathTraceSamples = 16;
-  app::SimulatedVolumes volumes(context(), pipelineCache(), scene, kFrame + 1);
-  app::FramePipeline pipeline(context(), pipelineCache(), scene, options);
+  runtime::SimulatedVolumes volumes(context(), pipelineCache(), scene, kFrame + 1);
+  eval::FramePipeline pipeline(context(), pipelineCache(), scene, options);
   io::Image frame;
   for (int i = 0; i <= kFrame; ++i)
-    frame = pipeline.render(i, app::SimulatedVolumes::frameSeconds(scene, i), volumes.volume(i)).image;
+    frame = pipeline.render(i, runtime::SimulatedVolumes::frameSeconds(scene, i), volumes.volume(i)).image;
 
-  const fs::path golden = fs::path(SIXWAY_GOLDEN_DIR) / (std::string(app::renderModeName(mode)) + ".exr");
+  const fs::path golden = fs::path(SIXWAY_GOLDEN_DIR) / (std::string(eval::renderModeName(mode)) + ".exr");
   if (std::getenv("SIXWAY_UPDATE_GOLDEN")) {
     io::writeExr(golden, frame, io::ExrPixelType::Half, {{"origin", "tests/golden/test_golden_frames.cpp"}});
     GTEST_SKIP() << "rewrote " << golden;
@@ -49,15 +49,15 @@ TEST_P(GoldenFrame, MatchesTheCommittedImage) {
     for (int y = 0; y < frame.height; ++y)
       for (int x = 0; x < frame.width; ++x) actual.at(x, y, c) = frame.at(x, y, from);
   }
-  EXPECT_TRUE(imagesMatch(actual, expected, {.maxAbs = 2e-3}, app::renderModeName(mode)));
+  EXPECT_TRUE(imagesMatch(actual, expected, {.maxAbs = 2e-3}, eval::renderModeName(mode)));
 }
 
 INSTANTIATE_TEST_SUITE_P(Modes, GoldenFrame,
-                         ::testing::Values(app::RenderMode::Neural, app::RenderMode::Reference,
-                                           app::RenderMode::Traditional, app::RenderMode::Guide,
-                                           app::RenderMode::GuideLit, app::RenderMode::PathTrace),
+                         ::testing::Values(eval::RenderMode::Neural, eval::RenderMode::Reference,
+                                           eval::RenderMode::Traditional, eval::RenderMode::Guide,
+                                           eval::RenderMode::GuideLit, eval::RenderMode::PathTrace),
                          [](const auto& info) {
-                           std::string name = app::renderModeName(info.param);
+                           std::string name = eval::renderModeName(info.param);
                            std::replace(name.begin(), name.end(), '-', '_');  // test names are identifiers
                            return name;
                          });

@@ -20,7 +20,7 @@
 #include "io/vdb.h"
 #include "render/billboard.h"
 #include "render/guiding_map.h"
-#include "render/lightmap_baker.h"
+#include "reference/lightmap_baker.h"
 #include "render/sixway.h"
 
 namespace {

@@ -15,7 +15,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "app/frame_pipeline.h"
+#include "eval/frame_pipeline.h"
 #include "io/scene.h"
 #include "io/vdb.h"
 #include "render/billboard.h"
@@ -65,18 +65,18 @@ nlohmann::json sceneJson(glm::vec3 lightDirection, uint32_t seed) {
 
 class FramePipelineTest : public GpuTest {
  protected:
-  io::Image render(const io::Scene& scene, app::RenderMode mode, app::FramePipeline** keep = nullptr) {
-    app::FramePipelineOptions options;
+  io::Image render(const io::Scene& scene, eval::RenderMode mode, eval::FramePipeline** keep = nullptr) {
+    eval::FramePipelineOptions options;
     options.mode = mode;
     options.pathTraceSamples = 256;
     options.pathTraceOrders = 1;
-    pipeline_ = std::make_unique<app::FramePipeline>(context(), pipelineCache(), scene, options);
+    pipeline_ = std::make_unique<eval::FramePipeline>(context(), pipelineCache(), scene, options);
     if (keep) *keep = pipeline_.get();
     return pipeline_->render(0, 0.0, volume_.view()).image;
   }
 
   render::DeviceVolume volume_ = render::uploadVolume(context(), blobDensity());
-  std::unique_ptr<app::FramePipeline> pipeline_;
+  std::unique_ptr<eval::FramePipeline> pipeline_;
 };
 
 // Mean squared difference of the RGB channels over the pixels where `mask` has alpha > 0.01.
@@ -100,12 +100,12 @@ struct ModelError {
 };
 
 ModelError modelError(glm::vec3 lightDirection,
-                      const std::function<io::Image(const io::Scene&, app::RenderMode)>& render) {
+                      const std::function<io::Image(const io::Scene&, eval::RenderMode)>& render) {
   const io::Scene first = io::parseScene(sceneJson(lightDirection, 1), "frame_test.json", ".");
   const io::Scene second = io::parseScene(sceneJson(lightDirection, 1000), "frame_test.json", ".");
-  const io::Image reference = render(first, app::RenderMode::Reference);
-  const io::Image traced = render(first, app::RenderMode::PathTrace);
-  const io::Image tracedAgain = render(second, app::RenderMode::PathTrace);
+  const io::Image reference = render(first, eval::RenderMode::Reference);
+  const io::Image traced = render(first, eval::RenderMode::PathTrace);
+  const io::Image tracedAgain = render(second, eval::RenderMode::PathTrace);
   ModelError e;
   e.mse = maskedMse(reference, traced, reference, &e.pixels);
   // Two independent estimates differ by twice the variance of one.
@@ -114,7 +114,7 @@ ModelError modelError(glm::vec3 lightDirection,
 }
 
 TEST_F(FramePipelineTest, ReferenceMatchesThePathTracerForAnAxisLight) {
-  const auto renderer = [this](const io::Scene& s, app::RenderMode m) { return render(s, m); };
+  const auto renderer = [this](const io::Scene& s, eval::RenderMode m) { return render(s, m); };
   const ModelError axis = modelError({1.0f, 0.0f, 0.0f}, renderer);
   const ModelError diagonal = modelError(glm::normalize(glm::vec3(1.0f, 1.0f, 0.0f)), renderer);
   const double axisBias = std::sqrt(std::max(0.0, axis.mse - axis.noise));
@@ -132,8 +132,8 @@ TEST_F(FramePipelineTest, ReferenceMatchesThePathTracerForAnAxisLight) {
 
 TEST_F(FramePipelineTest, GuideLitLightmapsAreTheGuidesMeanLight) {
   const io::Scene scene = io::parseScene(sceneJson({1.0f, 0.0f, 0.0f}, 1), "frame_test.json", ".");
-  app::FramePipeline* pipeline = nullptr;
-  render(scene, app::RenderMode::GuideLit, &pipeline);
+  eval::FramePipeline* pipeline = nullptr;
+  render(scene, eval::RenderMode::GuideLit, &pipeline);
   const io::Image guide = pipeline->guide();
   const io::Image lightmaps = pipeline->lightmaps();
   // sixWayChannelNames(): right, left, top, bottom, back, front, alpha, emissive.
@@ -151,8 +151,8 @@ TEST_F(FramePipelineTest, GuideLitLightmapsAreTheGuidesMeanLight) {
 
 TEST_F(FramePipelineTest, AUsersViewRendersLikeTheSceneViewItCopies) {
   const io::Scene scene = io::parseScene(sceneJson({1.0f, 0.0f, 0.0f}, 1), "frame_test.json", ".");
-  const io::Image ofScene = render(scene, app::RenderMode::Reference);
-  app::FrameView view = app::sceneView(scene, 0);
+  const io::Image ofScene = render(scene, eval::RenderMode::Reference);
+  eval::FrameView view = eval::sceneView(scene, 0);
   const io::Image ofView = pipeline_->render(view, 0, 0.0, volume_.view()).image;
   EXPECT_EQ(ofScene.pixels, ofView.pixels);
   // Turning the light to the other side changes the frame.
@@ -172,9 +172,9 @@ TEST_F(FramePipelineTest, SphereShadowsExactlyTheShellPointsBehindIt) {
   unshadowedJson["obstacles"][0]["shadows"] = false;
   const io::Scene unshadowedScene = io::parseScene(unshadowedJson, "frame_test.json", ".");
 
-  const io::Image unshadowed = render(unshadowedScene, app::RenderMode::Reference);
-  app::FramePipeline* pipeline = nullptr;
-  const io::Image shadowed = render(scene, app::RenderMode::Reference, &pipeline);
+  const io::Image unshadowed = render(unshadowedScene, eval::RenderMode::Reference);
+  eval::FramePipeline* pipeline = nullptr;
+  const io::Image shadowed = render(scene, eval::RenderMode::Reference, &pipeline);
   const io::Image guide = pipeline->guide();
 
   const render::Camera camera = render::sceneCamera(scene.camera, 0);

@@ -18,7 +18,7 @@
 #include "render/obstacle_pass.h"
 #include "render/projection.h"
 #include "render/shadow_maps.h"
-#include "sim/obstacle_set.h"
+#include "io/motion.h"
 #include "support/gpu_fixture.h"
 
 namespace sixway::test {
@@ -478,7 +478,7 @@ TEST_F(ObstaclesTest, MovingSphereIsDrawnAtItsKeyframedPosition) {
   for (int i = 0; i < 2; ++i) {
     const double seconds = (i == 0 ? 10 : 45) * frameDt;
     const dvec3 expected = keyframePosition(*moving.motion, seconds);
-    const glm::vec3 simulated = sim::evaluateMotion(*moving.motion, seconds).position;
+    const glm::vec3 simulated = io::evaluateMotion(*moving.motion, seconds).position;
     ASSERT_LT(glm::length(dvec3(simulated) - expected), 1e-6);
     meshes.update(seconds);
     const Frame f = render(meshes, view);

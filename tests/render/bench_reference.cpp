@@ -14,8 +14,8 @@
 #include "gpu/pipeline.h"
 #include "io/vdb.h"
 #include "render/billboard.h"
-#include "render/lightmap_baker.h"
-#include "render/path_tracer.h"
+#include "reference/lightmap_baker.h"
+#include "reference/path_tracer.h"
 
 namespace {
 

@@ -16,10 +16,10 @@
 #include "io/png.h"
 #include "io/vdb.h"
 #include "render/billboard.h"
-#include "render/lightmap_baker.h"
-#include "render/path_tracer.h"
+#include "reference/lightmap_baker.h"
+#include "reference/path_tracer.h"
 #include "render/sixway.h"
-#include "render/vdb_sequence.h"
+#include "reference/vdb_sequence.h"
 
 namespace {
 

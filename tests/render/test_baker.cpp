@@ -5,7 +5,7 @@
 
 #include "cpu_reference.h"
 #include "image_stats.h"
-#include "render/lightmap_baker.h"
+#include "reference/lightmap_baker.h"
 #include "render/sixway.h"
 #include "test_volumes.h"
 

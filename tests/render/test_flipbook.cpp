@@ -10,7 +10,7 @@
 #include "io/exr.h"
 #include "io/png.h"
 #include "io/tga.h"
-#include "render/flipbook.h"
+#include "reference/flipbook.h"
 #include "support/input_error.h"
 #include "support/temp_dir.h"
 

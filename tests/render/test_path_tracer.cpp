@@ -9,8 +9,8 @@
 
 #include "cpu_reference.h"
 #include "image_stats.h"
-#include "render/lightmap_baker.h"
-#include "render/path_tracer.h"
+#include "reference/lightmap_baker.h"
+#include "reference/path_tracer.h"
 #include "render/sixway.h"
 #include "test_volumes.h"
 

@@ -13,7 +13,7 @@
 #include "app/demo/live_scene.h"
 #include "app/demo/presenter.h"
 #include "app/demo/window.h"
-#include "app/image_metrics.h"
+#include "eval/image_metrics.h"
 #include "gpu/pipeline.h"
 #include "io/error.h"
 #include "io/png.h"
@@ -62,7 +62,7 @@ Demo::Demo(const DemoOptions& options) : options_(options), vsync_(options.vsync
   camera_ = OrbitCamera::fromScene(scene.camera);
   lights_ = startingLights(scene);
   if (!fs::exists(options.weights)) {
-    mode_ = RenderMode::Reference;
+    mode_ = eval::RenderMode::Reference;
     say("no network at " + options.weights.string() + ": neural mode is off (train one, or pass --weights)",
         true);
   }
@@ -161,24 +161,24 @@ void Demo::frame() {
 }
 
 std::vector<gpu::StageTime> Demo::renderViews() {
-  const FrameView view{camera_.camera(), lights_};
+  const eval::FrameView view{camera_.camera(), lights_};
   std::vector<gpu::StageTime> stages;
   std::vector<Panel> panels;
-  const auto renderMode = [&](RenderMode mode) -> const FramePipeline& {
-    RenderedFrame r = live_->render(mode, view, shadows_);
+  const auto renderMode = [&](eval::RenderMode mode) -> const eval::FramePipeline& {
+    eval::RenderedFrame r = live_->render(mode, view, shadows_);
     stages.insert(stages.end(), r.stages.begin(), r.stages.end());
     return live_->pipeline(mode, shadows_);
   };
   try {
     if (split_) {
-      const FramePipeline& neural = renderMode(RenderMode::Neural);
-      const FramePipeline& reference = renderMode(RenderMode::Reference);
+      const eval::FramePipeline& neural = renderMode(eval::RenderMode::Neural);
+      const eval::FramePipeline& reference = renderMode(eval::RenderMode::Reference);
       panels = {{&neural.colorImage()}, {&reference.colorImage()}};
-      const ImageError error =
-          compareImages(downloadFrame(neural.colorImage()), downloadFrame(reference.colorImage()));
-      splitPsnr_ = psnrDb(error.mseMasked());
+      const eval::ImageError error =
+          eval::compareImages(downloadFrame(neural.colorImage()), downloadFrame(reference.colorImage()));
+      splitPsnr_ = eval::psnrDb(error.mseMasked());
     } else {
-      const FramePipeline& p = renderMode(mode_);
+      const eval::FramePipeline& p = renderMode(mode_);
       if (view_ == ViewKind::Frame) panels = {{&p.colorImage()}};
       if (view_ == ViewKind::Guide) panels = {{&p.guideImage(), PanelKind::Guide}};
       if (view_ == ViewKind::Channel) {
@@ -188,10 +188,10 @@ std::vector<gpu::StageTime> Demo::renderViews() {
       }
     }
   } catch (const io::InputError& e) {  // neural mode without weights: fall back once to reference
-    if (mode_ == RenderMode::Reference && !split_) throw;
+    if (mode_ == eval::RenderMode::Reference && !split_) throw;
     say(e.what(), true);
     split_ = false;
-    mode_ = RenderMode::Reference;
+    mode_ = eval::RenderMode::Reference;
     return renderViews();
   }
   display_->draw(panels, exposure_);

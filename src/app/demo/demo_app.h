@@ -14,7 +14,7 @@
 #include "app/demo/demo_script.h"
 #include "app/demo/orbit_camera.h"
 #include "app/demo/stage_timings.h"
-#include "app/frame_pipeline.h"
+#include "eval/frame_pipeline.h"
 #include "gpu/context.h"
 #include "io/scene.h"
 
@@ -61,7 +61,7 @@ class Demo {
   void orbit(float yawDegrees, float pitchDegrees) { camera_.orbit(yawDegrees, pitchDegrees); }
   void zoom(float factor) { camera_.zoom(factor); }
   void pan(float right, float up) { camera_.pan(right, up); }
-  void setMode(RenderMode mode);
+  void setMode(eval::RenderMode mode);
   void setView(ViewKind view, int channel = 0);
   void setSplit(bool split);
   void setShadows(bool shadows) { shadows_ = shadows; }
@@ -115,7 +115,7 @@ class Demo {
 
   OrbitCamera camera_;
   std::vector<io::Light> lights_;
-  RenderMode mode_ = RenderMode::Neural;
+  eval::RenderMode mode_ = eval::RenderMode::Neural;
   ViewKind view_ = ViewKind::Frame;
   int channel_ = 0;  // sixWayChannelNames() index for ViewKind::Channel
   bool split_ = false, shadows_ = true, paused_ = false, stepOnce_ = false, vsync_ = true;

@@ -114,19 +114,19 @@ void Demo::onKey(GLFWwindow* window, int key, int, int action, int mods) {
         d.reset();
         break;
       case GLFW_KEY_1:
-        d.setMode(RenderMode::Neural);
+        d.setMode(eval::RenderMode::Neural);
         break;
       case GLFW_KEY_2:
-        d.setMode(RenderMode::Reference);
+        d.setMode(eval::RenderMode::Reference);
         break;
       case GLFW_KEY_3:
-        d.setMode(RenderMode::Traditional);
+        d.setMode(eval::RenderMode::Traditional);
         break;
       case GLFW_KEY_4:
-        d.setMode(RenderMode::Guide);
+        d.setMode(eval::RenderMode::Guide);
         break;
       case GLFW_KEY_5:
-        d.setMode(RenderMode::GuideLit);
+        d.setMode(eval::RenderMode::GuideLit);
         break;
       case GLFW_KEY_F:
         d.setView(ViewKind::Frame);

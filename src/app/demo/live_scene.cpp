@@ -22,7 +22,7 @@ LiveScene::LiveScene(const gpu::Context& context, const gpu::PipelineCache& cach
 
 void LiveScene::reset() {
   volumes_.reset();  // one simulation's memory at a time
-  volumes_ = std::make_unique<SimulatedVolumes>(context_, cache_, scene_, INT_MAX);
+  volumes_ = std::make_unique<runtime::SimulatedVolumes>(context_, cache_, scene_, INT_MAX);
   for (auto& [key, pipeline] : pipelines_)
     for (size_t i = 0; i < scene_.obstacles.size(); ++i)
       pipeline->setObstacleMotion(i, scene_.obstacles[i].motion);
@@ -51,10 +51,10 @@ void LiveScene::setInletStrength(float strength) {
   simulation.setInletStrength(std::clamp(strength, 0.0f, simulation.maxInletStrength()));
 }
 
-FramePipeline& LiveScene::pipelineFor(RenderMode mode, bool shadows) {
+eval::FramePipeline& LiveScene::pipelineFor(eval::RenderMode mode, bool shadows) {
   auto& slot = pipelines_[{mode, shadows}];
   if (!slot) {
-    FramePipelineOptions options;
+    eval::FramePipelineOptions options;
     options.mode = mode;
     options.weights = options_.weights;
     options.fp16 = options_.fp16;
@@ -62,7 +62,7 @@ FramePipeline& LiveScene::pipelineFor(RenderMode mode, bool shadows) {
     options.shadowTiles = kMaxDemoLights;
     options.download = false;
     try {
-      slot = std::make_unique<FramePipeline>(context_, cache_, scene_, options);
+      slot = std::make_unique<eval::FramePipeline>(context_, cache_, scene_, options);
     } catch (...) {
       pipelines_.erase({mode, shadows});
       throw;
@@ -74,13 +74,13 @@ FramePipeline& LiveScene::pipelineFor(RenderMode mode, bool shadows) {
   return *slot;
 }
 
-RenderedFrame LiveScene::render(RenderMode mode, const FrameView& view, bool shadows) {
-  FramePipeline& pipeline = pipelineFor(mode, shadows);
+eval::RenderedFrame LiveScene::render(eval::RenderMode mode, const eval::FrameView& view, bool shadows) {
+  eval::FramePipeline& pipeline = pipelineFor(mode, shadows);
   const render::Volume volume = volumes_->volume(frame_);
   return pipeline.render(view, frame_, seconds(), volume);
 }
 
-const FramePipeline& LiveScene::pipeline(RenderMode mode, bool shadows) {
+const eval::FramePipeline& LiveScene::pipeline(eval::RenderMode mode, bool shadows) {
   return pipelineFor(mode, shadows);
 }
 

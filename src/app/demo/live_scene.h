@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "app/frame_pipeline.h"
-#include "app/scene_volumes.h"
+#include "eval/frame_pipeline.h"
+#include "runtime/scene_volumes.h"
 #include "io/scene.h"
 
 namespace sixway::gpu {
@@ -40,7 +40,7 @@ class LiveScene {
   // The simulation from its start, obstacles back on the scene's motions.
   void reset();
   int frame() const { return frame_; }
-  double seconds() const { return SimulatedVolumes::frameSeconds(scene_, frame_); }
+  double seconds() const { return runtime::SimulatedVolumes::frameSeconds(scene_, frame_); }
 
   size_t obstacleCount() const { return scene_.obstacles.size(); }
   glm::vec3 obstaclePosition(size_t obstacle) const;  // world, now
@@ -53,19 +53,19 @@ class LiveScene {
 
   // Renders the current frame in `mode` from `view`, with or without obstacle shadows (one pipeline each).
   // Throws io::InputError when neural mode has no weights file.
-  RenderedFrame render(RenderMode mode, const FrameView& view, bool shadows);
+  eval::RenderedFrame render(eval::RenderMode mode, const eval::FrameView& view, bool shadows);
   // The pipeline of the last render() in that mode (its images stay on the GPU).
-  const FramePipeline& pipeline(RenderMode mode, bool shadows);
+  const eval::FramePipeline& pipeline(eval::RenderMode mode, bool shadows);
 
  private:
-  FramePipeline& pipelineFor(RenderMode mode, bool shadows);
+  eval::FramePipeline& pipelineFor(eval::RenderMode mode, bool shadows);
 
   const gpu::Context& context_;
   const gpu::PipelineCache& cache_;
   io::Scene scene_;
   LiveSceneOptions options_;
-  std::unique_ptr<SimulatedVolumes> volumes_;
-  std::map<std::pair<RenderMode, bool>, std::unique_ptr<FramePipeline>> pipelines_;
+  std::unique_ptr<runtime::SimulatedVolumes> volumes_;
+  std::map<std::pair<eval::RenderMode, bool>, std::unique_ptr<eval::FramePipeline>> pipelines_;
   int frame_ = 0;
 };
 

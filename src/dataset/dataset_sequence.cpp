@@ -1,0 +1,167 @@
+#include "dataset/dataset_sequence.h"
+
+#include <cstring>
+#include <glm/gtc/packing.hpp>
+
+#include "runtime/scene_volumes.h"
+#include "gpu/context.h"
+#include "gpu/image.h"
+#include "gpu/pipeline.h"
+#include "gpu/sequence.h"
+#include "render/billboard.h"
+#include "render/guiding_map.h"
+#include "reference/lightmap_baker.h"
+#include "dataset/motion_field.h"
+#include "render/projection.h"
+
+namespace sixway::dataset {
+namespace {
+
+constexpr int kGuideChannels = 3, kTargetChannels = 8, kMotionChannels = 2;
+
+// An F16 tensor [samples, channels, size, size], filled sample by sample from interleaved float images.
+class PlanarTensor {
+ public:
+  PlanarTensor(std::string name, int samples, int channels, int size)
+      : name_(std::move(name)),
+        channels_(channels),
+        size_(size),
+        bytes_(size_t(samples) * channels * size * size * 2, 0) {}
+
+  // `image` holds at least channels_ interleaved channels per pixel (`stride` values per pixel).
+  void set(int sample, const std::vector<float>& image, int stride) {
+    const size_t plane = size_t(size_) * size_;
+    std::vector<float> planar(plane * channels_);
+    for (int c = 0; c < channels_; ++c)
+      for (size_t i = 0; i < plane; ++i) planar[c * plane + i] = image[i * stride + c];
+    const io::Tensor half = io::Tensor::fromFloat("", io::DType::F16, {int64_t(planar.size())}, planar);
+    std::memcpy(bytes_.data() + size_t(sample) * half.bytes.size(), half.bytes.data(), half.bytes.size());
+  }
+
+  io::Tensor take(int samples) {
+    return {name_, io::DType::F16, {samples, channels_, size_, size_}, std::move(bytes_)};
+  }
+
+ private:
+  std::string name_;
+  int channels_, size_;
+  std::vector<uint8_t> bytes_;
+};
+
+std::vector<float> downloadHalfTexels(const gpu::Image& image) {
+  const std::vector<uint16_t> texels = image.download<uint16_t>();
+  std::vector<float> values(texels.size());
+  for (size_t i = 0; i < texels.size(); ++i) values[i] = glm::unpackHalf1x16(texels[i]);
+  return values;
+}
+
+nlohmann::json vec(glm::vec3 v) {
+  return {v.x, v.y, v.z};
+}
+
+}  // namespace
+
+DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCache& cache,
+                              const DatasetConfig& config, const SequencePlan& plan,
+                              const FrameProgress& progress) {
+  const io::Scene& scene = plan.scene;
+  const int size = config.lightmapSize;
+  const int lastFrame = plan.frames.back();
+  runtime::SimulatedVolumes volumes(context, cache, scene, lastFrame + 1);
+  const render::Box box = volumes.bounds();
+  const std::vector<DatasetCamera> cameras = datasetCameras(config, box);
+  const int samplesPerCamera = int(plan.frames.size());
+  const int samples = int(cameras.size()) * samplesPerCamera;
+
+  render::GuidingMap guiding(context, cache, render::GuideSettings::fromScene(scene));
+  const gpu::Image guide(context, guiding.imageDesc());
+  dataset::MotionField motion(context, cache, uint32_t(size));
+  render::LightmapBaker baker(context, cache);
+  render::BakeSettings bake;
+  bake.width = bake.height = size;
+  // The smoke travels over the interval between two samples: stride frames of steps, at the lattice velocity
+  // (cells per step) the simulation's macro buffer holds.
+  const sim::LatticeUnits& units = volumes.simulation().units();
+  const float metresPerVelocityUnit = units.cellSize * float(units.stepsPerFrame * config.frames.stride);
+  const render::VolumeGrid velocityGrid{scene.grid.size, scene.grid.origin, scene.grid.cellSize};
+
+  PlanarTensor guides("guide", samples, kGuideChannels, size),
+      targets("target", samples, kTargetChannels, size), motions("motion", samples, kMotionChannels, size);
+  gpu::Sequence realtime(context);
+  bool recorded = false;
+  size_t next = 0;  // the next sampled frame
+  for (int frame = 0; frame <= lastFrame; ++frame) {
+    const render::Volume volume = volumes.volume(frame);
+    if (frame == plan.frames[next]) {
+      if (!recorded) {  // the volume's buffers stay the same from frame to frame
+        guiding.record(realtime, volume, guide);
+        motion.record(realtime, guide, volumes.simulation().lbm().macro(), velocityGrid);
+        realtime.finish();
+        recorded = true;
+      }
+      for (const DatasetCamera& c : cameras) {
+        const render::ImagePlane billboard = render::billboardBounds(c.camera, box, 1.0f);
+        const render::DepthRange shellRange = render::boxDepthRange(c.camera, box);
+        guiding.update(c.camera, billboard, shellRange, scene.smoke, uint32_t(frame));
+        motion.update(c.camera, billboard, shellRange, metresPerVelocityUnit);
+        realtime.submit();
+        const int sample = c.index * samplesPerCamera + int(next);
+        guides.set(sample, downloadHalfTexels(guide), 4);
+        targets.set(sample, baker.bake(volume, scene.smoke, c.camera, billboard, bake).pixels,
+                    kTargetChannels);
+        // The first sample of a camera has no previous one to move from.
+        if (next > 0) motions.set(sample, motion.download().pixels, kMotionChannels);
+      }
+      ++next;
+    }
+    if (progress) progress(frame + 1, lastFrame + 1);
+  }
+
+  nlohmann::json cameraJson = nlohmann::json::array(), sampleJson = nlohmann::json::array();
+  for (const DatasetCamera& c : cameras) {
+    const render::ImagePlane billboard = render::billboardBounds(c.camera, box, 1.0f);
+    const render::DepthRange range = render::boxDepthRange(c.camera, box);
+    cameraJson.push_back({{"camera", c.index},
+                          {"azimuth_deg", c.azimuthDeg},
+                          {"elevation_deg", c.elevationDeg},
+                          {"position", vec(c.camera.position)},
+                          {"target", vec(box.centre())},
+                          {"fov_deg", c.camera.fovYDeg},
+                          {"billboard", {billboard.min.x, billboard.min.y, billboard.max.x, billboard.max.y}},
+                          {"shell_depth_range", {range.near, range.far}}});
+    for (int frame : plan.frames)
+      sampleJson.push_back({{"camera", c.index},
+                            {"frame", frame},
+                            {"split", sampleSplit(config, plan.sequence, c.index)},
+                            {"azimuth_deg", c.azimuthDeg},
+                            {"elevation_deg", c.elevationDeg}});
+  }
+  DatasetShard shard;
+  shard.tensors = {guides.take(samples), targets.take(samples), motions.take(samples)};
+  shard.metadata = {{"version", 1},
+                    {"sequence", plan.sequence},
+                    {"attempt", plan.attempt},
+                    {"lightmap_size", size},
+                    {"config", config.json},
+                    {"scene", plan.sceneJson},
+                    {"obstacle", plan.obstacle},
+                    {"frame_dt", scene.time.frameDt},
+                    {"stride", config.frames.stride},
+                    {"cameras", cameraJson},
+                    {"samples", sampleJson}};
+  return shard;
+}
+
+void writeShard(const std::filesystem::path& file, const DatasetShard& shard) {
+  io::writeSafetensors(file, shard.tensors, {{kShardMetadataKey, shard.metadata.dump()}});
+}
+
+nlohmann::json shardConfig(const std::filesystem::path& file) {
+  const io::SafetensorsFile f = io::readSafetensors(file);
+  const auto found = f.metadata.find(kShardMetadataKey);
+  if (found == f.metadata.end()) return nullptr;
+  const nlohmann::json metadata = nlohmann::json::parse(found->second, nullptr, false);
+  return metadata.is_object() && metadata.contains("config") ? metadata["config"] : nlohmann::json();
+}
+
+}  // namespace sixway::dataset

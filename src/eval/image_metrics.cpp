@@ -1,0 +1,70 @@
+#include "eval/image_metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace sixway::eval {
+namespace {
+
+float clipped(float v) {
+  return std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
+}
+
+nlohmann::json number(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+}  // namespace
+
+double psnrDb(double mse) {
+  return mse > 0 ? 10.0 * std::log10(1.0 / mse)
+                 : (mse == 0 ? std::numeric_limits<double>::infinity()
+                             : std::numeric_limits<double>::quiet_NaN());
+}
+
+double ImageError::mseMasked() const {
+  return valuesMasked ? squaredMasked / double(valuesMasked) : std::numeric_limits<double>::quiet_NaN();
+}
+
+double ImageError::mseFull() const {
+  return valuesFull ? squaredFull / double(valuesFull) : std::numeric_limits<double>::quiet_NaN();
+}
+
+ImageError& ImageError::operator+=(const ImageError& other) {
+  squaredMasked += other.squaredMasked;
+  squaredFull += other.squaredFull;
+  valuesMasked += other.valuesMasked;
+  valuesFull += other.valuesFull;
+  return *this;
+}
+
+nlohmann::json ImageError::json() const {
+  return {{"mse_masked", number(mseMasked())},
+          {"psnr_masked_db", number(psnrDb(mseMasked()))},
+          {"mse_full", number(mseFull())},
+          {"psnr_full_db", number(psnrDb(mseFull()))}};
+}
+
+ImageError compareImages(const io::Image& predicted, const io::Image& truth) {
+  if (predicted.width != truth.width || predicted.height != truth.height || predicted.channelCount() != 4 ||
+      truth.channelCount() != 4)
+    throw std::invalid_argument("compareImages: the images are not RGBA of the same size");
+  ImageError e;
+  for (size_t p = 0, n = size_t(truth.width) * truth.height; p < n; ++p) {
+    const bool smoke = truth.pixels[p * 4 + 3] > 0.01f;
+    for (int c = 0; c < 3; ++c) {
+      const double d =
+          double(clipped(predicted.pixels[p * 4 + c])) - double(clipped(truth.pixels[p * 4 + c]));
+      e.squaredFull += d * d;
+      ++e.valuesFull;
+      if (!smoke) continue;
+      e.squaredMasked += d * d;
+      ++e.valuesMasked;
+    }
+  }
+  return e;
+}
+
+}  // namespace sixway::eval

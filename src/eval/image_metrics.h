@@ -1,0 +1,30 @@
+#pragma once
+// Final-image quality as DESIGN.md §8 defines it, for `sixway eval --scene`: PSNR = 10·log10(1 / MSE) on
+// linear R, G, B clipped to [0, 1]; the headline figure masked to the pixels where the ground truth's alpha >
+// 0.01 (the smoke), the full-frame figure next to it. Alpha itself is not compared: the methods composite the
+// smoke over the same backdrop, so its colour already carries the smoke's opacity.
+#include <cstdint>
+#include <nlohmann/json.hpp>
+
+#include "io/image.h"
+
+namespace sixway::eval {
+
+struct ImageError {
+  double squaredMasked = 0, squaredFull = 0;  // sums over the R, G, B values
+  uint64_t valuesMasked = 0, valuesFull = 0;
+
+  double mseMasked() const;
+  double mseFull() const;
+  ImageError& operator+=(const ImageError& other);
+  // {mse_masked, psnr_masked_db, mse_full, psnr_full_db}; null where there is nothing to measure.
+  nlohmann::json json() const;
+};
+
+// `predicted` against `truth`, both RGBA of the same size (throws std::invalid_argument otherwise).
+ImageError compareImages(const io::Image& predicted, const io::Image& truth);
+
+// 10·log10(1 / mse): +∞ for 0, NaN for NaN.
+double psnrDb(double mse);
+
+}  // namespace sixway::eval

@@ -1,0 +1,270 @@
+#include "eval/scene_eval.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "eval/equal_time.h"
+#include "eval/eval_strip.h"
+#include "eval/frame_pipeline.h"
+#include "eval/image_metrics.h"
+#include "eval/lightmap_metrics.h"
+#include "io/report.h"
+#include "runtime/scene_volumes.h"
+#include "gpu/context.h"
+#include "gpu/pipeline.h"
+#include "io/error.h"
+#include "io/scene.h"
+#include "render/camera.h"
+#include "render/scene_frame.h"
+
+namespace sixway::eval {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The methods measured against the path tracer, by their render-mode names (frame_pipeline.h). guide-lit is
+// the guide-only baseline: the guiding map's light as all six lightmaps.
+const std::vector<std::string> kMethods{"neural", "reference", "traditional", "guide-lit"};
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+nlohmann::json number(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+double orNan(const nlohmann::json& v) {
+  return v.is_number() ? v.get<double>() : NAN;
+}
+
+// Per stage and in total, each stage's time summed over its repeats in the frame (e.g. several bake passes).
+nlohmann::json stageTimes(const std::vector<gpu::StageTime>& stages) {
+  nlohmann::json json = nlohmann::json::object();
+  for (const gpu::StageTime& s : stages) json[s.name] = json.value(s.name, 0.0) + s.milliseconds;
+  return json;
+}
+
+double totalMs(const nlohmann::json& stages) {
+  double total = 0;
+  for (const auto& [name, ms] : stages.items()) total += ms.get<double>();
+  return total;
+}
+
+// Medians over the frames of each stage and of the total, from the per-frame "stages_ms" of one method.
+nlohmann::json medianTimes(const std::vector<nlohmann::json>& frames) {
+  std::map<std::string, std::vector<double>> perStage;
+  std::vector<double> totals;
+  for (const nlohmann::json& f : frames) {
+    for (const auto& [name, ms] : f.items()) perStage[name].push_back(ms.get<double>());
+    totals.push_back(totalMs(f));
+  }
+  nlohmann::json stages = nlohmann::json::object();
+  for (const auto& [name, values] : perStage) stages[name] = median(values);
+  return {{"stages_ms", stages}, {"total_ms", median(totals)}};
+}
+
+// The lightmap figures of one frame, with the MSEs the PSNRs stand for.
+nlohmann::json lightmapFrame(const LightmapMetrics& m) {
+  const nlohmann::json s = m.summary();
+  nlohmann::json out = {{"psnr_masked_db", s["psnr_masked_db"]}, {"psnr_full_db", s["psnr_full_db"]}};
+  out["mse_masked"] = number(std::pow(10.0, -orNan(s["psnr_masked_db"]) / 10.0));
+  out["mse_full"] = number(std::pow(10.0, -orNan(s["psnr_full_db"]) / 10.0));
+  return out;
+}
+
+// The scene as evaluated: the density scale on the extinction (σ_t = extinction · density, so scaling one
+// scales the other for every renderer), and the camera path replaced when asked.
+io::Scene evaluatedScene(const SceneEvalSettings& s) {
+  io::Scene scene = io::loadScene(s.scene);
+  scene.smoke.extinction *= s.densityScale;
+  if (s.cameraOrbitDeg) scene.camera.path = io::CameraOrbit{*s.cameraOrbitDeg};
+  return scene;
+}
+
+void check(const SceneEvalSettings& s) {
+  if (s.frames < 1) throw io::InputError("--frames", "give at least 1 frame with --scene");
+  if (!(s.densityScale > 0.0f) || !std::isfinite(s.densityScale))
+    throw io::InputError("--density-scale", "must be a positive number");
+  if (s.stripFrame && (*s.stripFrame < 0 || *s.stripFrame >= s.frames))
+    throw io::InputError("--strip-frame", "frame " + std::to_string(*s.stripFrame) + " is outside 0.." +
+                                              std::to_string(s.frames - 1));
+  if (!fs::exists(s.weights))
+    throw io::InputError(s.weights.string(),
+                         "no such weights file (train one with tools/train.py, or pass --weights)");
+}
+
+}  // namespace
+
+void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s) {
+  check(s);
+  const io::Scene scene = evaluatedScene(s);
+  io::requireWritable(s.report, s.force);
+  if (!s.out.empty()) io::requireWritable(s.out, s.force);
+  // What the renderers see: the obstacles only when asked (the path tracer cannot draw them).
+  io::Scene renderScene = scene;
+  if (!s.drawObstacles) renderScene.obstacles.clear();
+  const int stripFrame = s.stripFrame.value_or(s.frames - 1);
+
+  gpu::Context context(device);
+  gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));
+  runtime::SimulatedVolumes volumes(context, cache, scene, s.frames);
+  FramePipelineOptions options;
+  options.weights = s.weights;
+  options.shadows = s.shadows;
+  options.pathTraceSamples = s.samples;
+  options.pathTraceOrders = s.orders;
+  std::map<std::string, std::unique_ptr<FramePipeline>> pipelines;
+  for (const std::string& method : kMethods) {
+    options.mode = parseRenderMode(method);
+    pipelines[method] = std::make_unique<FramePipeline>(context, cache, renderScene, options);
+  }
+  options.mode = RenderMode::PathTrace;
+  FramePipeline truthPipeline(context, cache, renderScene, options);
+  if (!s.out.empty()) fs::create_directories(s.out);
+  std::printf(
+      "sixway eval: %s, %d frames, %dx%d (lightmaps %d²), path tracer %u spp, density x%g, obstacles %s, "
+      "on %s\n",
+      scene.name.c_str(), s.frames, scene.render.width, scene.render.height, scene.render.lightmapSize,
+      s.samples, s.densityScale, s.drawObstacles ? (s.shadows ? "drawn, shadows" : "drawn") : "not drawn",
+      context.properties().deviceName);
+  std::fflush(stdout);
+
+  const render::Camera firstCamera = render::sceneCamera(scene.camera, 0);
+  LightmapMetrics lightmapTotal;
+  std::map<std::string, ImageError> imageTotal;
+  std::map<std::string, std::vector<double>> framePsnrs;
+  std::map<std::string, std::vector<nlohmann::json>> frameStages;
+  std::map<std::string, std::vector<double>>
+      wallTimes;  // per method, per frame: render() on the host's clock
+  nlohmann::json frames = nlohmann::json::array(), equalTime, strip;
+  const auto started = std::chrono::steady_clock::now();
+  for (int i = 0; i < s.frames; ++i) {
+    const render::Volume volume = volumes.volume(i);
+    const double seconds = runtime::SimulatedVolumes::frameSeconds(scene, i);
+    const sim::StepTimes& sim = volumes.frameTimes();
+    const nlohmann::json simStages = {{"obstacles", sim.obstacles},
+                                      {"lbm", sim.lbm},
+                                      {"smoke", sim.smoke},
+                                      {"forces+watchdog", sim.forces + sim.watchdog}};
+    frameStages["simulation"].push_back(simStages);
+    // The view's angle away from the first frame's: where the traditional flipbook was baked.
+    const render::Camera camera = render::sceneCamera(scene.camera, i);
+    const float cosine = std::clamp(glm::dot(camera.forward, firstCamera.forward), -1.0f, 1.0f);
+    nlohmann::json frame = {{"frame", i},
+                            {"seconds", seconds},
+                            {"view_angle_deg", glm::degrees(std::acos(cosine))},
+                            {"stages_ms", {{"simulation", simStages}}}};
+
+    const auto traced = std::chrono::steady_clock::now();
+    const RenderedFrame truth = truthPipeline.render(i, seconds, volume);
+    frame["wall_ms"]["pathtrace"] =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - traced).count();
+    wallTimes["pathtrace"].push_back(frame["wall_ms"]["pathtrace"].get<double>());
+    frame["stages_ms"]["pathtrace"] = stageTimes(truth.stages);
+    frameStages["pathtrace"].push_back(frame["stages_ms"]["pathtrace"]);
+    std::map<std::string, RenderedFrame> rendered;
+    for (const std::string& method : kMethods) {
+      const auto begun = std::chrono::steady_clock::now();
+      rendered[method] = pipelines[method]->render(i, seconds, volume);
+      const double wallMs =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begun).count();
+      frame["wall_ms"][method] = wallMs;
+      wallTimes[method].push_back(wallMs);
+      const ImageError error = compareImages(rendered[method].image, truth.image);
+      imageTotal[method] += error;
+      frame["image"][method] = error.json();
+      framePsnrs[method].push_back(psnrDb(error.mseMasked()));
+      frame["stages_ms"][method] = stageTimes(rendered[method].stages);
+      frameStages[method].push_back(frame["stages_ms"][method]);
+    }
+    LightmapMetrics lightmaps;
+    const io::Image predicted = pipelines["neural"]->lightmaps(),
+                    reference = pipelines["reference"]->lightmaps();
+    lightmaps.add(predicted.pixels, reference.pixels);
+    lightmapTotal.add(predicted.pixels, reference.pixels);
+    frame["lightmap"] = lightmapFrame(lightmaps);
+
+    if (i == stripFrame) {
+      if (!s.out.empty()) {
+        const std::vector<std::string> panels = writeEvalStrip(
+            s.out / "strip.png", truth.image,
+            {{"neural", &rendered["neural"].image}, {"traditional", &rendered["traditional"].image}});
+        strip = {{"file", (s.out / "strip.png").string()}, {"frame", i}, {"panels", panels}};
+      }
+      EqualTimeSettings equal;
+      equal.budgetMs = median(wallTimes["neural"]);
+      equal.samples = s.equalTimeReferenceSamples;
+      equal.orders = s.orders;
+      equalTime = equalTimeStudy(context, cache, renderScene, i, volume, equal,
+                                 s.drawObstacles ? nullptr : &rendered["neural"].image);
+      equalTime["frame"] = i;
+    }
+    frames.push_back(frame);
+
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    std::printf("  frame %d/%d (%.0f° from the baked view): lightmaps %.2f dB; images vs path tracer:", i + 1,
+                s.frames, frame["view_angle_deg"].get<double>(), orNan(frame["lightmap"]["psnr_masked_db"]));
+    for (const std::string& method : kMethods)
+      std::printf(" %s %.2f", method.c_str(), orNan(frame["image"][method]["psnr_masked_db"]));
+    std::printf(" dB; %.0f s elapsed, ETA %.0f s\n", elapsed, elapsed / (i + 1) * (s.frames - i - 1));
+    std::fflush(stdout);
+  }
+
+  nlohmann::json summary = {{"lightmap", lightmapTotal.summary()}};
+  for (const std::string& method : kMethods) {
+    nlohmann::json image = imageTotal[method].json();  // pooled over the frames' pixels
+    const std::vector<double>& psnrs = framePsnrs[method];
+    const auto finite = std::count_if(psnrs.begin(), psnrs.end(), [](double v) { return std::isfinite(v); });
+    double sum = 0;
+    for (double v : psnrs) sum += std::isfinite(v) ? v : 0.0;
+    image["mean_frame_psnr_masked_db"] = number(finite ? sum / double(finite) : NAN);
+    summary["image"][method] = image;
+  }
+  for (const auto& [method, stages] : frameStages) summary["median_ms"][method] = medianTimes(stages);
+  for (const auto& [method, times] : wallTimes) summary["median_ms"][method]["wall_ms"] = median(times);
+
+  nlohmann::json report = {
+      {"scene", fs::absolute(s.scene).string()},
+      {"device", context.properties().deviceName},
+      {"driver", std::string(context.driver().driverInfo)},
+      {"weights", fs::absolute(s.weights).string()},
+      {"frames", s.frames},
+      {"size", {scene.render.width, scene.render.height}},
+      {"lightmap_size", scene.render.lightmapSize},
+      {"pathtrace_spp", s.samples},
+      {"pathtrace_orders", s.orders},
+      {"density_scale", s.densityScale},
+      {"obstacles_drawn", s.drawObstacles},
+      {"obstacle_count", scene.obstacles.size()},
+      {"shadows", s.drawObstacles && s.shadows},
+      {"camera_orbit_deg_per_frame", s.cameraOrbitDeg ? number(*s.cameraOrbitDeg) : nullptr},
+      {"methods", kMethods},
+      {"summary", summary},
+      {"equal_time", equalTime},
+      {"strip", strip.is_null() ? nlohmann::json(nullptr) : strip},
+      {"per_frame", frames}};
+  io::writeReport(s.report, report);
+  std::printf("sixway eval: lightmaps %.2f dB masked; images vs path tracer (masked, pooled):",
+              orNan(summary["lightmap"]["psnr_masked_db"]));
+  for (const std::string& method : kMethods)
+    std::printf(" %s %.2f", method.c_str(), orNan(summary["image"][method]["psnr_masked_db"]));
+  std::printf(" dB; path tracer at the neural frame's %.1f ms: %u spp, %.2f dB; wrote %s\n",
+              equalTime["budget_ms"].get<double>(), equalTime["equal_time_spp"].get<uint32_t>(),
+              orNan(equalTime["equal_time"]["psnr_masked_db"]), s.report.string().c_str());
+  if (context.validationMessageCount() > 0)
+    throw std::runtime_error(std::to_string(context.validationMessageCount()) + " validation messages");
+}
+
+}  // namespace sixway::eval

@@ -1,0 +1,35 @@
+#pragma once
+// `sixway eval --scene`: a scene's sequence (its own camera and light paths; the simulation live) rendered
+// frame by frame by every method and measured (issue #9, docs/results.md):
+//   - the network's lightmaps against the reference baker's, same view (lightmap PSNR, DESIGN.md §8);
+//   - the final images of neural, reference-lightmap, traditional-flipbook and guide-lit rendering against
+//   the
+//     path tracer (ground truth, multiple scattering);
+//   - GPU time per stage of every method and of the simulation;
+//   - the path tracer at the neural frame's time (equal_time.h), and a side-by-side strip of one frame.
+// The path tracer knows no obstacles, so by default the obstacles shape the flow but no method draws them
+// (nor their shadows); --draw-obstacles draws them in every method (the path-traced smoke then lies over them
+// unshadowed, as in `sixway render --mode pathtrace`).
+#include <filesystem>
+#include <optional>
+
+#include "gpu/context.h"
+
+namespace sixway::eval {
+
+struct SceneEvalSettings {
+  std::filesystem::path scene, weights, report, out;  // out: strip.png (none when empty)
+  int frames = 0;
+  uint32_t samples = 64;  // path-tracer ground truth, per pixel
+  int orders = 64;        // its scattering orders
+  float densityScale = 1.0f;
+  bool shadows = true, drawObstacles = false;
+  std::optional<float> cameraOrbitDeg;  // replaces the scene's camera path by an orbit (degrees per frame)
+  std::optional<int> stripFrame;        // default: the last frame
+  uint32_t equalTimeReferenceSamples = 256;
+  bool force = false;
+};
+
+void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& settings);
+
+}  // namespace sixway::eval

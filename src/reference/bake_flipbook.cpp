@@ -1,0 +1,117 @@
+#include "reference/bake_flipbook.h"
+
+#include <chrono>
+#include <cstdio>
+
+#include "io/error.h"
+#include "io/exr.h"
+#include "render/billboard.h"
+#include "reference/flipbook.h"
+#include "reference/path_tracer.h"
+#include "render/sixway.h"
+
+namespace sixway::render {
+namespace {
+
+nlohmann::json vec(glm::vec3 v) {
+  return {v.x, v.y, v.z};
+}
+
+nlohmann::json describe(const FlipbookBake& job, const ImagePlane& billboard, const nlohmann::json& frames) {
+  nlohmann::json scattering = "single";
+  if (job.multipleScattering)
+    scattering = {{"orders", job.multipleScattering->maxOrders},
+                  {"samples_per_pixel", job.multipleScattering->samples},
+                  {"seed", job.multipleScattering->seed}};
+  nlohmann::json p = job.provenance;
+  p["camera"] = {{"position", vec(job.camera.position)},
+                 {"right", vec(job.camera.right)},
+                 {"up", vec(job.camera.up)},
+                 {"forward", vec(job.camera.forward)}};
+  p["billboard"] = {{"image_plane_min", {billboard.min.x, billboard.min.y}},
+                    {"image_plane_max", {billboard.max.x, billboard.max.y}}};
+  p["optics"] = {{"extinction", job.smoke.extinction},
+                 {"albedo", job.smoke.albedo},
+                 {"phase_g", job.smoke.phaseG},
+                 {"emission_intensity", job.smoke.emission.intensity}};
+  p["bake"] = {{"step_cells", job.settings.stepCells},
+               {"light_grid_spacing_cells", job.settings.lightSpacingCells},
+               {"scattering", scattering}};
+  p["frames"] = frames;
+  return p;
+}
+
+}  // namespace
+
+FlipbookBakeResult bakeFlipbook(const gpu::Context& context, const gpu::PipelineCache& cache,
+                                VolumeSequence& sequence, const FlipbookBake& job,
+                                const std::function<void(const std::string&)>& progress) {
+  const int available = sequence.frameCount();
+  if (job.frameCount < 1 || job.firstFrame < 0 || job.firstFrame + job.frameCount > available)
+    throw io::InputError("frames", std::to_string(job.firstFrame) + ".." +
+                                       std::to_string(job.firstFrame + job.frameCount - 1) +
+                                       " are outside the sequence, which has frames 0.." +
+                                       std::to_string(available - 1));
+  const int width = job.settings.width, height = job.settings.height;
+  const FlipbookLayout layout = flipbookLayout(job.frameCount, width, height, job.columns);
+  requireFlipbookFits(layout, "flipbook");
+  FlipbookBakeResult result;
+  result.billboard = billboardBounds(job.camera, sequence.bounds(), float(width) / float(height));
+
+  LightmapBaker baker(context, cache);
+  std::optional<PathTracer> tracer;
+  TraceSettings trace;
+  if (job.multipleScattering) {
+    tracer.emplace(context, cache);
+    trace.width = width;
+    trace.height = height;
+    trace.maxOrders = job.multipleScattering->maxOrders;
+    trace.seed = job.multipleScattering->seed;
+    trace.jitter = false;  // pixel centres, as the exact baker samples
+  }
+  std::filesystem::create_directories(job.out / "frames");
+
+  const auto& names = sixWayChannelNames();
+  std::vector<io::Image> tiles;
+  nlohmann::json frames = nlohmann::json::array();
+  for (int i = 0; i < job.frameCount; ++i) {
+    const int index = job.firstFrame + i;
+    const auto start = std::chrono::steady_clock::now();
+    const std::optional<Volume> volume = sequence.frame(index);
+    io::Image tile(width, height, {names.begin(), names.end()});
+    double gpuMs = 0;
+    if (volume) {
+      tile = baker.bake(*volume, job.smoke, job.camera, result.billboard, job.settings);
+      for (const gpu::StageTime& t : baker.stageTimes()) gpuMs += t.milliseconds;
+      if (tracer) {
+        tracer->beginSixWay(*volume, job.smoke, job.camera, result.billboard, trace);
+        tracer->accumulate(job.multipleScattering->samples);
+        const io::Image multiple = tracer->image();
+        for (int p = 0; p < width * height; ++p)
+          for (int c = 0; c < kSixWayLights; ++c)
+            tile.pixels[p * kSixWayChannels + c] = multiple.pixels[p * kSixWayChannels + c];
+        gpuMs += tracer->traceMilliseconds();
+      }
+    }
+    char name[32];
+    std::snprintf(name, sizeof(name), "frame_%04d.exr", index);
+    io::writeExr(job.out / "frames" / name, tile, io::ExrPixelType::Float,
+                 {{"colorspace", "linear"}, {"sixway", "six-way lightmaps, premultiplied"}});
+    tiles.push_back(std::move(tile));
+    result.frameMilliseconds.push_back(gpuMs);
+    frames.push_back({{"index", index},
+                      {"name", sequence.frameName(index)},
+                      {"empty", !volume},
+                      {"file", std::string("frames/") + name}});
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    char line[256];
+    std::snprintf(line, sizeof(line), "frame %d/%d (%s): %s, %.1f ms GPU, %.2f s", i + 1, job.frameCount,
+                  sequence.frameName(index).c_str(), volume ? "baked" : "empty", gpuMs, seconds);
+    progress(line);
+  }
+  result.sidecar = writeFlipbook(job.out, "flipbook", tiles, layout, unityPacking(),
+                                 describe(job, result.billboard, frames));
+  return result;
+}
+
+}  // namespace sixway::render

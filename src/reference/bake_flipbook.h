@@ -1,0 +1,57 @@
+#pragma once
+// The traditional six-way workflow: a sequence baked from one fixed view into flipbooks (Unity packing,
+// EXR + PNG + TGA, JSON sidecar) plus one EXR per frame. Single scattering comes from the exact baker;
+// with multiple scattering the six light channels come from the path tracer (alpha and emission, which do
+// not depend on scattering, still from the exact march).
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gpu/sequence.h"
+#include "io/scene.h"
+#include "render/camera.h"
+#include "reference/lightmap_baker.h"
+#include "render/volume_sequence.h"
+
+namespace sixway::gpu {
+class Context;
+class PipelineCache;
+}  // namespace sixway::gpu
+
+namespace sixway::render {
+
+struct MultipleScattering {
+  uint32_t samples = 256;  // per pixel
+  int maxOrders = 64;
+  uint32_t seed = 1;
+};
+
+struct FlipbookBake {
+  std::filesystem::path out;  // an existing, empty directory
+  int firstFrame = 0;         // frames [firstFrame, firstFrame + frameCount) of the sequence
+  int frameCount = 1;
+  int columns = 0;        // 0: a near-square grid
+  Camera camera;          // fixed for the whole sequence
+  io::Smoke smoke;        // optics
+  BakeSettings settings;  // tile size and quadrature
+  std::optional<MultipleScattering> multipleScattering;
+  nlohmann::json provenance;  // added to the sidecar (where the volumes came from, the command)
+};
+
+struct FlipbookBakeResult {
+  std::filesystem::path sidecar;
+  ImagePlane billboard;
+  std::vector<double> frameMilliseconds;  // GPU time per baked frame
+};
+
+// Bakes the frames one after the other; `progress` gets one line per frame. Throws io::InputError for a frame
+// range outside the sequence and a camera that does not see the whole volume box in front of it.
+FlipbookBakeResult bakeFlipbook(const gpu::Context& context, const gpu::PipelineCache& cache,
+                                VolumeSequence& sequence, const FlipbookBake& job,
+                                const std::function<void(const std::string&)>& progress);
+
+}  // namespace sixway::render

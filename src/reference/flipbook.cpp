@@ -1,0 +1,283 @@
+#include "reference/flipbook.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+
+#include "io/error.h"
+#include "io/exr.h"
+#include "io/file_access.h"
+#include "io/json_reader.h"
+#include "io/png.h"
+#include "io/tga.h"
+
+namespace sixway::render {
+namespace {
+
+constexpr const char* kFormat = "sixway-flipbook";
+constexpr const char* kComponents = "RGBA";
+// Keys of the eight channels in a description, in channel order.
+const std::array<std::string, kSixWayChannels>& channelKeys() {
+  static const std::array<std::string, kSixWayChannels> keys = {"right", "left",  "top",   "bottom",
+                                                                "back",  "front", "alpha", "emissive"};
+  return keys;
+}
+
+// The pixel of frame `frame`'s tile at (x, y) in the flipbook texture.
+std::size_t tilePixel(const FlipbookLayout& l, int frame, int x, int y) {
+  const int column = frame % l.columns, row = frame / l.columns;
+  return std::size_t(row * l.tileHeight + y) * std::size_t(l.columns * l.tileWidth) + column * l.tileWidth +
+         x;
+}
+
+float srgbDecode(float v) {
+  return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+}
+
+std::string reference(const ChannelPacking& packing, int channel) {
+  const auto& slot = packing.slots[channel];
+  return packing.textures[slot.texture] + "." + kComponents[slot.component];
+}
+
+ChannelPacking::Slot parseReference(const io::JsonReader& r, const std::string& key, const std::string& text,
+                                    const std::vector<std::string>& textures) {
+  const auto dot = text.rfind('.');
+  const std::string texture = dot == std::string::npos ? "" : text.substr(0, dot);
+  const std::string component = dot == std::string::npos ? "" : text.substr(dot + 1);
+  const auto t = std::find(textures.begin(), textures.end(), texture);
+  const char* c = component.size() == 1 ? std::strchr(kComponents, component[0]) : nullptr;
+  if (t == textures.end() || !c || !*c)
+    r.fail(key, "must be \"<texture>.<R|G|B|A>\" naming one of the textures (got \"" + text + "\")");
+  return {int(t - textures.begin()), int(c - kComponents)};
+}
+
+// The file of one texture: a path, or an object of paths by format (EXR preferred, then PNG, then TGA).
+std::filesystem::path textureFile(const io::JsonReader& r, const std::string& name,
+                                  const nlohmann::json& value) {
+  const std::string key = "textures." + name;
+  if (value.is_string()) return value.get<std::string>();
+  if (value.is_object()) {
+    for (const char* format : {"exr", "png", "tga"})
+      if (value.contains(format) && value[format].is_string()) return value[format].get<std::string>();
+  }
+  r.fail(key, "must be a file name or an object with \"exr\", \"png\" or \"tga\" file names");
+}
+
+io::Image readTexture(const std::filesystem::path& file, bool srgb) {
+  std::string extension = file.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
+  if (extension == ".exr") return io::readExr(file).image;  // EXR is linear whatever the description says
+  io::Image image;
+  if (extension == ".png") {
+    image = io::readPng(file);
+  } else if (extension == ".tga") {
+    image = io::readTga(file);
+  } else {
+    throw io::InputError(file.string(), "unknown texture format (expected .exr, .png or .tga)");
+  }
+  if (srgb) {
+    for (std::size_t i = 0; i < image.pixels.size(); ++i)
+      if (image.channels[i % image.channels.size()] != "A") image.pixels[i] = srgbDecode(image.pixels[i]);
+  }
+  return image;
+}
+
+}  // namespace
+
+FlipbookLayout flipbookLayout(int frames, int tileWidth, int tileHeight, int columns) {
+  FlipbookLayout l;
+  l.frames = std::max(frames, 1);
+  l.columns = columns > 0 ? std::min(columns, l.frames) : int(std::ceil(std::sqrt(double(l.frames)) - 1e-9));
+  l.rows = (l.frames + l.columns - 1) / l.columns;
+  l.tileWidth = tileWidth;
+  l.tileHeight = tileHeight;
+  return l;
+}
+
+void requireFlipbookFits(const FlipbookLayout& layout, const std::string& source) {
+  const int64_t width = int64_t(layout.columns) * layout.tileWidth;
+  const int64_t height = int64_t(layout.rows) * layout.tileHeight;
+  if (width > kMaxFlipbookSide || height > kMaxFlipbookSide)
+    throw io::InputError(
+        source, std::to_string(layout.frames) + " tiles of " + std::to_string(layout.tileWidth) + "x" +
+                    std::to_string(layout.tileHeight) + " in " + std::to_string(layout.columns) +
+                    " columns make a " + std::to_string(width) + "x" + std::to_string(height) +
+                    " flipbook, more than " + std::to_string(kMaxFlipbookSide) +
+                    " per side; reduce the frames or the tile size");
+}
+
+ChannelPacking unityPacking() {
+  ChannelPacking p;
+  p.textures = {"A", "B"};
+  p.slots[Right] = {0, 0};
+  p.slots[Top] = {0, 1};
+  p.slots[Back] = {0, 2};
+  p.slots[Alpha] = {0, 3};
+  p.slots[Left] = {1, 0};
+  p.slots[Bottom] = {1, 1};
+  p.slots[Front] = {1, 2};
+  p.slots[Emissive] = {1, 3};
+  return p;
+}
+
+std::vector<io::Image> packFlipbook(const std::vector<io::Image>& frames, const FlipbookLayout& layout,
+                                    const ChannelPacking& packing) {
+  std::vector<io::Image> textures(
+      packing.textures.size(),
+      io::Image(layout.columns * layout.tileWidth, layout.rows * layout.tileHeight, {"R", "G", "B", "A"}));
+  for (int f = 0; f < int(frames.size()) && f < layout.frames; ++f) {
+    const io::Image& tile = frames[f];
+    if (tile.width != layout.tileWidth || tile.height != layout.tileHeight ||
+        tile.channelCount() != kSixWayChannels)
+      throw std::invalid_argument("packFlipbook: frame " + std::to_string(f) +
+                                  " is not an eight-channel tile");
+    for (int y = 0; y < layout.tileHeight; ++y)
+      for (int x = 0; x < layout.tileWidth; ++x)
+        for (int c = 0; c < kSixWayChannels; ++c) {
+          const auto& slot = packing.slots[c];
+          if (slot.texture < 0) continue;
+          textures[slot.texture].pixels[tilePixel(layout, f, x, y) * 4 + slot.component] = tile.at(x, y, c);
+        }
+  }
+  return textures;
+}
+
+std::vector<io::Image> unpackFlipbook(const std::vector<io::Image>& textures, const FlipbookLayout& layout,
+                                      const ChannelPacking& packing) {
+  const auto& names = sixWayChannelNames();
+  std::vector<io::Image> frames(layout.frames,
+                                io::Image(layout.tileWidth, layout.tileHeight, {names.begin(), names.end()}));
+  for (int f = 0; f < layout.frames; ++f)
+    for (int y = 0; y < layout.tileHeight; ++y)
+      for (int x = 0; x < layout.tileWidth; ++x)
+        for (int c = 0; c < kSixWayChannels; ++c) {
+          const auto& slot = packing.slots[c];
+          if (slot.texture < 0) continue;
+          const io::Image& t = textures[slot.texture];
+          frames[f].at(x, y, c) = t.pixels[tilePixel(layout, f, x, y) * t.channelCount() + slot.component];
+        }
+  return frames;
+}
+
+std::filesystem::path writeFlipbook(const std::filesystem::path& directory, const std::string& stem,
+                                    const std::vector<io::Image>& frames, const FlipbookLayout& layout,
+                                    const ChannelPacking& packing, const nlohmann::json& provenance) {
+  const std::vector<io::Image> textures = packFlipbook(frames, layout, packing);
+  nlohmann::json files = nlohmann::json::object();
+  for (std::size_t t = 0; t < textures.size(); ++t) {
+    const std::string base = stem + "_" + packing.textures[t];
+    io::writeExr(directory / (base + ".exr"), textures[t], io::ExrPixelType::Half,
+                 {{"colorspace", "linear"}, {"sixway", "six-way lightmaps, premultiplied"}});
+    io::writePng(directory / (base + ".png"), textures[t], io::PngEncoding::Linear);
+    io::writeTga(directory / (base + ".tga"), textures[t]);
+    files[packing.textures[t]] = {{"exr", base + ".exr"}, {"png", base + ".png"}, {"tga", base + ".tga"}};
+  }
+  nlohmann::json channels = nlohmann::json::object();
+  for (int c = 0; c < kSixWayChannels; ++c)
+    if (packing.slots[c].texture >= 0) channels[channelKeys()[c]] = reference(packing, c);
+  const nlohmann::json sidecar = {
+      {"format", kFormat},
+      {"version", 1},
+      {"layout",
+       {{"columns", layout.columns},
+        {"rows", layout.rows},
+        {"frames", layout.frames},
+        {"tile_width", layout.tileWidth},
+        {"tile_height", layout.tileHeight}}},
+      {"textures", files},
+      {"channels", channels},
+      {"color_space", "linear"},
+      {"premultiplied", true},
+      {"normalisation",
+       "radiance toward the camera under a white directional light of irradiance pi, black world "
+       "(1 = a white Lambertian surface facing the light); alpha = 1 - view transmittance"},
+      {"provenance", provenance},
+  };
+  const std::filesystem::path path = directory / (stem + ".json");
+  io::AtomicFile file(path);
+  {
+    std::ofstream out(file.temporaryPath());
+    out << sidecar.dump(2) << '\n';
+    if (!out) throw io::InputError(path.string(), "cannot be written");
+  }
+  file.commit();
+  return path;
+}
+
+Flipbook readFlipbook(const std::filesystem::path& description) {
+  const std::string source = description.string();
+  const std::vector<uint8_t> bytes = io::readFileBytes(description);
+  const nlohmann::json json =
+      io::parseJsonText(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), source);
+  io::JsonReader r(json, "", source);
+  if (const auto format = r.maybe<std::string>("format"); format && *format != kFormat)
+    r.fail("format", std::string("must be \"") + kFormat + "\" (got \"" + *format + "\")");
+  r.optional<int>("version", 1, io::inRange(1, 1));
+  r.maybe<std::string>("normalisation");
+  r.has("provenance");  // free-form: where the flipbook came from
+
+  Flipbook book;
+  FlipbookLayout& l = book.layout;
+  r.object("layout", [&l](io::JsonReader& o) {
+    l.columns = o.required<int>("columns", io::inRange(1, 4096));
+    l.rows = o.required<int>("rows", io::inRange(1, 4096));
+    l.tileWidth = o.required<int>("tile_width", io::inRange(1, 16384));
+    l.tileHeight = o.required<int>("tile_height", io::inRange(1, 16384));
+    l.frames = o.optional<int>("frames", l.columns * l.rows, io::inRange(1, l.columns * l.rows));
+    return 0;
+  });
+  const bool srgb = r.optional<std::string>("color_space", "linear", [](const std::string& s) {
+    return s == "linear" || s == "srgb" ? "" : "must be \"linear\" or \"srgb\" (got \"" + s + "\")";
+  }) == "srgb";
+  const bool premultiplied = r.optional<bool>("premultiplied", true);
+
+  if (!r.has("textures")) r.fail("textures", "required key missing");
+  const nlohmann::json& texturesJson = json["textures"];
+  if (!texturesJson.is_object() || texturesJson.empty())
+    r.fail("textures", "must be an object naming the texture files");
+  ChannelPacking packing;
+  std::vector<io::Image> textures;
+  for (const auto& [name, value] : texturesJson.items()) {
+    packing.textures.push_back(name);
+    const std::filesystem::path file = description.parent_path() / textureFile(r, name, value);
+    io::Image image = readTexture(file, srgb);
+    if (image.width != l.columns * l.tileWidth || image.height != l.rows * l.tileHeight)
+      throw io::InputError(file.string(), "is " + std::to_string(image.width) + "x" +
+                                              std::to_string(image.height) + ", the layout needs " +
+                                              std::to_string(l.columns * l.tileWidth) + "x" +
+                                              std::to_string(l.rows * l.tileHeight));
+    // Components in R, G, B, A order, whatever order the file lists them in.
+    io::Image rgba(image.width, image.height, {"R", "G", "B", "A"});
+    for (int c = 0; c < 4; ++c) {
+      const auto index = image.channelIndex(std::string(1, kComponents[c]));
+      if (!index) continue;
+      for (std::size_t i = 0; i < std::size_t(image.width) * image.height; ++i)
+        rgba.pixels[i * 4 + c] = image.pixels[i * image.channelCount() + *index];
+    }
+    textures.push_back(std::move(rgba));
+  }
+  r.object("channels", [&](io::JsonReader& o) {
+    for (int c = 0; c < kSixWayChannels; ++c) {
+      const std::string& key = channelKeys()[c];
+      const std::optional<std::string> text =
+          c == Emissive ? o.maybe<std::string>(key) : std::optional(o.required<std::string>(key));
+      if (text) packing.slots[c] = parseReference(o, key, *text, packing.textures);
+    }
+    return 0;
+  });
+  r.finish();
+
+  book.frames = unpackFlipbook(textures, l, packing);
+  if (!premultiplied) {
+    for (io::Image& frame : book.frames)
+      for (int y = 0; y < frame.height; ++y)
+        for (int x = 0; x < frame.width; ++x)
+          for (int c = 0; c < kSixWayChannels; ++c)
+            if (c != Alpha) frame.at(x, y, c) *= frame.at(x, y, Alpha);
+  }
+  return book;
+}
+
+}  // namespace sixway::render

@@ -1,0 +1,52 @@
+#pragma once
+// The volumes of a scene's simulation, frame after frame, for `sixway bake --scene` and `sixway render`. This
+// is the one place where the renderers meet the simulation (issue #3): the smoke goes from the simulation's
+// grid to the renderers' volume buffers on the GPU.
+#include <memory>
+
+#include "gpu/sequence.h"
+#include "io/scene.h"
+#include "render/volume.h"
+#include "render/volume_sequence.h"
+#include "sim/simulation.h"
+
+namespace sixway::gpu {
+class Context;
+class PipelineCache;
+}  // namespace sixway::gpu
+
+namespace sixway::runtime {
+
+// Frame i is the smoke after i + 1 frames of simulation (t = (i + 1) · time.frame_dt); `frames` frames.
+class SimulatedVolumes : public render::VolumeSequence {
+ public:
+  SimulatedVolumes(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
+                   int frames);
+
+  int frameCount() const override { return frames_; }
+  // Nothing for a frame without smoke.
+  std::optional<render::Volume> frame(int index) override;
+  render::Box bounds() const override { return volume_.grid().bounds(); }
+  std::string frameName(int index) const override;
+
+  // The volume of frame `index` even when it is empty; indices in increasing order.
+  render::Volume volume(int index);
+  // The simulation itself (e.g. its velocity, lbm().macro(), for `sixway dataset`'s motion field).
+  const sim::Simulation& simulation() const { return simulation_; }
+  sim::Simulation& simulation() { return simulation_; }
+  // GPU time of the simulation steps of the last frame asked for (ms).
+  const sim::StepTimes& frameTimes() const { return frameTimes_; }
+  static double frameSeconds(const io::Scene& scene, int index) {
+    return double(index + 1) * scene.time.frameDt;
+  }
+
+ private:
+  sim::Simulation simulation_;
+  int frames_;
+  int simulated_ = 0;  // frames simulated so far
+  render::DeviceVolume volume_;
+  gpu::Sequence exportSmoke_;  // the simulation's smoke into volume_, on the GPU
+  sim::StepTimes frameTimes_;
+};
+
+}  // namespace sixway::runtime
