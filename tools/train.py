@@ -413,9 +413,9 @@ def main():
 def finish(out, net, data, config, seconds, device, world):
     """Held-out metrics per split, the export with its metadata, and the loss plot."""
     net.eval()
-    metrics = {"definition": "DESIGN.md §8: PSNR on decoded linear lightmaps clipped to [0, 1], MSE pooled over "
-                             "all pixels and channels of the split; masked = reference alpha > 0.01; per "
-                             "channel group masked; PyTorch float32, whole maps",
+    metrics = {"definition": "docs/conventions.md, \"Metrics\": PSNR on decoded linear lightmaps clipped to "
+                             "[0, 1], MSE pooled over all pixels and channels of the split; masked = reference "
+                             "alpha > 0.01; per channel group masked; PyTorch float32, whole maps",
                "pytorch": {split: evaluate_split(net, data, split, device) for split in SPLITS}}
     with atomic_open(os.path.join(out, "metrics.json")) as f:
         json.dump(metrics, f, indent=2)

@@ -1,5 +1,6 @@
-// Six-way lighting of premultiplied lightmaps (DESIGN.md §3, Unity VFX Graph "Six Way Smoke Lit"; the
-// conventions and the reasons for them are in docs/real-time-rendering.md, "Six-way shading").
+// Six-way lighting of premultiplied lightmaps (docs/conventions.md, "Shading"; Unity VFX Graph
+// "Six Way Smoke Lit"; the conventions and the reasons for them are in docs/real-time-rendering.md,
+// "Six-way shading").
 // Lightmap values are in sixway's bake normalisation (1 = a white Lambertian surface facing a light of
 // irradiance π); Unity's shader works in those values divided by π, which is why π appears below where Unity
 // has none. Channels: rightTopBack = lightmap A.rgb, leftBottomFront = lightmap B.rgb.

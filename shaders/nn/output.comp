@@ -1,8 +1,9 @@
 #version 460
 // The network's output: eight channels taken from up to four head feature maps (channel k is component
 // SOURCE_k % 4 of map SOURCE_k / 4), decoded from the network's encoding (sRGB where bit k of SRGB_MASK is set),
-// clamped at 0 (radiance and alpha are never negative), and packed into the two lightmaps (DESIGN.md §3:
-// A = Right, Top, Back, alpha; B = Left, Bottom, Front, emissive), cropped to the lightmaps' size.
+// clamped at 0 (radiance and alpha are never negative), and packed into the two lightmaps
+// (docs/conventions.md, "Channels and packing": A = Right, Top, Back, alpha; B = Left, Bottom, Front,
+// emissive), cropped to the lightmaps' size.
 #extension GL_GOOGLE_include_directive : require
 #ifdef NN_FP16
 #extension GL_EXT_shader_16bit_storage : require

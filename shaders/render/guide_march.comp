@@ -4,7 +4,8 @@
 // h the coarse step and u in [0, 1) one hash per pixel and frame, so over frames the sum below is an
 // unbiased estimate of the ray integral. Each sample stands for a slab of length h and constant σ_t, which
 // takes T·(1 − e^{−σ_t h}) out of the view transmittance T and scatters toward the camera, in the bake
-// normalisation of DESIGN.md §3 (light of irradiance π, albedo, Henyey–Greenstein phase):
+// normalisation (docs/conventions.md, "Bake normalisation": light of irradiance π, albedo, Henyey–Greenstein
+// phase):
 //   front light:  π p_HG · albedo · T² (1 − e^{−2 σ_t h}) / 2  (its path is the view path; exact in the slab)
 //   other lights: π p_HG · albedo · T (1 − e^{−σ_t h}) · e^{−τ_i}
 // with τ_i the optical depth toward light i from a coarse light grid (light_depth.comp).

@@ -1,10 +1,10 @@
 #version 460
-// Six-way shading of the smoke billboard (DESIGN.md §3; docs/real-time-rendering.md, "Six-way shading"), drawn
-// with premultiplied-over blending onto the background and the obstacles. Per pixel: the lightmaps at the
-// pixel's point of the billboard (bilinear), Unity's remapping controls, every light with squared six-way
-// weights (point lights toward the shaded point, inverse-square falloff), its obstacle shadow (PCF in the
-// shadow atlas at the smoke shell), ambient light from L1 spherical harmonics, the emissive gradient. Where
-// an obstacle lies nearer than the smoke, the smoke is hidden.
+// Six-way shading of the smoke billboard (docs/conventions.md, "Shading"; docs/real-time-rendering.md,
+// "Six-way shading"), drawn with premultiplied-over blending onto the background and the obstacles. Per
+// pixel: the lightmaps at the pixel's point of the billboard (bilinear), Unity's remapping controls, every
+// light with squared six-way weights (point lights toward the shaded point, inverse-square falloff), its
+// obstacle shadow (PCF in the shadow atlas at the smoke shell), ambient light from L1 spherical harmonics,
+// the emissive gradient. Where an obstacle lies nearer than the smoke, the smoke is hidden.
 #extension GL_GOOGLE_include_directive : require
 #include "depth.glsl"
 #include "shadow.glsl"

@@ -1,6 +1,6 @@
 #pragma once
-// `sixway bench` (DESIGN.md §5, issue #9): its options and its sections, each timing one group of stages at
-// fixed sizes and returning its part of the JSON report.
+// `sixway bench` (docs/conventions.md, "Command line"; issue #9): its options and its sections, each timing
+// one group of stages at fixed sizes and returning its part of the JSON report.
 #include <filesystem>
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>

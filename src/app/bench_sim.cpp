@@ -1,7 +1,7 @@
 // `sixway bench` section "sim": the lattice step of the bench scene at fixed lattice sizes, GPU timestamps of
-// each pass (sim/simulation.h StepTimes) and MLUPs (DESIGN.md §8). A run is one submission of --sim-steps
-// steps, as the simulation submits a frame's steps at once; times are per step, the watchdog's per
-// submission.
+// each pass (sim/simulation.h StepTimes) and MLUPs (docs/conventions.md, "Metrics"). A run is one submission
+// of --sim-steps steps, as the simulation submits a frame's steps at once; times are per step, the watchdog's
+// per submission.
 #include <algorithm>
 #include <cstdio>
 #include <memory>

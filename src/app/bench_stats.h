@@ -1,6 +1,6 @@
 #pragma once
-// Repeated GPU timings of named stages, summarized the way DESIGN.md §8 asks: the median of repeated runs
-// after warm-up, with the min and max next to it.
+// Repeated GPU timings of named stages, summarized the way docs/conventions.md, "Metrics" asks: the median of
+// repeated runs after warm-up, with the min and max next to it.
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>

@@ -1,4 +1,5 @@
-// sixway: the command line (DESIGN.md §5). Every failure ends in one line on stderr and exit 1.
+// sixway: the command line (docs/conventions.md, "Command line"). Every failure ends in one line on stderr
+// and exit 1.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>

@@ -1,5 +1,5 @@
 #pragma once
-// Options every sixway command takes (DESIGN.md §5).
+// Options every sixway command takes (docs/conventions.md, "Command line").
 #include <CLI/CLI.hpp>
 
 #include <optional>

@@ -1,5 +1,6 @@
 #pragma once
-// One rendered frame of a scene, stage by stage (DESIGN.md §1), in one of the modes of `sixway render`:
+// One rendered frame of a scene, stage by stage (docs/conventions.md, "The frame"), in one of the modes of
+// `sixway render`:
 //   neural       guiding map → network → six-way shading
 //   reference    the reference baker's lightmaps (exact single scattering) → the same shading
 //   traditional  a flipbook baked from the first frame's view, on a camera-facing billboard (today's games)

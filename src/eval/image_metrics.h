@@ -1,8 +1,9 @@
 #pragma once
-// Final-image quality as DESIGN.md §8 defines it, for `sixway eval --scene`: PSNR = 10·log10(1 / MSE) on
-// linear R, G, B clipped to [0, 1]; the headline figure masked to the pixels where the ground truth's alpha >
-// 0.01 (the smoke), the full-frame figure next to it. Alpha itself is not compared: the methods composite the
-// smoke over the same backdrop, so its colour already carries the smoke's opacity.
+// Final-image quality as docs/conventions.md, "Metrics" defines it, for `sixway eval --scene`:
+// PSNR = 10·log10(1 / MSE) on linear R, G, B clipped to [0, 1]; the headline figure masked to the pixels
+// where the ground truth's alpha > 0.01 (the smoke), the full-frame figure next to it. Alpha itself is not
+// compared: the methods composite the smoke over the same backdrop, so its colour already carries the smoke's
+// opacity.
 #include <cstdint>
 #include <nlohmann/json.hpp>
 

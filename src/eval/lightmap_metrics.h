@@ -1,7 +1,7 @@
 #pragma once
-// Lightmap quality as DESIGN.md §8 defines it: PSNR = 10·log10(1 / MSE) on linear values clipped to [0, 1],
-// over all eight channels; the headline figure masked to the pixels where the reference alpha > 0.01, the
-// full-frame figure next to it. Also per channel pair (the four adapters' outputs), masked.
+// Lightmap quality as docs/conventions.md, "Metrics" defines it: PSNR = 10·log10(1 / MSE) on linear values
+// clipped to [0, 1], over all eight channels; the headline figure masked to the pixels where the reference
+// alpha > 0.01, the full-frame figure next to it. Also per channel pair (the four adapters' outputs), masked.
 #include <array>
 #include <cstdint>
 #include <nlohmann/json.hpp>

@@ -1,7 +1,8 @@
 #pragma once
 // `sixway eval --scene`: a scene's sequence (its own camera and light paths; the simulation live) rendered
 // frame by frame by every method and measured (issue #9, docs/results.md):
-//   - the network's lightmaps against the reference baker's, same view (lightmap PSNR, DESIGN.md §8);
+//   - the network's lightmaps against the reference baker's, same view (lightmap PSNR,
+//     docs/conventions.md, "Metrics");
 //   - the final images of neural, reference-lightmap, traditional-flipbook and guide-lit rendering against
 //   the
 //     path tracer (ground truth, multiple scattering);

@@ -1,6 +1,6 @@
 #pragma once
 // The device's memory bandwidth as seen by a buffer-to-buffer copy: the reference against which
-// memory-bound kernels (the lattice Boltzmann step) are judged (DESIGN.md §8).
+// memory-bound kernels (the lattice Boltzmann step) are judged (docs/conventions.md, "Metrics").
 namespace sixway::gpu {
 
 class Context;

@@ -253,7 +253,8 @@ Pipeline::Pipeline(const Context& context, const PipelineCache& cache, const Gra
   blend.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
                          VK_COLOR_COMPONENT_A_BIT;
   if (desc.blend != Blend::None) {
-    // Premultiplied "over": dst = src + (1 - src.a) dst (DESIGN.md §3); additive: dst = src + dst.
+    // Premultiplied "over": dst = src + (1 - src.a) dst (docs/conventions.md, "Shading");
+    // additive: dst = src + dst.
     blend.blendEnable = VK_TRUE;
     blend.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
     blend.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;

@@ -1,9 +1,9 @@
 #pragma once
-// Flipbooks of six-way lightmaps, the way game engines play them back (DESIGN.md §3): the frames as tiles of
-// a columns × rows grid, row-major, frame 0 at the top-left, the eight channels packed into RGBA textures
-// (Unity's packing unless told otherwise), written as EXR (half, linear) and 8-bit PNG and TGA (linear) with
-// a JSON sidecar. Flipbooks from other tools are read through a description in the sidecar's format, which
-// says where each channel lives (docs/reference-rendering.md, "Flipbooks").
+// Flipbooks of six-way lightmaps, the way game engines play them back (docs/conventions.md, "Flipbooks"): the
+// frames as tiles of a columns × rows grid, row-major, frame 0 at the top-left, the eight channels packed
+// into RGBA textures (Unity's packing unless told otherwise), written as EXR (half, linear) and 8-bit PNG and
+// TGA (linear) with a JSON sidecar. Flipbooks from other tools are read through a description in the
+// sidecar's format, which says where each channel lives (docs/reference-rendering.md, "Flipbooks").
 #include <array>
 #include <filesystem>
 #include <nlohmann/json.hpp>

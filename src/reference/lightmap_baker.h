@@ -1,10 +1,10 @@
 #pragma once
-// The reference six-way baker (single scattering, no noise): the eight channels of DESIGN.md §3 for a
-// camera, a billboard and a density volume. For each of the six camera-relative lights a compute pass
-// integrates the optical depth toward the light on a light-space grid (light_depth.comp); then one fine
-// view-ray march accumulates σ_s · T_view · T_light · π · p_HG for the six lights, alpha = 1 − T_view and
-// the emission (sixway_march.comp), skipping empty bricks (majorant.comp). The method and its
-// normalisation: docs/reference-rendering.md.
+// The reference six-way baker (single scattering, no noise): the eight channels of docs/conventions.md,
+// "Channels and packing" for a camera, a billboard and a density volume. For each of the six camera-relative
+// lights a compute pass integrates the optical depth toward the light on a light-space grid
+// (light_depth.comp); then one fine view-ray march accumulates σ_s · T_view · T_light · π · p_HG for the six
+// lights, alpha = 1 − T_view and the emission (sixway_march.comp), skipping empty bricks (majorant.comp). The
+// method and its normalisation: docs/reference-rendering.md.
 #include <array>
 #include <memory>
 #include <vector>

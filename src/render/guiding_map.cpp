@@ -63,8 +63,8 @@ int axisOf(io::GuideLight light) {
   }
 }
 
-// Toward the light, in the camera-relative six-way frame (DESIGN.md §3), with the two axes across it that
-// the baker's grid for the same light uses.
+// Toward the light, in the camera-relative six-way frame (docs/conventions.md, "Six-way frame"), with the two
+// axes across it that the baker's grid for the same light uses.
 struct LightFrame {
   glm::vec3 toLight, u, v;
 };

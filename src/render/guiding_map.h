@@ -1,10 +1,10 @@
 #pragma once
-// The guiding map, the network's input (DESIGN.md §1, docs/real-time-rendering.md "Guiding map"): a coarse,
-// jittered view-ray march of the density over the billboard, into one RGBA16F image of
-// (guide, alpha, shell depth, 0). The guide is the single-scattered radiance under the surrogate lights,
+// The guiding map, the network's input (docs/conventions.md, "The frame"; docs/real-time-rendering.md,
+// "Guiding map"): a coarse, jittered view-ray march of the density over the billboard, into one RGBA16F image
+// of (guide, alpha, shell depth, 0). The guide is the single-scattered radiance under the surrogate lights,
 // summed, in the bake normalisation; the front light's transmittance is the view transmittance, the others
-// read a coarse light-space optical-depth grid (the baker's light_depth.comp at a coarse spacing).
-// Recorded once into a gpu::Sequence and replayed each frame: update() writes the per-frame values.
+// read a coarse light-space optical-depth grid (the baker's light_depth.comp at a coarse spacing). Recorded
+// once into a gpu::Sequence and replayed each frame: update() writes the per-frame values.
 #include <cstdint>
 #include <memory>
 #include <vector>

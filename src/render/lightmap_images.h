@@ -1,8 +1,8 @@
 #pragma once
-// The two RGBA lightmap images of a frame in Unity's packing (DESIGN.md §3): A = (Right, Top, Back, alpha),
-// B = (Left, Bottom, Front, emissive). The network writes them on the GPU; reference and flipbook lightmaps,
-// computed as eight-channel images in sixWayChannelNames() order, are packed and uploaded here. The shading
-// pass samples them the same way whatever their source.
+// The two RGBA lightmap images of a frame in Unity's packing (docs/conventions.md, "Channels and packing"):
+// A = (Right, Top, Back, alpha), B = (Left, Bottom, Front, emissive). The network writes them on the GPU;
+// reference and flipbook lightmaps, computed as eight-channel images in sixWayChannelNames() order, are
+// packed and uploaded here. The shading pass samples them the same way whatever their source.
 #include <cstdint>
 
 #include "gpu/image.h"

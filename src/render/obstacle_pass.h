@@ -1,10 +1,10 @@
 #pragma once
-// The obstacles in the image (DESIGN.md §1): the obstacle meshes rasterized through the camera with diffuse
-// shading under the scene's lights (shadowed by the obstacles through the shadow maps) and ambient, into a
-// colour image (RGBA16F, premultiplied: alpha 1 where an obstacle is, the background with alpha 0 elsewhere)
-// and a depth image (D32, render::projectionMatrix of the scene depth range) of the whole frame. Per-frame
-// values travel in a uniform buffer, so the pass is recorded once; the obstacles' positions come from
-// ObstacleMeshes::update. Shaders: shaders/render/obstacle.{vert,frag}.
+// The obstacles in the image (docs/conventions.md, "The frame"): the obstacle meshes rasterized through the
+// camera with diffuse shading under the scene's lights (shadowed by the obstacles through the shadow maps)
+// and ambient, into a colour image (RGBA16F, premultiplied: alpha 1 where an obstacle is, the background with
+// alpha 0 elsewhere) and a depth image (D32, render::projectionMatrix of the scene depth range) of the whole
+// frame. Per-frame values travel in a uniform buffer, so the pass is recorded once; the obstacles' positions
+// come from ObstacleMeshes::update. Shaders: shaders/render/obstacle.{vert,frag}.
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <memory>

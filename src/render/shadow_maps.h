@@ -1,14 +1,14 @@
 #pragma once
-// Shadow maps of the obstacles (DESIGN.md §1): one depth pass of the shadow-casting obstacle meshes from each
-// shadow-casting light, into one D32 atlas of square tiles stacked vertically (tile t: rows t·S .. t·S +
-// S−1). Each light's projection is fitted to the casters: across the beam it just holds the shadow-casting
-// obstacles' bounds (plus a border wider than any filter), in depth it runs from their nearest corner to the
-// far side of the scene bounds. Whatever projects outside the tile, or nearer than depth 0, has no caster
-// between it and the light (shaders/common/shadow.glsl counts it lit). A directional light looks along its
-// direction with an orthographic projection; a point light looks from its position toward the casters'
-// centre with the perspective frustum that holds them. Clip conventions: in a light's tile
-// u = 0.5 + 0.5·ndc.x, v = 0.5 − 0.5·ndc.y (row 0 at the top), depth 0 .. 1; the stored depth is the first
-// caster surface along the light ray, without bias. Method and limits: docs/real-time-rendering.md,
+// Shadow maps of the obstacles (docs/conventions.md, "The frame"): one depth pass of the shadow-casting
+// obstacle meshes from each shadow-casting light, into one D32 atlas of square tiles stacked vertically (tile
+// t: rows t·S .. t·S + S−1). Each light's projection is fitted to the casters: across the beam it just holds
+// the shadow-casting obstacles' bounds (plus a border wider than any filter), in depth it runs from their
+// nearest corner to the far side of the scene bounds. Whatever projects outside the tile, or nearer than
+// depth 0, has no caster between it and the light (shaders/common/shadow.glsl counts it lit). A directional
+// light looks along its direction with an orthographic projection; a point light looks from its position
+// toward the casters' centre with the perspective frustum that holds them. Clip conventions: in a light's
+// tile u = 0.5 + 0.5·ndc.x, v = 0.5 − 0.5·ndc.y (row 0 at the top), depth 0 .. 1; the stored depth is the
+// first caster surface along the light ray, without bias. Method and limits: docs/real-time-rendering.md,
 // "Obstacles and shadows".
 #include <cstdint>
 #include <glm/mat4x4.hpp>

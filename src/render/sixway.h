@@ -1,8 +1,8 @@
 #pragma once
-// The six-way frame and the eight lightmap channels (DESIGN.md §3): per billboard, +x = camera right,
-// +y = camera up, +z = away from the camera; "Right" is lit by a white directional light from camera
-// right (direction toward the light d = +x), "Back" from behind the smoke (d = +z), "Front" from the
-// camera's side (d = −z).
+// The six-way frame and the eight lightmap channels (docs/conventions.md, "Six-way frame", "Channels and
+// packing"): per billboard, +x = camera right, +y = camera up, +z = away from the camera; "Right" is lit by a
+// white directional light from camera right (direction toward the light d = +x), "Back" from behind the smoke
+// (d = +z), "Front" from the camera's side (d = −z).
 #include <array>
 #include <glm/vec3.hpp>
 #include <string>

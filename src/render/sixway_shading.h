@@ -1,13 +1,13 @@
 #pragma once
-// Six-way shading of the smoke billboard (DESIGN.md §3): a graphics pass that draws the camera-facing quad
-// over the lightmaps' rectangle and blends the lit smoke premultiplied-over onto a colour target that already
-// holds the background and the obstacles. Any number of directional and point lights (colour, intensity,
-// obstacle shadows from a shadow atlas, tested at the smoke shell), ambient light (constant or L1 spherical
-// harmonics), emission through a colour gradient, Unity's colour/absorption and lightmap remapping controls,
-// and depth-aware compositing against the obstacles' depth buffer. The same pass shades neural lightmaps,
-// reference lightmaps and flipbook frames. Formulas and conventions: docs/real-time-rendering.md,
-// "Six-way shading"; shaders: shaders/render/billboard.vert, sixway_shade.frag, shaders/common/
-// sixway_lighting.glsl, shadow.glsl.
+// Six-way shading of the smoke billboard (docs/conventions.md, "Shading"): a graphics pass that draws the
+// camera-facing quad over the lightmaps' rectangle and blends the lit smoke premultiplied-over onto a colour
+// target that already holds the background and the obstacles. Any number of directional and point lights
+// (colour, intensity, obstacle shadows from a shadow atlas, tested at the smoke shell), ambient light
+// (constant or L1 spherical harmonics), emission through a colour gradient, Unity's colour/absorption and
+// lightmap remapping controls, and depth-aware compositing against the obstacles' depth buffer. The same pass
+// shades neural lightmaps, reference lightmaps and flipbook frames. Formulas and conventions:
+// docs/real-time-rendering.md, "Six-way shading"; shaders: shaders/render/billboard.vert, sixway_shade.frag,
+// shaders/common/sixway_lighting.glsl, shadow.glsl.
 #include <cstdint>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>

@@ -1,5 +1,5 @@
-// eval::LightmapMetrics against PSNRs worked out by hand (DESIGN.md §8): linear values clipped to [0, 1],
-// 10·log10(1 / MSE), masked to the pixels where the reference alpha > 0.01.
+// eval::LightmapMetrics against PSNRs worked out by hand (docs/conventions.md, "Metrics"): linear values
+// clipped to [0, 1], 10·log10(1 / MSE), masked to the pixels where the reference alpha > 0.01.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,6 +1,6 @@
 # `sixway bench` on tiny sizes, then its report's structure: every section, every stage of each, and each stage's
-# median, min and max finite and > 0, one sample per repeat. No timing thresholds (DESIGN.md §7). With python3,
-# tools/results/bench_tables.py must turn the report into markdown tables. Usage:
+# median, min and max finite and > 0, one sample per repeat. No timing thresholds (docs/conventions.md,
+# "Testing"). With python3, tools/results/bench_tables.py must turn the report into markdown tables. Usage:
 #   cmake -DSIXWAY=sixway -DWEIGHTS=tiny.safetensors -DTABLES=bench_tables.py -DOUT=dir -P bench_report.cmake
 cmake_minimum_required(VERSION 3.19)  # string(JSON), IN_LIST
 set(report ${OUT}/bench.json)

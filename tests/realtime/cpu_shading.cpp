@@ -42,7 +42,8 @@ double remap(double value, const render::RemapRange& r) {
 // What transmission t (our units: 1 = white Lambertian under irradiance π) becomes under the controls.
 dvec3 response(double t, double alpha, const render::ShadingControls& c) {
   if (!c.absorption) return t * dvec3(c.color);
-  // DESIGN.md §3 in Unity's units (ours / π), range scaled by alpha for premultiplied lightmaps.
+  // docs/conventions.md, "Shading", in Unity's units (ours / π), range scaled by alpha for premultiplied
+  // lightmaps.
   const double range = (1.0 - 1.0 / kPi) * c.absorptionStrength + 1.0 / kPi;
   const double r = range * (alpha > 0.0 ? alpha : 1.0);
   const double tUnity = t / kPi;

@@ -1,9 +1,9 @@
 #pragma once
-// CPU oracle of the six-way billboard shading (DESIGN.md §3; docs/real-time-rendering.md, "Six-way shading"),
-// in double precision and written from the documented formulas, pixel by pixel: the pixel centre's point of
-// the image plane, the lightmaps there (bilinear, clamp to edge), the shell point, the obstacle test, Unity's
-// remapping, each light with squared six-way weights and its PCF shadow, L1 ambient, the emissive gradient,
-// premultiplied-over the background.
+// CPU oracle of the six-way billboard shading (docs/conventions.md, "Shading"; docs/real-time-rendering.md,
+// "Six-way shading"), in double precision and written from the documented formulas, pixel by pixel: the pixel
+// centre's point of the image plane, the lightmaps there (bilinear, clamp to edge), the shell point, the
+// obstacle test, Unity's remapping, each light with squared six-way weights and its PCF shadow, L1 ambient,
+// the emissive gradient, premultiplied-over the background.
 #include <optional>
 #include <vector>
 

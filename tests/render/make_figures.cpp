@@ -1,8 +1,8 @@
 // The figures and numbers of docs/reference-rendering.md: one frame of a real OpenVDB sequence
-// (tests/data/vdb/smoke_000003.vdb, Blender smoke) baked by the exact baker, path-traced as six-way
-// lightmaps (single and multiple scattering), and path-traced under a directional light beside the six-way
-// shading of its lightmaps (DESIGN.md §3). Writes PNGs (sRGB, premultiplied over black) into the directory
-// given and prints the measured differences.
+// (tests/data/vdb/smoke_000003.vdb, Blender smoke) baked by the exact baker, path-traced as six-way lightmaps
+// (single and multiple scattering), and path-traced under a directional light beside the six-way shading of
+// its lightmaps (docs/conventions.md, "Shading"). Writes PNGs (sRGB, premultiplied over black) into the
+// directory given and prints the measured differences.
 // Usage: render_figures OUT_DIR
 #include <cmath>
 #include <cstdio>
@@ -44,8 +44,8 @@ io::Image strip(const std::vector<std::pair<const io::Image*, int>>& panels, flo
   return out;
 }
 
-// RMS difference of channel a of image A and channel b of image B, and PSNR per DESIGN.md §8 (values clipped
-// to [0, 1]) over the pixels where the reference alpha exceeds 0.01.
+// RMS difference of channel a of image A and channel b of image B, and PSNR per docs/conventions.md,
+// "Metrics" (values clipped to [0, 1]) over the pixels where the reference alpha exceeds 0.01.
 struct Difference {
   double rms, maskedPsnr;
 };
@@ -66,8 +66,8 @@ Difference difference(const io::Image& A, int a, const io::Image& B, int b, cons
   return {std::sqrt(sum / (kSize * kSize)), 10 * std::log10(count / masked)};
 }
 
-// Six-way shading (DESIGN.md §3) of lightmaps under one white directional light of irradiance π: the light
-// direction d in the billboard frame picks A or B per axis, t = Σ d_i² w_i.
+// Six-way shading (docs/conventions.md, "Shading") of lightmaps under one white directional light of
+// irradiance π: the light direction d in the billboard frame picks A or B per axis, t = Σ d_i² w_i.
 io::Image shade(const io::Image& lightmaps, const render::Camera& camera, glm::vec3 toLight) {
   const glm::vec3 d(glm::dot(toLight, camera.right), glm::dot(toLight, camera.up),
                     glm::dot(toLight, camera.forward));

@@ -1,7 +1,7 @@
 #pragma once
-// Image comparison for tests: PSNR (DESIGN.md §8: linear values clipped to [0, 1], 10·log10(1/MSE)),
-// max-abs and per-channel figures. On failure the actual, expected and difference images are written
-// next to the test log (build/tests/artifacts/<suite>.<test>/) so a person can look.
+// Image comparison for tests: PSNR (docs/conventions.md, "Metrics": linear values clipped to [0, 1],
+// 10·log10(1/MSE)), max-abs and per-channel figures. On failure the actual, expected and difference images
+// are written next to the test log (build/tests/artifacts/<suite>.<test>/) so a person can look.
 #include <gtest/gtest.h>
 
 #include <filesystem>

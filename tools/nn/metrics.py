@@ -1,4 +1,4 @@
-"""Held-out metrics of DESIGN.md §8, computed in PyTorch on the decoded linear lightmaps.
+"""Held-out metrics (docs/conventions.md, "Metrics"), computed in PyTorch on the decoded linear lightmaps.
 
 PSNR = 10 log10(1 / MSE) on linear values clipped to [0, 1], the MSE pooled over every pixel and channel of
 every sample of a split: "masked" counts only pixels where the reference alpha > 0.01, "full" every pixel.

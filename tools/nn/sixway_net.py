@@ -40,7 +40,7 @@ DEFAULT_CONFIG = {
     "encoding": "srgb",  # lightmap channels are learnt sRGB-encoded; alpha is always linear
 }
 
-# The four adapters and the two channels of each head (DESIGN.md §3).
+# The four adapters and the two channels of each head (docs/conventions.md, "Channels and packing").
 ADAPTERS = [("left_right", ["left", "right"]), ("top_bottom", ["top", "bottom"]),
             ("front_back", ["front", "back"]), ("alpha_emissive", ["alpha", "emissive"])]
 # Unity packing: lightmap A = (Right, Top, Back, alpha), B = (Left, Bottom, Front, emissive).

@@ -1,6 +1,6 @@
 #pragma once
 // The demo's per-stage GPU time graph: each frame's stage times (the simulation's and the frame pipeline's
-// timestamps) summed into the stages of DESIGN.md §1, with a history for the plots.
+// timestamps) summed into the stages of docs/conventions.md, "The frame", with a history for the plots.
 #include <array>
 #include <deque>
 #include <string>
