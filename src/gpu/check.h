@@ -2,15 +2,15 @@
 // Vulkan call checking: a failed call becomes a GpuError that names the call and the VkResult.
 #include <vulkan/vulkan.h>
 
-#include <stdexcept>
+#include <sixway/errors.h>
 #include <string>
 
 namespace sixway::gpu {
 
 // Any failure of the device or the driver (as opposed to bad user input, see io::InputError).
-class GpuError : public std::runtime_error {
+class GpuError : public Error {
  public:
-  using std::runtime_error::runtime_error;
+  using Error::Error;
 };
 
 // A buffer or image that the device cannot hold or bind, refused before allocation. what() ends in

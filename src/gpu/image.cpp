@@ -122,12 +122,23 @@ Image& Image::operator=(Image&& other) noexcept {
     image_ = std::exchange(other.image_, VK_NULL_HANDLE);
     memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
     view_ = std::exchange(other.view_, VK_NULL_HANDLE);
+    owned_ = std::exchange(other.owned_, true);
   }
   return *this;
 }
 
+Image Image::borrowed(const Context& context, VkImage image, VkImageView view, const ImageDesc& desc) {
+  Image borrowed;
+  borrowed.context_ = &context;
+  borrowed.desc_ = desc;
+  borrowed.image_ = image;
+  borrowed.view_ = view;
+  borrowed.owned_ = false;
+  return borrowed;
+}
+
 void Image::release() {
-  if (!context_) return;
+  if (!context_ || !owned_) return;
   if (view_) vkDestroyImageView(context_->device(), view_, nullptr);
   if (image_) vkDestroyImage(context_->device(), image_, nullptr);
   if (memory_) {

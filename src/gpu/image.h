@@ -24,6 +24,9 @@ class Image {
  public:
   Image() = default;
   Image(const Context& context, const ImageDesc& desc);
+  // An image and view the caller owns (an engine's render target, kept in VK_IMAGE_LAYOUT_GENERAL while
+  // sixway uses it): nothing is created or destroyed.
+  static Image borrowed(const Context& context, VkImage image, VkImageView view, const ImageDesc& desc);
   ~Image();
   Image(Image&& other) noexcept;
   Image& operator=(Image&& other) noexcept;
@@ -51,6 +54,7 @@ class Image {
   VkImage image_ = VK_NULL_HANDLE;
   VkDeviceMemory memory_ = VK_NULL_HANDLE;
   VkImageView view_ = VK_NULL_HANDLE;
+  bool owned_ = true;
 };
 
 uint32_t bytesPerTexel(VkFormat format);

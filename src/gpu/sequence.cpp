@@ -44,33 +44,36 @@ Sequence::Sequence(const Context& context, uint32_t maxStages) : context_(&conte
   SIXWAY_VK(vkCreateCommandPool(device, &poolInfo, nullptr, &pool_));
   VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
   allocInfo.commandPool = pool_;
-  allocInfo.level = VK_COMMAND_BUFFER_LEVEL_SECONDARY;
-  allocInfo.commandBufferCount = 1;
-  SIXWAY_VK(vkAllocateCommandBuffers(device, &allocInfo, &commands_));
   allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  allocInfo.commandBufferCount = 1;
   SIXWAY_VK(vkAllocateCommandBuffers(device, &allocInfo, &primary_));
   VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
   SIXWAY_VK(vkCreateFence(device, &fenceInfo, nullptr, &fence_));
 
-  // Simultaneous use: an engine may have the same frame's work in flight twice (frames in flight).
+  // One copy of the work per frame in flight, each with its own timestamps: frame n runs slot n mod K, whose
+  // last run (frame n − K) has completed, so no command buffer or query is in use twice at once.
+  slots_.resize(context.framesInFlight());
+  resolveEachTimestamp_ = context.driver().driverID == VK_DRIVER_ID_MESA_LLVMPIPE;
   VkCommandBufferInheritanceInfo inheritance{VK_STRUCTURE_TYPE_COMMAND_BUFFER_INHERITANCE_INFO};
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-  begin.flags = VK_COMMAND_BUFFER_USAGE_SIMULTANEOUS_USE_BIT;
   begin.pInheritanceInfo = &inheritance;
-  SIXWAY_VK(vkBeginCommandBuffer(commands_, &begin));
-  if (context.capabilities().timestamps) {
+  for (Slot& slot : slots_) {
+    allocInfo.level = VK_COMMAND_BUFFER_LEVEL_SECONDARY;
+    SIXWAY_VK(vkAllocateCommandBuffers(device, &allocInfo, &slot.commands));
+    SIXWAY_VK(vkBeginCommandBuffer(slot.commands, &begin));
+    if (!context.capabilities().timestamps) continue;
     VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
-    queryInfo.queryCount = 2 * maxStages_ + 1;  // the last: resolveTimestampNow()'s scratch
-    SIXWAY_VK(vkCreateQueryPool(device, &queryInfo, nullptr, &queries_));
-    vkCmdResetQueryPool(commands_, queries_, 0, 2 * maxStages_ + 1);
-    resolveEachTimestamp_ = context.driver().driverID == VK_DRIVER_ID_MESA_LLVMPIPE;
+    queryInfo.queryCount = 2 * maxStages_ + 1;  // the last: writeTimestamp()'s scratch
+    SIXWAY_VK(vkCreateQueryPool(device, &queryInfo, nullptr, &slot.queries));
+    vkCmdResetQueryPool(slot.commands, slot.queries, 0, 2 * maxStages_ + 1);
   }
 }
 
 Sequence::~Sequence() {
   VkDevice device = context_->device();
-  if (queries_) vkDestroyQueryPool(device, queries_, nullptr);
+  for (const Slot& slot : slots_)
+    if (slot.queries) vkDestroyQueryPool(device, slot.queries, nullptr);
   vkDestroyFence(device, fence_, nullptr);
   vkDestroyCommandPool(device, pool_, nullptr);
 }
@@ -96,17 +99,19 @@ void Sequence::endStage() {
 }
 
 void Sequence::writeTimestamp(uint32_t query) {
-  if (!queries_) return;
-  vkCmdWriteTimestamp2(commands_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_, query);
-  if (!resolveEachTimestamp_) return;
-  // Lavapipe (Mesa 22.3) bins a timestamp into llvmpipe's current scene, which takes the time only when the
-  // scene is next flushed, and a timestamp write flushes the scene *before* binning its own query. Compute
-  // dispatches run at once, so a stage's opening timestamp was taken after the stage's work: a path-trace
-  // dispatch of 4.8 s measured 17 ms. A second timestamp right after flushes the first one's scene now. The
-  // scratch query is reset before each use (a query is written once between resets).
-  const uint32_t scratch = 2 * maxStages_;
-  vkCmdResetQueryPool(commands_, queries_, scratch, 1);
-  vkCmdWriteTimestamp2(commands_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_, scratch);
+  for (const Slot& slot : slots_) {
+    if (!slot.queries) return;
+    vkCmdWriteTimestamp2(slot.commands, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.queries, query);
+    if (!resolveEachTimestamp_) continue;
+    // Lavapipe (Mesa 22.3) bins a timestamp into llvmpipe's current scene, which takes the time only when the
+    // scene is next flushed, and a timestamp write flushes the scene *before* binning its own query. Compute
+    // dispatches run at once, so a stage's opening timestamp was taken after the stage's work: a path-trace
+    // dispatch of 4.8 s measured 17 ms. A second timestamp right after flushes the first one's scene now. The
+    // scratch query is reset before each use (a query is written once between resets).
+    const uint32_t scratch = 2 * maxStages_;
+    vkCmdResetQueryPool(slot.commands, slot.queries, scratch, 1);
+    vkCmdWriteTimestamp2(slot.commands, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.queries, scratch);
+  }
 }
 
 void Sequence::noteFrameParameters(const Binding& binding) {
@@ -145,7 +150,7 @@ void Sequence::barrierIfHazard(const Touch& touch) {
   if (hazard) {
     // One global memory barrier orders all earlier writes before all later accesses: between
     // dependent passes the GPU drains anyway, and it keeps the bookkeeping to two sets.
-    recordFullBarrier(commands_);
+    for (const Slot& slot : slots_) recordFullBarrier(slot.commands);
     ++barriers_;
     writtenSinceBarrier_.clear();
     readSinceBarrier_.clear();
@@ -154,7 +159,8 @@ void Sequence::barrierIfHazard(const Touch& touch) {
   writtenSinceBarrier_.insert(touch.writes.begin(), touch.writes.end());
 }
 
-void Sequence::pushBindings(const Pipeline& pipeline, const std::vector<Binding>& bindings) {
+void Sequence::pushBindings(VkCommandBuffer commands, const Pipeline& pipeline,
+                            const std::vector<Binding>& bindings) {
   const auto& types = pipeline.bindings();
   if (bindings.size() != types.size())
     throw GpuError(pipeline.name() + ": " + std::to_string(bindings.size()) +
@@ -200,7 +206,7 @@ void Sequence::pushBindings(const Pipeline& pipeline, const std::vector<Binding>
       w.pImageInfo = &imageInfos[i];
     }
   }
-  context_->cmdPushDescriptorSet(commands_, pipeline.bindPoint(), pipeline.layout(), 0,
+  context_->cmdPushDescriptorSet(commands, pipeline.bindPoint(), pipeline.layout(), 0,
                                  static_cast<uint32_t>(writes.size()), writes.data());
 }
 
@@ -225,12 +231,14 @@ void Sequence::dispatch(const Pipeline& pipeline, const std::vector<Binding>& bi
     noteFrameParameters(b);
   }
   barrierIfHazard(touch);
-  vkCmdBindPipeline(commands_, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
-  pushBindings(pipeline, bindings);
-  if (!pushConstants.empty())
-    vkCmdPushConstants(commands_, pipeline.layout(), pipeline.stages(), 0,
-                       static_cast<uint32_t>(pushConstants.size()), pushConstants.data());
-  if (groupsX && groupsY && groupsZ) vkCmdDispatch(commands_, groupsX, groupsY, groupsZ);
+  for (const Slot& slot : slots_) {
+    vkCmdBindPipeline(slot.commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
+    pushBindings(slot.commands, pipeline, bindings);
+    if (!pushConstants.empty())
+      vkCmdPushConstants(slot.commands, pipeline.layout(), pipeline.stages(), 0,
+                         static_cast<uint32_t>(pushConstants.size()), pushConstants.data());
+    if (groupsX && groupsY && groupsZ) vkCmdDispatch(slot.commands, groupsX, groupsY, groupsZ);
+  }
 }
 
 void Sequence::dispatchLinear(const Pipeline& pipeline, const std::vector<Binding>& bindings,
@@ -288,40 +296,42 @@ void Sequence::render(const RenderTargets& targets, std::span<const Draw> draws)
   info.colorAttachmentCount = static_cast<uint32_t>(colors.size());
   info.pColorAttachments = colors.data();
   info.pDepthAttachment = targets.depth ? &depth : nullptr;
-  vkCmdBeginRendering(commands_, &info);
-  for (const Draw& draw : draws) {
-    if (draw.pipeline->bindPoint() != VK_PIPELINE_BIND_POINT_GRAPHICS)
-      throw GpuError(draw.pipeline->name() + ": render needs a graphics pipeline");
-    if (draw.pushConstants.size() != draw.pipeline->pushConstantBytes())
-      throw GpuError(draw.pipeline->name() + ": push constant size does not match the pipeline");
-    const VkRect2D area = draw.area.value_or(VkRect2D{{0, 0}, {width, height}});
-    // Negative height: clip-space +y is up and image row 0 is the top, as in the rest of sixway.
-    VkViewport viewport{float(area.offset.x),
-                        float(area.offset.y + area.extent.height),
-                        float(area.extent.width),
-                        -float(area.extent.height),
-                        0.0f,
-                        1.0f};
-    vkCmdSetViewport(commands_, 0, 1, &viewport);
-    vkCmdSetScissor(commands_, 0, 1, &area);
-    vkCmdBindPipeline(commands_, VK_PIPELINE_BIND_POINT_GRAPHICS, draw.pipeline->handle());
-    pushBindings(*draw.pipeline, draw.bindings);
-    if (!draw.pushConstants.empty())
-      vkCmdPushConstants(commands_, draw.pipeline->layout(), draw.pipeline->stages(), 0,
-                         static_cast<uint32_t>(draw.pushConstants.size()), draw.pushConstants.data());
-    if (draw.vertices) {
-      VkBuffer buffer = draw.vertices->handle();
-      VkDeviceSize offset = 0;
-      vkCmdBindVertexBuffers(commands_, 0, 1, &buffer, &offset);
+  for (const Slot& slot : slots_) {
+    vkCmdBeginRendering(slot.commands, &info);
+    for (const Draw& draw : draws) {
+      if (draw.pipeline->bindPoint() != VK_PIPELINE_BIND_POINT_GRAPHICS)
+        throw GpuError(draw.pipeline->name() + ": render needs a graphics pipeline");
+      if (draw.pushConstants.size() != draw.pipeline->pushConstantBytes())
+        throw GpuError(draw.pipeline->name() + ": push constant size does not match the pipeline");
+      const VkRect2D area = draw.area.value_or(VkRect2D{{0, 0}, {width, height}});
+      // Negative height: clip-space +y is up and image row 0 is the top, as in the rest of sixway.
+      VkViewport viewport{float(area.offset.x),
+                          float(area.offset.y + area.extent.height),
+                          float(area.extent.width),
+                          -float(area.extent.height),
+                          0.0f,
+                          1.0f};
+      vkCmdSetViewport(slot.commands, 0, 1, &viewport);
+      vkCmdSetScissor(slot.commands, 0, 1, &area);
+      vkCmdBindPipeline(slot.commands, VK_PIPELINE_BIND_POINT_GRAPHICS, draw.pipeline->handle());
+      pushBindings(slot.commands, *draw.pipeline, draw.bindings);
+      if (!draw.pushConstants.empty())
+        vkCmdPushConstants(slot.commands, draw.pipeline->layout(), draw.pipeline->stages(), 0,
+                           static_cast<uint32_t>(draw.pushConstants.size()), draw.pushConstants.data());
+      if (draw.vertices) {
+        VkBuffer buffer = draw.vertices->handle();
+        VkDeviceSize offset = 0;
+        vkCmdBindVertexBuffers(slot.commands, 0, 1, &buffer, &offset);
+      }
+      if (draw.indices) {
+        vkCmdBindIndexBuffer(slot.commands, draw.indices->handle(), 0, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(slot.commands, draw.count, draw.instances, 0, 0, 0);
+      } else {
+        vkCmdDraw(slot.commands, draw.count, draw.instances, 0, 0);
+      }
     }
-    if (draw.indices) {
-      vkCmdBindIndexBuffer(commands_, draw.indices->handle(), 0, VK_INDEX_TYPE_UINT32);
-      vkCmdDrawIndexed(commands_, draw.count, draw.instances, 0, 0, 0);
-    } else {
-      vkCmdDraw(commands_, draw.count, draw.instances, 0, 0);
-    }
+    vkCmdEndRendering(slot.commands);
   }
-  vkCmdEndRendering(commands_);
 }
 
 void Sequence::fill(const Buffer& buffer, uint32_t word) {
@@ -329,7 +339,7 @@ void Sequence::fill(const Buffer& buffer, uint32_t word) {
   Touch touch;
   addTouch(touch, writes(buffer));
   barrierIfHazard(touch);
-  vkCmdFillBuffer(commands_, buffer.handle(), 0, VK_WHOLE_SIZE, word);
+  for (const Slot& slot : slots_) vkCmdFillBuffer(slot.commands, buffer.handle(), 0, VK_WHOLE_SIZE, word);
 }
 
 void Sequence::copy(const Buffer& source, const Buffer& destination) {
@@ -341,13 +351,13 @@ void Sequence::copy(const Buffer& source, const Buffer& destination) {
   addTouch(touch, writes(destination));
   barrierIfHazard(touch);
   VkBufferCopy region{0, 0, source.size()};
-  vkCmdCopyBuffer(commands_, source.handle(), destination.handle(), 1, &region);
+  for (const Slot& slot : slots_) vkCmdCopyBuffer(slot.commands, source.handle(), destination.handle(), 1, &region);
 }
 
 void Sequence::finish() {
   requireRecording("finish");
   if (stageOpen_) throw GpuError("stage '" + stageNames_.back() + "' was not ended");
-  SIXWAY_VK(vkEndCommandBuffer(commands_));
+  for (const Slot& slot : slots_) SIXWAY_VK(vkEndCommandBuffer(slot.commands));
   finished_ = true;
 }
 
@@ -370,7 +380,8 @@ std::span<const std::byte> Sequence::readback(const Buffer& source, uint64_t fra
 
 void Sequence::record(VkCommandBuffer commands, uint64_t frame) {
   if (!finished_) finish();
-  if (recorded_++ > 0) collectTimes(false);  // an earlier execution's, if it has completed
+  const Slot& slot = slots_[frame % slots_.size()];
+  if (slot.executions++ > 0) collectTimes(slot, false);  // its last frame's: complete by the contract
   recordFullBarrier(commands);  // after the caller's earlier work, and before our last frame's reads end
   if (!frameParameters_.empty()) {
     constexpr uint64_t kMaxUpdate = 65536;  // vkCmdUpdateBuffer's limit per command
@@ -379,7 +390,7 @@ void Sequence::record(VkCommandBuffer commands, uint64_t frame) {
         vkCmdUpdateBuffer(commands, f.buffer, offset, std::min(kMaxUpdate, f.bytes - offset), f.values + offset);
     recordFullBarrier(commands);
   }
-  vkCmdExecuteCommands(commands, 1, &commands_);
+  vkCmdExecuteCommands(commands, 1, &slot.commands);
   recordFullBarrier(commands);
   if (readbacks_.empty()) return;
   for (const Readback& r : readbacks_) {
@@ -411,15 +422,15 @@ void Sequence::submit() {
   SIXWAY_VK(vkQueueSubmit(context_->queue(), 1, &submitInfo, fence_));
   context_->countHostWait();
   SIXWAY_VK(vkWaitForFences(context_->device(), 1, &fence_, VK_TRUE, UINT64_MAX));
-  collectTimes(true);
+  collectTimes(slots_[(submissions_ - 1) % slots_.size()], true);
 }
 
-void Sequence::collectTimes(bool wait) {
+void Sequence::collectTimes(const Slot& slot, bool wait) {
   if (wait) times_.clear();
-  if (!queries_ || stageNames_.empty()) return;
+  if (!slot.queries || stageNames_.empty()) return;
   std::vector<uint64_t> ticks(2 * stageNames_.size());
   const VkResult result = vkGetQueryPoolResults(
-      context_->device(), queries_, 0, static_cast<uint32_t>(ticks.size()), ticks.size() * sizeof(uint64_t),
+      context_->device(), slot.queries, 0, static_cast<uint32_t>(ticks.size()), ticks.size() * sizeof(uint64_t),
       ticks.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | (wait ? VK_QUERY_RESULT_WAIT_BIT : 0));
   if (result == VK_NOT_READY) return;  // not executed yet, or still running: keep the last times
   SIXWAY_VK(result);

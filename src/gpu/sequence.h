@@ -142,8 +142,9 @@ class Sequence {
   // Records the sequence into `commands`, a primary command buffer being recorded outside a render pass, as
   // frame number `frame` (any increasing count): the frame-parameter buffers it binds are written into the
   // command buffer from their host copies (MemoryKind::FrameParameters), the work runs, and each readback
-  // source is copied into the host slot of `frame`. Full barriers open and close it. Nothing waits: the stage
-  // times of an earlier execution are collected now if they are ready.
+  // source is copied into the host slot of `frame`. Full barriers open and close it. Nothing waits: the
+  // work is recorded once per frame in flight, and frame n runs the copy that frame n − framesInFlight ran,
+  // whose stage times are collected now.
   void record(VkCommandBuffer commands, uint64_t frame);
   // Copies `source` (a device buffer) to the host after every execution, for readback().
   void addReadback(const Buffer& source);
@@ -160,18 +161,23 @@ class Sequence {
   };
   void addTouch(Touch& touch, const Binding& binding) const;
   void barrierIfHazard(const Touch& touch);
-  void pushBindings(const Pipeline& pipeline, const std::vector<Binding>& bindings);
+  void pushBindings(VkCommandBuffer commands, const Pipeline& pipeline, const std::vector<Binding>& bindings);
   void requireRecording(const char* what) const;
   void writeTimestamp(uint32_t query);
-  void collectTimes(bool wait);
+  struct Slot {
+    VkCommandBuffer commands = VK_NULL_HANDLE;  // secondary: the recorded work
+    VkQueryPool queries = VK_NULL_HANDLE;
+    mutable uint64_t executions = 0;
+  };
+  void collectTimes(const Slot& slot, bool wait);
   void noteFrameParameters(const Binding& binding);
 
   const Context* context_;
   VkCommandPool pool_ = VK_NULL_HANDLE;
-  VkCommandBuffer commands_ = VK_NULL_HANDLE;  // secondary: the recorded work
-  VkCommandBuffer primary_ = VK_NULL_HANDLE;   // submit()'s command buffer around it
+  std::vector<Slot> slots_;                  // Context::framesInFlight() copies of the work
+  VkCommandBuffer primary_ = VK_NULL_HANDLE;  // submit()'s command buffer around it
   VkFence fence_ = VK_NULL_HANDLE;
-  uint64_t submissions_ = 0, recorded_ = 0;
+  uint64_t submissions_ = 0;
   // Frame-parameter buffers bound by the work: handle, host copy, bytes (a Buffer may move; these do not).
   struct FrameParameters {
     VkBuffer buffer;
@@ -185,7 +191,6 @@ class Sequence {
     std::vector<Buffer> slots;  // host memory, one per frame in flight + 1
   };
   std::vector<Readback> readbacks_;
-  VkQueryPool queries_ = VK_NULL_HANDLE;
   uint32_t maxStages_;
   std::vector<std::string> stageNames_;
   bool stageOpen_ = false;

@@ -33,6 +33,12 @@ render::Volume SimulatedVolumes::volume(int index) {
   return volume_.view();
 }
 
+void SimulatedVolumes::recordFrame(VkCommandBuffer commands, uint64_t frame) {
+  simulation_.record(commands, frame);
+  exportSmoke_.record(commands, frame);
+  ++simulated_;
+}
+
 std::optional<render::Volume> SimulatedVolumes::frame(int index) {
   const render::Volume v = volume(index);
   if (simulation_.report().maxDensity <= 0.0f) return std::nullopt;

@@ -31,6 +31,11 @@ class SimulatedVolumes : public render::VolumeSequence {
 
   // The volume of frame `index` even when it is empty; indices in increasing order.
   render::Volume volume(int index);
+  // Records the next frame's simulation and the smoke's export into the volume into `commands`, a caller's
+  // command buffer, as frame `frame`; nothing waits (sim::Simulation::record).
+  void recordFrame(VkCommandBuffer commands, uint64_t frame);
+  // The volume the frames are exported into (its buffers stay the same).
+  render::Volume currentVolume() const { return volume_.view(); }
   // The simulation itself (e.g. its velocity, lbm().macro(), for `sixway dataset`'s motion field).
   const sim::Simulation& simulation() const { return simulation_; }
   sim::Simulation& simulation() { return simulation_; }

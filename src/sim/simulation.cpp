@@ -55,7 +55,10 @@ void Simulation::steerObstacle(size_t obstacle, glm::vec3 target) {
   io::Motion motion;
   motion.keyframes = {{float(now), from}, {float(now + duration), target}};
   obstacles_->setMotion(obstacle, motion);
-  sequences_.clear();  // they hold the old motion's swept box (forces, the LBM's boundary dispatch)
+  // The sequences hold the old motion's swept box (forces, the LBM's boundary dispatch); frames an engine
+  // has in flight may still run them.
+  for (auto& [key, sequence] : sequences_) retired_.emplace_back(lastRecordedFrame_, std::move(sequence));
+  sequences_.clear();
 }
 
 float Simulation::maxInletStrength() const {
@@ -104,54 +107,97 @@ gpu::Sequence& Simulation::sequenceFor(uint32_t steps, int parity) {
   speedStats_->record(sequence, lbm_->macro(), uint32_t(lbm_->cells()));
   densityStats_->record(sequence, smoke_->smoke(), uint32_t(smoke_->cells()));
   sequence.endStage();
+  sequence.addReadback(speedStats_->resultBuffer());
+  sequence.addReadback(densityStats_->resultBuffer());
+  if (obstacleCount > 0) sequence.addReadback(forces_);
   sequence.finish();
   return sequence;
+}
+
+void Simulation::fillStepParameters(uint32_t steps) {
+  auto* params = static_cast<StepParams*>(params_.mapped());
+  for (uint32_t s = 0; s < steps; ++s) {
+    std::memset(&params[s], 0, sizeof(StepParams));
+    obstacles_->fill(params[s], step_ + s);
+  }
+}
+
+void Simulation::summarize(uint64_t firstStep, uint32_t steps, const std::vector<gpu::StageTime>& times,
+                           const glm::vec4* forces, const gpu::Stats& speed, const gpu::Stats& density) {
+  AdvanceReport report;
+  report.firstStep = firstStep;
+  for (const gpu::StageTime& t : times) {
+    double* total = t.name == "obstacles" ? &report.times.obstacles
+                    : t.name == "forces"  ? &report.times.forces
+                    : t.name == "lbm"     ? &report.times.lbm
+                    : t.name == "smoke"   ? &report.times.smoke
+                                          : &report.times.watchdog;
+    *total += t.milliseconds;
+  }
+  const size_t obstacleCount = obstacles_->obstacleCount();
+  if (forces)
+    for (uint32_t s = 0; s < steps; ++s) {
+      report.forces.emplace_back();
+      for (size_t o = 0; o < obstacleCount; ++o)
+        report.forces.back().push_back(glm::vec3(forces[s * kMaxObstacles + o]));
+    }
+  const float smokeCell = units_.cellSize / float(scene_.grid.smokeUpres);
+  report.smokeMass = double(density.sum) * smokeCell * smokeCell * smokeCell;
+  report.minDensity = density.minimum;
+  report.maxDensity = density.maximum;
+  report.maxLatticeSpeed = speed.maxAbs;
+  report.maxSpeed = speed.maxAbs / units_.velocityScale;
+  report_ = std::move(report);
+
+  const WatchdogReport watchdog = checkWatchdog(speed, density, firstStep + steps, scene_.grid.size,
+                                                smoke_->size(), scene_.grid.origin, units_.cellSize);
+  if (watchdog.tripped) throw WatchdogError(watchdog.message);
+}
+
+void Simulation::record(VkCommandBuffer commands, uint64_t frame) {
+  checkRecordedFrame(frame);
+  const uint32_t steps = uint32_t(units_.stepsPerFrame);
+  fillStepParameters(steps);
+  gpu::Sequence& sequence = sequenceFor(steps, int(step_ % 2));
+  sequence.record(commands, frame);
+  recorded_.push_back({frame, step_, steps, &sequence});
+  lastRecordedFrame_ = frame;
+  step_ += steps;
+}
+
+void Simulation::checkRecordedFrame(uint64_t frame) {
+  const uint64_t inFlight = context_->framesInFlight();
+  // Replaced sequences no frame in flight can still be running.
+  std::erase_if(retired_, [&](const auto& r) { return r.first + inFlight < frame; });
+  while (!recorded_.empty() && recorded_.front().frame + inFlight <= frame) {
+    const RecordedFrame done = recorded_.front();
+    recorded_.erase(recorded_.begin());
+    auto stats = [&](const gpu::ReduceStats& reduce) {
+      gpu::Stats value;
+      std::memcpy(&value, done.sequence->readback(reduce.resultBuffer(), done.frame).data(), sizeof(value));
+      return value;
+    };
+    const glm::vec4* forces =
+        obstacles_->obstacleCount() > 0
+            ? reinterpret_cast<const glm::vec4*>(done.sequence->readback(forces_, done.frame).data())
+            : nullptr;
+    summarize(done.firstStep, done.steps, done.sequence->stageTimes(), forces, stats(*speedStats_),
+              stats(*densityStats_));
+  }
 }
 
 void Simulation::advance(uint32_t steps) {
   while (steps > 0) {
     const uint32_t n = std::min(steps, capacity_);
-    auto* params = static_cast<StepParams*>(params_.mapped());
-    for (uint32_t s = 0; s < n; ++s) {
-      std::memset(&params[s], 0, sizeof(StepParams));
-      obstacles_->fill(params[s], step_ + s);
-    }
+    fillStepParameters(n);
     gpu::Sequence& sequence = sequenceFor(n, int(step_ % 2));
     sequence.submit();
-
-    AdvanceReport report;
-    report.firstStep = step_;
+    const uint64_t firstStep = step_;
     step_ += n;
-    for (const gpu::StageTime& t : sequence.stageTimes()) {
-      double* total = t.name == "obstacles" ? &report.times.obstacles
-                      : t.name == "forces"  ? &report.times.forces
-                      : t.name == "lbm"     ? &report.times.lbm
-                      : t.name == "smoke"   ? &report.times.smoke
-                                            : &report.times.watchdog;
-      *total += t.milliseconds;
-    }
-    const size_t obstacleCount = obstacles_->obstacleCount();
-    if (obstacleCount > 0) {
-      const std::vector<glm::vec4> forces = forces_.download<glm::vec4>();
-      for (uint32_t s = 0; s < n; ++s) {
-        report.forces.emplace_back();
-        for (size_t o = 0; o < obstacleCount; ++o)
-          report.forces.back().push_back(glm::vec3(forces[s * kMaxObstacles + o]));
-      }
-    }
-    const gpu::Stats speed = speedStats_->result();
-    const gpu::Stats density = densityStats_->result();
-    const float smokeCell = units_.cellSize / float(scene_.grid.smokeUpres);
-    report.smokeMass = double(density.sum) * smokeCell * smokeCell * smokeCell;
-    report.minDensity = density.minimum;
-    report.maxDensity = density.maximum;
-    report.maxLatticeSpeed = speed.maxAbs;
-    report.maxSpeed = speed.maxAbs / units_.velocityScale;
-    report_ = std::move(report);
-
-    const WatchdogReport watchdog = checkWatchdog(speed, density, step_, scene_.grid.size, smoke_->size(),
-                                                  scene_.grid.origin, units_.cellSize);
-    if (watchdog.tripped) throw WatchdogError(watchdog.message);
+    std::vector<glm::vec4> forces;
+    if (obstacles_->obstacleCount() > 0) forces = forces_.download<glm::vec4>();
+    summarize(firstStep, n, sequence.stageTimes(), forces.empty() ? nullptr : forces.data(),
+              speedStats_->result(), densityStats_->result());
     steps -= n;
   }
 }

@@ -12,16 +12,13 @@
 
 #include "gpu/buffer.h"
 #include "gpu/reduce_stats.h"
-#include "io/scene.h"
+#include "gpu/sequence.h"
 #include "io/dense_grid.h"
+#include "io/scene.h"
 #include "sim/lattice_units.h"
 #include "sim/lbm_solver.h"
 #include "sim/obstacle_set.h"
 #include "sim/smoke_transport.h"
-
-namespace sixway::gpu {
-class Sequence;
-}
 
 namespace sixway::sim {
 
@@ -47,6 +44,11 @@ class Simulation {
 
   // Runs `steps` lattice steps (in submissions of at most stepsPerFrame). Throws WatchdogError.
   void advance(uint32_t steps);
+  // Records one frame's steps (io::lbmStepsPerFrame) into `commands`, a caller's command buffer, as frame
+  // `frame` (gpu::Sequence::record): nothing waits. The measurements of the frame recorded
+  // Context::framesInFlight() frames earlier, complete by then, become report(), and the watchdog checks
+  // them: a WatchdogError arrives that many frames late.
+  void record(VkCommandBuffer commands, uint64_t frame);
   // Sets the velocity (m/s) and density (ρ/ρ₀) of every lattice cell, x fastest, and the
   // populations to their equilibrium; for analytic initial conditions.
   void setFlow(const std::vector<glm::vec3>& velocity, const std::vector<float>& density);
@@ -82,6 +84,11 @@ class Simulation {
 
  private:
   gpu::Sequence& sequenceFor(uint32_t steps, int parity);
+  void fillStepParameters(uint32_t steps);
+  // report_ from the measurements of `steps` steps from `firstStep`; throws WatchdogError when they trip it.
+  void summarize(uint64_t firstStep, uint32_t steps, const std::vector<gpu::StageTime>& times,
+                 const glm::vec4* forces, const gpu::Stats& speed, const gpu::Stats& density);
+  void checkRecordedFrame(uint64_t frame);
 
   const gpu::Context* context_;
   io::Scene scene_;
@@ -93,6 +100,16 @@ class Simulation {
   uint32_t capacity_;  // steps per submission
   gpu::Buffer params_, forces_;
   std::map<std::pair<uint32_t, int>, std::unique_ptr<gpu::Sequence>> sequences_;
+  // record(): what each recent frame ran (its results come back framesInFlight frames later), and the
+  // sequences a steered obstacle replaced, kept until no frame in flight can use them.
+  struct RecordedFrame {
+    uint64_t frame, firstStep;
+    uint32_t steps;
+    gpu::Sequence* sequence;
+  };
+  std::vector<RecordedFrame> recorded_;
+  std::vector<std::pair<uint64_t, std::unique_ptr<gpu::Sequence>>> retired_;
+  uint64_t lastRecordedFrame_ = 0;
   uint64_t step_ = 0;
   float inletStrength_ = 1.0f;
   AdvanceReport report_;

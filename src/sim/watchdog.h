@@ -2,16 +2,16 @@
 // Stops a diverging simulation with a message that names the step and the place, instead of
 // letting NaN or runaway velocities turn into garbage frames.
 #include <glm/glm.hpp>
-#include <stdexcept>
+#include <sixway/errors.h>
 #include <string>
 
 #include "gpu/reduce_stats.h"
 
 namespace sixway::sim {
 
-class WatchdogError : public std::runtime_error {
+class WatchdogError : public Error {
  public:
-  using std::runtime_error::runtime_error;
+  using Error::Error;
 };
 
 // Above this lattice speed (cells/step) the D3Q19 equilibrium, exact only to O(u²) with

@@ -23,7 +23,7 @@ std::vector<std::string> extensionNames(const std::vector<const char*>& names) {
 
 class EngineRecordingTest : public GpuTest {
  protected:
-  // The fixture's device, described as an engine would describe its own.
+  // The fixture's device, described as an engine would describe its own, with three frames in flight.
   gpu::ExternalDevice engineDevice(gpu::DeviceFeatures& features) {
     const gpu::Context& c = context();
     features = gpu::DeviceFeatures::toEnable(gpu::DeviceFeatures::supportedBy(c.physicalDevice()));
@@ -34,7 +34,7 @@ class EngineRecordingTest : public GpuTest {
             c.queueFamily(),
             extensionNames(gpu::requiredDeviceExtensions()),
             features.chain(),
-            2};
+            3};
   }
 };
 

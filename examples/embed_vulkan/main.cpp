@@ -1,0 +1,473 @@
+// A minimal "engine": it owns its Vulkan instance and device, draws its own scene (a floor and a box) into a
+// colour and a depth image, and composites sixway's smoke over it through the public API, two frames in
+// flight, headless. Writes the last frame as a PNG; fails on any validation message.
+//   embed_vulkan --scene S.json --weights W.safetensors [--frames N] --out frame.png
+#include <sixway/device.h>
+#include <sixway/errors.h>
+#include <sixway/smoke_renderer.h>
+#include <sixway/smoke_simulation.h>
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#include <stb/stb_image_write.h>
+#include <vulkan/vulkan.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/packing.hpp>
+#include <glm/mat4x4.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace {
+
+void check(VkResult result, const char* call) {
+  if (result != VK_SUCCESS) throw std::runtime_error(std::string(call) + " failed (" + std::to_string(result) + ")");
+}
+#define VK(call) check(call, #call)
+
+std::atomic<int> validationMessages{0};
+
+VKAPI_ATTR VkBool32 VKAPI_CALL onMessage(VkDebugUtilsMessageSeverityFlagBitsEXT,
+                                         VkDebugUtilsMessageTypeFlagsEXT, const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                         void*) {
+  ++validationMessages;
+  std::fprintf(stderr, "validation: %s\n", data->pMessage);
+  return VK_FALSE;
+}
+
+std::vector<uint32_t> readSpirv(const std::string& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) throw std::runtime_error(path + ": cannot open");
+  std::vector<uint32_t> words(size_t(in.tellg()) / 4);
+  in.seekg(0);
+  in.read(reinterpret_cast<char*>(words.data()), std::streamsize(words.size() * 4));
+  return words;
+}
+
+struct Options {
+  std::string scene, weights, out;
+  int frames = 6;
+};
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string key = argv[i], value = argv[i + 1];
+    if (key == "--scene") o.scene = value;
+    else if (key == "--weights") o.weights = value;
+    else if (key == "--out") o.out = value;
+    else if (key == "--frames") o.frames = std::stoi(value);
+    else throw std::runtime_error("unknown option " + key);
+  }
+  if (o.scene.empty() || o.weights.empty() || o.out.empty() || o.frames < 1)
+    throw std::runtime_error("usage: embed_vulkan --scene S.json --weights W.safetensors [--frames N] --out F.png");
+  return o;
+}
+
+// The engine's Vulkan objects: instance with validation, one device, one queue.
+struct Engine {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+  VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  VkQueue queue = VK_NULL_HANDLE;
+  uint32_t queueFamily = 0;
+  std::vector<std::string> extensions;
+  std::unique_ptr<sixway::DeviceRequirements> requirements;  // its feature chain was given to vkCreateDevice
+
+  Engine() {
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.pApplicationName = "embed_vulkan";
+    app.apiVersion = VK_API_VERSION_1_3;
+    const char* layer = "VK_LAYER_KHRONOS_validation";
+    const char* debugUtils = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+    VkDebugUtilsMessengerCreateInfoEXT messengerInfo{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    messengerInfo.messageSeverity =
+        VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    // Not the performance hints: sixway (like this example) keeps its images in VK_IMAGE_LAYOUT_GENERAL.
+    messengerInfo.messageType =
+        VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT;
+    messengerInfo.pfnUserCallback = onMessage;
+    VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO, &messengerInfo};
+    info.pApplicationInfo = &app;
+    info.enabledLayerCount = 1;
+    info.ppEnabledLayerNames = &layer;
+    info.enabledExtensionCount = 1;
+    info.ppEnabledExtensionNames = &debugUtils;
+    VK(vkCreateInstance(&info, nullptr, &instance));
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
+    VK(create(instance, &messengerInfo, nullptr, &messenger));
+
+    uint32_t count = 0;
+    vkEnumeratePhysicalDevices(instance, &count, nullptr);
+    std::vector<VkPhysicalDevice> devices(count);
+    vkEnumeratePhysicalDevices(instance, &count, devices.data());
+    for (VkPhysicalDevice candidate : devices) {
+      VkPhysicalDeviceProperties properties;
+      vkGetPhysicalDeviceProperties(candidate, &properties);
+      if (properties.apiVersion < VK_API_VERSION_1_3) continue;
+      uint32_t familyCount = 0;
+      vkGetPhysicalDeviceQueueFamilyProperties(candidate, &familyCount, nullptr);
+      std::vector<VkQueueFamilyProperties> families(familyCount);
+      vkGetPhysicalDeviceQueueFamilyProperties(candidate, &familyCount, families.data());
+      for (uint32_t f = 0; f < familyCount; ++f)
+        if ((families[f].queueFlags & (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) ==
+            (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) {
+          physicalDevice = candidate;
+          queueFamily = f;
+          break;
+        }
+      if (physicalDevice) break;
+    }
+    if (!physicalDevice) throw std::runtime_error("no Vulkan 1.3 device with a graphics and compute queue");
+
+    // The engine's device, with what sixway needs enabled (its features include dynamic rendering,
+    // which the engine's own pass uses too).
+    requirements = std::make_unique<sixway::DeviceRequirements>(physicalDevice);
+    float priority = 1.0f;
+    VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    queueInfo.queueFamilyIndex = queueFamily;
+    queueInfo.queueCount = 1;
+    queueInfo.pQueuePriorities = &priority;
+    VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, requirements->features()};
+    deviceInfo.queueCreateInfoCount = 1;
+    deviceInfo.pQueueCreateInfos = &queueInfo;
+    deviceInfo.enabledExtensionCount = uint32_t(requirements->extensions().size());
+    deviceInfo.ppEnabledExtensionNames = requirements->extensions().data();
+    VK(vkCreateDevice(physicalDevice, &deviceInfo, nullptr, &device));
+    vkGetDeviceQueue(device, queueFamily, 0, &queue);
+    extensions.assign(requirements->extensions().begin(), requirements->extensions().end());
+  }
+
+  ~Engine() {
+    if (device) vkDestroyDevice(device, nullptr);
+    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
+    if (messenger) destroy(instance, messenger, nullptr);
+    vkDestroyInstance(instance, nullptr);
+  }
+
+  uint32_t memoryType(uint32_t bits, VkMemoryPropertyFlags flags) const {
+    VkPhysicalDeviceMemoryProperties memory;
+    vkGetPhysicalDeviceMemoryProperties(physicalDevice, &memory);
+    for (uint32_t i = 0; i < memory.memoryTypeCount; ++i)
+      if ((bits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & flags) == flags) return i;
+    throw std::runtime_error("no suitable memory type");
+  }
+};
+
+struct Image {
+  VkImage image = VK_NULL_HANDLE;
+  VkImageView view = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  const Engine* engine = nullptr;
+
+  Image(const Engine& e, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage,
+        VkImageAspectFlags aspect)
+      : engine(&e) {
+    VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    info.imageType = VK_IMAGE_TYPE_2D;
+    info.format = format;
+    info.extent = {width, height, 1};
+    info.mipLevels = info.arrayLayers = 1;
+    info.samples = VK_SAMPLE_COUNT_1_BIT;
+    info.usage = usage;
+    VK(vkCreateImage(e.device, &info, nullptr, &image));
+    VkMemoryRequirements requirements;
+    vkGetImageMemoryRequirements(e.device, image, &requirements);
+    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, requirements.size,
+                               e.memoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)};
+    VK(vkAllocateMemory(e.device, &alloc, nullptr, &memory));
+    VK(vkBindImageMemory(e.device, image, memory, 0));
+    VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    viewInfo.image = image;
+    viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    viewInfo.format = format;
+    viewInfo.subresourceRange = {aspect, 0, 1, 0, 1};
+    VK(vkCreateImageView(e.device, &viewInfo, nullptr, &view));
+  }
+  ~Image() {
+    vkDestroyImageView(engine->device, view, nullptr);
+    vkDestroyImage(engine->device, image, nullptr);
+    vkFreeMemory(engine->device, memory, nullptr);
+  }
+};
+
+// The engine's scene pass: the floor and the box, depth tested, into the colour and depth images.
+struct ScenePass {
+  const Engine& engine;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  struct Push {
+    glm::mat4 viewProjection;
+    glm::vec4 boxCentreHalf;
+  };
+
+  ScenePass(const Engine& e, VkFormat colorFormat, VkFormat depthFormat) : engine(e) {
+    VkShaderModule modules[2];
+    const char* files[2] = {EMBED_SHADER_DIR "/scene.vert.spv", EMBED_SHADER_DIR "/scene.frag.spv"};
+    for (int i = 0; i < 2; ++i) {
+      const std::vector<uint32_t> words = readSpirv(files[i]);
+      VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO, nullptr, 0, words.size() * 4,
+                                    words.data()};
+      VK(vkCreateShaderModule(e.device, &info, nullptr, &modules[i]));
+    }
+    VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(Push)};
+    VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    layoutInfo.pushConstantRangeCount = 1;
+    layoutInfo.pPushConstantRanges = &range;
+    VK(vkCreatePipelineLayout(e.device, &layoutInfo, nullptr, &layout));
+
+    VkPipelineShaderStageCreateInfo stages[2] = {
+        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, modules[0], "main"},
+        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, modules[1], "main"}};
+    VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    viewport.viewportCount = viewport.scissorCount = 1;
+    VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    raster.cullMode = VK_CULL_MODE_NONE;
+    raster.lineWidth = 1.0f;
+    VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+    VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    depth.depthTestEnable = depth.depthWriteEnable = VK_TRUE;
+    depth.depthCompareOp = VK_COMPARE_OP_LESS;
+    VkPipelineColorBlendAttachmentState blend{};
+    blend.colorWriteMask = 0xf;
+    VkPipelineColorBlendStateCreateInfo blendState{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+    blendState.attachmentCount = 1;
+    blendState.pAttachments = &blend;
+    VkDynamicState dynamics[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO, nullptr, 0, 2,
+                                             dynamics};
+    VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+    rendering.colorAttachmentCount = 1;
+    rendering.pColorAttachmentFormats = &colorFormat;
+    rendering.depthAttachmentFormat = depthFormat;
+    VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};
+    info.stageCount = 2;
+    info.pStages = stages;
+    info.pVertexInputState = &vertexInput;
+    info.pInputAssemblyState = &assembly;
+    info.pViewportState = &viewport;
+    info.pRasterizationState = &raster;
+    info.pMultisampleState = &multisample;
+    info.pDepthStencilState = &depth;
+    info.pColorBlendState = &blendState;
+    info.pDynamicState = &dynamic;
+    info.layout = layout;
+    VK(vkCreateGraphicsPipelines(e.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+    for (VkShaderModule m : modules) vkDestroyShaderModule(e.device, m, nullptr);
+  }
+  ~ScenePass() {
+    vkDestroyPipeline(engine.device, pipeline, nullptr);
+    vkDestroyPipelineLayout(engine.device, layout, nullptr);
+  }
+
+  void record(VkCommandBuffer cmd, const Image& color, const Image& depth, uint32_t width, uint32_t height,
+              const Push& push) const {
+    VkRenderingAttachmentInfo colorAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    colorAttachment.imageView = color.view;
+    colorAttachment.imageLayout = VK_IMAGE_LAYOUT_GENERAL;
+    colorAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    colorAttachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    colorAttachment.clearValue.color = {{0.05f, 0.06f, 0.08f, 1.0f}};
+    VkRenderingAttachmentInfo depthAttachment = colorAttachment;
+    depthAttachment.imageView = depth.view;
+    depthAttachment.clearValue.depthStencil = {1.0f, 0};
+    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    info.renderArea = {{0, 0}, {width, height}};
+    info.layerCount = 1;
+    info.colorAttachmentCount = 1;
+    info.pColorAttachments = &colorAttachment;
+    info.pDepthAttachment = &depthAttachment;
+    vkCmdBeginRendering(cmd, &info);
+    VkViewport viewport{0, 0, float(width), float(height), 0, 1};
+    VkRect2D scissor{{0, 0}, {width, height}};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+    vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(Push), &push);
+    vkCmdDraw(cmd, 6 + 36, 1, 0, 0);
+    vkCmdEndRendering(cmd);
+  }
+};
+
+// Everything before into everything after (the engine's frame graph would be finer).
+void fullBarrier(VkCommandBuffer cmd) {
+  VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  barrier.srcStageMask = barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  barrier.srcAccessMask = barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dependency.memoryBarrierCount = 1;
+  dependency.pMemoryBarriers = &barrier;
+  vkCmdPipelineBarrier2(cmd, &dependency);
+}
+
+void toGeneral(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect) {
+  VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+  barrier.srcStageMask = barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+  barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  barrier.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+  barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.image = image;
+  barrier.subresourceRange = {aspect, 0, 1, 0, 1};
+  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dependency.imageMemoryBarrierCount = 1;
+  dependency.pImageMemoryBarriers = &barrier;
+  vkCmdPipelineBarrier2(cmd, &dependency);
+}
+
+float toSrgb(float linear) {
+  linear = std::clamp(linear, 0.0f, 1.0f);
+  return linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+}
+
+int run(const Options& options) {
+  constexpr uint32_t kWidth = 160, kHeight = 120, kFramesInFlight = 2;
+  constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT, kDepthFormat = VK_FORMAT_D32_SFLOAT;
+  Engine engine;
+  Image color(engine, kWidth, kHeight, kColorFormat,
+              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+  Image depth(engine, kWidth, kHeight, kDepthFormat,
+              VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+  ScenePass scenePass(engine, kColorFormat, kDepthFormat);
+
+  // sixway on the engine's device: the smoke simulation and its renderer into the engine's target.
+  sixway::Device smokeDevice(sixway::EngineDevice{engine.instance, engine.physicalDevice, engine.device,
+                                                  engine.queue, engine.queueFamily, engine.extensions,
+                                                  engine.requirements->features(), kFramesInFlight});
+  sixway::SmokeSimulation simulation(smokeDevice, options.scene);
+  sixway::SmokeRenderer smoke(smokeDevice, simulation, {.weights = options.weights},
+                              {color.image, color.view, kColorFormat, depth.image, depth.view, kDepthFormat,
+                               kWidth, kHeight});
+  sixway::Camera camera;
+  camera.position = {0.9f, 0.8f, 2.2f};
+  camera.target = {0.0f, 0.55f, 0.0f};
+  camera.fovYDegrees = 45.0f;
+  camera.near = 0.1f;
+  camera.far = 20.0f;
+  smoke.setCamera(camera);
+  // The engine's projection: Vulkan's [0, 1] depth (what sixway decodes), +y up on screen.
+  glm::mat4 projection = glm::perspectiveRH_ZO(glm::radians(camera.fovYDegrees), float(kWidth) / kHeight,
+                                               camera.near, camera.far);
+  projection[1][1] *= -1.0f;
+  const ScenePass::Push push{projection * glm::lookAtRH(camera.position, camera.target, camera.up),
+                             glm::vec4(0.35f, 0.15f, 0.45f, 0.15f)};
+
+  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  poolInfo.queueFamilyIndex = engine.queueFamily;
+  VkCommandPool pool;
+  VK(vkCreateCommandPool(engine.device, &poolInfo, nullptr, &pool));
+  std::array<VkCommandBuffer, kFramesInFlight> commands;
+  VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, pool,
+                                        VK_COMMAND_BUFFER_LEVEL_PRIMARY, kFramesInFlight};
+  VK(vkAllocateCommandBuffers(engine.device, &allocInfo, commands.data()));
+  std::array<VkFence, kFramesInFlight> fences;
+  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO, nullptr, VK_FENCE_CREATE_SIGNALED_BIT};
+  for (VkFence& f : fences) VK(vkCreateFence(engine.device, &fenceInfo, nullptr, &f));
+
+  uint64_t waitsAfterFirstFrame = 0;
+  for (uint64_t frame = 0; frame < uint64_t(options.frames); ++frame) {
+    // Frames in flight: before reusing this slot, its previous frame (frame − 2) must be done.
+    const size_t slot = frame % kFramesInFlight;
+    VK(vkWaitForFences(engine.device, 1, &fences[slot], VK_TRUE, UINT64_MAX));
+    VK(vkResetFences(engine.device, 1, &fences[slot]));
+    VkCommandBuffer cmd = commands[slot];
+    VK(vkResetCommandBuffer(cmd, 0));
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    VK(vkBeginCommandBuffer(cmd, &begin));
+    if (frame == 0) {
+      toGeneral(cmd, color.image, VK_IMAGE_ASPECT_COLOR_BIT);
+      toGeneral(cmd, depth.image, VK_IMAGE_ASPECT_DEPTH_BIT);
+    }
+    fullBarrier(cmd);  // the previous frame's smoke pass read and wrote these images
+    scenePass.record(cmd, color, depth, kWidth, kHeight, push);
+    simulation.record(cmd, frame);
+    smoke.record(cmd, frame);  // over the engine's colour, hidden by its depth
+    VK(vkEndCommandBuffer(cmd));
+    if (frame == 0) waitsAfterFirstFrame = smokeDevice.hostWaits();  // the first frame records sixway's passes
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cmd;
+    VK(vkQueueSubmit(engine.queue, 1, &submit, fences[slot]));
+  }
+  VK(vkWaitForFences(engine.device, kFramesInFlight, fences.data(), VK_TRUE, UINT64_MAX));
+  const uint64_t waitsPerFrame = (smokeDevice.hostWaits() - waitsAfterFirstFrame) / uint64_t(options.frames);
+
+  // Read the last frame back and write it as an sRGB PNG.
+  VkBufferCreateInfo bufferInfo{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  bufferInfo.size = uint64_t(kWidth) * kHeight * 8;
+  bufferInfo.usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  VkBuffer readback;
+  VK(vkCreateBuffer(engine.device, &bufferInfo, nullptr, &readback));
+  VkMemoryRequirements requirements;
+  vkGetBufferMemoryRequirements(engine.device, readback, &requirements);
+  VkMemoryAllocateInfo alloc{
+      VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, requirements.size,
+      engine.memoryType(requirements.memoryTypeBits,
+                        VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)};
+  VkDeviceMemory readbackMemory;
+  VK(vkAllocateMemory(engine.device, &alloc, nullptr, &readbackMemory));
+  VK(vkBindBufferMemory(engine.device, readback, readbackMemory, 0));
+  VkCommandBuffer cmd = commands[0];
+  VK(vkResetCommandBuffer(cmd, 0));
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  VK(vkBeginCommandBuffer(cmd, &begin));
+  fullBarrier(cmd);
+  VkBufferImageCopy region{};
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.imageExtent = {kWidth, kHeight, 1};
+  vkCmdCopyImageToBuffer(cmd, color.image, VK_IMAGE_LAYOUT_GENERAL, readback, 1, &region);
+  fullBarrier(cmd);
+  VK(vkEndCommandBuffer(cmd));
+  VK(vkResetFences(engine.device, 1, &fences[0]));
+  VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  submit.commandBufferCount = 1;
+  submit.pCommandBuffers = &cmd;
+  VK(vkQueueSubmit(engine.queue, 1, &submit, fences[0]));
+  VK(vkWaitForFences(engine.device, 1, &fences[0], VK_TRUE, UINT64_MAX));
+  void* mapped;
+  VK(vkMapMemory(engine.device, readbackMemory, 0, VK_WHOLE_SIZE, 0, &mapped));
+  std::vector<uint8_t> srgb(size_t(kWidth) * kHeight * 4);
+  const auto* halves = static_cast<const uint16_t*>(mapped);
+  for (size_t i = 0; i < srgb.size(); ++i) {
+    const float value = glm::unpackHalf1x16(halves[i]);
+    srgb[i] = uint8_t(std::lround(255.0f * (i % 4 == 3 ? std::clamp(value, 0.0f, 1.0f) : toSrgb(value))));
+  }
+  vkUnmapMemory(engine.device, readbackMemory);
+  const bool written = stbi_write_png(options.out.c_str(), int(kWidth), int(kHeight), 4, srgb.data(), int(kWidth) * 4);
+
+  vkDestroyBuffer(engine.device, readback, nullptr);
+  vkFreeMemory(engine.device, readbackMemory, nullptr);
+  for (VkFence f : fences) vkDestroyFence(engine.device, f, nullptr);
+  vkDestroyCommandPool(engine.device, pool, nullptr);
+  if (!written) throw std::runtime_error(options.out + ": cannot write the PNG");
+  std::printf("wrote %s: %d frames, %d validation messages, %llu host waits per frame\n", options.out.c_str(),
+              options.frames, validationMessages.load(), static_cast<unsigned long long>(waitsPerFrame));
+  for (const sixway::StageTime& t : smoke.stageTimes()) std::printf("  %-12s %8.2f ms\n", t.name.c_str(), t.milliseconds);
+  return validationMessages.load() == 0 ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(parse(argc, argv));
+  } catch (const std::exception& e) {  // sixway::Error and the example's own: one line
+    std::fprintf(stderr, "embed_vulkan: %s\n", e.what());
+    return 1;
+  }
+}

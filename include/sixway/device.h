@@ -1,0 +1,77 @@
+#pragma once
+// The Vulkan device sixway runs on: one it creates itself (headless, for tools and tests), or an engine's,
+// which sixway borrows (docs/embedding.md, "The device").
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sixway {
+
+// sixway's own device.
+struct DeviceOptions {
+  bool validate = false;     // the Khronos validation layer; every message is counted
+  std::optional<int> index;  // a physical device index (as `sixway info` lists them); else the best one
+};
+
+// An engine's device. sixway destroys nothing of it. The device must have been created with
+// DeviceRequirements' extensions and features (a missing one is an Error naming it), and the queue must do
+// graphics and compute. The engine promises that when it records frame n, frame n − framesInFlight has
+// completed on the GPU (the usual fence wait before reusing a frame's command buffer).
+struct EngineDevice {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  VkQueue queue = VK_NULL_HANDLE;
+  uint32_t queueFamily = 0;
+  std::vector<std::string> enabledExtensions;  // as given to vkCreateDevice
+  const void* enabledFeatures = nullptr;       // the VkPhysicalDeviceFeatures2 chain given to vkCreateDevice
+  uint32_t framesInFlight = 2;                 // 1..8
+};
+
+// What an engine enables on its device for sixway: Vulkan 1.3 with synchronization2, dynamicRendering and
+// maintenance4, float atomic add on storage buffers, push descriptors; and the optional features sixway uses
+// where the device has them (16-bit storage, fp16 arithmetic, 64-bit integers).
+class DeviceRequirements {
+ public:
+  explicit DeviceRequirements(VkPhysicalDevice physicalDevice);
+  ~DeviceRequirements();
+  DeviceRequirements(const DeviceRequirements&) = delete;
+  DeviceRequirements& operator=(const DeviceRequirements&) = delete;
+
+  const std::vector<const char*>& extensions() const;
+  // A VkPhysicalDeviceFeatures2 chain (with the 1.1, 1.2, 1.3 and float-atomic structures) to pass as
+  // VkDeviceCreateInfo::pNext, or to merge into the engine's own; valid while this object lives.
+  VkPhysicalDeviceFeatures2* features();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+class Device {
+ public:
+  explicit Device(const DeviceOptions& options = {});
+  explicit Device(const EngineDevice& engine);
+  ~Device();
+  Device(const Device&) = delete;
+  Device& operator=(const Device&) = delete;
+
+  std::string name() const;
+  // How often sixway has blocked the host on the GPU (fences, idle waits) since the device was made: the
+  // real-time path recorded into an engine's command buffers adds none.
+  uint64_t hostWaits() const;
+  // Validation messages seen on sixway's own device with DeviceOptions::validate (0 otherwise).
+  uint32_t validationMessages() const;
+
+  struct Impl;  // the implementation's (src/runtime/device_impl.h)
+  Impl& impl() const { return *impl_; }
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sixway

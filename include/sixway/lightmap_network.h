@@ -1,0 +1,34 @@
+#pragma once
+// The network alone: a weights file (docs/network-format.md) run on a guiding map, on sixway's own device.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace sixway {
+
+class Device;
+
+class LightmapNetwork {
+ public:
+  // For size × size guiding maps (a multiple of 16). Throws Error naming the file when it is missing or
+  // malformed.
+  LightmapNetwork(Device& device, const std::filesystem::path& weights, uint32_t size, bool fp16 = false);
+  ~LightmapNetwork();
+  LightmapNetwork(const LightmapNetwork&) = delete;
+  LightmapNetwork& operator=(const LightmapNetwork&) = delete;
+
+  uint32_t size() const;
+  // `guide`: size² RGBA pixels, row 0 at the top (guide light, alpha, shell depth, unused; the guiding map
+  // of docs/real-time-rendering.md). Returns size² pixels of eight channels: right, left, top, bottom,
+  // back, front, alpha, emissive (docs/conventions.md). Waits for the GPU.
+  std::vector<float> run(std::span<const float> guide);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sixway

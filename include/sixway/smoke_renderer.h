@@ -1,0 +1,92 @@
+#pragma once
+// The real-time frame of docs/real-time-rendering.md for a SmokeSimulation: the guiding map, the network's
+// six-way lightmaps, the obstacles' shadow maps, and six-way billboard shading "over" a colour target, depth
+// tested against its depth buffer. Into sixway's own image (tools, tests), or into an engine's images from
+// its command buffer (docs/embedding.md).
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <glm/vec3.hpp>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sixway {
+
+class Device;
+class SmokeSimulation;
+
+// A perspective camera. An engine target's depth buffer must hold the depth of the standard Vulkan
+// projection with these near and far planes (0 at near, 1 at far, e.g. glm::perspectiveRH_ZO).
+struct Camera {
+  glm::vec3 position{0.0f, 0.0f, 5.0f};
+  glm::vec3 target{0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float fovYDegrees = 45.0f;
+  float near = 0.05f, far = 100.0f;
+};
+
+// An engine's render target, in VK_IMAGE_LAYOUT_GENERAL while sixway records (and left so). The colour
+// image needs COLOR_ATTACHMENT usage; the depth image (D32_SFLOAT or D16_UNORM) SAMPLED usage: the smoke is
+// drawn over the colour and hidden where the depth buffer is nearer than the smoke.
+struct RenderTarget {
+  VkImage colorImage = VK_NULL_HANDLE;
+  VkImageView colorView = VK_NULL_HANDLE;
+  VkFormat colorFormat = VK_FORMAT_UNDEFINED;
+  VkImage depthImage = VK_NULL_HANDLE;
+  VkImageView depthView = VK_NULL_HANDLE;
+  VkFormat depthFormat = VK_FORMAT_UNDEFINED;
+  uint32_t width = 0, height = 0;
+};
+
+struct RendererOptions {
+  std::filesystem::path weights;  // the network (weights/*.safetensors); an Error names a missing one
+  bool fp16 = false;              // fp16 feature maps where the device has 16-bit storage
+  bool shadows = true;            // obstacles shadow the smoke
+};
+
+struct StageTime {
+  std::string name;  // "guide", "network", "shade", "shadow maps", ...
+  double milliseconds;
+};
+
+class SmokeRenderer {
+ public:
+  // Renders into an image of its own, the scene's render size, over the scene's background and obstacles.
+  SmokeRenderer(Device& device, SmokeSimulation& simulation, const RendererOptions& options);
+  // Renders into the engine's target; the engine draws its scene (and the obstacles) itself.
+  SmokeRenderer(Device& device, SmokeSimulation& simulation, const RendererOptions& options,
+                const RenderTarget& target);
+  ~SmokeRenderer();
+  SmokeRenderer(const SmokeRenderer&) = delete;
+  SmokeRenderer& operator=(const SmokeRenderer&) = delete;
+
+  // The camera from now on; until set, the scene's camera (on its path).
+  void setCamera(const Camera& camera);
+
+  // Own image: renders the simulation's current smoke and waits.
+  void render();
+  // Engine target: records the frame into `commands` (primary, recording, outside a render pass), as
+  // frame number `frame`, after SmokeSimulation::record of the same frame. Nothing waits.
+  void record(VkCommandBuffer commands, uint64_t frame);
+
+  // GPU time per stage of the latest frame whose times are in (a frame or more late with an engine).
+  std::vector<StageTime> stageTimes() const;
+  // Own image: the last frame, RGBA floats (linear, premultiplied), row 0 at the top.
+  std::vector<float> image() const;
+  uint32_t width() const;
+  uint32_t height() const;
+  // The six-way lightmaps of the last frame in Unity's packing, RGBA16F, lightmap size², in
+  // VK_IMAGE_LAYOUT_GENERAL, for engines that shade the billboard themselves: A = (right, top, back,
+  // alpha), B = (left, bottom, front, emissive) (docs/conventions.md, "Channels and packing").
+  VkImage lightmapA() const;
+  VkImage lightmapB() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sixway

@@ -1,0 +1,50 @@
+#pragma once
+// A scene's fluid and smoke (docs/scene-format.md): the lattice Boltzmann flow around the scene's obstacles,
+// the smoke it carries, and the volume the renderer draws, all on the GPU.
+#include <vulkan/vulkan.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <glm/vec3.hpp>
+#include <memory>
+
+namespace sixway {
+
+class Device;
+
+class SmokeSimulation {
+ public:
+  // Loads the scene file; throws Error naming it (missing, malformed, beyond the device's limits).
+  SmokeSimulation(Device& device, const std::filesystem::path& scene);
+  ~SmokeSimulation();
+  SmokeSimulation(const SmokeSimulation&) = delete;
+  SmokeSimulation& operator=(const SmokeSimulation&) = delete;
+
+  // One frame of simulation (time.frame_dt) on sixway's own device; waits for it. Throws Error when the
+  // watchdog finds the flow diverging (naming the scene and what to change).
+  void advance();
+  // Records one frame of simulation into `commands` — the engine's primary command buffer, recording,
+  // outside a render pass — as frame number `frame` (increasing). Nothing waits; the watchdog checks the
+  // frame recorded framesInFlight frames earlier, so its Error arrives that much later.
+  void record(VkCommandBuffer commands, uint64_t frame);
+
+  int framesSimulated() const;
+  double seconds() const;  // simulated time
+
+  size_t obstacleCount() const;
+  // Drags an obstacle toward `target` (world, m) at a speed the lattice can follow.
+  void steerObstacle(size_t obstacle, glm::vec3 target);
+  // Scales the inlets' velocity, in [0, maxInletStrength()]; std::invalid_argument outside.
+  void setInletStrength(float strength);
+  float inletStrength() const;
+  float maxInletStrength() const;
+
+  struct Impl;  // the implementation's (src/runtime/smoke_simulation_impl.h)
+  Impl& impl() const { return *impl_; }
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sixway

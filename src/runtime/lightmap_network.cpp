@@ -1,0 +1,61 @@
+#include <sixway/lightmap_network.h>
+
+#include <filesystem>
+#include <glm/gtc/packing.hpp>
+#include <stdexcept>
+
+#include "gpu/image.h"
+#include "gpu/sequence.h"
+#include "io/error.h"
+#include "io/safetensors.h"
+#include "nn/network.h"
+#include "render/lightmap_images.h"
+#include "runtime/device_impl.h"
+
+namespace sixway {
+
+struct LightmapNetwork::Impl {
+  Impl(Device::Impl& device, const std::filesystem::path& weights, uint32_t size, bool fp16)
+      : size(size),
+        guide(*device.context, {size, size, 1, VK_FORMAT_R16G16B16A16_SFLOAT,
+                                VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "guiding map"}),
+        lightmaps(*device.context, size, size),
+        sequence(*device.context) {
+    if (!std::filesystem::is_regular_file(weights)) throw io::InputError(weights.string(), "no such weights file");
+    nn::NetworkOptions options;
+    options.precision = fp16 ? nn::Precision::Fp16 : nn::Precision::Fp32;
+    network = std::make_unique<nn::Network>(*device.context, *device.cache, io::readSafetensors(weights), size,
+                                            size, options);
+    network->record(sequence, guide, lightmaps.a, lightmaps.b);
+    sequence.finish();
+  }
+  uint32_t size;
+  gpu::Image guide;
+  render::LightmapImages lightmaps;
+  gpu::Sequence sequence;
+  std::unique_ptr<nn::Network> network;
+};
+
+LightmapNetwork::LightmapNetwork(Device& device, const std::filesystem::path& weights, uint32_t size, bool fp16) {
+  if (size == 0 || size % 16 != 0) throw std::invalid_argument("LightmapNetwork: size must be a multiple of 16");
+  impl_ = std::make_unique<Impl>(device.impl(), weights, size, fp16);
+}
+
+LightmapNetwork::~LightmapNetwork() = default;
+
+uint32_t LightmapNetwork::size() const {
+  return impl_->size;
+}
+
+std::vector<float> LightmapNetwork::run(std::span<const float> guide) {
+  const size_t pixels = size_t(impl_->size) * impl_->size;
+  if (guide.size() != pixels * 4)
+    throw std::invalid_argument("LightmapNetwork::run: the guide needs size² RGBA pixels");
+  std::vector<uint16_t> halves(guide.size());
+  for (size_t i = 0; i < guide.size(); ++i) halves[i] = glm::packHalf1x16(guide[i]);
+  impl_->guide.upload(std::as_bytes(std::span(halves)));
+  impl_->sequence.submit();
+  return impl_->lightmaps.download().pixels;
+}
+
+}  // namespace sixway

@@ -1,0 +1,217 @@
+// The public API (include/sixway/) against the evaluation's frame pipeline, and the engine path against
+// sixway's own: the same smoke, the same pixels, and no host waits per frame when an engine records.
+#include <gtest/gtest.h>
+#include <sixway/device.h>
+#include <sixway/errors.h>
+#include <sixway/lightmap_network.h>
+#include <sixway/smoke_renderer.h>
+#include <sixway/smoke_simulation.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <glm/gtc/packing.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "eval/frame_pipeline.h"
+#include "gpu/check.h"
+#include "gpu/device_features.h"
+#include "gpu/image.h"
+#include "io/scene.h"
+#include "runtime/device_impl.h"
+#include "runtime/scene_volumes.h"
+#include "support/temp_dir.h"
+
+namespace sixway::test {
+namespace {
+
+const std::filesystem::path kScene = std::filesystem::path(SIXWAY_TEST_DATA_DIR) / "scenes/small_plume.json";
+const std::filesystem::path kWeights = std::filesystem::path(SIXWAY_TEST_DATA_DIR) / "nn/tiny.safetensors";
+
+// small_plume without its obstacle: an engine target has no obstacle pass, so the images compare everywhere.
+std::filesystem::path sceneWithoutObstacles(const std::filesystem::path& dir) {
+  std::ifstream in(kScene);
+  nlohmann::json scene = nlohmann::json::parse(in);
+  scene.erase("obstacles");
+  const std::filesystem::path file = dir / "plume_no_obstacles.json";
+  std::ofstream(file) << scene.dump();
+  return file;
+}
+
+Camera sceneCamera() {
+  Camera camera;
+  camera.position = {0.0f, 0.64f, 2.4f};
+  camera.target = {0.0f, 0.64f, 0.0f};
+  camera.fovYDegrees = 40.0f;
+  camera.near = 0.1f;
+  camera.far = 20.0f;
+  return camera;
+}
+
+double maxDifference(const std::vector<float>& a, const std::vector<float>& b) {
+  double worst = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, double(std::abs(a[i] - b[i])));
+  return worst;
+}
+
+TEST(Runtime, OwnImageIsTheFramePipelinesNeuralFrame) {
+  Device device({.validate = true});
+  SmokeSimulation simulation(device, kScene);
+  SmokeRenderer renderer(device, simulation, {.weights = kWeights});
+  for (int frame = 0; frame < 2; ++frame) simulation.advance();
+  renderer.render();
+  const std::vector<float> image = renderer.image();
+
+  const gpu::Context& context = *device.impl().context;
+  const io::Scene scene = io::loadScene(kScene);
+  runtime::SimulatedVolumes volumes(context, *device.impl().cache, scene, 2);
+  eval::FramePipelineOptions options;
+  options.weights = kWeights;
+  eval::FramePipeline pipeline(context, *device.impl().cache, scene, options);
+  const eval::RenderedFrame expected =
+      pipeline.render(1, runtime::SimulatedVolumes::frameSeconds(scene, 1), volumes.volume(1));
+  ASSERT_EQ(image.size(), expected.image.pixels.size());
+  EXPECT_EQ(maxDifference(image, expected.image.pixels), 0.0);
+  EXPECT_GT(*std::max_element(image.begin(), image.end()), 0.05f) << "no smoke in the image";
+  bool timedNetwork = false;
+  for (const StageTime& t : renderer.stageTimes()) timedNetwork |= t.name == "network";
+  EXPECT_TRUE(timedNetwork);
+  EXPECT_EQ(device.validationMessages(), 0u);
+}
+
+// An engine's colour and depth targets on sixway's own device, cleared as its scene pass would leave them.
+struct EngineTargets {
+  EngineTargets(const gpu::Context& context, uint32_t width, uint32_t height)
+      : color(context, {width, height, 1, VK_FORMAT_R16G16B16A16_SFLOAT,
+                        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+                            VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                        "engine colour"}),
+        depth(context, {width, height, 1, VK_FORMAT_D32_SFLOAT,
+                        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                            VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                        "engine depth"}) {}
+  RenderTarget target() const {
+    return {color.handle(), color.view(), color.desc().format, depth.handle(), depth.view(), depth.desc().format,
+            color.desc().width, color.desc().height};
+  }
+  void recordClear(VkCommandBuffer commands, const float background[4]) const {
+    VkClearColorValue clearColor;
+    std::copy(background, background + 4, clearColor.float32);
+    VkImageSubresourceRange colorRange{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdClearColorImage(commands, color.handle(), VK_IMAGE_LAYOUT_GENERAL, &clearColor, 1, &colorRange);
+    VkClearDepthStencilValue clearDepth{1.0f, 0};
+    VkImageSubresourceRange depthRange{VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, 0, 1};
+    vkCmdClearDepthStencilImage(commands, depth.handle(), VK_IMAGE_LAYOUT_GENERAL, &clearDepth, 1, &depthRange);
+  }
+  gpu::Image color, depth;
+};
+
+TEST(Runtime, AnEngineRecordsTheSameFramesWithoutHostWaits) {
+  TempDir dir;
+  const std::filesystem::path scene = sceneWithoutObstacles(dir.path());
+  constexpr int kFrames = 4;
+
+  Device own({.validate = true});
+  SmokeSimulation ownSimulation(own, scene);
+  SmokeRenderer ownRenderer(own, ownSimulation, {.weights = kWeights});
+  ownRenderer.setCamera(sceneCamera());
+  for (int frame = 0; frame < kFrames; ++frame) ownSimulation.advance();
+  ownRenderer.render();
+  const std::vector<float> expected = ownRenderer.image();
+
+  // The "engine": the same Vulkan device, borrowed, with its own images and command buffers.
+  const gpu::Context& context = *own.impl().context;
+  gpu::DeviceFeatures features =
+      gpu::DeviceFeatures::toEnable(gpu::DeviceFeatures::supportedBy(context.physicalDevice()));
+  const std::vector<const char*> extensions = gpu::requiredDeviceExtensions();
+  Device engine(EngineDevice{context.instance(), context.physicalDevice(), context.device(), context.queue(),
+                             context.queueFamily(), {extensions.begin(), extensions.end()}, features.chain(), 2});
+  EngineTargets targets(context, ownRenderer.width(), ownRenderer.height());
+  SmokeSimulation simulation(engine, scene);
+  SmokeRenderer renderer(engine, simulation, {.weights = kWeights}, targets.target());
+  renderer.setCamera(sceneCamera());
+  const float* background = &expected[0];  // the corner: background only
+
+  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  poolInfo.queueFamilyIndex = context.queueFamily();
+  VkCommandPool pool;
+  SIXWAY_VK(vkCreateCommandPool(context.device(), &poolInfo, nullptr, &pool));
+  VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, pool,
+                                        VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
+  VkCommandBuffer commands;
+  SIXWAY_VK(vkAllocateCommandBuffers(context.device(), &allocInfo, &commands));
+  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VkFence fence;
+  SIXWAY_VK(vkCreateFence(context.device(), &fenceInfo, nullptr, &fence));
+
+  uint64_t waitsAfterFirstFrame = 0;
+  for (int frame = 0; frame < kFrames; ++frame) {
+    SIXWAY_VK(vkResetCommandBuffer(commands, 0));
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    SIXWAY_VK(vkBeginCommandBuffer(commands, &begin));
+    targets.recordClear(commands, background);
+    simulation.record(commands, uint64_t(frame));
+    renderer.record(commands, uint64_t(frame));
+    SIXWAY_VK(vkEndCommandBuffer(commands));
+    // The first frame records the passes once (allocations may upload); later frames only replay.
+    if (frame == 0) waitsAfterFirstFrame = engine.hostWaits();
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &commands;
+    SIXWAY_VK(vkResetFences(context.device(), 1, &fence));
+    SIXWAY_VK(vkQueueSubmit(context.queue(), 1, &submit, fence));
+    SIXWAY_VK(vkWaitForFences(context.device(), 1, &fence, VK_TRUE, UINT64_MAX));  // the engine's own wait
+  }
+  EXPECT_EQ(engine.hostWaits(), waitsAfterFirstFrame) << "sixway blocked the host in frames 1..3";
+
+  std::vector<float> image;
+  for (uint16_t h : targets.color.download<uint16_t>()) image.push_back(glm::unpackHalf1x16(h));
+  ASSERT_EQ(image.size(), expected.size());
+  EXPECT_LT(maxDifference(image, expected), 1e-3);
+  EXPECT_GT(*std::max_element(image.begin(), image.end()), 0.05f) << "no smoke in the image";
+  EXPECT_FALSE(renderer.stageTimes().empty()) << "the times of an earlier frame should be in";
+
+  vkDestroyFence(context.device(), fence, nullptr);
+  vkDestroyCommandPool(context.device(), pool, nullptr);
+  EXPECT_EQ(own.validationMessages(), 0u);
+}
+
+TEST(Runtime, ErrorsNameTheFile) {
+  Device device;
+  try {
+    SmokeSimulation simulation(device, "no_such_scene.json");
+    FAIL() << "a missing scene was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "no_such_scene.json: no such file");
+  }
+  SmokeSimulation simulation(device, kScene);
+  try {
+    SmokeRenderer renderer(device, simulation, {.weights = "missing.safetensors"});
+    FAIL() << "missing weights were accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "missing.safetensors: no such weights file");
+  }
+  try {
+    LightmapNetwork network(device, kScene, 16);
+    FAIL() << "a scene file was accepted as weights";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("small_plume.json: "), std::string::npos) << e.what();
+  }
+}
+
+TEST(Runtime, TheNetworkAloneGivesEightChannels) {
+  Device device({.validate = true});
+  LightmapNetwork network(device, kWeights, 16);
+  std::vector<float> guide(16 * 16 * 4, 0.0f);
+  for (size_t i = 0; i < 16 * 16; ++i) guide[i * 4 + 0] = guide[i * 4 + 1] = 0.5f;
+  const std::vector<float> lightmaps = network.run(guide);
+  ASSERT_EQ(lightmaps.size(), size_t(16 * 16 * 8));
+  for (float v : lightmaps) ASSERT_TRUE(std::isfinite(v));
+  EXPECT_EQ(device.validationMessages(), 0u);
+}
+
+}  // namespace
+}  // namespace sixway::test
