@@ -12,24 +12,27 @@
 #extension GL_EXT_shader_explicit_arithmetic_types_float16 : require
 #endif
 #extension GL_EXT_control_flow_attributes : require
+#include "nn_spec.glsl"
 #include "nn_activation.glsl"
 #include "nn_tensor.glsl"
 
-layout(local_size_x_id = 0, local_size_y_id = 1) in;
-layout(constant_id = 2) const int KERNEL = 3;
-layout(constant_id = 3) const int STRIDE = 1;
-layout(constant_id = 4) const int IN_HEIGHT = 1;
-layout(constant_id = 5) const int OUT_WIDTH = 1;
-layout(constant_id = 6) const int OUT_HEIGHT = 1;
-layout(constant_id = 7) const int GROUPS_A = 1;  // channel groups read from input A
-layout(constant_id = 8) const int GROUPS_B = 0;  // channel groups read from input B (0: one input)
-layout(constant_id = 9) const int PX = 4;
-layout(constant_id = 10) const int PY = 1;
-layout(constant_id = 11) const int SLICE = 4;
-layout(constant_id = 12) const int ACTIVATION = NN_ACT_NONE;
-layout(constant_id = 13) const float NEGATIVE_SLOPE = 0.0;
-layout(constant_id = 14) const int WEIGHT_VEC4S = 1;  // size of this dispatch's weight chunk
-layout(constant_id = 15) const int IN_WIDTH = 1;
+layout(local_size_x_id = NN_SPEC_LOCAL_SIZE_X, local_size_y_id = NN_SPEC_LOCAL_SIZE_Y) in;
+layout(constant_id = NN_SPEC_KERNEL) const int KERNEL = 3;
+layout(constant_id = NN_SPEC_STRIDE) const int STRIDE = 1;
+layout(constant_id = NN_SPEC_IN_HEIGHT) const int IN_HEIGHT = 1;
+layout(constant_id = NN_SPEC_OUT_WIDTH) const int OUT_WIDTH = 1;
+layout(constant_id = NN_SPEC_OUT_HEIGHT) const int OUT_HEIGHT = 1;
+// Channel groups read from input A and from input B (0: one input).
+layout(constant_id = NN_SPEC_GROUPS_A) const int GROUPS_A = 1;
+layout(constant_id = NN_SPEC_GROUPS_B) const int GROUPS_B = 0;
+layout(constant_id = NN_SPEC_PX) const int PX = 4;
+layout(constant_id = NN_SPEC_PY) const int PY = 1;
+layout(constant_id = NN_SPEC_SLICE) const int SLICE = 4;
+layout(constant_id = NN_SPEC_ACTIVATION) const int ACTIVATION = NN_ACT_NONE;
+layout(constant_id = NN_SPEC_NEGATIVE_SLOPE) const float NEGATIVE_SLOPE = 0.0;
+// The size of this dispatch's weight chunk.
+layout(constant_id = NN_SPEC_WEIGHT_VEC4S) const int WEIGHT_VEC4S = 1;
+layout(constant_id = NN_SPEC_IN_WIDTH) const int IN_WIDTH = 1;
 
 // Per output group: weights [input channel][ky][kx] as vec4 over the group's 4 output channels, then bias.
 const int GROUP_VEC4S = (GROUPS_A + GROUPS_B) * 4 * KERNEL * KERNEL + 1;

@@ -8,17 +8,18 @@
 #extension GL_EXT_shader_explicit_arithmetic_types_float16 : require
 #endif
 #extension GL_EXT_control_flow_attributes : require
+#include "nn_spec.glsl"
 #include "nn_activation.glsl"
 #include "nn_tensor.glsl"
 
-layout(local_size_x_id = 0, local_size_y_id = 1) in;
-layout(constant_id = 2) const int IN_WIDTH = 1;
-layout(constant_id = 3) const int IN_HEIGHT = 1;
-layout(constant_id = 4) const int GROUPS_IN = 1;
-layout(constant_id = 5) const int PX = 2;
-layout(constant_id = 6) const int ACTIVATION = NN_ACT_NONE;
-layout(constant_id = 7) const float NEGATIVE_SLOPE = 0.0;
-layout(constant_id = 8) const int WEIGHT_VEC4S = 1;
+layout(local_size_x_id = NN_SPEC_LOCAL_SIZE_X, local_size_y_id = NN_SPEC_LOCAL_SIZE_Y) in;
+layout(constant_id = NN_SPEC_IN_WIDTH) const int IN_WIDTH = 1;
+layout(constant_id = NN_SPEC_IN_HEIGHT) const int IN_HEIGHT = 1;
+layout(constant_id = NN_SPEC_GROUPS_IN) const int GROUPS_IN = 1;
+layout(constant_id = NN_SPEC_PX) const int PX = 2;
+layout(constant_id = NN_SPEC_ACTIVATION) const int ACTIVATION = NN_ACT_NONE;
+layout(constant_id = NN_SPEC_NEGATIVE_SLOPE) const float NEGATIVE_SLOPE = 0.0;
+layout(constant_id = NN_SPEC_WEIGHT_VEC4S) const int WEIGHT_VEC4S = 1;
 
 // Per output group: weights [input channel][dy][dx] as vec4 over the group's 4 output channels, then bias.
 const int GROUP_VEC4S = GROUPS_IN * 4 * 4 + 1;

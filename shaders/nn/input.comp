@@ -7,14 +7,15 @@
 #extension GL_EXT_shader_16bit_storage : require
 #extension GL_EXT_shader_explicit_arithmetic_types_float16 : require
 #endif
+#include "nn_spec.glsl"
 #include "nn_tensor.glsl"
 
-layout(local_size_x_id = 0, local_size_y_id = 1) in;
-layout(constant_id = 2) const int WIDTH = 1;  // of the feature map
-layout(constant_id = 3) const int HEIGHT = 1;
-layout(constant_id = 4) const int GUIDE_WIDTH = 1;
-layout(constant_id = 5) const int GUIDE_HEIGHT = 1;
-layout(constant_id = 6) const int GUIDE_CHANNELS = 3;
+layout(local_size_x_id = NN_SPEC_LOCAL_SIZE_X, local_size_y_id = NN_SPEC_LOCAL_SIZE_Y) in;
+layout(constant_id = NN_SPEC_WIDTH) const int WIDTH = 1;  // of the feature map
+layout(constant_id = NN_SPEC_HEIGHT) const int HEIGHT = 1;
+layout(constant_id = NN_SPEC_GUIDE_WIDTH) const int GUIDE_WIDTH = 1;
+layout(constant_id = NN_SPEC_GUIDE_HEIGHT) const int GUIDE_HEIGHT = 1;
+layout(constant_id = NN_SPEC_GUIDE_CHANNELS) const int GUIDE_CHANNELS = 3;
 
 layout(binding = 0) uniform sampler2D guide;
 NN_OUTPUT_MAP(1, outputMap);

@@ -6,12 +6,13 @@
 // conv3 with scaled weights; the per-pixel work stays one matrix product.)
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
+#include "nn_spec.glsl"
 
-layout(local_size_x_id = 0) in;
-layout(constant_id = 1) const int GATED_CHANNELS = 4;
-layout(constant_id = 2) const int CHANNELS = 4;       // block channels: conv3's outputs
-layout(constant_id = 3) const int PARTIAL_COUNT = 1;  // workgroups of naf_dw_gate.comp
-layout(constant_id = 4) const float PIXELS = 1.0;
+layout(local_size_x_id = NN_SPEC_LOCAL_SIZE_X) in;
+layout(constant_id = NN_SPEC_GATED_CHANNELS) const int GATED_CHANNELS = 4;
+layout(constant_id = NN_SPEC_CHANNELS) const int CHANNELS = 4;            // block channels: conv3's outputs
+layout(constant_id = NN_SPEC_PARTIAL_COUNT) const int PARTIAL_COUNT = 1;  // workgroups of naf_dw_gate.comp
+layout(constant_id = NN_SPEC_PIXELS) const float PIXELS = 1.0;
 
 const int GATED_GROUPS = (GATED_CHANNELS + 3) / 4;
 const int OUT_GROUPS = (CHANNELS + 3) / 4;

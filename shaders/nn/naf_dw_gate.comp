@@ -12,14 +12,15 @@
 #extension GL_EXT_control_flow_attributes : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_basic : require
+#include "nn_spec.glsl"
 #include "nn_tensor.glsl"
 
-layout(local_size_x_id = 0, local_size_y_id = 1) in;
-layout(constant_id = 2) const int WIDTH = 1;
-layout(constant_id = 3) const int HEIGHT = 1;
-layout(constant_id = 4) const int GROUPS = 1;  // of the gated output; the input has 2 GROUPS
-layout(constant_id = 5) const int PX = 4;
-layout(constant_id = 6) const int PY = 1;
+layout(local_size_x_id = NN_SPEC_LOCAL_SIZE_X, local_size_y_id = NN_SPEC_LOCAL_SIZE_Y) in;
+layout(constant_id = NN_SPEC_WIDTH) const int WIDTH = 1;
+layout(constant_id = NN_SPEC_HEIGHT) const int HEIGHT = 1;
+layout(constant_id = NN_SPEC_GROUPS) const int GROUPS = 1;  // of the gated output; the input has 2 GROUPS
+layout(constant_id = NN_SPEC_PX) const int PX = 4;
+layout(constant_id = NN_SPEC_PY) const int PY = 1;
 
 const int SPAN = PX + 2;  // input pixels along x under PX outputs
 

@@ -10,15 +10,16 @@
 #extension GL_EXT_shader_explicit_arithmetic_types_float16 : require
 #endif
 #extension GL_EXT_control_flow_attributes : require
+#include "nn_spec.glsl"
 #include "nn_tensor.glsl"
 
-layout(local_size_x_id = 0, local_size_y_id = 1) in;
-layout(constant_id = 2) const int WIDTH = 1;
-layout(constant_id = 3) const int HEIGHT = 1;
-layout(constant_id = 4) const int CHANNELS = 4;
-layout(constant_id = 5) const int GATED_CHANNELS = 4;
-layout(constant_id = 6) const int PX = 1;
-layout(constant_id = 7) const float EPS = 1e-6;
+layout(local_size_x_id = NN_SPEC_LOCAL_SIZE_X, local_size_y_id = NN_SPEC_LOCAL_SIZE_Y) in;
+layout(constant_id = NN_SPEC_WIDTH) const int WIDTH = 1;
+layout(constant_id = NN_SPEC_HEIGHT) const int HEIGHT = 1;
+layout(constant_id = NN_SPEC_CHANNELS) const int CHANNELS = 4;
+layout(constant_id = NN_SPEC_GATED_CHANNELS) const int GATED_CHANNELS = 4;
+layout(constant_id = NN_SPEC_PX) const int PX = 1;
+layout(constant_id = NN_SPEC_EPS) const float EPS = 1e-6;
 
 const int GROUPS = (CHANNELS + 3) / 4;
 const int OUT_GROUPS = 2 * ((GATED_CHANNELS + 3) / 4);

@@ -10,31 +10,32 @@
 #extension GL_EXT_shader_explicit_arithmetic_types_float16 : require
 #endif
 #extension GL_EXT_control_flow_attributes : require
+#include "nn_spec.glsl"
 #include "nn_tensor.glsl"
 
-layout(local_size_x_id = 0, local_size_y_id = 1) in;
-layout(constant_id = 2) const int WIDTH = 1;       // of the lightmaps
-layout(constant_id = 3) const int HEIGHT = 1;
-layout(constant_id = 4) const int MAP_HEIGHT = 1;  // of the head feature maps
-layout(constant_id = 5) const int SRGB_MASK = 0;
-layout(constant_id = 6) const int SOURCE_0 = 0;
-layout(constant_id = 7) const int SOURCE_1 = 1;
-layout(constant_id = 8) const int SOURCE_2 = 4;
-layout(constant_id = 9) const int SOURCE_3 = 5;
-layout(constant_id = 10) const int SOURCE_4 = 8;
-layout(constant_id = 11) const int SOURCE_5 = 9;
-layout(constant_id = 12) const int SOURCE_6 = 12;
-layout(constant_id = 13) const int SOURCE_7 = 13;
+layout(local_size_x_id = NN_SPEC_LOCAL_SIZE_X, local_size_y_id = NN_SPEC_LOCAL_SIZE_Y) in;
+layout(constant_id = NN_SPEC_WIDTH) const int WIDTH = 1;            // of the lightmaps
+layout(constant_id = NN_SPEC_HEIGHT) const int HEIGHT = 1;
+layout(constant_id = NN_SPEC_MAP_HEIGHT) const int MAP_HEIGHT = 1;  // of the head feature maps
+layout(constant_id = NN_SPEC_SRGB_MASK) const int SRGB_MASK = 0;
+layout(constant_id = NN_SPEC_SOURCE_0) const int SOURCE_0 = 0;
+layout(constant_id = NN_SPEC_SOURCE_1) const int SOURCE_1 = 1;
+layout(constant_id = NN_SPEC_SOURCE_2) const int SOURCE_2 = 4;
+layout(constant_id = NN_SPEC_SOURCE_3) const int SOURCE_3 = 5;
+layout(constant_id = NN_SPEC_SOURCE_4) const int SOURCE_4 = 8;
+layout(constant_id = NN_SPEC_SOURCE_5) const int SOURCE_5 = 9;
+layout(constant_id = NN_SPEC_SOURCE_6) const int SOURCE_6 = 12;
+layout(constant_id = NN_SPEC_SOURCE_7) const int SOURCE_7 = 13;
 // Which of the eight channels go to the components of lightmap A and B.
-layout(constant_id = 14) const int A_0 = 0;
-layout(constant_id = 15) const int A_1 = 1;
-layout(constant_id = 16) const int A_2 = 2;
-layout(constant_id = 17) const int A_3 = 3;
-layout(constant_id = 18) const int B_0 = 4;
-layout(constant_id = 19) const int B_1 = 5;
-layout(constant_id = 20) const int B_2 = 6;
-layout(constant_id = 21) const int B_3 = 7;
-layout(constant_id = 22) const int MAP_WIDTH = 1;
+layout(constant_id = NN_SPEC_A_0) const int A_0 = 0;
+layout(constant_id = NN_SPEC_A_1) const int A_1 = 1;
+layout(constant_id = NN_SPEC_A_2) const int A_2 = 2;
+layout(constant_id = NN_SPEC_A_3) const int A_3 = 3;
+layout(constant_id = NN_SPEC_B_0) const int B_0 = 4;
+layout(constant_id = NN_SPEC_B_1) const int B_1 = 5;
+layout(constant_id = NN_SPEC_B_2) const int B_2 = 6;
+layout(constant_id = NN_SPEC_B_3) const int B_3 = 7;
+layout(constant_id = NN_SPEC_MAP_WIDTH) const int MAP_WIDTH = 1;
 
 NN_INPUT_MAP(0, head0);
 NN_INPUT_MAP(1, head1);

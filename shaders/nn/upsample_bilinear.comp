@@ -8,13 +8,14 @@
 #extension GL_EXT_shader_explicit_arithmetic_types_float16 : require
 #endif
 #extension GL_EXT_control_flow_attributes : require
+#include "nn_spec.glsl"
 #include "nn_tensor.glsl"
 
-layout(local_size_x_id = 0, local_size_y_id = 1) in;
-layout(constant_id = 2) const int IN_WIDTH = 1;
-layout(constant_id = 3) const int IN_HEIGHT = 1;
-layout(constant_id = 4) const int GROUPS = 1;
-layout(constant_id = 5) const int FACTOR = 2;
+layout(local_size_x_id = NN_SPEC_LOCAL_SIZE_X, local_size_y_id = NN_SPEC_LOCAL_SIZE_Y) in;
+layout(constant_id = NN_SPEC_IN_WIDTH) const int IN_WIDTH = 1;
+layout(constant_id = NN_SPEC_IN_HEIGHT) const int IN_HEIGHT = 1;
+layout(constant_id = NN_SPEC_GROUPS) const int GROUPS = 1;
+layout(constant_id = NN_SPEC_FACTOR) const int FACTOR = 2;
 
 NN_INPUT_MAP(0, inputMap);
 NN_OUTPUT_MAP(1, outputMap);

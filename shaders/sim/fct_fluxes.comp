@@ -5,18 +5,19 @@
 // units per substep; each cell stores the fluxes of its three lower faces.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
+#include "sim_spec.glsl"
 
 layout(local_size_x = 64) in;
-layout(constant_id = 0) const int NX = 1;
-layout(constant_id = 1) const int NY = 1;
-layout(constant_id = 2) const int NZ = 1;
-layout(constant_id = 3) const int SMOKE_UPRES = 1;
-layout(constant_id = 4) const uint FACE_XM = 0u;  // boundary type per face (sim_grid.glsl)
-layout(constant_id = 5) const uint FACE_XP = 0u;
-layout(constant_id = 6) const uint FACE_YM = 0u;
-layout(constant_id = 7) const uint FACE_YP = 0u;
-layout(constant_id = 8) const uint FACE_ZM = 0u;
-layout(constant_id = 9) const uint FACE_ZP = 0u;
+layout(constant_id = SIM_SPEC_NX) const int NX = 1;
+layout(constant_id = SIM_SPEC_NY) const int NY = 1;
+layout(constant_id = SIM_SPEC_NZ) const int NZ = 1;
+layout(constant_id = SIM_SPEC_SMOKE_UPRES) const int SMOKE_UPRES = 1;
+layout(constant_id = SIM_SPEC_FACE_XM) const uint FACE_XM = 0u;  // boundary type per face (sim_grid.glsl)
+layout(constant_id = SIM_SPEC_FACE_XP) const uint FACE_XP = 0u;
+layout(constant_id = SIM_SPEC_FACE_YM) const uint FACE_YM = 0u;
+layout(constant_id = SIM_SPEC_FACE_YP) const uint FACE_YP = 0u;
+layout(constant_id = SIM_SPEC_FACE_ZM) const uint FACE_ZM = 0u;
+layout(constant_id = SIM_SPEC_FACE_ZP) const uint FACE_ZP = 0u;
 
 #include "linear_index.glsl"
 #include "sim_grid.glsl"

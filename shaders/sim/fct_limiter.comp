@@ -4,15 +4,16 @@
 // and its face neighbours, so that the corrected update creates no new extrema.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
+#include "sim_spec.glsl"
 
 layout(local_size_x = 64) in;
-layout(constant_id = 0) const int NX = 1;
-layout(constant_id = 1) const int NY = 1;
-layout(constant_id = 2) const int NZ = 1;
-layout(constant_id = 3) const int SMOKE_UPRES = 1;
-layout(constant_id = 4) const bool PERIODIC_X = false;
-layout(constant_id = 5) const bool PERIODIC_Y = false;
-layout(constant_id = 6) const bool PERIODIC_Z = false;
+layout(constant_id = SIM_SPEC_NX) const int NX = 1;
+layout(constant_id = SIM_SPEC_NY) const int NY = 1;
+layout(constant_id = SIM_SPEC_NZ) const int NZ = 1;
+layout(constant_id = SIM_SPEC_SMOKE_UPRES) const int SMOKE_UPRES = 1;
+layout(constant_id = SIM_SPEC_PERIODIC_X) const bool PERIODIC_X = false;
+layout(constant_id = SIM_SPEC_PERIODIC_Y) const bool PERIODIC_Y = false;
+layout(constant_id = SIM_SPEC_PERIODIC_Z) const bool PERIODIC_Z = false;
 
 #include "linear_index.glsl"
 #include "sim_grid.glsl"

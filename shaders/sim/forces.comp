@@ -12,18 +12,20 @@
 #extension GL_EXT_control_flow_attributes : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_EXT_shader_atomic_float : require
+#include "sim_spec.glsl"
 
 layout(local_size_x = 64) in;
-layout(constant_id = 0) const int NX = 1;
-layout(constant_id = 1) const int NY = 1;
-layout(constant_id = 2) const int NZ = 1;
-layout(constant_id = 3) const uint FACE_XM = 0u;  // boundary type per face (sim_grid.glsl)
-layout(constant_id = 4) const uint FACE_XP = 0u;
-layout(constant_id = 5) const uint FACE_YM = 0u;
-layout(constant_id = 6) const uint FACE_YP = 0u;
-layout(constant_id = 7) const uint FACE_ZM = 0u;
-layout(constant_id = 8) const uint FACE_ZP = 0u;
-layout(constant_id = 9) const bool INTERPOLATED_BOUNCE_BACK = false;  // as lbm_step's
+layout(constant_id = SIM_SPEC_NX) const int NX = 1;
+layout(constant_id = SIM_SPEC_NY) const int NY = 1;
+layout(constant_id = SIM_SPEC_NZ) const int NZ = 1;
+layout(constant_id = SIM_SPEC_FACE_XM) const uint FACE_XM = 0u;  // boundary type per face (sim_grid.glsl)
+layout(constant_id = SIM_SPEC_FACE_XP) const uint FACE_XP = 0u;
+layout(constant_id = SIM_SPEC_FACE_YM) const uint FACE_YM = 0u;
+layout(constant_id = SIM_SPEC_FACE_YP) const uint FACE_YP = 0u;
+layout(constant_id = SIM_SPEC_FACE_ZM) const uint FACE_ZM = 0u;
+layout(constant_id = SIM_SPEC_FACE_ZP) const uint FACE_ZP = 0u;
+// As lbm_step's.
+layout(constant_id = SIM_SPEC_INTERPOLATED_BOUNCE_BACK) const bool INTERPOLATED_BOUNCE_BACK = false;
 
 const uint CELLS = uint(NX * NY * NZ);
 const ivec3 SIZE = ivec3(NX, NY, NZ);

@@ -2,9 +2,10 @@
 // Sets every cell's populations to the equilibrium of the velocity and density in `macro`.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
+#include "sim_spec.glsl"
 
 layout(local_size_x = 64) in;
-layout(constant_id = 0) const uint CELLS = 1u;
+layout(constant_id = SIM_SPEC_CELLS) const uint CELLS = 1u;
 
 #include "linear_index.glsl"
 #include "lbm_d3q19.glsl"

@@ -8,34 +8,39 @@
 // boundary code out of the interior dispatch makes the LBM pass 1.5–2.2× faster there (docs/benchmarks.md).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
+#include "sim_spec.glsl"
 
 layout(local_size_x = 64) in;
-layout(constant_id = 0) const int NX = 1;
-layout(constant_id = 1) const int NY = 1;
-layout(constant_id = 2) const int NZ = 1;
-layout(constant_id = 3) const uint FACE_XM = 0u;  // boundary type per face (sim_grid.glsl)
-layout(constant_id = 4) const uint FACE_XP = 0u;
-layout(constant_id = 5) const uint FACE_YM = 0u;
-layout(constant_id = 6) const uint FACE_YP = 0u;
-layout(constant_id = 7) const uint FACE_ZM = 0u;
-layout(constant_id = 8) const uint FACE_ZP = 0u;
-layout(constant_id = 9) const float TAU0 = 0.6;          // from the molecular viscosity
-layout(constant_id = 10) const float SMAGORINSKY = 0.0;  // LES constant C_s
-layout(constant_id = 11) const int SMOKE_UPRES = 1;      // smoke cells per lattice cell per axis
-layout(constant_id = 12) const float BUOYANCY_T = 0.0;   // lattice acceleration per unit temperature
-layout(constant_id = 13) const float BUOYANCY_D = 0.0;   // lattice acceleration per unit smoke density
-layout(constant_id = 14) const float UP_X = 0.0;         // unit vector against gravity
-layout(constant_id = 15) const float UP_Y = 1.0;
-layout(constant_id = 16) const float UP_Z = 0.0;
-layout(constant_id = 17) const float BODY_X = 0.0;  // constant lattice acceleration
-layout(constant_id = 18) const float BODY_Y = 0.0;
-layout(constant_id = 19) const float BODY_Z = 0.0;
-layout(constant_id = 20) const float WIND_X = 0.0;  // lattice velocity on inflow faces
-layout(constant_id = 21) const float WIND_Y = 0.0;
-layout(constant_id = 22) const float WIND_Z = 0.0;
-layout(constant_id = 23) const bool PARABOLIC_INFLOW = false;
-layout(constant_id = 24) const bool INTERPOLATED_BOUNCE_BACK = false;  // obstacles (sim_bounce_back.glsl)
-layout(constant_id = 25) const bool BOUNDARY_CELLS = false;  // this pipeline's cells (cellVisited)
+layout(constant_id = SIM_SPEC_NX) const int NX = 1;
+layout(constant_id = SIM_SPEC_NY) const int NY = 1;
+layout(constant_id = SIM_SPEC_NZ) const int NZ = 1;
+layout(constant_id = SIM_SPEC_FACE_XM) const uint FACE_XM = 0u;  // boundary type per face (sim_grid.glsl)
+layout(constant_id = SIM_SPEC_FACE_XP) const uint FACE_XP = 0u;
+layout(constant_id = SIM_SPEC_FACE_YM) const uint FACE_YM = 0u;
+layout(constant_id = SIM_SPEC_FACE_YP) const uint FACE_YP = 0u;
+layout(constant_id = SIM_SPEC_FACE_ZM) const uint FACE_ZM = 0u;
+layout(constant_id = SIM_SPEC_FACE_ZP) const uint FACE_ZP = 0u;
+layout(constant_id = SIM_SPEC_TAU0) const float TAU0 = 0.6;                // from the molecular viscosity
+layout(constant_id = SIM_SPEC_SMAGORINSKY) const float SMAGORINSKY = 0.0;  // LES constant C_s
+// Smoke cells per lattice cell per axis.
+layout(constant_id = SIM_SPEC_SMOKE_UPRES) const int SMOKE_UPRES = 1;
+// Lattice acceleration per unit temperature and per unit smoke density.
+layout(constant_id = SIM_SPEC_BUOYANCY_T) const float BUOYANCY_T = 0.0;
+layout(constant_id = SIM_SPEC_BUOYANCY_D) const float BUOYANCY_D = 0.0;
+layout(constant_id = SIM_SPEC_UP_X) const float UP_X = 0.0;      // unit vector against gravity
+layout(constant_id = SIM_SPEC_UP_Y) const float UP_Y = 1.0;
+layout(constant_id = SIM_SPEC_UP_Z) const float UP_Z = 0.0;
+layout(constant_id = SIM_SPEC_BODY_X) const float BODY_X = 0.0;  // constant lattice acceleration
+layout(constant_id = SIM_SPEC_BODY_Y) const float BODY_Y = 0.0;
+layout(constant_id = SIM_SPEC_BODY_Z) const float BODY_Z = 0.0;
+layout(constant_id = SIM_SPEC_WIND_X) const float WIND_X = 0.0;  // lattice velocity on inflow faces
+layout(constant_id = SIM_SPEC_WIND_Y) const float WIND_Y = 0.0;
+layout(constant_id = SIM_SPEC_WIND_Z) const float WIND_Z = 0.0;
+layout(constant_id = SIM_SPEC_PARABOLIC_INFLOW) const bool PARABOLIC_INFLOW = false;
+// Obstacles (sim_bounce_back.glsl).
+layout(constant_id = SIM_SPEC_INTERPOLATED_BOUNCE_BACK) const bool INTERPOLATED_BOUNCE_BACK = false;
+// This pipeline's cells (cellVisited).
+layout(constant_id = SIM_SPEC_BOUNDARY_CELLS) const bool BOUNDARY_CELLS = false;
 
 const uint CELLS = uint(NX * NY * NZ);
 

@@ -2,11 +2,12 @@
 // Marks every lattice cell with the obstacle that covers it (first in the list wins) and the inlet
 // that forces it, for the current step; remembers the obstacle that covered it in the previous step.
 #extension GL_GOOGLE_include_directive : require
+#include "sim_spec.glsl"
 
 layout(local_size_x = 64) in;
-layout(constant_id = 0) const int NX = 1;
-layout(constant_id = 1) const int NY = 1;
-layout(constant_id = 2) const int NZ = 1;
+layout(constant_id = SIM_SPEC_NX) const int NX = 1;
+layout(constant_id = SIM_SPEC_NY) const int NY = 1;
+layout(constant_id = SIM_SPEC_NZ) const int NZ = 1;
 
 #include "linear_index.glsl"
 #include "sim_grid.glsl"

@@ -2,12 +2,13 @@
 // The smoke grid as the renderers read it (src/render/volume.h): the interleaved (density, temperature)
 // pairs of the transport split into two float grids, on the GPU so that a frame never visits the host.
 #extension GL_GOOGLE_include_directive : require
+#include "sim_spec.glsl"
 
 layout(local_size_x = 64) in;
-layout(constant_id = 0) const int NX = 1;
-layout(constant_id = 1) const int NY = 1;
-layout(constant_id = 2) const int NZ = 1;
-layout(constant_id = 3) const int SMOKE_UPRES = 1;
+layout(constant_id = SIM_SPEC_NX) const int NX = 1;
+layout(constant_id = SIM_SPEC_NY) const int NY = 1;
+layout(constant_id = SIM_SPEC_NZ) const int NZ = 1;
+layout(constant_id = SIM_SPEC_SMOKE_UPRES) const int SMOKE_UPRES = 1;
 
 #include "linear_index.glsl"
 #include "sim_grid.glsl"

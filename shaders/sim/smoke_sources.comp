@@ -2,13 +2,14 @@
 // Smoke sources and dissipation, once per lattice step: cells inside an active inlet take the
 // inlet's density and temperature; elsewhere both decay by the dissipation factor.
 #extension GL_GOOGLE_include_directive : require
+#include "sim_spec.glsl"
 
 layout(local_size_x = 64) in;
-layout(constant_id = 0) const int NX = 1;
-layout(constant_id = 1) const int NY = 1;
-layout(constant_id = 2) const int NZ = 1;
-layout(constant_id = 3) const int SMOKE_UPRES = 1;
-layout(constant_id = 4) const float DECAY = 1.0;  // exp(−dissipation · dt) per lattice step
+layout(constant_id = SIM_SPEC_NX) const int NX = 1;
+layout(constant_id = SIM_SPEC_NY) const int NY = 1;
+layout(constant_id = SIM_SPEC_NZ) const int NZ = 1;
+layout(constant_id = SIM_SPEC_SMOKE_UPRES) const int SMOKE_UPRES = 1;
+layout(constant_id = SIM_SPEC_DECAY) const float DECAY = 1.0;  // exp(−dissipation · dt) per lattice step
 
 #include "linear_index.glsl"
 #include "sim_grid.glsl"

@@ -6,12 +6,13 @@
 // PULL = false every population stays in its cell: the same traffic without the neighbour gathers.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
+#include "sim_spec.glsl"
 
 layout(local_size_x = 64) in;
-layout(constant_id = 0) const int NX = 1;
-layout(constant_id = 1) const int NY = 1;
-layout(constant_id = 2) const int NZ = 1;
-layout(constant_id = 3) const bool PULL = true;
+layout(constant_id = SIM_SPEC_NX) const int NX = 1;
+layout(constant_id = SIM_SPEC_NY) const int NY = 1;
+layout(constant_id = SIM_SPEC_NZ) const int NZ = 1;
+layout(constant_id = SIM_SPEC_PULL) const bool PULL = true;
 
 const uint CELLS = uint(NX * NY * NZ);
 const ivec3 SIZE = ivec3(NX, NY, NZ);

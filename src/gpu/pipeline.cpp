@@ -6,10 +6,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <initializer_list>
 #include <iterator>
+#include <map>
+#include <string_view>
 
 #include "gpu/check.h"
 #include "gpu/context.h"
+#include "gpu/spirv_reflect.h"
 
 namespace sixway::gpu {
 namespace {
@@ -50,6 +54,37 @@ class ShaderModule {
   VkShaderModule module_ = VK_NULL_HANDLE;
 };
 
+// Throws GpuError unless each constant in `spec` is declared by at least one of `stages` (a graphics pipeline
+// applies the same constants to both) with the host's name and type: what keeps the ids of a family's GLSL
+// include and of its C++ header (spec_id.h) the same.
+void checkSpecConstants(const SpecConstants& spec, std::initializer_list<std::string_view> stages) {
+  std::vector<std::map<uint32_t, ShaderSpecConstant>> declared;
+  for (std::string_view shader : stages) declared.push_back(reflectSpecConstants(shaders::spirv(shader)));
+  for (const SpecConstants::Entry& host : spec.entries()) {
+    const std::string id = std::to_string(host.id.id), hostName(host.id.name);
+    bool found = false;
+    for (size_t stage = 0; stage < declared.size(); ++stage) {
+      const auto constant = declared[stage].find(host.id.id);
+      if (constant == declared[stage].end()) continue;
+      found = true;
+      const ShaderSpecConstant& inShader = constant->second;
+      const std::string where =
+          "shader " + std::string(stages.begin()[stage]) + ": specialization constant " + id;
+      if (!inShader.name.empty() && inShader.name != host.id.name)
+        throw GpuError(where + " is " + inShader.name + ", set by the host as " + hostName);
+      if (inShader.type != host.type)
+        throw GpuError(where + " (" + hostName + ") is " + std::string(specTypeName(inShader.type)) +
+                       " in the shader, set by the host as " + std::string(specTypeName(host.type)));
+    }
+    if (!found) {
+      std::string names;
+      for (std::string_view shader : stages) names += (names.empty() ? "" : " and ") + std::string(shader);
+      throw GpuError((stages.size() == 1 ? "shader " + names + " has" : "shaders " + names + " have") +
+                     " no specialization constant " + id + " (set by the host as " + hostName + ")");
+    }
+  }
+}
+
 std::vector<char> readWholeFile(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in) return {};
@@ -58,28 +93,29 @@ std::vector<char> readWholeFile(const std::filesystem::path& file) {
 
 }  // namespace
 
-SpecConstants& SpecConstants::setWord(uint32_t id, uint32_t word) {
-  entries_.push_back({id, static_cast<uint32_t>(words_.size() * sizeof(uint32_t)), sizeof(uint32_t)});
+SpecConstants& SpecConstants::setWord(SpecId id, SpecType type, uint32_t word) {
+  entries_.push_back({id, type});
+  mapEntries_.push_back({id.id, static_cast<uint32_t>(words_.size() * sizeof(uint32_t)), sizeof(uint32_t)});
   words_.push_back(word);
   return *this;
 }
-SpecConstants& SpecConstants::set(uint32_t id, uint32_t value) {
-  return setWord(id, value);
+SpecConstants& SpecConstants::set(SpecId id, uint32_t value) {
+  return setWord(id, SpecType::Uint, value);
 }
-SpecConstants& SpecConstants::set(uint32_t id, int32_t value) {
-  return setWord(id, std::bit_cast<uint32_t>(value));
+SpecConstants& SpecConstants::set(SpecId id, int32_t value) {
+  return setWord(id, SpecType::Int, std::bit_cast<uint32_t>(value));
 }
-SpecConstants& SpecConstants::set(uint32_t id, float value) {
-  return setWord(id, std::bit_cast<uint32_t>(value));
+SpecConstants& SpecConstants::set(SpecId id, float value) {
+  return setWord(id, SpecType::Float, std::bit_cast<uint32_t>(value));
 }
-SpecConstants& SpecConstants::set(uint32_t id, bool value) {
-  return setWord(id, value ? 1u : 0u);
+SpecConstants& SpecConstants::set(SpecId id, bool value) {
+  return setWord(id, SpecType::Bool, value ? 1u : 0u);
 }
 
 VkSpecializationInfo SpecConstants::info() const {
   VkSpecializationInfo info{};
-  info.mapEntryCount = static_cast<uint32_t>(entries_.size());
-  info.pMapEntries = entries_.data();
+  info.mapEntryCount = static_cast<uint32_t>(mapEntries_.size());
+  info.pMapEntries = mapEntries_.data();
   info.dataSize = words_.size() * sizeof(uint32_t);
   info.pData = words_.data();
   return info;
@@ -187,6 +223,7 @@ Pipeline::Pipeline(const Context& context, const PipelineCache& cache, const Com
       stages_(VK_SHADER_STAGE_COMPUTE_BIT),
       bindings_(desc.bindings),
       pushConstantBytes_(desc.pushConstantBytes) {
+  checkSpecConstants(desc.spec, {desc.shader});
   ShaderModule module(context.device(), desc.shader);
   createLayout(desc.bindings, desc.pushConstantBytes);
   VkSpecializationInfo spec = desc.spec.info();
@@ -207,6 +244,7 @@ Pipeline::Pipeline(const Context& context, const PipelineCache& cache, const Gra
       stages_(VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT),
       bindings_(desc.bindings),
       pushConstantBytes_(desc.pushConstantBytes) {
+  checkSpecConstants(desc.spec, {desc.vertexShader, desc.fragmentShader});
   ShaderModule vertex(context.device(), desc.vertexShader);
   ShaderModule fragment(context.device(), desc.fragmentShader);
   createLayout(desc.bindings, desc.pushConstantBytes);

@@ -9,25 +9,34 @@
 #include <string>
 #include <vector>
 
+#include "gpu/spec_id.h"
+
 namespace sixway::gpu {
 
 class Context;
 
 enum class BindingType { StorageBuffer, UniformBuffer, StorageImage, SampledImage, StorageTexelBuffer };
 
-// constant_id → 32-bit value, in the order they are set.
+// Specialization constants: a 32-bit value per constant, in the order they are set. Each remembers the
+// name and type the host gave it, so that Pipeline can check them against the shader.
 class SpecConstants {
  public:
-  SpecConstants& set(uint32_t id, uint32_t value);
-  SpecConstants& set(uint32_t id, int32_t value);
-  SpecConstants& set(uint32_t id, float value);
-  SpecConstants& set(uint32_t id, bool value);  // GLSL bool specialization constants are 32-bit
+  struct Entry {
+    SpecId id;
+    SpecType type;
+  };
+  SpecConstants& set(SpecId id, uint32_t value);
+  SpecConstants& set(SpecId id, int32_t value);
+  SpecConstants& set(SpecId id, float value);
+  SpecConstants& set(SpecId id, bool value);  // GLSL bool specialization constants are 32-bit
   VkSpecializationInfo info() const;
   bool empty() const { return entries_.empty(); }
+  const std::vector<Entry>& entries() const { return entries_; }
 
  private:
-  SpecConstants& setWord(uint32_t id, uint32_t word);
-  std::vector<VkSpecializationMapEntry> entries_;
+  SpecConstants& setWord(SpecId id, SpecType type, uint32_t word);
+  std::vector<Entry> entries_;
+  std::vector<VkSpecializationMapEntry> mapEntries_;
   std::vector<uint32_t> words_;
 };
 
@@ -83,6 +92,8 @@ struct GraphicsPipelineDesc {
 
 class Pipeline {
  public:
+  // Throw GpuError, naming the shader and the id, when a specialization constant of `desc` is not one the
+  // shader declares with that id, name and type (read from its SPIR-V).
   Pipeline(const Context& context, const PipelineCache& cache, const ComputePipelineDesc& desc);
   Pipeline(const Context& context, const PipelineCache& cache, const GraphicsPipelineDesc& desc);
   ~Pipeline();

@@ -2,6 +2,7 @@
 
 #include "gpu/check.h"
 #include "gpu/context.h"
+#include "gpu/gpu_spec.h"
 #include "gpu/pipeline.h"
 #include "gpu/sequence.h"
 
@@ -14,7 +15,8 @@ uint64_t groupsFor(uint64_t count, uint32_t perGroup) {
 
 }  // namespace
 
-ReduceStats::ReduceStats(const Context& context, const PipelineCache& cache, uint64_t maxCount, ReduceInput input)
+ReduceStats::ReduceStats(const Context& context, const PipelineCache& cache, uint64_t maxCount,
+                         ReduceInput input)
     : context_(&context), input_(input) {
   if (maxCount == 0 || maxCount > UINT32_MAX)
     throw GpuError("ReduceStats: count must be 1.." + std::to_string(UINT32_MAX));
@@ -26,7 +28,10 @@ ReduceStats::ReduceStats(const Context& context, const PipelineCache& cache, uin
     d.shader = "gpu/reduce_stats.comp";
     d.bindings = {BindingType::StorageBuffer, BindingType::StorageBuffer, BindingType::StorageBuffer};
     d.pushConstantBytes = sizeof(uint32_t);
-    d.spec.set(0, kGroupSize).set(1, kItemsPerThread).set(2, fromStats).set(3, input.stride).set(4, input.components);
+    d.spec.set(spec::kGroupSize, kGroupSize).set(spec::kItemsPerThread, kItemsPerThread);
+    d.spec.set(spec::kFromStats, fromStats)
+        .set(spec::kStride, input.stride)
+        .set(spec::kComponents, input.components);
     return d;
   };
   fromValues_ = std::make_unique<Pipeline>(context, cache, desc(false));

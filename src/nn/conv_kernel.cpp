@@ -6,6 +6,7 @@
 #include "gpu/check.h"
 #include "gpu/pipeline.h"
 #include "gpu/sequence.h"
+#include "nn/nn_spec.h"
 #include "nn/weight_packing.h"
 
 namespace sixway::nn {
@@ -77,12 +78,14 @@ ConvKernel::ConvKernel(const KernelSetup& setup, const ConvShape& shape, const s
   desc.shader = shaderName(shape.transposed ? "conv_transpose2x2" : "conv2d", setup.precision);
   desc.pushConstantBytes = sizeof(Push);
   const int weightVec4s = int(groupFloats / 4) * groupsPerChunk_;
-  desc.spec.set(0, kTile).set(1, kTile);
+  desc.spec.set(spec::kLocalSizeX, kTile).set(spec::kLocalSizeY, kTile);
+  desc.spec.set(spec::kInWidth, int(shape.inWidth)).set(spec::kInHeight, int(shape.inHeight));
+  desc.spec.set(spec::kPx, pixels).set(spec::kWeightVec4s, weightVec4s);
+  desc.spec.set(spec::kActivation, int(shape.activation)).set(spec::kNegativeSlope, shape.negativeSlope);
   if (shape.transposed) {
     desc.bindings = {gpu::BindingType::StorageTexelBuffer, gpu::BindingType::UniformBuffer,
                      gpu::BindingType::StorageBuffer};
-    desc.spec.set(2, int(shape.inWidth)).set(3, int(shape.inHeight)).set(4, in.groups()).set(5, pixels);
-    desc.spec.set(6, int(shape.activation)).set(7, shape.negativeSlope).set(8, weightVec4s);
+    desc.spec.set(spec::kGroupsIn, in.groups());
     gridX_ = groupsFor(groupsFor(shape.inWidth, pixels), kTile);
     gridY_ = groupsFor(shape.inHeight, kTile);
   } else {
@@ -91,14 +94,10 @@ ConvKernel::ConvKernel(const KernelSetup& setup, const ConvShape& shape, const s
     const int groupsA = concatLayout({shape.inputChannels[0]}).groups();
     desc.bindings = {gpu::BindingType::StorageTexelBuffer, gpu::BindingType::StorageTexelBuffer,
                      gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer};
-    desc.spec.set(2, shape.kernel).set(3, shape.stride).set(4, int(shape.inHeight)).set(5, int(o.width));
-    desc.spec.set(6, int(o.height))
-        .set(7, groupsA)
-        .set(8, in.groups() - groupsA)
-        .set(9, pixels)
-        .set(10, rows);
-    desc.spec.set(11, kSliceGroups).set(12, int(shape.activation)).set(13, shape.negativeSlope);
-    desc.spec.set(14, weightVec4s).set(15, int(shape.inWidth));
+    desc.spec.set(spec::kKernel, shape.kernel).set(spec::kStride, shape.stride);
+    desc.spec.set(spec::kOutWidth, int(o.width)).set(spec::kOutHeight, int(o.height));
+    desc.spec.set(spec::kGroupsA, groupsA).set(spec::kGroupsB, in.groups() - groupsA);
+    desc.spec.set(spec::kPy, rows).set(spec::kSlice, kSliceGroups);
     gridX_ = groupsFor(groupsFor(o.width, pixels), kTile);
     gridY_ = groupsFor(groupsFor(o.height, rows), kTile);
   }

@@ -3,6 +3,7 @@
 #include "gpu/check.h"
 #include "gpu/pipeline.h"
 #include "gpu/sequence.h"
+#include "nn/nn_spec.h"
 
 namespace sixway::nn {
 
@@ -12,8 +13,10 @@ InputKernel::InputKernel(const KernelSetup& setup, MapShape map, uint32_t guideW
   gpu::ComputePipelineDesc desc;
   desc.shader = shaderName("input", setup.precision);
   desc.bindings = {gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer};
-  desc.spec.set(0, kTile).set(1, kTile).set(2, int(map.width)).set(3, int(map.height));
-  desc.spec.set(4, int(guideWidth)).set(5, int(guideHeight)).set(6, guideChannels);
+  desc.spec.set(spec::kLocalSizeX, kTile).set(spec::kLocalSizeY, kTile);
+  desc.spec.set(spec::kWidth, int(map.width)).set(spec::kHeight, int(map.height));
+  desc.spec.set(spec::kGuideWidth, int(guideWidth)).set(spec::kGuideHeight, int(guideHeight));
+  desc.spec.set(spec::kGuideChannels, guideChannels);
   pipeline_ = &setup.pipelines->get(desc);
 }
 
@@ -46,11 +49,13 @@ OutputKernel::OutputKernel(const KernelSetup& setup, const OutputLayout& layout,
   int srgbMask = 0;
   for (int k = 0; k < 8; ++k)
     if (layout.encoding[k] == Encoding::Srgb) srgbMask |= 1 << k;
-  desc.spec.set(0, kTile).set(1, kTile).set(2, int(width)).set(3, int(height)).set(4, int(map.height));
-  desc.spec.set(5, srgbMask).set(22, int(map.width));
-  for (uint32_t k = 0; k < 8; ++k) desc.spec.set(6 + k, layout.source[k]);
-  for (uint32_t k = 0; k < 4; ++k)
-    desc.spec.set(14 + k, layout.lightmapA[k]).set(18 + k, layout.lightmapB[k]);
+  desc.spec.set(spec::kLocalSizeX, kTile).set(spec::kLocalSizeY, kTile);
+  desc.spec.set(spec::kWidth, int(width)).set(spec::kHeight, int(height));
+  desc.spec.set(spec::kMapWidth, int(map.width)).set(spec::kMapHeight, int(map.height));
+  desc.spec.set(spec::kSrgbMask, srgbMask);
+  for (int k = 0; k < 8; ++k) desc.spec.set(spec::kSource[k], layout.source[k]);
+  for (int k = 0; k < 4; ++k)
+    desc.spec.set(spec::kLightmapA[k], layout.lightmapA[k]).set(spec::kLightmapB[k], layout.lightmapB[k]);
   pipeline_ = &setup.pipelines->get(desc);
 }
 

@@ -4,6 +4,7 @@
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "gpu/sequence.h"
+#include "nn/nn_spec.h"
 #include "nn/weight_packing.h"
 
 namespace sixway::nn {
@@ -32,6 +33,14 @@ gpu::Buffer checkedUniform(const gpu::Context& context, const std::vector<float>
     throw gpu::GpuError(name +
                         ": the weights of one kernel exceed a uniform buffer; reduce the block's channels");
   return uniformBuffer(context, values, name);
+}
+
+// What the block's three image kernels share: 8 x 8 workgroups over the block's map.
+gpu::SpecConstants mapSpec(const NafShape& shape) {
+  gpu::SpecConstants constants;
+  constants.set(spec::kLocalSizeX, kTile).set(spec::kLocalSizeY, kTile);
+  constants.set(spec::kWidth, int(shape.width)).set(spec::kHeight, int(shape.height));
+  return constants;
 }
 
 }  // namespace
@@ -102,30 +111,34 @@ NafBlockKernel::NafBlockKernel(const KernelSetup& setup, const NafShape& shape, 
   gpu::ComputePipelineDesc desc;
   desc.shader = shaderName("naf_norm_expand", setup.precision);
   desc.bindings = {uniform, texels, storage};
-  desc.spec.set(0, kTile).set(1, kTile).set(2, int(shape.width)).set(3, int(shape.height));
-  desc.spec.set(4, shape.channels).set(5, shape.gated()).set(6, kExpandPixels).set(7, shape.eps);
+  desc.spec = mapSpec(shape);
+  desc.spec.set(spec::kChannels, shape.channels).set(spec::kGatedChannels, shape.gated());
+  desc.spec.set(spec::kPx, kExpandPixels).set(spec::kEps, shape.eps);
   normExpand_ = &setup.pipelines->get(desc);
 
   desc = {};
   desc.shader = shaderName("naf_dw_gate", setup.precision);
   desc.bindings = {uniform, texels, storage, storage};
-  desc.spec.set(0, kTile).set(1, kTile).set(2, int(shape.width)).set(3, int(shape.height));
-  desc.spec.set(4, gated.groups()).set(5, kDwPixels).set(6, kDwRows);
+  desc.spec = mapSpec(shape);
+  desc.spec.set(spec::kGroups, gated.groups()).set(spec::kPx, kDwPixels).set(spec::kPy, kDwRows);
   dwGate_ = &setup.pipelines->get(desc);
 
   desc = {};
   desc.shader = "nn/naf_attention.comp";
   desc.bindings = {storage, uniform, storage};
-  desc.spec.set(0, kAttentionThreads).set(1, shape.gated()).set(2, shape.channels).set(3, int(partialCount));
-  desc.spec.set(4, float(shape.width) * float(shape.height));
+  desc.spec.set(spec::kLocalSizeX, kAttentionThreads);
+  desc.spec.set(spec::kGatedChannels, shape.gated()).set(spec::kChannels, shape.channels);
+  desc.spec.set(spec::kPartialCount, int(partialCount))
+      .set(spec::kPixels, float(shape.width) * float(shape.height));
   attention_ = &setup.pipelines->get(desc);
 
   desc = {};
   desc.shader = shaderName("naf_tail", setup.precision);
   desc.bindings = {uniform, uniform, texels, texels, storage};
-  desc.spec.set(0, kTile).set(1, kTile).set(2, int(shape.width)).set(3, int(shape.height));
-  desc.spec.set(4, shape.channels).set(5, shape.gated()).set(6, shape.ffn()).set(7, shape.eps);
-  desc.spec.set(8, kTailPixels).set(9, shape.projection);
+  desc.spec = mapSpec(shape);
+  desc.spec.set(spec::kChannels, shape.channels).set(spec::kGatedChannels, shape.gated());
+  desc.spec.set(spec::kFfnChannels, shape.ffn()).set(spec::kProjectionChannels, shape.projection);
+  desc.spec.set(spec::kPx, kTailPixels).set(spec::kEps, shape.eps);
   tail_ = &setup.pipelines->get(desc);
 }
 

@@ -2,6 +2,7 @@
 
 #include "gpu/pipeline.h"
 #include "gpu/sequence.h"
+#include "nn/nn_spec.h"
 
 namespace sixway::nn {
 
@@ -10,8 +11,9 @@ UpsampleKernel::UpsampleKernel(const KernelSetup& setup, MapShape input, int fac
   gpu::ComputePipelineDesc desc;
   desc.shader = shaderName("upsample_bilinear", setup.precision);
   desc.bindings = {gpu::BindingType::StorageTexelBuffer, gpu::BindingType::StorageBuffer};
-  desc.spec.set(0, kTile).set(1, kTile).set(2, int(input.width)).set(3, int(input.height));
-  desc.spec.set(4, int(input.groups())).set(5, factor);
+  desc.spec.set(spec::kLocalSizeX, kTile).set(spec::kLocalSizeY, kTile);
+  desc.spec.set(spec::kInWidth, int(input.width)).set(spec::kInHeight, int(input.height));
+  desc.spec.set(spec::kGroups, int(input.groups())).set(spec::kFactor, factor);
   pipeline_ = &setup.pipelines->get(desc);
 }
 

@@ -6,6 +6,7 @@
 #include "gpu/pipeline.h"
 #include "gpu/sequence.h"
 #include "render/lightmap_images.h"
+#include "render/render_spec.h"
 
 namespace sixway::render {
 
@@ -18,7 +19,7 @@ GuideLightmaps::GuideLightmaps(const gpu::Context& context, const gpu::PipelineC
   gpu::ComputePipelineDesc desc{
       "render/guide_lightmaps.comp",
       {BindingType::StorageImage, BindingType::StorageImage, BindingType::StorageImage}};
-  desc.spec.set(0, int32_t(guideLights));
+  desc.spec.set(spec::kGuideLights, int32_t(guideLights));
   pass_ = std::make_unique<gpu::Pipeline>(context, cache, desc);
 }
 

@@ -9,6 +9,7 @@
 #include "gpu/pipeline.h"
 #include "io/error.h"
 #include "render/gpu_layout.h"
+#include "render/render_spec.h"
 #include "render/sixway.h"
 
 namespace sixway::render {
@@ -51,9 +52,9 @@ PathTracer::PathTracer(const gpu::Context& context, const gpu::PipelineCache& ca
                                              BindingType::StorageBuffer, BindingType::StorageBuffer,
                                              BindingType::StorageBuffer};
   gpu::ComputePipelineDesc desc{"render/path_trace.comp", bindings, 0};
-  desc.spec.set(0, false);
+  desc.spec.set(spec::kSixWay, false);
   imagePass_ = std::make_unique<gpu::Pipeline>(context, cache, desc);
-  desc.spec = gpu::SpecConstants().set(0, true);
+  desc.spec = gpu::SpecConstants().set(spec::kSixWay, true);
   sixWayPass_ = std::make_unique<gpu::Pipeline>(context, cache, desc);
 }
 

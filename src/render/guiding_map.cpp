@@ -10,6 +10,7 @@
 #include "gpu/pipeline.h"
 #include "io/error.h"
 #include "render/gpu_layout.h"
+#include "render/render_spec.h"
 
 namespace sixway::render {
 namespace {
@@ -124,12 +125,12 @@ GuidingMap::GuidingMap(const gpu::Context& context, const gpu::PipelineCache& ca
   std::vector<BindingType> march(4 + kMaxGrids + 1, BindingType::StorageBuffer);
   march[0] = march[1] = BindingType::UniformBuffer;
   march.back() = BindingType::StorageImage;
-  gpu::SpecConstants spec;
-  spec.set(0, shadowed);
-  spec.set(1, size_t(shadowed) < settings_.lights.size());
-  spec.set(2, lightGrids);
+  gpu::SpecConstants constants;
+  constants.set(spec::kShadowedLights, shadowed);
+  constants.set(spec::kFrontLight, size_t(shadowed) < settings_.lights.size());
+  constants.set(spec::kLightGrids, lightGrids);
   marchPass_ = std::make_unique<gpu::Pipeline>(
-      context, cache, gpu::ComputePipelineDesc{"render/guide_march.comp", march, 0, spec});
+      context, cache, gpu::ComputePipelineDesc{"render/guide_march.comp", march, 0, constants});
 }
 
 GuidingMap::~GuidingMap() = default;

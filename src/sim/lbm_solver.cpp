@@ -7,6 +7,7 @@
 #include "gpu/sequence.h"
 #include "io/error.h"
 #include "sim/sim_params.h"
+#include "sim/sim_spec.h"
 
 namespace sixway::sim {
 namespace {
@@ -27,6 +28,15 @@ struct ForcesPush {  // forces.comp
 
 std::vector<BindingType> storageBuffers(int count) {
   return std::vector<BindingType>(count, BindingType::StorageBuffer);
+}
+
+// What lbm_step.comp and forces.comp share: the lattice, its faces, the obstacles' boundary rule.
+gpu::SpecConstants latticeSpec(const LbmSettings& settings) {
+  gpu::SpecConstants constants;
+  for (int a = 0; a < 3; ++a) constants.set(spec::kSize[a], settings.size[a]);
+  for (int f = 0; f < 6; ++f) constants.set(spec::kFaces[f], uint32_t(settings.faces[f]));
+  constants.set(spec::kInterpolatedBounceBack, settings.interpolatedBounceBack);
+  return constants;
 }
 
 }  // namespace
@@ -66,37 +76,36 @@ LbmSolver::LbmSolver(const gpu::Context& context, const gpu::PipelineCache& cach
     }
   macro_ = gpu::Buffer::storage(context, cells_ * 16, "the " + shape + " velocity field");
 
-  const auto& sz = settings.size;
   gpu::ComputePipelineDesc init;
   init.shader = "sim/lbm_init.comp";
   init.bindings = storageBuffers(5);
-  init.spec.set(0, uint32_t(cells_));
+  init.spec.set(spec::kCells, uint32_t(cells_));
   init_ = std::make_unique<gpu::Pipeline>(context, cache, init);
 
   gpu::ComputePipelineDesc step;
   step.shader = "sim/lbm_step.comp";
   step.bindings = storageBuffers(12);
   step.pushConstantBytes = sizeof(StepPush);
-  step.spec.set(0, sz.x).set(1, sz.y).set(2, sz.z);
-  for (uint32_t f = 0; f < 6; ++f) step.spec.set(3 + f, uint32_t(settings.faces[f]));
-  step.spec.set(9, settings.tau).set(10, settings.smagorinsky).set(11, settings.smokeUpres);
-  step.spec.set(12, settings.buoyancyTemperature).set(13, settings.buoyancyDensity);
-  step.spec.set(14, settings.up.x).set(15, settings.up.y).set(16, settings.up.z);
-  step.spec.set(17, settings.bodyForce.x).set(18, settings.bodyForce.y).set(19, settings.bodyForce.z);
-  step.spec.set(20, settings.wind.x).set(21, settings.wind.y).set(22, settings.wind.z);
-  step.spec.set(23, settings.parabolicInflow).set(24, settings.interpolatedBounceBack);
+  step.spec = latticeSpec(settings);
+  step.spec.set(spec::kTau0, settings.tau).set(spec::kSmagorinsky, settings.smagorinsky);
+  step.spec.set(spec::kSmokeUpres, settings.smokeUpres);
+  step.spec.set(spec::kBuoyancyTemperature, settings.buoyancyTemperature)
+      .set(spec::kBuoyancyDensity, settings.buoyancyDensity);
+  for (int a = 0; a < 3; ++a) {
+    step.spec.set(spec::kUp[a], settings.up[a]).set(spec::kBody[a], settings.bodyForce[a]);
+    step.spec.set(spec::kWind[a], settings.wind[a]);
+  }
+  step.spec.set(spec::kParabolicInflow, settings.parabolicInflow);
   step_ = std::make_unique<gpu::Pipeline>(context, cache, step);  // the interior (BOUNDARY_CELLS false)
   gpu::ComputePipelineDesc boundary = step;
-  boundary.spec.set(25, true);
+  boundary.spec.set(spec::kBoundaryCells, true);
   stepBoundary_ = std::make_unique<gpu::Pipeline>(context, cache, boundary);
 
   gpu::ComputePipelineDesc forces;
   forces.shader = "sim/forces.comp";
   forces.bindings = storageBuffers(8);
   forces.pushConstantBytes = sizeof(ForcesPush);
-  forces.spec.set(0, sz.x).set(1, sz.y).set(2, sz.z);
-  for (uint32_t f = 0; f < 6; ++f) forces.spec.set(3 + f, uint32_t(settings.faces[f]));
-  forces.spec.set(9, settings.interpolatedBounceBack);
+  forces.spec = latticeSpec(settings);
   forces_ = std::make_unique<gpu::Pipeline>(context, cache, forces);
 }
 

@@ -11,6 +11,7 @@
 #include "io/error.h"
 #include "io/motion.h"
 #include "io/obj.h"
+#include "sim/sim_spec.h"
 
 namespace sixway::sim {
 namespace {
@@ -42,7 +43,7 @@ ObstacleSet::ObstacleSet(const gpu::Context& context, const gpu::PipelineCache& 
   desc.shader = "sim/obstacles.comp";
   desc.bindings.assign(3, gpu::BindingType::StorageBuffer);
   desc.pushConstantBytes = sizeof(uint32_t);
-  desc.spec.set(0, scene.grid.size.x).set(1, scene.grid.size.y).set(2, scene.grid.size.z);
+  for (int a = 0; a < 3; ++a) desc.spec.set(spec::kSize[a], scene.grid.size[a]);
   flagsPipeline_ = std::make_unique<gpu::Pipeline>(context, cache, desc);
   if (scene.obstacles.size() > kMaxObstacles)
     throw io::InputError(scene.name, "obstacles: at most " + std::to_string(kMaxObstacles) +

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "gpu/sequence.h"
+#include "sim/sim_spec.h"
 
 namespace sixway::sim {
 namespace {
@@ -18,13 +19,14 @@ gpu::ComputePipelineDesc smokeDesc(const char* shader, int bindings, const Smoke
   gpu::ComputePipelineDesc d;
   d.shader = shader;
   d.bindings.assign(bindings, gpu::BindingType::StorageBuffer);
-  d.spec.set(0, s.lattice.x).set(1, s.lattice.y).set(2, s.lattice.z).set(3, s.upres);
+  for (int a = 0; a < 3; ++a) d.spec.set(spec::kSize[a], s.lattice[a]);
+  d.spec.set(spec::kSmokeUpres, s.upres);
   return d;
 }
 
 void setPeriodicAxes(gpu::ComputePipelineDesc& d, const SmokeSettings& s) {
-  for (uint32_t axis = 0; axis < 3; ++axis)
-    d.spec.set(4 + axis, s.faces[2 * axis] == io::BoundaryType::Periodic);
+  for (int axis = 0; axis < 3; ++axis)
+    d.spec.set(spec::kPeriodic[axis], s.faces[2 * axis] == io::BoundaryType::Periodic);
 }
 
 }  // namespace
@@ -41,12 +43,12 @@ SmokeTransport::SmokeTransport(const gpu::Context& context, const gpu::PipelineC
   ratios_ = gpu::Buffer::storage(context, cells_ * 16, "the " + shape + " smoke grid (limiters)");
 
   gpu::ComputePipelineDesc sources = smokeDesc("sim/smoke_sources.comp", 3, settings);
-  sources.spec.set(4, settings.decayPerStep);
+  sources.spec.set(spec::kDecay, settings.decayPerStep);
   sources.pushConstantBytes = sizeof(SourcesPush);
   sources_ = std::make_unique<gpu::Pipeline>(context, cache, sources);
 
   gpu::ComputePipelineDesc fluxes = smokeDesc("sim/fct_fluxes.comp", 5, settings);
-  for (uint32_t f = 0; f < 6; ++f) fluxes.spec.set(4 + f, uint32_t(settings.faces[f]));
+  for (int f = 0; f < 6; ++f) fluxes.spec.set(spec::kFaces[f], uint32_t(settings.faces[f]));
   fluxes_ = std::make_unique<gpu::Pipeline>(context, cache, fluxes);
 
   gpu::ComputePipelineDesc limiter = smokeDesc("sim/fct_limiter.comp", 5, settings);

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "gpu/check.h"
+#include "gpu/gpu_spec.h"
 #include "gpu/image.h"
 #include "gpu/pipeline.h"
 #include "gpu/sequence.h"
@@ -29,7 +30,7 @@ class GraphicsTest : public GpuTest {
     desc.vertexShader = "gpu/fill_gradient.vert";
     desc.fragmentShader = "gpu/fill_gradient.frag";
     desc.pushConstantBytes = sizeof(FillPush);
-    desc.spec.set(0, kBlue);
+    desc.spec.set(gpu::spec::kBlue, kBlue);
     desc.colorFormats = {VK_FORMAT_R32G32B32A32_SFLOAT};
     desc.blend = blend;
     gpu::Pipeline pipeline(context(), pipelineCache(), desc);

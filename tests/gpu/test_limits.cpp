@@ -4,6 +4,7 @@
 
 #include "gpu/buffer.h"
 #include "gpu/check.h"
+#include "gpu/gpu_spec.h"
 #include "gpu/image.h"
 #include "gpu/pipeline.h"
 #include "gpu/reduce_stats.h"
@@ -62,7 +63,7 @@ TEST_F(LimitsTest, DispatchMismatchesAreRefusedWhileRecording) {
   desc.bindings = {gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer,
                    gpu::BindingType::StorageBuffer};
   desc.pushConstantBytes = 4;
-  desc.spec.set(0, 64u);
+  desc.spec.set(gpu::spec::kGroupSize, 64u);
   gpu::Pipeline pipeline(context(), pipelineCache(), desc);
   gpu::Buffer buffer = gpu::Buffer::storage(context(), 1024, "b");
   gpu::Sequence sequence(context());

@@ -6,6 +6,7 @@
 
 #include "gpu/buffer.h"
 #include "gpu/check.h"
+#include "gpu/gpu_spec.h"
 #include "gpu/pipeline.h"
 #include "gpu/sequence.h"
 #include "support/gpu_fixture.h"
@@ -27,7 +28,7 @@ class TexelBufferTest : public GpuTest {
     desc.shader = "gpu/texel_buffer_scale.comp";
     desc.bindings = {gpu::BindingType::StorageTexelBuffer, gpu::BindingType::StorageBuffer};
     desc.pushConstantBytes = sizeof(uint32_t);
-    desc.spec.set(0, scale);
+    desc.spec.set(gpu::spec::kScale, scale);
     return gpu::Pipeline(context(), pipelineCache(), desc);
   }
 };

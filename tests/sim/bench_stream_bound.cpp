@@ -13,6 +13,7 @@
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "gpu/sequence.h"
+#include "sim/sim_spec.h"
 
 using namespace sixway;
 
@@ -32,7 +33,8 @@ int main(int argc, char** argv) {
       gpu::ComputePipelineDesc desc;
       desc.shader = "sim/stream_bound.comp";
       desc.bindings.assign(8, gpu::BindingType::StorageBuffer);
-      desc.spec.set(0, size.x).set(1, size.y).set(2, size.z).set(3, pull);
+      for (int a = 0; a < 3; ++a) desc.spec.set(sim::spec::kSize[a], size[a]);
+      desc.spec.set(sim::spec::kPull, pull);
       const gpu::Pipeline pipeline(context, cache, desc);
       gpu::Sequence sequence(context, uint32_t(repeats + 1));
       for (int r = 0; r <= repeats; ++r) {  // the first one warms up

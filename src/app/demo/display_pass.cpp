@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "app/demo/demo_spec.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "gpu/sequence.h"
@@ -52,7 +53,7 @@ DisplayPass::DisplayPass(const gpu::Context& context, const gpu::PipelineCache& 
   p.fragmentShader = "demo/display.frag";
   p.bindings = {gpu::BindingType::SampledImage};
   p.pushConstantBytes = sizeof(DisplayPush);
-  p.spec.set(0, !isSrgb(format));
+  p.spec.set(spec::kEncodeSrgb, !isSrgb(format));
   p.colorFormats = {format};
   pipeline_ = std::make_unique<gpu::Pipeline>(context, cache, p);
   sampler_ = std::make_unique<gpu::Sampler>(context, VK_FILTER_LINEAR);
