@@ -6,7 +6,7 @@
   plot_eval.py angle REPORT OUT.png         PSNR vs the view's angle from the flipbook's baked view
   plot_eval.py equal-time REPORT OUT.png    path-tracer noise vs its time, with the neural frame's time and PSNR
 
-Reads only the report's JSON (src/app/scene_eval.h); small PNGs (about 6 x 3.2 in at 100 dpi).
+Reads only the report's JSON (src/eval/scene_eval.h); small PNGs (about 6 x 3.2 in at 100 dpi).
 """
 import json
 import math

@@ -27,15 +27,16 @@
 namespace {
 
 void check(VkResult result, const char* call) {
-  if (result != VK_SUCCESS) throw std::runtime_error(std::string(call) + " failed (" + std::to_string(result) + ")");
+  if (result != VK_SUCCESS)
+    throw std::runtime_error(std::string(call) + " failed (" + std::to_string(result) + ")");
 }
 #define VK(call) check(call, #call)
 
 std::atomic<int> validationMessages{0};
 
 VKAPI_ATTR VkBool32 VKAPI_CALL onMessage(VkDebugUtilsMessageSeverityFlagBitsEXT,
-                                         VkDebugUtilsMessageTypeFlagsEXT, const VkDebugUtilsMessengerCallbackDataEXT* data,
-                                         void*) {
+                                         VkDebugUtilsMessageTypeFlagsEXT,
+                                         const VkDebugUtilsMessengerCallbackDataEXT* data, void*) {
   ++validationMessages;
   std::fprintf(stderr, "validation: %s\n", data->pMessage);
   return VK_FALSE;
@@ -59,14 +60,20 @@ Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string key = argv[i], value = argv[i + 1];
-    if (key == "--scene") o.scene = value;
-    else if (key == "--weights") o.weights = value;
-    else if (key == "--out") o.out = value;
-    else if (key == "--frames") o.frames = std::stoi(value);
-    else throw std::runtime_error("unknown option " + key);
+    if (key == "--scene")
+      o.scene = value;
+    else if (key == "--weights")
+      o.weights = value;
+    else if (key == "--out")
+      o.out = value;
+    else if (key == "--frames")
+      o.frames = std::stoi(value);
+    else
+      throw std::runtime_error("unknown option " + key);
   }
   if (o.scene.empty() || o.weights.empty() || o.out.empty() || o.frames < 1)
-    throw std::runtime_error("usage: embed_vulkan --scene S.json --weights W.safetensors [--frames N] --out F.png");
+    throw std::runtime_error(
+        "usage: embed_vulkan --scene S.json --weights W.safetensors [--frames N] --out F.png");
   return o;
 }
 
@@ -182,8 +189,9 @@ struct Image {
     VK(vkCreateImage(e.device, &info, nullptr, &image));
     VkMemoryRequirements requirements;
     vkGetImageMemoryRequirements(e.device, image, &requirements);
-    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, requirements.size,
-                               e.memoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)};
+    VkMemoryAllocateInfo alloc{
+        VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, requirements.size,
+        e.memoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)};
     VK(vkAllocateMemory(e.device, &alloc, nullptr, &memory));
     VK(vkBindImageMemory(e.device, image, memory, 0));
     VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
@@ -226,17 +234,22 @@ struct ScenePass {
     VK(vkCreatePipelineLayout(e.device, &layoutInfo, nullptr, &layout));
 
     VkPipelineShaderStageCreateInfo stages[2] = {
-        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, modules[0], "main"},
-        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, modules[1], "main"}};
-    VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-    VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT,
+         modules[0], "main"},
+        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT,
+         modules[1], "main"}};
+    VkPipelineVertexInputStateCreateInfo vertexInput{
+        VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    VkPipelineInputAssemblyStateCreateInfo assembly{
+        VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
     assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
     VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
     viewport.viewportCount = viewport.scissorCount = 1;
     VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
     raster.cullMode = VK_CULL_MODE_NONE;
     raster.lineWidth = 1.0f;
-    VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    VkPipelineMultisampleStateCreateInfo multisample{
+        VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
     multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
     VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
     depth.depthTestEnable = depth.depthWriteEnable = VK_TRUE;
@@ -247,8 +260,8 @@ struct ScenePass {
     blendState.attachmentCount = 1;
     blendState.pAttachments = &blend;
     VkDynamicState dynamics[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-    VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO, nullptr, 0, 2,
-                                             dynamics};
+    VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO, nullptr, 0,
+                                             2, dynamics};
     VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
     rendering.colorAttachmentCount = 1;
     rendering.pColorAttachmentFormats = &colorFormat;
@@ -338,9 +351,11 @@ int run(const Options& options) {
   constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT, kDepthFormat = VK_FORMAT_D32_SFLOAT;
   Engine engine;
   Image color(engine, kWidth, kHeight, kColorFormat,
-              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+              VK_IMAGE_ASPECT_COLOR_BIT);
   Image depth(engine, kWidth, kHeight, kDepthFormat,
-              VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+              VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+              VK_IMAGE_ASPECT_DEPTH_BIT);
   ScenePass scenePass(engine, kColorFormat, kDepthFormat);
 
   // sixway on the engine's device: the smoke simulation and its renderer into the engine's target.
@@ -348,9 +363,9 @@ int run(const Options& options) {
                                                   engine.queue, engine.queueFamily, engine.extensions,
                                                   engine.requirements->features(), kFramesInFlight});
   sixway::SmokeSimulation simulation(smokeDevice, options.scene);
-  sixway::SmokeRenderer smoke(smokeDevice, simulation, {.weights = options.weights},
-                              {color.image, color.view, kColorFormat, depth.image, depth.view, kDepthFormat,
-                               kWidth, kHeight});
+  sixway::SmokeRenderer smoke(
+      smokeDevice, simulation, {.weights = options.weights},
+      {color.image, color.view, kColorFormat, depth.image, depth.view, kDepthFormat, kWidth, kHeight});
   sixway::Camera camera;
   camera.position = {0.9f, 0.8f, 2.2f};
   camera.target = {0.0f, 0.55f, 0.0f};
@@ -398,7 +413,8 @@ int run(const Options& options) {
     simulation.record(cmd, frame);
     smoke.record(cmd, frame);  // over the engine's colour, hidden by its depth
     VK(vkEndCommandBuffer(cmd));
-    if (frame == 0) waitsAfterFirstFrame = smokeDevice.hostWaits();  // the first frame records sixway's passes
+    if (frame == 0)
+      waitsAfterFirstFrame = smokeDevice.hostWaits();  // the first frame records sixway's passes
     VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     submit.commandBufferCount = 1;
     submit.pCommandBuffers = &cmd;
@@ -448,7 +464,8 @@ int run(const Options& options) {
     srgb[i] = uint8_t(std::lround(255.0f * (i % 4 == 3 ? std::clamp(value, 0.0f, 1.0f) : toSrgb(value))));
   }
   vkUnmapMemory(engine.device, readbackMemory);
-  const bool written = stbi_write_png(options.out.c_str(), int(kWidth), int(kHeight), 4, srgb.data(), int(kWidth) * 4);
+  const bool written =
+      stbi_write_png(options.out.c_str(), int(kWidth), int(kHeight), 4, srgb.data(), int(kWidth) * 4);
 
   vkDestroyBuffer(engine.device, readback, nullptr);
   vkFreeMemory(engine.device, readbackMemory, nullptr);
@@ -457,7 +474,8 @@ int run(const Options& options) {
   if (!written) throw std::runtime_error(options.out + ": cannot write the PNG");
   std::printf("wrote %s: %d frames, %d validation messages, %llu host waits per frame\n", options.out.c_str(),
               options.frames, validationMessages.load(), static_cast<unsigned long long>(waitsPerFrame));
-  for (const sixway::StageTime& t : smoke.stageTimes()) std::printf("  %-12s %8.2f ms\n", t.name.c_str(), t.milliseconds);
+  for (const sixway::StageTime& t : smoke.stageTimes())
+    std::printf("  %-12s %8.2f ms\n", t.name.c_str(), t.milliseconds);
   return validationMessages.load() == 0 ? 0 : 1;
 }
 

@@ -1,4 +1,4 @@
-// Parameters of the reference six-way baker (src/render/lightmap_baker.cpp mirrors them in
+// Parameters of the reference six-way baker (src/reference/lightmap_baker.cpp mirrors them in
 // src/render/gpu_layout.h), shared by light_depth.comp and sixway_march.comp.
 #ifndef SIXWAY_BAKE_PARAMS_GLSL
 #define SIXWAY_BAKE_PARAMS_GLSL

@@ -10,16 +10,16 @@
 
 #include "app/device_limits.h"
 #include "app/options.h"
-#include "io/report.h"
-#include "runtime/scene_volumes.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "io/error.h"
+#include "io/report.h"
 #include "io/scene.h"
 #include "reference/bake_flipbook.h"
 #include "reference/flipbook.h"
-#include "render/scene_frame.h"
 #include "reference/vdb_sequence.h"
+#include "render/scene_frame.h"
+#include "runtime/scene_volumes.h"
 
 namespace sixway::app {
 namespace {

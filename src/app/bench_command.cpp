@@ -14,10 +14,10 @@
 
 #include "app/bench_options.h"
 #include "app/bench_scene.h"
-#include "io/report.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "io/error.h"
+#include "io/report.h"
 #include "nn/graph.h"
 
 namespace sixway::app {

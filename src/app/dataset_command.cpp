@@ -7,16 +7,16 @@
 #include <string>
 #include <vector>
 
-#include "dataset/dataset_config.h"
 #include "app/dataset_progress.h"
-#include "dataset/dataset_sequence.h"
 #include "app/options.h"
-#include "io/report.h"
+#include "dataset/dataset_config.h"
+#include "dataset/dataset_sequence.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "io/error.h"
 #include "io/file_access.h"
 #include "io/json_reader.h"
+#include "io/report.h"
 #include "render/obstacle_meshes.h"
 #include "sim/watchdog.h"
 
@@ -63,8 +63,8 @@ nlohmann::json indexConfig(const fs::path& file) {
 
 // The scene of a sequence that could not be made goes next to the shards (with absolute mesh paths), so that
 // `sixway sim --scene` reproduces the failure.
-[[noreturn]] void failed(const DatasetOptions& o, const dataset::DatasetConfig& config, const dataset::SequencePlan& plan,
-                         const std::string& failure) {
+[[noreturn]] void failed(const DatasetOptions& o, const dataset::DatasetConfig& config,
+                         const dataset::SequencePlan& plan, const std::string& failure) {
   char name[48];
   std::snprintf(name, sizeof(name), "failed_sequence_%05d.json", plan.sequence);
   io::writeReport(o.out / name, dataset::standaloneScene(config, plan));
@@ -73,7 +73,8 @@ nlohmann::json indexConfig(const fs::path& file) {
 
 void run(const DatasetOptions& o) {
   const dataset::DatasetConfig config = dataset::loadDatasetConfig(o.config);
-  const dataset::ShardSelection selection = o.shard.empty() ? dataset::ShardSelection{} : dataset::parseShardSelection(o.shard);
+  const dataset::ShardSelection selection =
+      o.shard.empty() ? dataset::ShardSelection{} : dataset::parseShardSelection(o.shard);
   if (fs::exists(o.out) && !fs::is_directory(o.out))
     throw io::InputError(o.out.string(), "exists and is not a directory");
 

@@ -10,15 +10,15 @@
 #include <string>
 #include <vector>
 
-#include "eval/lightmap_metrics.h"
 #include "app/options.h"
-#include "io/report.h"
+#include "eval/lightmap_metrics.h"
 #include "eval/scene_eval.h"
 #include "gpu/context.h"
 #include "gpu/image.h"
 #include "gpu/pipeline.h"
 #include "gpu/sequence.h"
 #include "io/error.h"
+#include "io/report.h"
 #include "io/safetensors.h"
 #include "nn/network.h"
 #include "render/lightmap_images.h"

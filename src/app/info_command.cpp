@@ -7,8 +7,8 @@
 #include <string>
 
 #include "app/options.h"
-#include "io/report.h"
 #include "gpu/context.h"
+#include "io/report.h"
 
 namespace sixway::app {
 namespace {

@@ -12,17 +12,17 @@
 #include <vector>
 
 #include "app/device_limits.h"
-#include "eval/frame_pipeline.h"
 #include "app/frame_writer.h"
 #include "app/options.h"
 #include "app/process_memory.h"
-#include "io/report.h"
-#include "runtime/scene_volumes.h"
 #include "app/timings_log.h"
+#include "eval/frame_pipeline.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "io/error.h"
+#include "io/report.h"
 #include "io/scene.h"
+#include "runtime/scene_volumes.h"
 
 namespace sixway::app {
 namespace {
@@ -50,8 +50,9 @@ void run(const RenderOptions& o) {
   eval::FramePipelineOptions options;
   options.weights = o.weights.empty() ? defaultWeights() : o.weights;
   // Without --mode: the network when its weights exist, else the reference lightmaps (said on the terminal).
-  options.mode = o.mode ? eval::parseRenderMode(*o.mode)
-                        : (fs::exists(options.weights) ? eval::RenderMode::Neural : eval::RenderMode::Reference);
+  options.mode = o.mode
+                     ? eval::parseRenderMode(*o.mode)
+                     : (fs::exists(options.weights) ? eval::RenderMode::Neural : eval::RenderMode::Reference);
   options.fp16 = o.fp16;
   options.shadows = !o.noShadows;
   options.pathTraceSamples = o.samples;
@@ -82,7 +83,8 @@ void run(const RenderOptions& o) {
   const auto started = std::chrono::steady_clock::now();
   for (int i = 0; i < o.frames; ++i) {
     const render::Volume volume = volumes.volume(i);
-    const eval::RenderedFrame frame = pipeline.render(i, runtime::SimulatedVolumes::frameSeconds(scene, i), volume);
+    const eval::RenderedFrame frame =
+        pipeline.render(i, runtime::SimulatedVolumes::frameSeconds(scene, i), volume);
     writer.write(i, frame.image);
     for (const std::string& note : frame.notes) std::printf("  note: %s\n", note.c_str());
 
@@ -93,8 +95,8 @@ void run(const RenderOptions& o) {
                                           {"sim/forces+watchdog", sim.forces + sim.watchdog}};
     stages.insert(stages.end(), frame.stages.begin(), frame.stages.end());
     // Memory in use, for long-run checks: flat from the first frames on, or something leaks.
-    const double total = timings.add(i, runtime::SimulatedVolumes::frameSeconds(scene, i), stages, context.memoryUse(),
-                                     residentSetBytes());
+    const double total = timings.add(i, runtime::SimulatedVolumes::frameSeconds(scene, i), stages,
+                                     context.memoryUse(), residentSetBytes());
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     std::printf("  frame %d/%d: %.1f ms GPU, %.1f s elapsed, ETA %.0f s\n", i + 1, o.frames, total, elapsed,
                 elapsed / (i + 1) * (o.frames - i - 1));

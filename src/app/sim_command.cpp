@@ -8,11 +8,11 @@
 
 #include "app/device_limits.h"
 #include "app/options.h"
-#include "io/report.h"
 #include "gpu/bandwidth.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "io/error.h"
+#include "io/report.h"
 #include "io/vdb.h"
 #include "sim/simulation.h"
 #include "sim/watchdog.h"
@@ -117,28 +117,28 @@ void run(const SimOptions& o) {
     const double lbmBandwidth = mlups * 1e6 * sim::LbmSolver::kBytesPerCellUpdate / 1e9;
     nlohmann::json obstacles = nlohmann::json::array();
     for (auto& f : forcesPerObstacle) obstacles.push_back({{"force_lattice_per_step", f}});
-    io::writeReport(o.report,
-                {{"scene", scene.name},
-                 {"device", context.properties().deviceName},
-                 {"lattice", {size.x, size.y, size.z}},
-                 {"smoke_upres", scene.grid.smokeUpres},
-                 {"steps", simulation.step()},
-                 {"steps_per_frame", units.stepsPerFrame},
-                 {"step_seconds", units.stepSeconds},
-                 {"tau", units.tau},
-                 {"watchdog", watchdog},
-                 {"mlups", mlups},
-                 {"bytes_per_cell_update", sim::LbmSolver::kBytesPerCellUpdate},
-                 {"lbm_bandwidth_gb_s", lbmBandwidth},
-                 {"copy_bandwidth_gb_s", bandwidth},
-                 {"bandwidth_fraction", lbmBandwidth / bandwidth},
-                 {"lbm_ms", lbmMs},
-                 {"smoke_ms", smokeMs},
-                 {"gpu_ms", totalMs},
-                 {"wall_seconds", wallSeconds},
-                 {"force_units", "lattice: rho0 = 1, cells/step^2; newtons = value * rho_air * dx^4 / dt^2"},
-                 {"obstacles", obstacles},
-                 {"frames", frames}});
+    io::writeReport(o.report, {{"scene", scene.name},
+                               {"device", context.properties().deviceName},
+                               {"lattice", {size.x, size.y, size.z}},
+                               {"smoke_upres", scene.grid.smokeUpres},
+                               {"steps", simulation.step()},
+                               {"steps_per_frame", units.stepsPerFrame},
+                               {"step_seconds", units.stepSeconds},
+                               {"tau", units.tau},
+                               {"watchdog", watchdog},
+                               {"mlups", mlups},
+                               {"bytes_per_cell_update", sim::LbmSolver::kBytesPerCellUpdate},
+                               {"lbm_bandwidth_gb_s", lbmBandwidth},
+                               {"copy_bandwidth_gb_s", bandwidth},
+                               {"bandwidth_fraction", lbmBandwidth / bandwidth},
+                               {"lbm_ms", lbmMs},
+                               {"smoke_ms", smokeMs},
+                               {"gpu_ms", totalMs},
+                               {"wall_seconds", wallSeconds},
+                               {"force_units",
+                                "lattice: rho0 = 1, cells/step^2; newtons = value * rho_air * dx^4 / dt^2"},
+                               {"obstacles", obstacles},
+                               {"frames", frames}});
   }
   if (watchdog != "ok") throw sim::WatchdogError(watchdog);
 }

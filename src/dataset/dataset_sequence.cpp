@@ -3,16 +3,16 @@
 #include <cstring>
 #include <glm/gtc/packing.hpp>
 
-#include "runtime/scene_volumes.h"
+#include "dataset/motion_field.h"
 #include "gpu/context.h"
 #include "gpu/image.h"
 #include "gpu/pipeline.h"
 #include "gpu/sequence.h"
+#include "reference/lightmap_baker.h"
 #include "render/billboard.h"
 #include "render/guiding_map.h"
-#include "reference/lightmap_baker.h"
-#include "dataset/motion_field.h"
 #include "render/projection.h"
+#include "runtime/scene_volumes.h"
 
 namespace sixway::dataset {
 namespace {

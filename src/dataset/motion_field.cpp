@@ -55,9 +55,10 @@ void MotionField::record(gpu::Sequence& sequence, const gpu::Image& guide, const
   sequence.endStage();
 }
 
-void MotionField::update(const render::Camera& camera, const render::ImagePlane& billboard, const render::DepthRange& shellRange,
-                         float metresPerVelocityUnit) {
-  const MotionParams p{render::layout::cameraRays(camera, billboard), render::layout::volumeGrid(velocityGrid_),
+void MotionField::update(const render::Camera& camera, const render::ImagePlane& billboard,
+                         const render::DepthRange& shellRange, float metresPerVelocityUnit) {
+  const MotionParams p{render::layout::cameraRays(camera, billboard),
+                       render::layout::volumeGrid(velocityGrid_),
                        glm::vec4(shellRange.near, shellRange.far, metresPerVelocityUnit, 0.0f),
                        glm::ivec4(int(size_), int(size_), 0, 0)};
   params_.upload(std::as_bytes(std::span(&p, 1)));

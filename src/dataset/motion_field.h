@@ -40,8 +40,8 @@ class MotionField {
   // The values of one frame, before submitting: the camera and billboard of the guide, the shell depth range
   // it was encoded with, and how many metres the smoke moves over the interval per unit of the stored
   // velocity (lattice velocity: cell size · steps per frame · frames in the interval).
-  void update(const render::Camera& camera, const render::ImagePlane& billboard, const render::DepthRange& shellRange,
-              float metresPerVelocityUnit);
+  void update(const render::Camera& camera, const render::ImagePlane& billboard,
+              const render::DepthRange& shellRange, float metresPerVelocityUnit);
 
   // Of the last submission: channels "motion_x", "motion_y" in billboard pixels.
   io::Image download() const;

@@ -7,8 +7,8 @@
 #include <variant>
 
 #include "eval/image_metrics.h"
-#include "render/camera.h"
 #include "reference/path_tracer.h"
+#include "render/camera.h"
 #include "render/scene_frame.h"
 
 namespace sixway::eval {

@@ -9,36 +9,24 @@
 #include "io/error.h"
 #include "io/safetensors.h"
 #include "nn/network.h"
+#include "reference/guide_lightmaps.h"
+#include "reference/lightmap_baker.h"
+#include "reference/path_tracer.h"
 #include "render/billboard.h"
 #include "render/camera.h"
-#include "reference/guide_lightmaps.h"
 #include "render/guiding_map.h"
-#include "reference/lightmap_baker.h"
 #include "render/lightmap_images.h"
 #include "render/obstacle_meshes.h"
 #include "render/obstacle_pass.h"
-#include "reference/path_tracer.h"
 #include "render/projection.h"
 #include "render/recorded_sequence.h"
 #include "render/scene_frame.h"
 #include "render/shadow_maps.h"
 #include "render/sixway_shading.h"
+#include "runtime/realtime_frame.h"
 
 namespace sixway::eval {
 namespace {
-
-constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
-
-gpu::Image frameImage(const gpu::Context& context, uint32_t width, uint32_t height, VkFormat format,
-                      VkImageUsageFlags usage, const char* name) {
-  gpu::ImageDesc desc;
-  desc.width = width;
-  desc.height = height;
-  desc.format = format;
-  desc.usage = usage;
-  desc.name = name;
-  return gpu::Image(context, desc);
-}
 
 // An RGBA16F image on the host, as floats named `channels`.
 io::Image downloadHalfImage(const gpu::Image& image, std::vector<std::string> channels) {
@@ -99,26 +87,13 @@ struct FramePipeline::Passes {
       : context(context),
         scene(scene),
         options(options),
-        width(uint32_t(scene.render.width)),
-        height(uint32_t(scene.render.height)),
-        lightmapSize(uint32_t(scene.render.lightmapSize)),
-        color(frameImage(context, width, height, kColorFormat,
-                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "frame colour")),
-        depth(frameImage(context, width, height, VK_FORMAT_D32_SFLOAT,
-                         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
-                         "frame depth")),
-        guide(frameImage(context, lightmapSize, lightmapSize, kColorFormat,
-                         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "guiding map")),
-        lightmaps(context, lightmapSize, lightmapSize),
-        meshes(context, scene.obstacles),
-        shadowMaps(context, cache, render::kDefaultShadowTileSize,
-                   !options.shadows      ? 0
-                   : options.shadowTiles ? *options.shadowTiles
-                                         : render::shadowTileCount(scene.lights, scene.obstacles)),
-        obstacles(context, cache, scene.render.background),
-        guiding(context, cache, render::GuideSettings::fromScene(scene)),
-        shading(context, cache, kColorFormat),
+        frame(context, cache, this->scene,
+              runtime::FrameTarget{uint32_t(scene.render.width), uint32_t(scene.render.height), {}, {}},
+              !options.shadows      ? 0
+              : options.shadowTiles ? *options.shadowTiles
+                                    : render::shadowTileCount(scene.lights, scene.obstacles)),
         sequence(context) {
+    const uint32_t lightmapSize = frame.lightmapSize();
     if (options.mode == RenderMode::Neural) {
       if (!std::filesystem::exists(options.weights))
         throw io::InputError(options.weights.string(),
@@ -134,45 +109,37 @@ struct FramePipeline::Passes {
     if (options.mode == RenderMode::PathTrace) tracer = std::make_unique<render::PathTracer>(context, cache);
     if (options.mode == RenderMode::GuideLit)
       guideLit = std::make_unique<render::GuideLightmaps>(context, cache,
-                                                          uint32_t(guiding.settings().lights.size()));
-    controls.emissiveGradient = render::emissiveGradientFromRamp(scene.smoke.emission);
+                                                          uint32_t(frame.guiding().settings().lights.size()));
   }
 
   // The real-time stages of the mode, recorded once for the volume's buffers.
   gpu::Sequence& realtimeSequence(const render::Volume& volume) {
     return sequence.get({render::handleKey(volume.density->handle())}, [&](gpu::Sequence& s) {
-      shadowMaps.record(s, meshes);
-      obstacles.record(s, meshes, shadowMaps, color, depth);
-      if (options.mode == RenderMode::PathTrace) return;
-      if (options.mode != RenderMode::Traditional) guiding.record(s, volume, guide);
-      if (options.mode == RenderMode::Guide) return;
-      if (network) {
-        s.beginStage("network");
-        network->record(s, guide, lightmaps.a, lightmaps.b);
-        s.endStage();
-      }
-      if (guideLit) guideLit->record(s, guide, lightmaps);
-      shading.record(s, lightmaps.a, lightmaps.b, &guide, &depth,
-                     render::ShadowAtlas{&shadowMaps.atlas(), shadowMaps.tileSize()}, color);
+      // A flipbook has no guide: its shell depth is uploaded per frame instead.
+      const runtime::FrameStages stages =
+          options.mode == RenderMode::PathTrace     ? runtime::FrameStages::ObstaclesOnly
+          : options.mode == RenderMode::Guide       ? runtime::FrameStages::UpToGuide
+          : options.mode == RenderMode::Traditional ? runtime::FrameStages::AllButGuide
+                                                    : runtime::FrameStages::All;
+      frame.record(s, volume, stages, [&](gpu::Sequence& s) {
+        if (network) {
+          s.beginStage("network");
+          network->record(s, frame.guide(), frame.lightmaps().a, frame.lightmaps().b);
+          s.endStage();
+        }
+        if (guideLit) guideLit->record(s, frame.guide(), frame.lightmaps());
+      });
     });
   }
 
   const gpu::Context& context;
   io::Scene scene;
   FramePipelineOptions options;
-  uint32_t width, height, lightmapSize;
-  gpu::Image color, depth, guide;
-  render::LightmapImages lightmaps;
-  render::ObstacleMeshes meshes;
-  render::ShadowMaps shadowMaps;
-  render::ObstaclePass obstacles;
-  render::GuidingMap guiding;
-  render::SixWayShading shading;
+  runtime::RealtimeFrame frame;
   std::unique_ptr<nn::Network> network;
   std::unique_ptr<render::LightmapBaker> baker;
   std::unique_ptr<render::PathTracer> tracer;
   std::unique_ptr<render::GuideLightmaps> guideLit;
-  render::ShadingControls controls;
   render::RecordedSequence sequence;
   std::optional<std::pair<render::Camera, render::ImagePlane>> bakedView;  // traditional: the first frame's
 };
@@ -201,47 +168,38 @@ RenderedFrame FramePipeline::render(const FrameView& view, int index, double sec
 
   // Recording allocates what the passes need for this volume, so it comes before their per-frame values.
   gpu::Sequence& sequence = p.realtimeSequence(volume);
-  p.meshes.update(seconds);
-  const render::Box bounds = render::sceneBounds(render::domainBox(scene.grid), p.meshes);
-  const render::ImagePlane frame = render::fullFrame(camera, int(p.width), int(p.height));
-  const render::DepthRange sceneRange = render::boxDepthRange(camera, bounds);
-  p.shadowMaps.update(lights, bounds, p.meshes);
-  p.obstacles.update(camera, frame, sceneRange, lights, scene.ambient, p.shadowMaps);
+  p.frame.updateScene(camera, lights, seconds);
   RenderedFrame result;
-  result.notes = p.shadowMaps.takeNotes();
+  result.notes = p.frame.takeNotes();
 
-  render::ImagePlane billboard = render::billboardBounds(camera, volumeBox, 1.0f);
-  const render::DepthRange shellRange = render::boxDepthRange(camera, volumeBox);
   const bool guided = p.options.mode != RenderMode::Traditional && p.options.mode != RenderMode::PathTrace;
-  if (guided) p.guiding.update(camera, billboard, shellRange, scene.smoke, uint32_t(index));
-
+  render::ImagePlane billboard = guided ? p.frame.updateGuide(camera, volumeBox, index)
+                                        : render::billboardBounds(camera, volumeBox, 1.0f);
+  const uint32_t lightmapSize = p.frame.lightmapSize();
   if (p.options.mode == RenderMode::Reference) {
     render::BakeSettings bake;
-    bake.width = bake.height = int(p.lightmapSize);
-    p.lightmaps.upload(p.baker->bake(volume, scene.smoke, camera, billboard, bake));
+    bake.width = bake.height = int(lightmapSize);
+    p.frame.lightmaps().upload(p.baker->bake(volume, scene.smoke, camera, billboard, bake));
     for (const gpu::StageTime& t : p.baker->stageTimes())
       result.stages.push_back({"bake/" + t.name, t.milliseconds});
   } else if (p.options.mode == RenderMode::Traditional) {
     if (!p.bakedView) p.bakedView.emplace(camera, billboard);
     render::BakeSettings bake;
-    bake.width = bake.height = int(p.lightmapSize);
-    p.lightmaps.upload(p.baker->bake(volume, scene.smoke, p.bakedView->first, p.bakedView->second, bake));
+    bake.width = bake.height = int(lightmapSize);
+    p.frame.lightmaps().upload(
+        p.baker->bake(volume, scene.smoke, p.bakedView->first, p.bakedView->second, bake));
     for (const gpu::StageTime& t : p.baker->stageTimes())
       result.stages.push_back({"bake/" + t.name, t.milliseconds});
     billboard = facingBillboard(camera, p.bakedView->first, p.bakedView->second, volumeBox.centre());
     // A flipbook knows no depth but its quad's: the shell is the billboard plane through the volume centre.
+    const render::DepthRange shellRange = render::boxDepthRange(camera, volumeBox);
     const float planeDepth = glm::dot(volumeBox.centre() - camera.position, camera.forward);
     const float encoded = (planeDepth - shellRange.near) / (shellRange.far - shellRange.near);
-    std::vector<uint16_t> flat(size_t(p.lightmapSize) * p.lightmapSize * 4, 0);
+    std::vector<uint16_t> flat(size_t(lightmapSize) * lightmapSize * 4, 0);
     for (size_t i = 2; i < flat.size(); i += 4) flat[i] = glm::packHalf1x16(glm::clamp(encoded, 0.0f, 1.0f));
-    p.guide.upload(std::as_bytes(std::span(flat)));
+    p.frame.guide().upload(std::as_bytes(std::span(flat)));
   }
-  std::vector<render::ShadingLight> shadingLights;
-  for (size_t l = 0; l < lights.size(); ++l)
-    shadingLights.push_back(
-        render::shadingLight(lights[l], p.shadowMaps.tileOf(l), p.shadowMaps.lightViewProjection(l)));
-  p.shading.update(camera, frame, billboard, shellRange, sceneRange, shadingLights, scene.ambient,
-                   p.controls);
+  p.frame.updateShading(camera, lights, billboard, volumeBox);
 
   sequence.submit();
   result.stages.insert(result.stages.end(), sequence.stageTimes().begin(), sequence.stageTimes().end());
@@ -251,20 +209,21 @@ RenderedFrame FramePipeline::render(const FrameView& view, int index, double sec
     result.image = guide();
     return result;
   }
-  result.image = downloadHalfImage(p.color, {"R", "G", "B", "A"});
+  result.image = downloadHalfImage(p.frame.color(), {"R", "G", "B", "A"});
   if (p.options.mode != RenderMode::PathTrace) return result;
 
   // Ground truth: the path-traced smoke (black background, so premultiplied) over the rasterized scene.
   render::TraceSettings trace;
-  trace.width = int(p.width);
-  trace.height = int(p.height);
+  trace.width = int(p.frame.width());
+  trace.height = int(p.frame.height());
   trace.seed = scene.render.seed + uint32_t(index);
   trace.maxOrders = p.options.pathTraceOrders;
   if (scene.ambient) {
     if (const auto* c = std::get_if<io::AmbientColor>(&*scene.ambient)) trace.environment = {c->color};
     if (const auto* sh = std::get_if<io::AmbientSh>(&*scene.ambient)) trace.environment = sh->coefficients;
   }
-  p.tracer->beginImage(volume, scene.smoke, camera, frame, lights, trace);
+  p.tracer->beginImage(volume, scene.smoke, camera, render::fullFrame(camera, trace.width, trace.height),
+                       lights, trace);
   p.tracer->accumulate(p.options.pathTraceSamples);
   result.stages.push_back({"path trace", p.tracer->traceMilliseconds()});
   const io::Image smoke = p.tracer->image();
@@ -278,7 +237,7 @@ RenderedFrame FramePipeline::render(const FrameView& view, int index, double sec
 }
 
 io::Image FramePipeline::guide() const {
-  const io::Image g = downloadHalfImage(passes_->guide, {"guide", "alpha", "depth", "unused"});
+  const io::Image g = downloadHalfImage(passes_->frame.guide(), {"guide", "alpha", "depth", "unused"});
   io::Image out(g.width, g.height, {"guide", "alpha", "depth"});
   for (size_t i = 0, n = size_t(g.width) * g.height; i < n; ++i)
     for (int c = 0; c < 3; ++c) out.pixels[i * 3 + c] = g.pixels[i * 4 + c];
@@ -286,24 +245,24 @@ io::Image FramePipeline::guide() const {
 }
 
 io::Image FramePipeline::lightmaps() const {
-  return passes_->lightmaps.download();
+  return passes_->frame.lightmaps().download();
 }
 
 void FramePipeline::setObstacleMotion(size_t obstacle, std::optional<io::Motion> motion) {
-  passes_->meshes.setMotion(obstacle, std::move(motion));
+  passes_->frame.meshes().setMotion(obstacle, std::move(motion));
 }
 
 const gpu::Image& FramePipeline::colorImage() const {
-  return passes_->color;
+  return passes_->frame.color();
 }
 const gpu::Image& FramePipeline::guideImage() const {
-  return passes_->guide;
+  return passes_->frame.guide();
 }
 const gpu::Image& FramePipeline::lightmapImageA() const {
-  return passes_->lightmaps.a;
+  return passes_->frame.lightmaps().a;
 }
 const gpu::Image& FramePipeline::lightmapImageB() const {
-  return passes_->lightmaps.b;
+  return passes_->frame.lightmaps().b;
 }
 
 }  // namespace sixway::eval

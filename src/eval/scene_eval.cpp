@@ -17,14 +17,14 @@
 #include "eval/frame_pipeline.h"
 #include "eval/image_metrics.h"
 #include "eval/lightmap_metrics.h"
-#include "io/report.h"
-#include "runtime/scene_volumes.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "io/error.h"
+#include "io/report.h"
 #include "io/scene.h"
 #include "render/camera.h"
 #include "render/scene_frame.h"
+#include "runtime/scene_volumes.h"
 
 namespace sixway::eval {
 namespace {

@@ -136,10 +136,12 @@ Context::Context(const ExternalDevice& external)
   if (!instance_ || !physicalDevice_ || !device_ || !queue_)
     throw GpuError("external device: instance, physical device, device and queue must all be given");
   if (framesInFlight_ < 1 || framesInFlight_ > 8)
-    throw GpuError("external device: framesInFlight must be in [1, 8] (got " + std::to_string(framesInFlight_) + ")");
+    throw GpuError("external device: framesInFlight must be in [1, 8] (got " +
+                   std::to_string(framesInFlight_) + ")");
   readProperties();
   const std::string name = properties_.deviceName;
-  if (properties_.apiVersion < VK_API_VERSION_1_3) throw GpuError("external device " + name + ": needs Vulkan 1.3");
+  if (properties_.apiVersion < VK_API_VERSION_1_3)
+    throw GpuError("external device " + name + ": needs Vulkan 1.3");
   uint32_t familyCount = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, nullptr);
   std::vector<VkQueueFamilyProperties> families(familyCount);
@@ -152,11 +154,11 @@ Context::Context(const ExternalDevice& external)
     if (std::find(external.enabledExtensions.begin(), external.enabledExtensions.end(), extension) ==
         external.enabledExtensions.end())
       throw GpuError("external device " + name + ": extension " + extension +
-                     " is not enabled (enable sixway::deviceRequirements())");
+                     " is not enabled (see sixway::DeviceRequirements)");
   const DeviceFeatures enabled = DeviceFeatures::fromChain(external.enabledFeatures);
   if (const auto missing = enabled.missingRequired(); !missing.empty())
     throw GpuError("external device " + name + ": feature " + missing.front() +
-                   " is not enabled (enable sixway::deviceRequirements())");
+                   " is not enabled (see sixway::DeviceRequirements)");
   capabilities_.shaderFloat16 = enabled.vulkan12().shaderFloat16;
   capabilities_.storage16Bit = enabled.vulkan11().storageBuffer16BitAccess;
   cmdPushDescriptorSet = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
@@ -247,7 +249,6 @@ void Context::pickPhysicalDevice(const ContextOptions& options) {
 }
 
 void Context::readProperties() {
-
   driver_ = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
   VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES,
                                               &driver_};

@@ -45,7 +45,8 @@ struct DeviceCapabilities {
   uint64_t deviceLocalHeapBytes = 0;
 };
 
-// The device memory of our live gpu::Buffer and gpu::Image objects (their requested sizes), for long-run checks.
+// The device memory of our live gpu::Buffer and gpu::Image objects (their requested sizes), for long-run
+// checks.
 struct MemoryUse {
   uint64_t allocations = 0;
   uint64_t bytes = 0;

@@ -49,12 +49,23 @@ DeviceFeatures DeviceFeatures::fromChain(const void* chain) {
   };
   for (auto* s = static_cast<const VkBaseInStructure*>(chain); s; s = s->pNext) {
     switch (s->sType) {
-      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2: copyFeatures(found.features_, s); break;
-      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES: copyFeatures(found.v11_, s); break;
-      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES: copyFeatures(found.v12_, s); break;
-      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES: copyFeatures(found.v13_, s); break;
-      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT: copyFeatures(found.atomics_, s); break;
-      default: break;
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2:
+        copyFeatures(found.features_, s);
+        break;
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES:
+        copyFeatures(found.v11_, s);
+        break;
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES:
+        copyFeatures(found.v12_, s);
+        break;
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES:
+        copyFeatures(found.v13_, s);
+        break;
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT:
+        copyFeatures(found.atomics_, s);
+        break;
+      default:
+        break;
     }
   }
   found.link();

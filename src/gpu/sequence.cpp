@@ -351,7 +351,8 @@ void Sequence::copy(const Buffer& source, const Buffer& destination) {
   addTouch(touch, writes(destination));
   barrierIfHazard(touch);
   VkBufferCopy region{0, 0, source.size()};
-  for (const Slot& slot : slots_) vkCmdCopyBuffer(slot.commands, source.handle(), destination.handle(), 1, &region);
+  for (const Slot& slot : slots_)
+    vkCmdCopyBuffer(slot.commands, source.handle(), destination.handle(), 1, &region);
 }
 
 void Sequence::finish() {
@@ -362,23 +363,23 @@ void Sequence::finish() {
 }
 
 void Sequence::addReadback(const Buffer& source) {
-  Readback readback{source.handle(), source.size(), {}};
-  for (uint32_t i = 0; i <= context_->framesInFlight(); ++i)
-    readback.slots.emplace_back(*context_, source.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                MemoryKind::HostReadback, source.name() + " (readback)");
-  readbacks_.push_back(std::move(readback));
+  readbacks_.push_back({source.handle(), source.size(), source.name(), {}});
 }
 
 std::span<const std::byte> Sequence::readback(const Buffer& source, uint64_t frame) const {
   for (const Readback& r : readbacks_)
-    if (r.source == source.handle()) {
+    if (r.source == source.handle() && !r.slots.empty()) {
       const Buffer& slot = r.slots[frame % r.slots.size()];
       return {static_cast<const std::byte*>(slot.mapped()), r.bytes};
     }
-  throw GpuError(source.name() + ": not a readback of this sequence");
+  throw GpuError(source.name() + ": not a readback of a recorded frame of this sequence");
 }
 
 void Sequence::record(VkCommandBuffer commands, uint64_t frame) {
+  recordInto(commands, frame, true);
+}
+
+void Sequence::recordInto(VkCommandBuffer commands, uint64_t frame, bool withReadbacks) {
   if (!finished_) finish();
   const Slot& slot = slots_[frame % slots_.size()];
   if (slot.executions++ > 0) collectTimes(slot, false);  // its last frame's: complete by the contract
@@ -387,13 +388,18 @@ void Sequence::record(VkCommandBuffer commands, uint64_t frame) {
     constexpr uint64_t kMaxUpdate = 65536;  // vkCmdUpdateBuffer's limit per command
     for (const FrameParameters& f : frameParameters_)
       for (uint64_t offset = 0; offset < f.bytes; offset += kMaxUpdate)
-        vkCmdUpdateBuffer(commands, f.buffer, offset, std::min(kMaxUpdate, f.bytes - offset), f.values + offset);
+        vkCmdUpdateBuffer(commands, f.buffer, offset, std::min(kMaxUpdate, f.bytes - offset),
+                          f.values + offset);
     recordFullBarrier(commands);
   }
   vkCmdExecuteCommands(commands, 1, &slot.commands);
   recordFullBarrier(commands);
-  if (readbacks_.empty()) return;
-  for (const Readback& r : readbacks_) {
+  if (!withReadbacks || readbacks_.empty()) return;
+  for (Readback& r : readbacks_) {
+    // The host slots of frames in flight, made with the first recorded frame (submit() needs none).
+    for (uint32_t i = uint32_t(r.slots.size()); i <= context_->framesInFlight(); ++i)
+      r.slots.emplace_back(*context_, r.bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryKind::HostReadback,
+                           r.name + " (readback)");
     VkBufferCopy region{0, 0, r.bytes};
     vkCmdCopyBuffer(commands, r.source, r.slots[frame % r.slots.size()].handle(), 1, &region);
   }
@@ -413,7 +419,7 @@ void Sequence::submit() {
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   SIXWAY_VK(vkBeginCommandBuffer(primary_, &begin));
-  record(primary_, submissions_++);
+  recordInto(primary_, submissions_++, false);
   SIXWAY_VK(vkEndCommandBuffer(primary_));
   VkSubmitInfo submitInfo{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   submitInfo.commandBufferCount = 1;
@@ -429,9 +435,10 @@ void Sequence::collectTimes(const Slot& slot, bool wait) {
   if (wait) times_.clear();
   if (!slot.queries || stageNames_.empty()) return;
   std::vector<uint64_t> ticks(2 * stageNames_.size());
-  const VkResult result = vkGetQueryPoolResults(
-      context_->device(), slot.queries, 0, static_cast<uint32_t>(ticks.size()), ticks.size() * sizeof(uint64_t),
-      ticks.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | (wait ? VK_QUERY_RESULT_WAIT_BIT : 0));
+  const VkResult result =
+      vkGetQueryPoolResults(context_->device(), slot.queries, 0, static_cast<uint32_t>(ticks.size()),
+                            ticks.size() * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
+                            VK_QUERY_RESULT_64_BIT | (wait ? VK_QUERY_RESULT_WAIT_BIT : 0));
   if (result == VK_NOT_READY) return;  // not executed yet, or still running: keep the last times
   SIXWAY_VK(result);
   times_.clear();

@@ -1,9 +1,9 @@
 #pragma once
 // A recorded sequence of GPU work: dispatches, draws and copies in one (secondary) command buffer, recorded
 // once and replayed as often as needed (once per frame): submitted on its own with submit(), which waits,
-// or recorded into a caller's command buffer with record(), which does not (docs/embedding.md). Barriers are inserted where a command
-// reads or writes what an earlier one wrote (or writes what an earlier one read), from the access
-// each binding declares. Named stages are bracketed by GPU timestamps.
+// or recorded into a caller's command buffer with record(), which does not (docs/embedding.md). Barriers are
+// inserted where a command reads or writes what an earlier one wrote (or writes what an earlier one read),
+// from the access each binding declares. Named stages are bracketed by GPU timestamps.
 #include <vulkan/vulkan.h>
 
 #include <array>
@@ -146,7 +146,7 @@ class Sequence {
   // work is recorded once per frame in flight, and frame n runs the copy that frame n − framesInFlight ran,
   // whose stage times are collected now.
   void record(VkCommandBuffer commands, uint64_t frame);
-  // Copies `source` (a device buffer) to the host after every execution, for readback().
+  // Copies `source` (a device buffer) to the host after every execution recorded by record(), for readback().
   void addReadback(const Buffer& source);
   // The host copy of `source` made by the execution recorded as `frame`: valid once that execution has
   // completed. The slots are reused after Context::framesInFlight() further frames.
@@ -170,11 +170,12 @@ class Sequence {
     mutable uint64_t executions = 0;
   };
   void collectTimes(const Slot& slot, bool wait);
+  void recordInto(VkCommandBuffer commands, uint64_t frame, bool withReadbacks);
   void noteFrameParameters(const Binding& binding);
 
   const Context* context_;
   VkCommandPool pool_ = VK_NULL_HANDLE;
-  std::vector<Slot> slots_;                  // Context::framesInFlight() copies of the work
+  std::vector<Slot> slots_;                   // Context::framesInFlight() copies of the work
   VkCommandBuffer primary_ = VK_NULL_HANDLE;  // submit()'s command buffer around it
   VkFence fence_ = VK_NULL_HANDLE;
   uint64_t submissions_ = 0;
@@ -188,6 +189,7 @@ class Sequence {
   struct Readback {
     VkBuffer source;
     uint64_t bytes;
+    std::string name;
     std::vector<Buffer> slots;  // host memory, one per frame in flight + 1
   };
   std::vector<Readback> readbacks_;

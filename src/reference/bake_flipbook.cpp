@@ -5,9 +5,9 @@
 
 #include "io/error.h"
 #include "io/exr.h"
-#include "render/billboard.h"
 #include "reference/flipbook.h"
 #include "reference/path_tracer.h"
+#include "render/billboard.h"
 #include "render/sixway.h"
 
 namespace sixway::render {

@@ -13,8 +13,8 @@
 
 #include "gpu/sequence.h"
 #include "io/scene.h"
-#include "render/camera.h"
 #include "reference/lightmap_baker.h"
+#include "render/camera.h"
 #include "render/volume_sequence.h"
 
 namespace sixway::gpu {

@@ -105,8 +105,8 @@ GuidingMap::GuidingMap(const gpu::Context& context, const gpu::PipelineCache& ca
       settings_(settings),
       params_(context, sizeof(layout::BakeParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
               gpu::MemoryKind::FrameParameters, "guide parameters"),
-      frame_(context, sizeof(GuideFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryKind::FrameParameters,
-             "guide frame") {
+      frame_(context, sizeof(GuideFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+             gpu::MemoryKind::FrameParameters, "guide frame") {
   checkSettings(settings_);
   // One light grid per axis of the six-way frame that a guide light other than front lies on; the shader's
   // kLightGrids holds, per such light k, its grid (bits 3k, 3k + 1) and whether it is the grid's opposite.

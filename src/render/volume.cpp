@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "gpu/context.h"
-#include "io/error.h"
 #include "io/dense_grid.h"
+#include "io/error.h"
 
 namespace sixway::render {
 

@@ -43,9 +43,9 @@ Device::Device(const DeviceOptions& options) {
 }
 
 Device::Device(const EngineDevice& engine) {
-  gpu::ExternalDevice external{engine.instance,          engine.physicalDevice,  engine.device, engine.queue,
-                               engine.queueFamily,       engine.enabledExtensions, engine.enabledFeatures,
-                               engine.framesInFlight};
+  gpu::ExternalDevice external{engine.instance,        engine.physicalDevice, engine.device,
+                               engine.queue,           engine.queueFamily,    engine.enabledExtensions,
+                               engine.enabledFeatures, engine.framesInFlight};
   impl_ = withCache(std::make_unique<gpu::Context>(external));
 }
 

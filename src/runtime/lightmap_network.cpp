@@ -21,11 +21,12 @@ struct LightmapNetwork::Impl {
                                 VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "guiding map"}),
         lightmaps(*device.context, size, size),
         sequence(*device.context) {
-    if (!std::filesystem::is_regular_file(weights)) throw io::InputError(weights.string(), "no such weights file");
+    if (!std::filesystem::is_regular_file(weights))
+      throw io::InputError(weights.string(), "no such weights file");
     nn::NetworkOptions options;
     options.precision = fp16 ? nn::Precision::Fp16 : nn::Precision::Fp32;
-    network = std::make_unique<nn::Network>(*device.context, *device.cache, io::readSafetensors(weights), size,
-                                            size, options);
+    network = std::make_unique<nn::Network>(*device.context, *device.cache, io::readSafetensors(weights),
+                                            size, size, options);
     network->record(sequence, guide, lightmaps.a, lightmaps.b);
     sequence.finish();
   }
@@ -36,8 +37,10 @@ struct LightmapNetwork::Impl {
   std::unique_ptr<nn::Network> network;
 };
 
-LightmapNetwork::LightmapNetwork(Device& device, const std::filesystem::path& weights, uint32_t size, bool fp16) {
-  if (size == 0 || size % 16 != 0) throw std::invalid_argument("LightmapNetwork: size must be a multiple of 16");
+LightmapNetwork::LightmapNetwork(Device& device, const std::filesystem::path& weights, uint32_t size,
+                                 bool fp16) {
+  if (size == 0 || size % 16 != 0)
+    throw std::invalid_argument("LightmapNetwork: size must be a multiple of 16");
   impl_ = std::make_unique<Impl>(device.impl(), weights, size, fp16);
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 // Stops a diverging simulation with a message that names the step and the place, instead of
 // letting NaN or runaway velocities turn into garbage frames.
-#include <glm/glm.hpp>
 #include <sixway/errors.h>
+#include <glm/glm.hpp>
 #include <string>
 
 #include "gpu/reduce_stats.h"

@@ -1,4 +1,4 @@
-// The config of `sixway dataset` (src/app/dataset_config.h): strict reading with one-line errors, the
+// The config of `sixway dataset` (src/dataset/dataset_config.h): strict reading with one-line errors, the
 // per-sequence plan (seeded, within the ranges, reproducible), the cameras, the held-out rule and --shard.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

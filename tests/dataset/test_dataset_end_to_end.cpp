@@ -11,16 +11,16 @@
 #include <glm/trigonometric.hpp>
 #include <memory>
 
+#include "cpu_motion.h"
 #include "dataset/dataset_config.h"
 #include "dataset/dataset_sequence.h"
-#include "runtime/scene_volumes.h"
-#include "cpu_motion.h"
 #include "gpu/sequence.h"
 #include "io/safetensors.h"
+#include "reference/lightmap_baker.h"
 #include "render/billboard.h"
 #include "render/guiding_map.h"
-#include "reference/lightmap_baker.h"
 #include "render/obstacle_meshes.h"
+#include "runtime/scene_volumes.h"
 #include "support/gpu_fixture.h"
 #include "support/temp_dir.h"
 

@@ -7,9 +7,9 @@
 #include <glm/gtc/packing.hpp>
 
 #include "cpu_motion.h"
+#include "dataset/motion_field.h"
 #include "gpu/sequence.h"
 #include "render/billboard.h"
-#include "dataset/motion_field.h"
 #include "support/gpu_fixture.h"
 
 namespace sixway::test {

@@ -7,9 +7,9 @@
 #include <filesystem>
 
 #include "eval/frame_pipeline.h"
-#include "runtime/scene_volumes.h"
 #include "io/exr.h"
 #include "io/scene.h"
+#include "runtime/scene_volumes.h"
 #include "support/gpu_fixture.h"
 #include "support/image_compare.h"
 

@@ -27,14 +27,10 @@ class EngineRecordingTest : public GpuTest {
   gpu::ExternalDevice engineDevice(gpu::DeviceFeatures& features) {
     const gpu::Context& c = context();
     features = gpu::DeviceFeatures::toEnable(gpu::DeviceFeatures::supportedBy(c.physicalDevice()));
-    return {c.instance(),
-            c.physicalDevice(),
-            c.device(),
-            c.queue(),
-            c.queueFamily(),
-            extensionNames(gpu::requiredDeviceExtensions()),
-            features.chain(),
-            3};
+    return {c.instance(),     c.physicalDevice(),
+            c.device(),       c.queue(),
+            c.queueFamily(),  extensionNames(gpu::requiredDeviceExtensions()),
+            features.chain(), 3};
   }
 };
 

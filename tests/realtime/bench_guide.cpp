@@ -18,9 +18,9 @@
 #include "io/safetensors.h"
 #include "io/scene.h"
 #include "io/vdb.h"
+#include "reference/lightmap_baker.h"
 #include "render/billboard.h"
 #include "render/guiding_map.h"
-#include "reference/lightmap_baker.h"
 #include "render/sixway.h"
 
 namespace {

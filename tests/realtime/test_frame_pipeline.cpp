@@ -1,4 +1,4 @@
-// Whole frames of the real-time pipeline (src/app/frame_pipeline.h) against independent references, on a
+// Whole frames of the real-time pipeline (src/eval/frame_pipeline.h) against independent references, on a
 // static blob of smoke (no simulation):
 // - reference mode vs pathtrace mode with single scattering and one directional light along a six-way axis.
 //   For such a light the six-way model is exact (t = the one lightmap facing it, weight 1), so the two differ

@@ -7,9 +7,9 @@
 
 #include "cpu_guide.h"
 #include "io/safetensors.h"
+#include "reference/lightmap_baker.h"
 #include "render/billboard.h"
 #include "render/guiding_map.h"
-#include "reference/lightmap_baker.h"
 #include "render/sixway.h"
 #include "support/input_error.h"
 #include "test_volumes.h"

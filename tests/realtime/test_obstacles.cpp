@@ -13,12 +13,12 @@
 #include "gpu/image.h"
 #include "gpu/sequence.h"
 #include "io/error.h"
+#include "io/motion.h"
 #include "realtime/cpu_obstacles.h"
 #include "render/obstacle_meshes.h"
 #include "render/obstacle_pass.h"
 #include "render/projection.h"
 #include "render/shadow_maps.h"
-#include "io/motion.h"
 #include "support/gpu_fixture.h"
 
 namespace sixway::test {

@@ -13,9 +13,9 @@
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "io/vdb.h"
-#include "render/billboard.h"
 #include "reference/lightmap_baker.h"
 #include "reference/path_tracer.h"
+#include "render/billboard.h"
 
 namespace {
 

@@ -15,11 +15,11 @@
 #include "gpu/pipeline.h"
 #include "io/png.h"
 #include "io/vdb.h"
-#include "render/billboard.h"
 #include "reference/lightmap_baker.h"
 #include "reference/path_tracer.h"
-#include "render/sixway.h"
 #include "reference/vdb_sequence.h"
+#include "render/billboard.h"
+#include "render/sixway.h"
 
 namespace {
 

@@ -93,8 +93,8 @@ struct EngineTargets {
                             VK_IMAGE_USAGE_TRANSFER_DST_BIT,
                         "engine depth"}) {}
   RenderTarget target() const {
-    return {color.handle(), color.view(), color.desc().format, depth.handle(), depth.view(), depth.desc().format,
-            color.desc().width, color.desc().height};
+    return {color.handle(), color.view(),        color.desc().format, depth.handle(),
+            depth.view(),   depth.desc().format, color.desc().width,  color.desc().height};
   }
   void recordClear(VkCommandBuffer commands, const float background[4]) const {
     VkClearColorValue clearColor;
@@ -103,7 +103,8 @@ struct EngineTargets {
     vkCmdClearColorImage(commands, color.handle(), VK_IMAGE_LAYOUT_GENERAL, &clearColor, 1, &colorRange);
     VkClearDepthStencilValue clearDepth{1.0f, 0};
     VkImageSubresourceRange depthRange{VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, 0, 1};
-    vkCmdClearDepthStencilImage(commands, depth.handle(), VK_IMAGE_LAYOUT_GENERAL, &clearDepth, 1, &depthRange);
+    vkCmdClearDepthStencilImage(commands, depth.handle(), VK_IMAGE_LAYOUT_GENERAL, &clearDepth, 1,
+                                &depthRange);
   }
   gpu::Image color, depth;
 };
@@ -126,8 +127,14 @@ TEST(Runtime, AnEngineRecordsTheSameFramesWithoutHostWaits) {
   gpu::DeviceFeatures features =
       gpu::DeviceFeatures::toEnable(gpu::DeviceFeatures::supportedBy(context.physicalDevice()));
   const std::vector<const char*> extensions = gpu::requiredDeviceExtensions();
-  Device engine(EngineDevice{context.instance(), context.physicalDevice(), context.device(), context.queue(),
-                             context.queueFamily(), {extensions.begin(), extensions.end()}, features.chain(), 2});
+  Device engine(EngineDevice{context.instance(),
+                             context.physicalDevice(),
+                             context.device(),
+                             context.queue(),
+                             context.queueFamily(),
+                             {extensions.begin(), extensions.end()},
+                             features.chain(),
+                             2});
   EngineTargets targets(context, ownRenderer.width(), ownRenderer.height());
   SmokeSimulation simulation(engine, scene);
   SmokeRenderer renderer(engine, simulation, {.weights = kWeights}, targets.target());

@@ -79,8 +79,9 @@ void Demo::drawPanel() {
 
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
     int mode = int(mode_);
-    const eval::RenderMode modes[] = {eval::RenderMode::Neural, eval::RenderMode::Reference, eval::RenderMode::Traditional,
-                                eval::RenderMode::Guide, eval::RenderMode::GuideLit};
+    const eval::RenderMode modes[] = {eval::RenderMode::Neural, eval::RenderMode::Reference,
+                                      eval::RenderMode::Traditional, eval::RenderMode::Guide,
+                                      eval::RenderMode::GuideLit};
     for (int i = 0; i < 5; ++i) {
       char label[32];
       std::snprintf(label, sizeof(label), "%s (%d)", eval::renderModeName(modes[i]), i + 1);

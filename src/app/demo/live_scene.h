@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "eval/frame_pipeline.h"
-#include "runtime/scene_volumes.h"
 #include "io/scene.h"
+#include "runtime/scene_volumes.h"
 
 namespace sixway::gpu {
 class Context;

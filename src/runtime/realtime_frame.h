@@ -1,0 +1,95 @@
+#pragma once
+// The passes of the real-time frame (docs/real-time-rendering.md) for one scene, and their per-frame values:
+// obstacle shadow maps, the obstacles drawn into the target (sixway's own image only; an engine draws its
+// own), the guiding map, a lightmap stage (the network's, or whatever the caller records), and six-way
+// shading over the colour target. The public SmokeRenderer and the evaluation's FramePipeline both build
+// their frames from it.
+#include <functional>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "gpu/image.h"
+#include "gpu/sequence.h"
+#include "io/scene.h"
+#include "render/camera.h"
+#include "render/guiding_map.h"
+#include "render/lightmap_images.h"
+#include "render/obstacle_meshes.h"
+#include "render/obstacle_pass.h"
+#include "render/projection.h"
+#include "render/shadow_maps.h"
+#include "render/sixway_shading.h"
+#include "render/volume.h"
+
+namespace sixway::gpu {
+class Context;
+class PipelineCache;
+}  // namespace sixway::gpu
+
+namespace sixway::runtime {
+
+// Where the frame is drawn: sixway's own RGBA16F colour + D32 depth of a size (with the scene's obstacles
+// drawn first), or an engine's images (VK_IMAGE_LAYOUT_GENERAL; the engine draws its scene).
+struct FrameTarget {
+  uint32_t width = 0, height = 0;
+  std::optional<gpu::Image> engineColor, engineDepth;  // both or neither
+};
+
+// Which passes a recorded frame has: all of them; up to the guiding map; only the obstacles; or all but the
+// guiding map (a flipbook's shell depth is uploaded into guide() instead).
+enum class FrameStages { All, UpToGuide, ObstaclesOnly, AllButGuide };
+
+class RealtimeFrame {
+ public:
+  // `shadowTiles`: the shadow atlas's tiles (0: no shadows).
+  RealtimeFrame(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
+                FrameTarget target, uint32_t shadowTiles);
+
+  // Records the passes for `volume` into `sequence`; `lightmaps` records what fills lightmaps() between the
+  // guiding map and the shading (nothing: the caller uploads them before each submission).
+  void record(gpu::Sequence& sequence, const render::Volume& volume, FrameStages stages,
+              const std::function<void(gpu::Sequence&)>& lightmapStage);
+
+  // This frame's scene: obstacles at `seconds`, the lights, and the depth range the target's depth buffer
+  // holds (unset: the range the obstacle pass draws with, boxDepthRange of the scene bounds).
+  void updateScene(const render::Camera& camera, const std::vector<io::Light>& lights, double seconds,
+                   std::optional<render::DepthRange> targetDepth = std::nullopt);
+  // This frame's billboard over `volumeBox` (billboardBounds) and the guide's values for it, at frame
+  // `index`.
+  render::ImagePlane updateGuide(const render::Camera& camera, const render::Box& volumeBox, int index);
+  // The shading's values, for the billboard the lightmaps cover.
+  void updateShading(const render::Camera& camera, const std::vector<io::Light>& lights,
+                     const render::ImagePlane& billboard, const render::Box& volumeBox);
+
+  const gpu::Image& color() const { return engineColor_ ? *engineColor_ : color_; }
+  const gpu::Image& depth() const { return engineDepth_ ? *engineDepth_ : depth_; }
+  gpu::Image& guide() { return guide_; }
+  const gpu::Image& guide() const { return guide_; }
+  render::LightmapImages& lightmaps() { return lightmaps_; }
+  const render::LightmapImages& lightmaps() const { return lightmaps_; }
+  render::ObstacleMeshes& meshes() { return meshes_; }
+  const render::GuidingMap& guiding() const { return guiding_; }
+  uint32_t width() const { return width_; }
+  uint32_t height() const { return height_; }
+  uint32_t lightmapSize() const { return lightmapSize_; }
+  // Notes of the last updateScene() for the user (e.g. a light without a shadow map).
+  std::vector<std::string> takeNotes() { return shadowMaps_.takeNotes(); }
+
+ private:
+  const io::Scene* scene_;
+  uint32_t width_, height_, lightmapSize_;
+  std::optional<gpu::Image> engineColor_, engineDepth_;
+  gpu::Image color_, depth_, guide_;
+  render::LightmapImages lightmaps_;
+  render::ObstacleMeshes meshes_;
+  render::ShadowMaps shadowMaps_;
+  std::unique_ptr<render::ObstaclePass> obstacles_;  // sixway's own target only
+  render::GuidingMap guiding_;
+  render::SixWayShading shading_;
+  render::ShadingControls controls_;
+  render::ImagePlane frame_;
+  render::DepthRange sceneRange_;
+};
+
+}  // namespace sixway::runtime
