@@ -167,8 +167,6 @@ void Simulation::record(VkCommandBuffer commands, uint64_t frame) {
 
 void Simulation::checkRecordedFrame(uint64_t frame) {
   const uint64_t inFlight = context_->framesInFlight();
-  // Replaced sequences no frame in flight can still be running.
-  std::erase_if(retired_, [&](const auto& r) { return r.first + inFlight < frame; });
   while (!recorded_.empty() && recorded_.front().frame + inFlight <= frame) {
     const RecordedFrame done = recorded_.front();
     recorded_.erase(recorded_.begin());
@@ -184,6 +182,8 @@ void Simulation::checkRecordedFrame(uint64_t frame) {
     summarize(done.firstStep, done.steps, done.sequence->stageTimes(), forces, stats(*speedStats_),
               stats(*densityStats_));
   }
+  // Replaced sequences that no frame in flight runs and no unread frame holds.
+  std::erase_if(retired_, [&](const auto& r) { return r.first + inFlight < frame; });
 }
 
 void Simulation::advance(uint32_t steps) {
