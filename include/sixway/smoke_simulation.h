@@ -13,6 +13,18 @@ namespace sixway {
 
 class Device;
 
+// The smoke on the device, for engines that march or shade it themselves: density and temperature as one
+// float per cell (x fastest, then y, then z; density per unit of the scene's smoke.extinction), on a lattice
+// of cubic cells whose cell (0, 0, 0) has its corner at `origin`. The buffers stay the same for the
+// simulation's life; a recorded frame writes them (storage-buffer writes, followed by a full barrier).
+struct SmokeVolume {
+  VkBuffer density = VK_NULL_HANDLE;
+  VkBuffer temperature = VK_NULL_HANDLE;
+  glm::ivec3 cells{0};
+  glm::vec3 origin{0.0f};
+  float cellSize = 0.0f;  // metres
+};
+
 class SmokeSimulation {
  public:
   // Loads the scene file; throws Error naming it (missing, malformed, beyond the device's limits).
@@ -29,6 +41,7 @@ class SmokeSimulation {
   // frame recorded framesInFlight frames earlier, so its Error arrives that much later.
   void record(VkCommandBuffer commands, uint64_t frame);
 
+  SmokeVolume volume() const;
   int framesSimulated() const;
   double seconds() const;  // simulated time
 

@@ -26,6 +26,12 @@ void SmokeSimulation::record(VkCommandBuffer commands, uint64_t frame) {
   ++impl_->frames;
 }
 
+SmokeVolume SmokeSimulation::volume() const {
+  const render::Volume v = impl_->volumes.currentVolume();
+  return {v.density->handle(), v.temperature ? v.temperature->handle() : VK_NULL_HANDLE, v.grid.size,
+          v.grid.origin, v.grid.cellSize};
+}
+
 int SmokeSimulation::framesSimulated() const {
   return impl_->frames;
 }

@@ -233,6 +233,10 @@ TEST(Runtime, AnEngineSteersAnObstacleBetweenFrames) {
     SIXWAY_VK(vkWaitForFences(context.device(), 1, &fence, VK_TRUE, UINT64_MAX));
   }
   EXPECT_EQ(simulation.framesSimulated(), 8);
+  const SmokeVolume volume = simulation.volume();
+  EXPECT_NE(volume.density, VK_NULL_HANDLE);
+  EXPECT_EQ(volume.cells, glm::ivec3(24, 32, 24) * io::loadScene(kScene).grid.smokeUpres);
+  EXPECT_FLOAT_EQ(volume.cellSize, 0.04f / float(io::loadScene(kScene).grid.smokeUpres));
   // The measurements read so far are of frames recorded two frames before the last ones: the smoke is there.
   const sim::AdvanceReport& report = simulation.impl().volumes.simulation().report();
   EXPECT_GT(report.smokeMass, 0.0);
