@@ -110,6 +110,63 @@ struct EngineTargets {
   gpu::Image color, depth;
 };
 
+// An "engine" on sixway's own device: the device borrowed through the public API, a command buffer and a
+// fence, one frame at a time.
+struct BorrowingEngine {
+  explicit BorrowingEngine(const Device& own)
+      : context(*own.impl().context),
+        features(gpu::DeviceFeatures::toEnable(gpu::DeviceFeatures::supportedBy(context.physicalDevice()))),
+        device(engineDevice(context, features)) {
+    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    poolInfo.queueFamilyIndex = context.queueFamily();
+    SIXWAY_VK(vkCreateCommandPool(context.device(), &poolInfo, nullptr, &pool));
+    VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, pool,
+                                          VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
+    SIXWAY_VK(vkAllocateCommandBuffers(context.device(), &allocInfo, &commands));
+    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    SIXWAY_VK(vkCreateFence(context.device(), &fenceInfo, nullptr, &fence));
+  }
+  ~BorrowingEngine() {
+    vkDestroyFence(context.device(), fence, nullptr);
+    vkDestroyCommandPool(context.device(), pool, nullptr);
+  }
+  static Device engineDevice(const gpu::Context& context, gpu::DeviceFeatures& features) {
+    const std::vector<const char*> extensions = gpu::requiredDeviceExtensions();
+    return Device(EngineDevice{context.instance(),
+                               context.physicalDevice(),
+                               context.device(),
+                               context.queue(),
+                               context.queueFamily(),
+                               {extensions.begin(), extensions.end()},
+                               features.chain(),
+                               2});
+  }
+  VkCommandBuffer begin() {
+    SIXWAY_VK(vkResetCommandBuffer(commands, 0));
+    VkCommandBufferBeginInfo info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    SIXWAY_VK(vkBeginCommandBuffer(commands, &info));
+    return commands;
+  }
+  // Ends, submits and waits (the engine's own wait, which sixway does not count).
+  void submitAndWait() {
+    SIXWAY_VK(vkEndCommandBuffer(commands));
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &commands;
+    SIXWAY_VK(vkResetFences(context.device(), 1, &fence));
+    SIXWAY_VK(vkQueueSubmit(context.queue(), 1, &submit, fence));
+    SIXWAY_VK(vkWaitForFences(context.device(), 1, &fence, VK_TRUE, UINT64_MAX));
+  }
+
+  const gpu::Context& context;
+  gpu::DeviceFeatures features;
+  Device device;
+  VkCommandPool pool = VK_NULL_HANDLE;
+  VkCommandBuffer commands = VK_NULL_HANDLE;
+  VkFence fence = VK_NULL_HANDLE;
+};
+
 TEST(Runtime, AnEngineRecordsTheSameFramesWithoutHostWaits) {
   TempDir dir;
   const std::filesystem::path scene = sceneWithoutObstacles(dir.path());
@@ -124,56 +181,24 @@ TEST(Runtime, AnEngineRecordsTheSameFramesWithoutHostWaits) {
   const std::vector<float> expected = ownRenderer.image();
 
   // The "engine": the same Vulkan device, borrowed, with its own images and command buffers.
-  const gpu::Context& context = *own.impl().context;
-  gpu::DeviceFeatures features =
-      gpu::DeviceFeatures::toEnable(gpu::DeviceFeatures::supportedBy(context.physicalDevice()));
-  const std::vector<const char*> extensions = gpu::requiredDeviceExtensions();
-  Device engine(EngineDevice{context.instance(),
-                             context.physicalDevice(),
-                             context.device(),
-                             context.queue(),
-                             context.queueFamily(),
-                             {extensions.begin(), extensions.end()},
-                             features.chain(),
-                             2});
-  EngineTargets targets(context, ownRenderer.width(), ownRenderer.height());
-  SmokeSimulation simulation(engine, scene);
-  SmokeRenderer renderer(engine, simulation, {.weights = kWeights}, targets.target());
+  BorrowingEngine engine(own);
+  EngineTargets targets(engine.context, ownRenderer.width(), ownRenderer.height());
+  SmokeSimulation simulation(engine.device, scene);
+  SmokeRenderer renderer(engine.device, simulation, {.weights = kWeights}, targets.target());
   renderer.setCamera(sceneCamera());
   const float* background = &expected[0];  // the corner: background only
 
-  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-  poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-  poolInfo.queueFamilyIndex = context.queueFamily();
-  VkCommandPool pool;
-  SIXWAY_VK(vkCreateCommandPool(context.device(), &poolInfo, nullptr, &pool));
-  VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, pool,
-                                        VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
-  VkCommandBuffer commands;
-  SIXWAY_VK(vkAllocateCommandBuffers(context.device(), &allocInfo, &commands));
-  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  VkFence fence;
-  SIXWAY_VK(vkCreateFence(context.device(), &fenceInfo, nullptr, &fence));
-
   uint64_t waitsAfterFirstFrame = 0;
   for (int frame = 0; frame < kFrames; ++frame) {
-    SIXWAY_VK(vkResetCommandBuffer(commands, 0));
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    SIXWAY_VK(vkBeginCommandBuffer(commands, &begin));
+    VkCommandBuffer commands = engine.begin();
     targets.recordClear(commands, background);
     simulation.record(commands, uint64_t(frame));
     renderer.record(commands, uint64_t(frame));
-    SIXWAY_VK(vkEndCommandBuffer(commands));
     // The first frame records the passes once (allocations may upload); later frames only replay.
-    if (frame == 0) waitsAfterFirstFrame = engine.hostWaits();
-    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &commands;
-    SIXWAY_VK(vkResetFences(context.device(), 1, &fence));
-    SIXWAY_VK(vkQueueSubmit(context.queue(), 1, &submit, fence));
-    SIXWAY_VK(vkWaitForFences(context.device(), 1, &fence, VK_TRUE, UINT64_MAX));  // the engine's own wait
+    if (frame == 0) waitsAfterFirstFrame = engine.device.hostWaits();
+    engine.submitAndWait();
   }
-  EXPECT_EQ(engine.hostWaits(), waitsAfterFirstFrame) << "sixway blocked the host in frames 1..3";
+  EXPECT_EQ(engine.device.hostWaits(), waitsAfterFirstFrame) << "sixway blocked the host in frames 1..3";
 
   std::vector<float> image;
   for (uint16_t h : targets.color.download<uint16_t>()) image.push_back(glm::unpackHalf1x16(h));
@@ -181,9 +206,6 @@ TEST(Runtime, AnEngineRecordsTheSameFramesWithoutHostWaits) {
   EXPECT_LT(maxDifference(image, expected), 1e-3);
   EXPECT_GT(*std::max_element(image.begin(), image.end()), 0.05f) << "no smoke in the image";
   EXPECT_FALSE(renderer.stageTimes().empty()) << "the times of an earlier frame should be in";
-
-  vkDestroyFence(context.device(), fence, nullptr);
-  vkDestroyCommandPool(context.device(), pool, nullptr);
   EXPECT_EQ(own.validationMessages(), 0u);
 }
 
@@ -191,46 +213,13 @@ TEST(Runtime, AnEngineRecordsTheSameFramesWithoutHostWaits) {
 // or unread; frame numbers may skip. Every frame's measurements still arrive, and nothing trips validation.
 TEST(Runtime, AnEngineSteersAnObstacleBetweenFrames) {
   Device own({.validate = true});
-  const gpu::Context& context = *own.impl().context;
-  gpu::DeviceFeatures features =
-      gpu::DeviceFeatures::toEnable(gpu::DeviceFeatures::supportedBy(context.physicalDevice()));
-  const std::vector<const char*> extensions = gpu::requiredDeviceExtensions();
-  Device engine(EngineDevice{context.instance(),
-                             context.physicalDevice(),
-                             context.device(),
-                             context.queue(),
-                             context.queueFamily(),
-                             {extensions.begin(), extensions.end()},
-                             features.chain(),
-                             2});
-  SmokeSimulation simulation(engine, kScene);
+  BorrowingEngine engine(own);
+  SmokeSimulation simulation(engine.device, kScene);
   ASSERT_EQ(simulation.obstacleCount(), 1u);
-
-  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-  poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-  poolInfo.queueFamilyIndex = context.queueFamily();
-  VkCommandPool pool;
-  SIXWAY_VK(vkCreateCommandPool(context.device(), &poolInfo, nullptr, &pool));
-  VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, pool,
-                                        VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
-  VkCommandBuffer commands;
-  SIXWAY_VK(vkAllocateCommandBuffers(context.device(), &allocInfo, &commands));
-  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  VkFence fence;
-  SIXWAY_VK(vkCreateFence(context.device(), &fenceInfo, nullptr, &fence));
   for (uint64_t frame : {0, 1, 2, 5, 6, 9, 10, 11}) {
     if (frame == 5) simulation.steerObstacle(0, {-0.1f, 0.6f, 0.0f});
-    SIXWAY_VK(vkResetCommandBuffer(commands, 0));
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    SIXWAY_VK(vkBeginCommandBuffer(commands, &begin));
-    simulation.record(commands, frame);
-    SIXWAY_VK(vkEndCommandBuffer(commands));
-    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &commands;
-    SIXWAY_VK(vkResetFences(context.device(), 1, &fence));
-    SIXWAY_VK(vkQueueSubmit(context.queue(), 1, &submit, fence));
-    SIXWAY_VK(vkWaitForFences(context.device(), 1, &fence, VK_TRUE, UINT64_MAX));
+    simulation.record(engine.begin(), frame);
+    engine.submitAndWait();
   }
   EXPECT_EQ(simulation.framesSimulated(), 8);
   const SmokeVolume volume = simulation.volume();
@@ -241,8 +230,6 @@ TEST(Runtime, AnEngineSteersAnObstacleBetweenFrames) {
   const sim::AdvanceReport& report = simulation.impl().volumes.simulation().report();
   EXPECT_GT(report.smokeMass, 0.0);
   EXPECT_EQ(report.forces.size(), size_t(io::lbmStepsPerFrame(io::loadScene(kScene))));
-  vkDestroyFence(context.device(), fence, nullptr);
-  vkDestroyCommandPool(context.device(), pool, nullptr);
   EXPECT_EQ(own.validationMessages(), 0u);
 }
 
