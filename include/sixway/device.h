@@ -66,9 +66,16 @@ class Device {
   uint64_t hostWaits() const;
   // Validation messages seen on sixway's own device with DeviceOptions::validate (0 otherwise).
   uint32_t validationMessages() const;
+  // Device memory sixway holds now (buffers and images it allocated): flat from the first frames on.
+  struct MemoryUse {
+    uint64_t allocations = 0, bytes = 0;
+  };
+  MemoryUse memoryUse() const;
 
   struct Impl;  // the implementation's (src/runtime/device_impl.h)
   Impl& impl() const { return *impl_; }
+  // sixway's own tools: a Device over an implementation they made (e.g. around the demo's window device).
+  explicit Device(std::unique_ptr<Impl> impl);
 
  private:
   std::unique_ptr<Impl> impl_;

@@ -13,6 +13,9 @@
 #include <string>
 #include <vector>
 
+#include "sixway/light.h"
+#include "sixway/stage_time.h"
+
 namespace sixway {
 
 class Device;
@@ -45,11 +48,9 @@ struct RendererOptions {
   std::filesystem::path weights;  // the network (weights/*.safetensors); an Error names a missing one
   bool fp16 = false;              // fp16 feature maps where the device has 16-bit storage
   bool shadows = true;            // obstacles shadow the smoke
-};
-
-struct StageTime {
-  std::string name;  // "guide", "network", "shade", "shadow maps", ...
-  double milliseconds;
+  // Shadow-atlas tiles: the most lights that cast shadows at once (a note names a light beyond them).
+  // Unset: one per shadow-casting light of the scene; set it when setLights() may add more.
+  std::optional<uint32_t> shadowedLights;
 };
 
 class SmokeRenderer {
@@ -65,6 +66,11 @@ class SmokeRenderer {
 
   // The camera from now on; until set, the scene's camera (on its path).
   void setCamera(const Camera& camera);
+  // The lights from now on, at most maxLights() (the shading blends the lightmaps once per light); until
+  // set, the scene's lights (on their paths). std::invalid_argument for more, for a negative or non-finite
+  // colour or intensity, or a directional light without a direction.
+  void setLights(const std::vector<Light>& lights);
+  uint32_t maxLights() const;
 
   // Own image: renders the simulation's current smoke and waits.
   void render();
@@ -74,6 +80,9 @@ class SmokeRenderer {
 
   // GPU time per stage of the latest frame whose times are in (a frame or more late with an engine).
   std::vector<StageTime> stageTimes() const;
+  // What the last frame could not do as asked, for the user, each said once (e.g. a shadow-casting light
+  // beyond shadowedLights, drawn unshadowed).
+  std::vector<std::string> notes() const;
   // Own image: the last frame, RGBA floats (linear, premultiplied), row 0 at the top.
   std::vector<float> image() const;
   uint32_t width() const;
@@ -84,8 +93,10 @@ class SmokeRenderer {
   VkImage lightmapA() const;
   VkImage lightmapB() const;
 
+  struct Impl;  // the implementation's (src/runtime/smoke_renderer_impl.h)
+  Impl& impl() const { return *impl_; }
+
  private:
-  struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 

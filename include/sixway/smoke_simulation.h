@@ -8,6 +8,9 @@
 #include <filesystem>
 #include <glm/vec3.hpp>
 #include <memory>
+#include <vector>
+
+#include "sixway/stage_time.h"
 
 namespace sixway {
 
@@ -41,11 +44,20 @@ class SmokeSimulation {
   // frame recorded framesInFlight frames earlier, so its Error arrives that much later.
   void record(VkCommandBuffer commands, uint64_t frame);
 
+  // Back to the scene's first frame: the fluid at rest, no smoke, obstacles on the scene's motions. The
+  // volume's buffers change (a renderer follows). With an engine's device, the GPU must have finished the
+  // frames recorded so far (e.g. after vkDeviceWaitIdle).
+  void restart();
+
   SmokeVolume volume() const;
   int framesSimulated() const;
   double seconds() const;  // simulated time
+  // GPU time of the simulation's steps in the last advance() ("sim/obstacles", "sim/lbm", "sim/smoke",
+  // "sim/forces+watchdog"); empty before the first.
+  std::vector<StageTime> stageTimes() const;
 
   size_t obstacleCount() const;
+  glm::vec3 obstaclePosition(size_t obstacle) const;  // world (m), now
   // Drags an obstacle toward `target` (world, m) at a speed the lattice can follow.
   void steerObstacle(size_t obstacle, glm::vec3 target);
   // Scales the inlets' velocity, in [0, maxInletStrength()]; std::invalid_argument outside.

@@ -1,5 +1,8 @@
 #include "app/render_command.h"
 
+#include <sixway/device.h>
+#include <sixway/smoke_renderer.h>
+#include <sixway/smoke_simulation.h>
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -18,11 +21,12 @@
 #include "app/timings_log.h"
 #include "eval/frame_pipeline.h"
 #include "gpu/context.h"
-#include "gpu/pipeline.h"
 #include "io/error.h"
 #include "io/report.h"
 #include "io/scene.h"
+#include "runtime/device_impl.h"
 #include "runtime/scene_volumes.h"
+#include "runtime/smoke_simulation_impl.h"
 
 namespace sixway::app {
 namespace {
@@ -45,6 +49,52 @@ fs::path defaultWeights() {
   return fs::path(SIXWAY_WEIGHTS_DIR) / "sixway-unet.safetensors";
 }
 
+// The frames of one mode: neural through the public SmokeRenderer (the product's path, as an engine runs
+// it); the evaluation's modes through eval::FramePipeline on the same simulation.
+class FrameSource {
+ public:
+  FrameSource(sixway::Device& device, sixway::SmokeSimulation& simulation, const io::Scene& scene,
+              const fs::path& scenePath, const eval::FramePipelineOptions& options)
+      : simulation_(simulation), scene_(scene) {
+    const std::string settings = "render.lightmap_size, render.width or render.height";
+    if (options.mode == eval::RenderMode::Neural) {
+      sixway::RendererOptions rendererOptions;
+      rendererOptions.weights = options.weights;
+      rendererOptions.fp16 = options.fp16;
+      rendererOptions.shadows = options.shadows;
+      renderer_ = withinDeviceLimits(scenePath.string(), settings, [&] {
+        return std::make_unique<sixway::SmokeRenderer>(device, simulation, rendererOptions);
+      });
+    } else {
+      const sixway::Device::Impl& d = device.impl();
+      pipeline_ = withinDeviceLimits(scenePath.string(), settings, [&] {
+        return std::make_unique<eval::FramePipeline>(*d.context, *d.cache, scene, options);
+      });
+    }
+  }
+
+  // Frame `index`, the simulation's current smoke: its image, GPU stage times and notes.
+  eval::RenderedFrame render(int index) {
+    if (pipeline_)
+      return pipeline_->render(index, runtime::SimulatedVolumes::frameSeconds(scene_, index),
+                               simulation_.impl().volumes->currentVolume());
+    renderer_->render();
+    eval::RenderedFrame frame;
+    frame.image = io::Image(int(renderer_->width()), int(renderer_->height()), {"R", "G", "B", "A"});
+    frame.image.pixels = renderer_->image();
+    for (const sixway::StageTime& t : renderer_->stageTimes())
+      frame.stages.push_back({t.name, t.milliseconds});
+    frame.notes = renderer_->notes();
+    return frame;
+  }
+
+ private:
+  sixway::SmokeSimulation& simulation_;
+  const io::Scene& scene_;
+  std::unique_ptr<sixway::SmokeRenderer> renderer_;
+  std::unique_ptr<eval::FramePipeline> pipeline_;
+};
+
 void run(const RenderOptions& o) {
   const io::Scene scene = io::loadScene(o.scene);
   eval::FramePipelineOptions options;
@@ -59,14 +109,11 @@ void run(const RenderOptions& o) {
   options.pathTraceOrders = o.orders;
   io::requireWritable(o.out, o.force);
 
-  gpu::Context context(o.common.contextOptions());
-  gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));
-  runtime::SimulatedVolumes volumes = withinDeviceLimits(o.scene.string(), gridSetting(scene.grid), [&] {
-    return runtime::SimulatedVolumes(context, cache, scene, o.frames);
-  });
-  eval::FramePipeline pipeline =
-      withinDeviceLimits(o.scene.string(), "render.lightmap_size, render.width or render.height",
-                         [&] { return eval::FramePipeline(context, cache, scene, options); });
+  const gpu::ContextOptions contextOptions = o.common.contextOptions();
+  sixway::Device device(sixway::DeviceOptions{contextOptions.validate, contextOptions.deviceIndex});
+  sixway::SmokeSimulation simulation = withinDeviceLimits(
+      o.scene.string(), gridSetting(scene.grid), [&] { return sixway::SmokeSimulation(device, o.scene); });
+  FrameSource source(device, simulation, scene, o.scene, options);
   // The output directory appears only once everything it needs has been checked.
   FrameWriterOptions writerOptions;
   writerOptions.exr = o.exr;
@@ -76,27 +123,24 @@ void run(const RenderOptions& o) {
   FrameWriter writer(o.out, writerOptions);
   std::printf("sixway render: %s, %d frames, mode %s, %dx%d (lightmaps %d²), on %s\n", scene.name.c_str(),
               o.frames, eval::renderModeName(options.mode), scene.render.width, scene.render.height,
-              scene.render.lightmapSize, context.properties().deviceName);
+              scene.render.lightmapSize, device.name().c_str());
   std::fflush(stdout);
 
   TimingsLog timings(o.frames);
   const auto started = std::chrono::steady_clock::now();
   for (int i = 0; i < o.frames; ++i) {
-    const render::Volume volume = volumes.volume(i);
-    const eval::RenderedFrame frame =
-        pipeline.render(i, runtime::SimulatedVolumes::frameSeconds(scene, i), volume);
+    simulation.advance();
+    const eval::RenderedFrame frame = source.render(i);
     writer.write(i, frame.image);
     for (const std::string& note : frame.notes) std::printf("  note: %s\n", note.c_str());
 
-    const sim::StepTimes& sim = volumes.frameTimes();
-    std::vector<gpu::StageTime> stages = {{"sim/obstacles", sim.obstacles},
-                                          {"sim/lbm", sim.lbm},
-                                          {"sim/smoke", sim.smoke},
-                                          {"sim/forces+watchdog", sim.forces + sim.watchdog}};
+    std::vector<gpu::StageTime> stages;
+    for (const sixway::StageTime& t : simulation.stageTimes()) stages.push_back({t.name, t.milliseconds});
     stages.insert(stages.end(), frame.stages.begin(), frame.stages.end());
     // Memory in use, for long-run checks: flat from the first frames on, or something leaks.
+    const sixway::Device::MemoryUse memory = device.memoryUse();
     const double total = timings.add(i, runtime::SimulatedVolumes::frameSeconds(scene, i), stages,
-                                     context.memoryUse(), residentSetBytes());
+                                     {memory.allocations, memory.bytes}, residentSetBytes());
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     std::printf("  frame %d/%d: %.1f ms GPU, %.1f s elapsed, ETA %.0f s\n", i + 1, o.frames, total, elapsed,
                 elapsed / (i + 1) * (o.frames - i - 1));
@@ -106,7 +150,7 @@ void run(const RenderOptions& o) {
 
   nlohmann::json report = {{"scene", fs::absolute(o.scene).string()},
                            {"mode", eval::renderModeName(options.mode)},
-                           {"device", context.properties().deviceName},
+                           {"device", device.name()},
                            {"size", {scene.render.width, scene.render.height}},
                            {"lightmap_size", scene.render.lightmapSize},
                            {"median_stage_ms", timings.medianStageMs()},
@@ -116,8 +160,8 @@ void run(const RenderOptions& o) {
   std::printf("sixway render: wrote %d frames, timings.json", o.frames);
   for (const std::string& f : extras) std::printf(", %s", f.c_str());
   std::printf(" to %s\n", o.out.string().c_str());
-  if (context.validationMessageCount() > 0)
-    throw std::runtime_error(std::to_string(context.validationMessageCount()) + " validation messages");
+  if (device.validationMessages() > 0)
+    throw std::runtime_error(std::to_string(device.validationMessages()) + " validation messages");
 }
 
 }  // namespace

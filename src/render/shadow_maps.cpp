@@ -177,7 +177,13 @@ void ShadowMaps::update(std::span<const io::Light> lights, const Box& sceneBound
   if (meshes.casterIndexCount() > 0) {
     uint32_t next = 0;
     for (size_t i = 0; i < lights.size(); ++i) {
-      if (!lights[i].shadows || next == tiles_) continue;
+      if (!lights[i].shadows) continue;
+      if (next == tiles_) {
+        if (tiles_ > 0 && noted_.insert(i).second)
+          notes_.push_back("lights[" + std::to_string(i) + "]: no shadow-atlas tile left (" +
+                           std::to_string(tiles_) + "): drawn without obstacle shadows");
+        continue;
+      }
       const uint32_t tile = next++;
       const std::optional<glm::mat4> m =
           shadowProjection(lights[i], meshes.casterBounds(), sceneBounds, tileSize_);

@@ -4,17 +4,13 @@
 #include "runtime/device_impl.h"
 
 namespace sixway {
-namespace {
 
-std::unique_ptr<Device::Impl> withCache(std::unique_ptr<gpu::Context> context) {
-  auto impl = std::make_unique<Device::Impl>();
-  impl->context = std::move(context);
-  impl->cache =
-      std::make_unique<gpu::PipelineCache>(*impl->context, gpu::defaultPipelineCacheFile(*impl->context));
-  return impl;
+Device::Impl::Impl(std::unique_ptr<gpu::Context> own)
+    : context(own.get()),
+      ownContext_(std::move(own)),
+      ownCache_(std::make_unique<gpu::PipelineCache>(*context, gpu::defaultPipelineCacheFile(*context))) {
+  cache = ownCache_.get();
 }
-
-}  // namespace
 
 struct DeviceRequirements::Impl {
   std::vector<const char*> extensions = gpu::requiredDeviceExtensions();
@@ -39,15 +35,17 @@ Device::Device(const DeviceOptions& options) {
   gpu::ContextOptions contextOptions;
   contextOptions.validate = options.validate;
   contextOptions.deviceIndex = options.index;
-  impl_ = withCache(std::make_unique<gpu::Context>(contextOptions));
+  impl_ = std::make_unique<Impl>(std::make_unique<gpu::Context>(contextOptions));
 }
 
 Device::Device(const EngineDevice& engine) {
   gpu::ExternalDevice external{engine.instance,        engine.physicalDevice, engine.device,
                                engine.queue,           engine.queueFamily,    engine.enabledExtensions,
                                engine.enabledFeatures, engine.framesInFlight};
-  impl_ = withCache(std::make_unique<gpu::Context>(external));
+  impl_ = std::make_unique<Impl>(std::make_unique<gpu::Context>(external));
 }
+
+Device::Device(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 
 Device::~Device() = default;
 
@@ -61,6 +59,11 @@ uint64_t Device::hostWaits() const {
 
 uint32_t Device::validationMessages() const {
   return impl_->context->validationMessageCount();
+}
+
+Device::MemoryUse Device::memoryUse() const {
+  const gpu::MemoryUse use = impl_->context->memoryUse();
+  return {use.allocations, use.bytes};
 }
 
 }  // namespace sixway

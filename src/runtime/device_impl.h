@@ -11,8 +11,18 @@
 namespace sixway {
 
 struct Device::Impl {
-  std::unique_ptr<gpu::Context> context;
-  std::unique_ptr<gpu::PipelineCache> cache;  // $XDG_CACHE_HOME/sixway: lavapipe compiles once per machine
+  // A device of its own: the context, and the pipeline cache in $XDG_CACHE_HOME/sixway (lavapipe compiles
+  // once per machine).
+  explicit Impl(std::unique_ptr<gpu::Context> own);
+  // Around a context and cache that outlive the Device (the demo's window device).
+  Impl(gpu::Context& context, gpu::PipelineCache& cache) : context(&context), cache(&cache) {}
+
+  gpu::Context* context;
+  gpu::PipelineCache* cache;
+
+ private:
+  std::unique_ptr<gpu::Context> ownContext_;
+  std::unique_ptr<gpu::PipelineCache> ownCache_;
 };
 
 }  // namespace sixway

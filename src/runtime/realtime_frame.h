@@ -73,6 +73,7 @@ class RealtimeFrame {
   uint32_t width() const { return width_; }
   uint32_t height() const { return height_; }
   uint32_t lightmapSize() const { return lightmapSize_; }
+  uint32_t maxLights() const { return shading_.maxLights(); }  // per frame
   // Notes of the last updateScene() for the user (e.g. a light without a shadow map).
   std::vector<std::string> takeNotes() { return shadowMaps_.takeNotes(); }
 

@@ -3,14 +3,14 @@
 #include <algorithm>
 #include <filesystem>
 #include <glm/gtc/packing.hpp>
+#include <stdexcept>
 
 #include "io/error.h"
 #include "io/safetensors.h"
-#include "nn/network.h"
-#include "render/recorded_sequence.h"
 #include "render/scene_frame.h"
-#include "runtime/realtime_frame.h"
-#include "runtime/smoke_simulation_impl.h"
+#include "render/shadow_maps.h"
+#include "runtime/scene_lights.h"
+#include "runtime/smoke_renderer_impl.h"
 
 namespace sixway {
 namespace {
@@ -40,59 +40,54 @@ runtime::FrameTarget frameTarget(const gpu::Context& context, const io::Scene& s
                                 VK_IMAGE_USAGE_SAMPLED_BIT, "engine depth"})};
 }
 
+uint32_t shadowTiles(const io::Scene& scene, const RendererOptions& options) {
+  if (!options.shadows) return 0;
+  return options.shadowedLights ? *options.shadowedLights
+                                : render::shadowTileCount(scene.lights, scene.obstacles);
+}
+
 }  // namespace
 
-// The real-time frame with the network as its lightmap stage, recorded once per volume and replayed.
-struct SmokeRenderer::Impl {
-  Impl(Device::Impl& device, SmokeSimulation::Impl& simulation, const RendererOptions& options,
-       const RenderTarget* target)
-      : simulation(simulation),
-        engineTarget(target != nullptr),
-        frame(*device.context, *device.cache, simulation.scene,
-              frameTarget(*device.context, simulation.scene, target),
-              options.shadows ? render::shadowTileCount(simulation.scene.lights, simulation.scene.obstacles)
-                              : 0),
-        network(loadNetwork(*device.context, *device.cache, options, frame.lightmapSize())),
-        sequence(*device.context) {}
+SmokeRenderer::Impl::Impl(Device::Impl& device, SmokeSimulation::Impl& simulation,
+                          const RendererOptions& options, const RenderTarget* target)
+    : simulation(simulation),
+      engineTarget(target != nullptr),
+      frame(*device.context, *device.cache, simulation.scene,
+            frameTarget(*device.context, simulation.scene, target), shadowTiles(simulation.scene, options)),
+      network(loadNetwork(*device.context, *device.cache, options, frame.lightmapSize())),
+      sequence(*device.context) {}
 
-  // Records the passes for the simulation's volume (once) and writes this frame's values.
-  gpu::Sequence& prepare() {
-    const render::Volume volume = simulation.volumes.currentVolume();
-    gpu::Sequence& s = sequence.get({render::handleKey(volume.density->handle())}, [&](gpu::Sequence& s) {
-      frame.record(s, volume, runtime::FrameStages::All, [&](gpu::Sequence& s) {
-        s.beginStage("network");
-        network->record(s, frame.guide(), frame.lightmaps().a, frame.lightmaps().b);
-        s.endStage();
+gpu::Sequence& SmokeRenderer::Impl::prepare() {
+  const render::Volume volume = simulation.volumes->currentVolume();
+  // A restarted simulation may reuse a handle value: the start count tells its volume apart.
+  gpu::Sequence& s =
+      sequence.get({render::handleKey(volume.density->handle()), simulation.starts}, [&](gpu::Sequence& s) {
+        frame.record(s, volume, runtime::FrameStages::All, [&](gpu::Sequence& s) {
+          s.beginStage("network");
+          network->record(s, frame.guide(), frame.lightmaps().a, frame.lightmaps().b);
+          s.endStage();
+        });
       });
-    });
-    const sim::Simulation& sim = simulation.volumes.simulation();
-    for (size_t o = 0; o < simulation.scene.obstacles.size(); ++o)
-      frame.meshes().setMotion(o, sim.obstacleMotion(o));
+  const sim::Simulation& sim = simulation.volumes->simulation();
+  for (size_t o = 0; o < simulation.scene.obstacles.size(); ++o)
+    frame.meshes().setMotion(o, sim.obstacleMotion(o));
 
-    const int index =
-        std::max(0, simulation.frames - 1);  // the smoke after `frames` frames is frame frames − 1
-    const render::Camera view =
-        camera ? render::Camera::lookAt(camera->position, camera->target, camera->up, camera->fovYDegrees)
-               : render::sceneCamera(simulation.scene.camera, index);
-    const std::vector<io::Light> lights = render::sceneLights(simulation.scene.lights, index);
-    // An engine's depth buffer holds its projection's depth; sixway's own, the obstacle pass's.
-    frame.updateScene(
-        view, lights, sim.seconds(),
-        engineTarget ? std::optional(render::DepthRange{camera->near, camera->far}) : std::nullopt);
-    frame.takeNotes();
-    const render::Box volumeBox = volume.grid.bounds();
-    frame.updateShading(view, lights, frame.updateGuide(view, volumeBox, index), volumeBox);
-    return s;
-  }
-
-  SmokeSimulation::Impl& simulation;
-  bool engineTarget;
-  runtime::RealtimeFrame frame;
-  std::unique_ptr<nn::Network> network;
-  render::RecordedSequence sequence;
-  std::optional<Camera> camera;
-  gpu::Sequence* last = nullptr;
-};
+  const int index =
+      std::max(0, simulation.frames - 1);  // the smoke after `frames` frames is frame frames − 1
+  const render::Camera view =
+      camera ? render::Camera::lookAt(camera->position, camera->target, camera->up, camera->fovYDegrees)
+             : render::sceneCamera(simulation.scene.camera, index);
+  const std::vector<io::Light> frameLights =
+      lights ? *lights : render::sceneLights(simulation.scene.lights, index);
+  // An engine's depth buffer holds its projection's depth; sixway's own, the obstacle pass's.
+  frame.updateScene(
+      view, frameLights, sim.seconds(),
+      engineTarget ? std::optional(render::DepthRange{camera->near, camera->far}) : std::nullopt);
+  notes = frame.takeNotes();
+  const render::Box volumeBox = volume.grid.bounds();
+  frame.updateShading(view, frameLights, frame.updateGuide(view, volumeBox, index), volumeBox);
+  return s;
+}
 
 SmokeRenderer::SmokeRenderer(Device& device, SmokeSimulation& simulation, const RendererOptions& options)
     : impl_(std::make_unique<Impl>(device.impl(), simulation.impl(), options, nullptr)) {}
@@ -108,6 +103,15 @@ void SmokeRenderer::setCamera(const Camera& camera) {
     throw std::invalid_argument("Camera: needs 0 < near < far");
   render::Camera::lookAt(camera.position, camera.target, camera.up, camera.fovYDegrees);  // checks the axes
   impl_->camera = camera;
+}
+
+void SmokeRenderer::setLights(const std::vector<Light>& lights) {
+  if (lights.size() > maxLights())
+    throw std::invalid_argument("SmokeRenderer::setLights: " + std::to_string(lights.size()) +
+                                " lights; at most " + std::to_string(maxLights()));
+  std::vector<io::Light> converted;
+  for (const Light& l : lights) converted.push_back(runtime::sceneLight(l));
+  impl_->lights = std::move(converted);
 }
 
 void SmokeRenderer::render() {
@@ -130,12 +134,20 @@ std::vector<StageTime> SmokeRenderer::stageTimes() const {
   return times;
 }
 
+std::vector<std::string> SmokeRenderer::notes() const {
+  return impl_->notes;
+}
+
 std::vector<float> SmokeRenderer::image() const {
   if (impl_->engineTarget) throw std::invalid_argument("SmokeRenderer::image: the engine owns the target");
   const std::vector<uint16_t> halves = impl_->frame.color().download<uint16_t>();
   std::vector<float> pixels(halves.size());
   for (size_t i = 0; i < halves.size(); ++i) pixels[i] = glm::unpackHalf1x16(halves[i]);
   return pixels;
+}
+
+uint32_t SmokeRenderer::maxLights() const {
+  return impl_->frame.maxLights();
 }
 
 uint32_t SmokeRenderer::width() const {

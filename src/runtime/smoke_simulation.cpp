@@ -1,15 +1,25 @@
 #include <sixway/smoke_simulation.h>
 
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "runtime/smoke_simulation_impl.h"
 
 namespace sixway {
 
-SmokeSimulation::Impl::Impl(Device::Impl& device, io::Scene scene)
-    : device(device),
-      scene(std::move(scene)),
-      volumes(*device.context, *device.cache, this->scene, std::numeric_limits<int>::max()) {}
+SmokeSimulation::Impl::Impl(Device::Impl& device, io::Scene scene) : device(device), scene(std::move(scene)) {
+  start();
+}
+
+void SmokeSimulation::Impl::start() {
+  volumes.reset();
+  volumes = std::make_unique<runtime::SimulatedVolumes>(*device.context, *device.cache, scene,
+                                                        std::numeric_limits<int>::max());
+  frames = 0;
+  advanced = false;
+  ++starts;
+}
 
 SmokeSimulation::SmokeSimulation(Device& device, const std::filesystem::path& scene)
     : impl_(std::make_unique<Impl>(device.impl(), io::loadScene(scene))) {}
@@ -17,17 +27,22 @@ SmokeSimulation::SmokeSimulation(Device& device, const std::filesystem::path& sc
 SmokeSimulation::~SmokeSimulation() = default;
 
 void SmokeSimulation::advance() {
-  impl_->volumes.volume(impl_->frames);
+  impl_->volumes->volume(impl_->frames);
   ++impl_->frames;
+  impl_->advanced = true;
 }
 
 void SmokeSimulation::record(VkCommandBuffer commands, uint64_t frame) {
-  impl_->volumes.recordFrame(commands, frame);
+  impl_->volumes->recordFrame(commands, frame);
   ++impl_->frames;
 }
 
+void SmokeSimulation::restart() {
+  impl_->start();
+}
+
 SmokeVolume SmokeSimulation::volume() const {
-  const render::Volume v = impl_->volumes.currentVolume();
+  const render::Volume v = impl_->volumes->currentVolume();
   return {v.density->handle(), v.temperature ? v.temperature->handle() : VK_NULL_HANDLE, v.grid.size,
           v.grid.origin, v.grid.cellSize};
 }
@@ -37,27 +52,43 @@ int SmokeSimulation::framesSimulated() const {
 }
 
 double SmokeSimulation::seconds() const {
-  return impl_->volumes.simulation().seconds();
+  return impl_->volumes->simulation().seconds();
+}
+
+std::vector<StageTime> SmokeSimulation::stageTimes() const {
+  if (!impl_->advanced) return {};
+  const sim::StepTimes& t = impl_->volumes->frameTimes();
+  return {{"sim/obstacles", t.obstacles},
+          {"sim/lbm", t.lbm},
+          {"sim/smoke", t.smoke},
+          {"sim/forces+watchdog", t.forces + t.watchdog}};
 }
 
 size_t SmokeSimulation::obstacleCount() const {
   return impl_->scene.obstacles.size();
 }
 
+glm::vec3 SmokeSimulation::obstaclePosition(size_t obstacle) const {
+  if (obstacle >= obstacleCount())
+    throw std::invalid_argument("SmokeSimulation::obstaclePosition: no obstacle " + std::to_string(obstacle));
+  const sim::Simulation& simulation = impl_->volumes->simulation();
+  return simulation.obstacles().positionAt(obstacle, simulation.seconds());
+}
+
 void SmokeSimulation::steerObstacle(size_t obstacle, glm::vec3 target) {
-  impl_->volumes.simulation().steerObstacle(obstacle, target);
+  impl_->volumes->simulation().steerObstacle(obstacle, target);
 }
 
 void SmokeSimulation::setInletStrength(float strength) {
-  impl_->volumes.simulation().setInletStrength(strength);
+  impl_->volumes->simulation().setInletStrength(strength);
 }
 
 float SmokeSimulation::inletStrength() const {
-  return impl_->volumes.simulation().inletStrength();
+  return impl_->volumes->simulation().inletStrength();
 }
 
 float SmokeSimulation::maxInletStrength() const {
-  return impl_->volumes.simulation().maxInletStrength();
+  return impl_->volumes->simulation().maxInletStrength();
 }
 
 }  // namespace sixway

@@ -2,6 +2,8 @@
 // What a sixway::SmokeSimulation holds: its scene and the simulated volumes on the device.
 #include <sixway/smoke_simulation.h>
 
+#include <memory>
+
 #include "io/scene.h"
 #include "runtime/device_impl.h"
 #include "runtime/scene_volumes.h"
@@ -10,10 +12,15 @@ namespace sixway {
 
 struct SmokeSimulation::Impl {
   Impl(Device::Impl& device, io::Scene scene);
+  // A fresh simulation of the scene (the previous one's memory freed first).
+  void start();
+
   Device::Impl& device;
   io::Scene scene;
-  runtime::SimulatedVolumes volumes;
-  int frames = 0;  // frames simulated (or recorded)
+  std::unique_ptr<runtime::SimulatedVolumes> volumes;
+  int frames = 0;         // frames simulated (or recorded) since the start
+  uint64_t starts = 0;    // how often the simulation was started: a renderer re-records after a restart
+  bool advanced = false;  // stage times exist
 };
 
 }  // namespace sixway

@@ -20,7 +20,9 @@
 #include "gpu/device_features.h"
 #include "gpu/image.h"
 #include "io/scene.h"
+#include "render/scene_frame.h"
 #include "runtime/device_impl.h"
+#include "runtime/scene_lights.h"
 #include "runtime/scene_volumes.h"
 #include "runtime/smoke_simulation_impl.h"
 #include "support/temp_dir.h"
@@ -79,6 +81,80 @@ TEST(Runtime, OwnImageIsTheFramePipelinesNeuralFrame) {
   bool timedNetwork = false;
   for (const StageTime& t : renderer.stageTimes()) timedNetwork |= t.name == "network";
   EXPECT_TRUE(timedNetwork);
+  EXPECT_EQ(device.validationMessages(), 0u);
+}
+
+double lightSum(const std::vector<float>& rgba) {
+  double sum = 0.0;
+  for (size_t i = 0; i < rgba.size(); i += 4) sum += rgba[i] + rgba[i + 1] + rgba[i + 2];
+  return sum;
+}
+
+// An engine's own lights, a restart, and what the API reports: the simulation's stage times, notes for a
+// light beyond the shadow atlas, the device memory (flat over a restart). With the shipped network: the
+// tiny test network's lightmaps are not light.
+TEST(Runtime, EngineLightsRestartAndReports) {
+  Device device({.validate = true});
+  SmokeSimulation simulation(device, kScene);
+  EXPECT_TRUE(simulation.stageTimes().empty());
+  RendererOptions options{.weights = std::filesystem::path(SIXWAY_WEIGHTS_DIR) / "sixway-unet.safetensors"};
+  options.shadowedLights = 1;  // small_plume's two lights both cast shadows
+  SmokeRenderer renderer(device, simulation, options);
+  for (int frame = 0; frame < 2; ++frame) simulation.advance();
+  renderer.render();
+  const std::vector<float> sceneLit = renderer.image();
+  ASSERT_EQ(renderer.notes().size(), 1u);
+  const std::vector<StageTime> simTimes = simulation.stageTimes();
+  ASSERT_EQ(simTimes.size(), 4u);
+  double simulated = 0.0;
+  for (const StageTime& t : simTimes) {
+    EXPECT_EQ(t.name.rfind("sim/", 0), 0u) << t.name;
+    simulated += t.milliseconds;
+  }
+  EXPECT_GT(simulated, 0.0);
+
+  // The scene's lights of frame 1 (the directional one orbits), given by the engine: the same image.
+  const io::Scene scene = io::loadScene(kScene);
+  std::vector<Light> lights;
+  for (const io::Light& l : render::sceneLights(scene.lights, 1)) lights.push_back(runtime::publicLight(l));
+  renderer.setLights(lights);
+  renderer.render();
+  const std::vector<float> engineLit = renderer.image();
+  EXPECT_LT(maxDifference(sceneLit, engineLit), 1e-3);
+
+  // The shading is linear in the lights (over the same background, obstacles and ambient light).
+  renderer.setLights({});
+  renderer.render();
+  const double dark = lightSum(renderer.image()), lit = lightSum(engineLit);
+  std::vector<Light> brighter = lights;
+  for (Light& l : brighter) l.intensity *= 2.0f;
+  renderer.setLights(brighter);
+  renderer.render();
+  const double bright = lightSum(renderer.image());
+  EXPECT_GT(lit - dark, 0.1 * lit) << "the lights add little";
+  EXPECT_NEAR(bright - lit, lit - dark, 0.02 * (lit - dark));
+
+  // A restart replays the same smoke into new buffers; the renderer follows.
+  const Device::MemoryUse before = device.memoryUse();
+  EXPECT_GT(before.bytes, 0u);
+  simulation.restart();
+  EXPECT_EQ(simulation.framesSimulated(), 0);
+  EXPECT_TRUE(simulation.stageTimes().empty());
+  for (int frame = 0; frame < 2; ++frame) simulation.advance();
+  renderer.setLights(lights);
+  renderer.render();
+  EXPECT_EQ(maxDifference(renderer.image(), engineLit), 0.0);
+  EXPECT_EQ(device.memoryUse().bytes, before.bytes);
+
+  EXPECT_NEAR(glm::length(simulation.obstaclePosition(0) - glm::vec3(0.12f, 0.7f, 0.1f)), 0.0f, 1e-5f);
+  EXPECT_THROW(simulation.obstaclePosition(1), std::invalid_argument);
+  Light broken = lights[0];
+  broken.intensity = std::nanf("");
+  EXPECT_THROW(renderer.setLights({broken}), std::invalid_argument);
+  broken = lights[0];
+  broken.direction = glm::vec3(0.0f);
+  EXPECT_THROW(renderer.setLights({broken}), std::invalid_argument);
+  EXPECT_THROW(renderer.setLights(std::vector<Light>(renderer.maxLights() + 1)), std::invalid_argument);
   EXPECT_EQ(device.validationMessages(), 0u);
 }
 
@@ -227,7 +303,7 @@ TEST(Runtime, AnEngineSteersAnObstacleBetweenFrames) {
   EXPECT_EQ(volume.cells, glm::ivec3(24, 32, 24) * io::loadScene(kScene).grid.smokeUpres);
   EXPECT_FLOAT_EQ(volume.cellSize, 0.04f / float(io::loadScene(kScene).grid.smokeUpres));
   // The measurements read so far are of frames recorded two frames before the last ones: the smoke is there.
-  const sim::AdvanceReport& report = simulation.impl().volumes.simulation().report();
+  const sim::AdvanceReport& report = simulation.impl().volumes->simulation().report();
   EXPECT_GT(report.smokeMass, 0.0);
   EXPECT_EQ(report.forces.size(), size_t(io::lbmStepsPerFrame(io::loadScene(kScene))));
   EXPECT_EQ(own.validationMessages(), 0u);

@@ -79,7 +79,7 @@ void Demo::setInletStrength(float strength) {
 void Demo::loadScene(const fs::path& path) {
   const io::Scene scene = io::loadScene(path);  // throws before anything changes
   live_.reset();                                // one scene's GPU memory at a time
-  live_ = std::make_unique<LiveScene>(*context_, *cache_, scene,
+  live_ = std::make_unique<LiveScene>(*context_, *cache_, path,
                                       LiveSceneOptions{options_.weights, options_.fp16});
   scenePath_ = path;
   camera_ = OrbitCamera::fromScene(scene.camera);

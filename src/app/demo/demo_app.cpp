@@ -57,8 +57,8 @@ Demo::Demo(const DemoOptions& options) : options_(options), vsync_(options.vsync
   display_ = std::make_unique<DisplayPass>(*context_, *cache_, presenter_->extent().width,
                                            presenter_->extent().height, presenter_->format());
   scenePath_ = options.scene;
-  live_ =
-      std::make_unique<LiveScene>(*context_, *cache_, scene, LiveSceneOptions{options.weights, options.fp16});
+  live_ = std::make_unique<LiveScene>(*context_, *cache_, options.scene,
+                                      LiveSceneOptions{options.weights, options.fp16});
   camera_ = OrbitCamera::fromScene(scene.camera);
   lights_ = startingLights(scene);
   if (!fs::exists(options.weights)) {
@@ -116,18 +116,19 @@ void Demo::frame() {
     display_ = std::make_unique<DisplayPass>(*context_, *cache_, presenter_->extent().width,
                                              presenter_->extent().height, presenter_->format());
   }
-  sim::StepTimes simulation;  // zero while paused
+  std::vector<gpu::StageTime> stages;  // no simulation's while paused
   if (!paused_ || stepOnce_) {
     stepOnce_ = false;
     try {
       live_->advance();
-      simulation = live_->simulationTimes();
+      stages = live_->simulationTimes();
     } catch (const sim::WatchdogError& e) {
       say(std::string("the simulation diverged (") + e.what() + "); reset", true);
       live_->reset();
     }
   }
-  const std::vector<gpu::StageTime> stages = renderViews();
+  const std::vector<gpu::StageTime> frameStages = renderViews();
+  stages.insert(stages.end(), frameStages.begin(), frameStages.end());
   if (screenshotRequested_) {
     screenshotRequested_ = false;
     screenshot(nextScreenshotPath());
@@ -156,35 +157,34 @@ void Demo::frame() {
                                              presenter_->extent().height, presenter_->format());
   }
   const auto now = std::chrono::steady_clock::now();
-  history_.add(sortStages(simulation, stages), std::chrono::duration<float>(now - lastFrame_).count());
+  history_.add(sortStages(stages), std::chrono::duration<float>(now - lastFrame_).count());
   lastFrame_ = now;
 }
 
 std::vector<gpu::StageTime> Demo::renderViews() {
-  const eval::FrameView view{camera_.camera(), lights_};
+  const Camera camera = camera_.view();
   std::vector<gpu::StageTime> stages;
   std::vector<Panel> panels;
-  const auto renderMode = [&](eval::RenderMode mode) -> const eval::FramePipeline& {
-    eval::RenderedFrame r = live_->render(mode, view, shadows_);
-    stages.insert(stages.end(), r.stages.begin(), r.stages.end());
-    return live_->pipeline(mode, shadows_);
+  const auto renderMode = [&](eval::RenderMode mode) {
+    LiveFrame f = live_->render(mode, camera, lights_, shadows_);
+    stages.insert(stages.end(), f.stages.begin(), f.stages.end());
+    return f;
   };
   try {
     if (split_) {
-      const eval::FramePipeline& neural = renderMode(eval::RenderMode::Neural);
-      const eval::FramePipeline& reference = renderMode(eval::RenderMode::Reference);
-      panels = {{&neural.colorImage()}, {&reference.colorImage()}};
+      const LiveFrame neural = renderMode(eval::RenderMode::Neural);
+      const LiveFrame reference = renderMode(eval::RenderMode::Reference);
+      panels = {{neural.color}, {reference.color}};
       const eval::ImageError error =
-          eval::compareImages(downloadFrame(neural.colorImage()), downloadFrame(reference.colorImage()));
+          eval::compareImages(downloadFrame(*neural.color), downloadFrame(*reference.color));
       splitPsnr_ = eval::psnrDb(error.mseMasked());
     } else {
-      const eval::FramePipeline& p = renderMode(mode_);
-      if (view_ == ViewKind::Frame) panels = {{&p.colorImage()}};
-      if (view_ == ViewKind::Guide) panels = {{&p.guideImage(), PanelKind::Guide}};
+      const LiveFrame f = renderMode(mode_);
+      if (view_ == ViewKind::Frame) panels = {{f.color}};
+      if (view_ == ViewKind::Guide) panels = {{f.guide, PanelKind::Guide}};
       if (view_ == ViewKind::Channel) {
         const auto [inB, component] = packedChannel(channel_);
-        panels = {
-            {inB ? &p.lightmapImageB() : &p.lightmapImageA(), PanelKind::Channel, component, component < 3}};
+        panels = {{inB ? f.lightmapB : f.lightmapA, PanelKind::Channel, component, component < 3}};
       }
     }
   } catch (const io::InputError& e) {  // neural mode without weights: fall back once to reference

@@ -1,12 +1,15 @@
 #include "app/demo/live_scene.h"
 
 #include <algorithm>
-#include <climits>
 
 #include "render/scene_frame.h"
+#include "runtime/device_impl.h"
+#include "runtime/scene_lights.h"
+#include "runtime/scene_volumes.h"
+#include "runtime/smoke_renderer_impl.h"
+#include "runtime/smoke_simulation_impl.h"
 
 namespace sixway::app::demo {
-
 std::vector<io::Light> startingLights(const io::Scene& scene) {
   std::vector<io::Light> lights = render::sceneLights(scene.lights, 0);
   for (io::Light& l : lights) l.path.reset();
@@ -14,41 +17,51 @@ std::vector<io::Light> startingLights(const io::Scene& scene) {
   return lights;
 }
 
-LiveScene::LiveScene(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
+LiveScene::LiveScene(gpu::Context& context, gpu::PipelineCache& cache, const std::filesystem::path& scene,
                      const LiveSceneOptions& options)
-    : context_(context), cache_(cache), scene_(scene), options_(options) {
-  reset();
+    : device_(std::make_unique<Device::Impl>(context, cache)),
+      options_(options),
+      simulation_(std::make_unique<SmokeSimulation>(device_, scene)) {
+  simulation_->advance();  // frame 0
 }
 
-void LiveScene::reset() {
-  volumes_.reset();  // one simulation's memory at a time
-  volumes_ = std::make_unique<runtime::SimulatedVolumes>(context_, cache_, scene_, INT_MAX);
-  for (auto& [key, pipeline] : pipelines_)
-    for (size_t i = 0; i < scene_.obstacles.size(); ++i)
-      pipeline->setObstacleMotion(i, scene_.obstacles[i].motion);
-  frame_ = 0;
-  volumes_->volume(frame_);
+const io::Scene& LiveScene::scene() const {
+  return simulation_->impl().scene;
+}
+
+double LiveScene::seconds() const {
+  return runtime::SimulatedVolumes::frameSeconds(scene(), frame());
 }
 
 void LiveScene::advance() {
-  ++frame_;
-  volumes_->volume(frame_);
+  simulation_->advance();
 }
 
-glm::vec3 LiveScene::obstaclePosition(size_t obstacle) const {
-  return volumes_->simulation().obstacles().positionAt(obstacle, volumes_->simulation().seconds());
+void LiveScene::reset() {
+  simulation_->restart();
+  followObstacles();
+  simulation_->advance();
 }
 
 void LiveScene::steerObstacle(size_t obstacle, glm::vec3 target) {
-  sim::Simulation& simulation = volumes_->simulation();
-  simulation.steerObstacle(obstacle, target);
+  simulation_->steerObstacle(obstacle, target);
+  followObstacles();
+}
+
+void LiveScene::followObstacles() {
+  const sim::Simulation& simulation = simulation_->impl().volumes->simulation();
   for (auto& [key, pipeline] : pipelines_)
-    pipeline->setObstacleMotion(obstacle, simulation.obstacleMotion(obstacle));
+    for (size_t i = 0; i < obstacleCount(); ++i) pipeline->setObstacleMotion(i, simulation.obstacleMotion(i));
 }
 
 void LiveScene::setInletStrength(float strength) {
-  sim::Simulation& simulation = volumes_->simulation();
-  simulation.setInletStrength(std::clamp(strength, 0.0f, simulation.maxInletStrength()));
+  simulation_->setInletStrength(std::clamp(strength, 0.0f, simulation_->maxInletStrength()));
+}
+
+std::vector<gpu::StageTime> LiveScene::simulationTimes() const {
+  std::vector<gpu::StageTime> times;
+  for (const StageTime& t : simulation_->stageTimes()) times.push_back({t.name, t.milliseconds});
+  return times;
 }
 
 eval::FramePipeline& LiveScene::pipelineFor(eval::RenderMode mode, bool shadows) {
@@ -56,32 +69,58 @@ eval::FramePipeline& LiveScene::pipelineFor(eval::RenderMode mode, bool shadows)
   if (!slot) {
     eval::FramePipelineOptions options;
     options.mode = mode;
-    options.weights = options_.weights;
-    options.fp16 = options_.fp16;
     options.shadows = shadows;
     options.shadowTiles = kMaxDemoLights;
     options.download = false;
     try {
-      slot = std::make_unique<eval::FramePipeline>(context_, cache_, scene_, options);
+      const Device::Impl& d = device_.impl();
+      slot = std::make_unique<eval::FramePipeline>(*d.context, *d.cache, scene(), options);
     } catch (...) {
       pipelines_.erase({mode, shadows});
       throw;
     }
-    const sim::Simulation& simulation = volumes_->simulation();
-    for (size_t i = 0; i < scene_.obstacles.size(); ++i)
-      slot->setObstacleMotion(i, simulation.obstacleMotion(i));
+    followObstacles();
   }
   return *slot;
 }
 
-eval::RenderedFrame LiveScene::render(eval::RenderMode mode, const eval::FrameView& view, bool shadows) {
-  eval::FramePipeline& pipeline = pipelineFor(mode, shadows);
-  const render::Volume volume = volumes_->volume(frame_);
-  return pipeline.render(view, frame_, seconds(), volume);
+LiveFrame LiveScene::renderNeural(const Camera& camera, const std::vector<io::Light>& lights, bool shadows) {
+  auto& slot = renderers_[shadows];
+  if (!slot) {
+    RendererOptions options;
+    options.weights = options_.weights;
+    options.fp16 = options_.fp16;
+    options.shadows = shadows;
+    options.shadowedLights = kMaxDemoLights;
+    try {
+      slot = std::make_unique<SmokeRenderer>(device_, *simulation_, options);
+    } catch (...) {
+      renderers_.erase(shadows);
+      throw;
+    }
+  }
+  SmokeRenderer& renderer = *slot;
+  renderer.setCamera(camera);
+  std::vector<Light> converted;
+  for (const io::Light& l : lights) converted.push_back(runtime::publicLight(l));
+  renderer.setLights(converted);
+  renderer.render();
+  const runtime::RealtimeFrame& f = renderer.impl().frame;
+  LiveFrame out{&f.color(), &f.guide(), &f.lightmaps().a, &f.lightmaps().b, {}};
+  for (const StageTime& t : renderer.stageTimes()) out.stages.push_back({t.name, t.milliseconds});
+  return out;
 }
 
-const eval::FramePipeline& LiveScene::pipeline(eval::RenderMode mode, bool shadows) {
-  return pipelineFor(mode, shadows);
+LiveFrame LiveScene::render(eval::RenderMode mode, const Camera& camera, const std::vector<io::Light>& lights,
+                            bool shadows) {
+  if (mode == eval::RenderMode::Neural) return renderNeural(camera, lights, shadows);
+  eval::FramePipeline& pipeline = pipelineFor(mode, shadows);
+  const eval::FrameView view{
+      render::Camera::lookAt(camera.position, camera.target, camera.up, camera.fovYDegrees), lights};
+  eval::RenderedFrame r =
+      pipeline.render(view, frame(), seconds(), simulation_->impl().volumes->currentVolume());
+  return {&pipeline.colorImage(), &pipeline.guideImage(), &pipeline.lightmapImageA(),
+          &pipeline.lightmapImageB(), std::move(r.stages)};
 }
 
 }  // namespace sixway::app::demo

@@ -1,7 +1,13 @@
 #pragma once
-// The demo's scene: the simulation running frame by frame (pause, step, reset, inlet strength, obstacles
-// dragged by the user) and the frame pipelines that render it, one per mode the user has looked at, built on
-// first use. Every pipeline and the simulation see the same obstacle motions.
+// The demo's scene, as an engine holds it through the public API (include/sixway/): a SmokeSimulation
+// running frame by frame (pause, step, reset, inlet strength, obstacles dragged by the user) and a
+// SmokeRenderer for neural mode; the evaluation's other modes (reference, traditional, guide, ...) through
+// eval::FramePipeline on the same simulation. Renderers are built on first use, one per mode and shadow
+// setting, and all see the simulation's obstacle motions.
+#include <sixway/device.h>
+#include <sixway/smoke_renderer.h>
+#include <sixway/smoke_simulation.h>
+
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -9,11 +15,12 @@
 #include <vector>
 
 #include "eval/frame_pipeline.h"
+#include "gpu/sequence.h"
 #include "io/scene.h"
-#include "runtime/scene_volumes.h"
 
 namespace sixway::gpu {
 class Context;
+class Image;
 class PipelineCache;
 }  // namespace sixway::gpu
 
@@ -29,44 +36,54 @@ struct LiveSceneOptions {
   bool fp16 = false;
 };
 
+// A rendered view's images on the GPU (VK_IMAGE_LAYOUT_GENERAL, sampled) and its GPU stage times.
+struct LiveFrame {
+  const gpu::Image* color = nullptr;  // RGBA16F linear, premultiplied
+  const gpu::Image* guide = nullptr;  // guide light, alpha, shell depth
+  const gpu::Image* lightmapA = nullptr;
+  const gpu::Image* lightmapB = nullptr;
+  std::vector<gpu::StageTime> stages;
+};
+
 class LiveScene {
  public:
-  LiveScene(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
+  // Loads the scene (io::InputError naming it) on the demo's window device.
+  LiveScene(gpu::Context& context, gpu::PipelineCache& cache, const std::filesystem::path& scene,
             const LiveSceneOptions& options);
 
-  const io::Scene& scene() const { return scene_; }
+  const io::Scene& scene() const;
   // Simulates the next frame. Throws sim::WatchdogError when the flow diverges.
   void advance();
   // The simulation from its start, obstacles back on the scene's motions.
   void reset();
-  int frame() const { return frame_; }
-  double seconds() const { return runtime::SimulatedVolumes::frameSeconds(scene_, frame_); }
+  int frame() const { return simulation_->framesSimulated() - 1; }
+  double seconds() const;
 
-  size_t obstacleCount() const { return scene_.obstacles.size(); }
-  glm::vec3 obstaclePosition(size_t obstacle) const;  // world, now
-  // Drags the obstacle toward `target` (sim::Simulation::steerObstacle); the renderers follow.
+  size_t obstacleCount() const { return simulation_->obstacleCount(); }
+  glm::vec3 obstaclePosition(size_t obstacle) const { return simulation_->obstaclePosition(obstacle); }
+  // Drags the obstacle toward `target` (SmokeSimulation::steerObstacle); the renderers follow.
   void steerObstacle(size_t obstacle, glm::vec3 target);
   void setInletStrength(float strength);  // clamped to [0, maxInletStrength()]
-  float inletStrength() const { return volumes_->simulation().inletStrength(); }
-  float maxInletStrength() const { return volumes_->simulation().maxInletStrength(); }
-  const sim::StepTimes& simulationTimes() const { return volumes_->frameTimes(); }
+  float inletStrength() const { return simulation_->inletStrength(); }
+  float maxInletStrength() const { return simulation_->maxInletStrength(); }
+  // GPU time of the last advance()'s simulation steps.
+  std::vector<gpu::StageTime> simulationTimes() const;
 
-  // Renders the current frame in `mode` from `view`, with or without obstacle shadows (one pipeline each).
+  // Renders the current frame in `mode` from `camera` under `lights`, with or without obstacle shadows.
   // Throws io::InputError when neural mode has no weights file.
-  eval::RenderedFrame render(eval::RenderMode mode, const eval::FrameView& view, bool shadows);
-  // The pipeline of the last render() in that mode (its images stay on the GPU).
-  const eval::FramePipeline& pipeline(eval::RenderMode mode, bool shadows);
+  LiveFrame render(eval::RenderMode mode, const Camera& camera, const std::vector<io::Light>& lights,
+                   bool shadows);
 
  private:
+  LiveFrame renderNeural(const Camera& camera, const std::vector<io::Light>& lights, bool shadows);
   eval::FramePipeline& pipelineFor(eval::RenderMode mode, bool shadows);
+  void followObstacles();
 
-  const gpu::Context& context_;
-  const gpu::PipelineCache& cache_;
-  io::Scene scene_;
+  Device device_;  // around the demo's context
   LiveSceneOptions options_;
-  std::unique_ptr<runtime::SimulatedVolumes> volumes_;
+  std::unique_ptr<SmokeSimulation> simulation_;
+  std::map<bool, std::unique_ptr<SmokeRenderer>> renderers_;  // neural, by shadows
   std::map<std::pair<eval::RenderMode, bool>, std::unique_ptr<eval::FramePipeline>> pipelines_;
-  int frame_ = 0;
 };
 
 }  // namespace sixway::app::demo

@@ -29,6 +29,15 @@ render::Camera OrbitCamera::camera() const {
   return render::Camera::lookAt(position(), target, glm::vec3(0.0f, 1.0f, 0.0f), fovDeg);
 }
 
+Camera OrbitCamera::view() const {
+  Camera c;
+  c.position = position();
+  c.target = target;
+  c.up = glm::vec3(0.0f, 1.0f, 0.0f);
+  c.fovYDegrees = fovDeg;
+  return c;
+}
+
 void OrbitCamera::orbit(float yawDegrees, float pitchDegrees) {
   yawDeg = std::fmod(yawDeg + yawDegrees, 360.0f);
   pitchDeg = std::clamp(pitchDeg + pitchDegrees, -89.0f, 89.0f);

@@ -1,6 +1,8 @@
 #pragma once
 // The demo's camera: it orbits a target point (yaw about +y, pitch above the horizon), zooms toward it and
 // pans it across the view, the way model viewers move.
+#include <sixway/smoke_renderer.h>
+
 #include <glm/vec3.hpp>
 
 #include "io/scene.h"
@@ -19,6 +21,8 @@ struct OrbitCamera {
   static OrbitCamera fromScene(const io::Camera& camera);
   glm::vec3 position() const;
   render::Camera camera() const;
+  // The same, as the public API's camera.
+  Camera view() const;
 
   void orbit(float yawDegrees, float pitchDegrees);
   // Multiplies the distance to the target (factor > 0).

@@ -15,15 +15,16 @@ float FrameStages::total() const {
   return std::accumulate(milliseconds.begin(), milliseconds.end(), 0.0f);
 }
 
-FrameStages sortStages(const sim::StepTimes& simulation, const std::vector<gpu::StageTime>& frame) {
+FrameStages sortStages(const std::vector<gpu::StageTime>& frame) {
   FrameStages s;
   auto& ms = s.milliseconds;
-  ms[size_t(Stage::Simulation)] =
-      float(simulation.lbm + simulation.obstacles + simulation.forces + simulation.watchdog);
-  ms[size_t(Stage::Advection)] = float(simulation.smoke);
   for (const gpu::StageTime& t : frame) {
     Stage stage = Stage::Shading;
-    if (t.name == "guide")
+    if (t.name == "sim/smoke")
+      stage = Stage::Advection;
+    else if (t.name.rfind("sim/", 0) == 0)
+      stage = Stage::Simulation;
+    else if (t.name == "guide")
       stage = Stage::GuidingMap;
     else if (t.name == "network" || t.name == "guide lightmaps")
       stage = Stage::Network;

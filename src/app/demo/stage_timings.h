@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "gpu/sequence.h"
-#include "sim/simulation.h"
 
 namespace sixway::app::demo {
 
@@ -19,9 +18,10 @@ struct FrameStages {
   float total() const;
 };
 
-// Sorts the frame pipeline's stages ("guide", "network", "bake/…", "shadow maps", "obstacles", "shade",
-// "guide lightmaps") and the simulation's (LBM, obstacles and forces → simulation; smoke → advection).
-FrameStages sortStages(const sim::StepTimes& simulation, const std::vector<gpu::StageTime>& frame);
+// Sorts a frame's stages: the simulation's ("sim/lbm", "sim/obstacles", "sim/forces+watchdog" →
+// simulation; "sim/smoke" → advection) and the renderer's ("guide", "network", "bake/…", "shadow maps",
+// "obstacles", "shade", "guide lightmaps").
+FrameStages sortStages(const std::vector<gpu::StageTime>& frame);
 
 class StageHistory {
  public:

@@ -1,0 +1,35 @@
+#pragma once
+// What a sixway::SmokeRenderer holds: the real-time frame with the network as its lightmap stage, recorded
+// once per simulation volume and replayed, and this frame's camera and lights. sixway's own tools reach the
+// frame's images through it (the demo displays them).
+#include <sixway/smoke_renderer.h>
+
+#include <memory>
+#include <optional>
+
+#include "nn/network.h"
+#include "render/recorded_sequence.h"
+#include "runtime/realtime_frame.h"
+#include "runtime/smoke_simulation_impl.h"
+
+namespace sixway {
+
+struct SmokeRenderer::Impl {
+  Impl(Device::Impl& device, SmokeSimulation::Impl& simulation, const RendererOptions& options,
+       const RenderTarget* target);
+
+  // Records the passes for the simulation's volume (once) and writes this frame's values.
+  gpu::Sequence& prepare();
+
+  SmokeSimulation::Impl& simulation;
+  bool engineTarget;
+  runtime::RealtimeFrame frame;
+  std::unique_ptr<nn::Network> network;
+  render::RecordedSequence sequence;
+  std::optional<Camera> camera;
+  std::optional<std::vector<io::Light>> lights;
+  std::vector<std::string> notes;  // of the last frame
+  gpu::Sequence* last = nullptr;
+};
+
+}  // namespace sixway
