@@ -17,7 +17,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-COLOURS = {"neural": "C0", "reference": "C2", "traditional": "C1", "guide-lit": "C3", "pathtrace": "C4",
+COLOURS = {"neural": "C0", "reference": "C2", "reference-ms": "C5", "traditional": "C1", "traditional-ms": "C6",
+           "guide-lit": "C3", "pathtrace": "C4",
            "simulation": "C7"}
 
 

@@ -48,6 +48,7 @@ DEFAULTS = {
         "dir": None,  # the shards; relative paths are relative to the repository root
         "crop": None,  # random square crops of this size (None: whole maps)
         "mirror": True,  # random left-right mirroring (swaps the Left and Right lightmaps)
+        "target": "single",  # the shards' targets learnt: single or multiple scattering (target_ms)
     },
     "train": {
         "steps": 1000,
@@ -303,7 +304,8 @@ class Trainer:
 
     def _load_data(self):
         directory = self.config["data"]["dir"]
-        self.data = ShardDataset(directory if os.path.isabs(directory) else os.path.join(REPO_ROOT, directory))
+        self.data = ShardDataset(directory if os.path.isabs(directory) else os.path.join(REPO_ROOT, directory),
+                                 target=self.config["data"]["target"])
         self.pairs = self.data.pairs("train")
         if len(self.pairs) == 0:
             raise ConfigError(f"{self.data.directory}: no training pairs (split 'train', two consecutive frames)")

@@ -36,7 +36,7 @@ layout(std140, binding = 0) uniform TraceParams {
   ivec4 bricks;  // xyz: majorant bricks per axis; w: cells per brick side
   uvec4 frame;   // x: seed; y: index of this pass's first sample; z: samples per pixel in this pass; w: max orders
   ivec4 image;   // xy: image size; z: emission ramp keys (0: no emission); w: lights
-  uvec4 flags;   // x: jitter inside pixels; y: temperature grid present
+  uvec4 flags;   // x: jitter inside pixels; y: temperature grid present; z: lowest scattering order recorded
   vec4 background;      // rgb: radiance seen by camera rays that leave the volume
   vec4 environment[4];  // rgb: L0, L1x, L1y, L1z; radiance arriving from direction w: max(0, L0 + L1·w)
   vec4 ramp[kMaxRampKeys];
@@ -161,7 +161,10 @@ void main() {
       if (order == params.frame.w) break;  // a further scattering would exceed the order limit
       weight *= albedo;
       o += t * w;
-      for (int i = 0; i < params.image.w; ++i) {
+      // Next-event estimation here is scattering order `order + 1`; orders below flags.z are not recorded
+      // (flags.z = 2: multiple scattering only, the part the exact single-scattering baker lacks).
+      const int recordedLights = order + 1u >= params.flags.z ? params.image.w : 0;
+      for (int i = 0; i < recordedLights; ++i) {
         PathLight light = params.lights[i];
         vec3 toLight = light.position.xyz;
         float falloff = 1.0, tLight = 3.4e38;

@@ -30,9 +30,10 @@ struct BakeOptions {
   CommonOptions common;
   fs::path scene, out;
   std::vector<fs::path> vdb;
-  bool force = false, multipleScattering = false;
+  bool force = false, traceAllOrders = false;
+  std::string scattering = "multiple";
   int first = 0;
-  std::optional<int> frames, columns, voxels, samples, orders;
+  std::optional<int> frames, columns, voxels, samples, orders, downsample;
   std::optional<uint32_t> seed;
   std::string tile;
   std::vector<float> cameraPosition, cameraTarget, cameraUp;
@@ -148,17 +149,26 @@ void run(const BakeOptions& o) {
   job.settings.height = tileHeight;
   if (o.step) job.settings.stepCells = *o.step;
   if (o.lightSpacing) job.settings.lightSpacingCells = *o.lightSpacing;
-  if (o.multipleScattering)
-    job.multipleScattering =
-        render::MultipleScattering{uint32_t(o.samples.value_or(256)), o.orders.value_or(64),
-                                   o.seed.value_or(scene ? scene->render.seed : 1u)};
+  job.scattering = render::parseScattering(o.scattering, "--scattering");
+  if (job.scattering == render::Scattering::Single &&
+      (o.samples || o.orders || o.downsample || o.seed || o.traceAllOrders))
+    throw io::InputError("--scattering single",
+                         "--spp, --orders, --ms-downsample, --ms-all-orders and --seed "
+                         "are for multiple scattering");
+  if (o.traceAllOrders && o.downsample)
+    throw io::InputError("--ms-all-orders", "traces at full resolution: no --ms-downsample");
+  if (o.samples) job.multiple.samples = uint32_t(*o.samples);
+  if (o.orders) job.multiple.maxOrders = *o.orders;
+  if (o.downsample) job.multiple.downsample = *o.downsample;
+  job.multiple.traceAllOrders = o.traceAllOrders;
+  job.multiple.seed = o.seed.value_or(scene ? scene->render.seed : 1u);
   job.provenance = provenance;
 
   if (fs::exists(o.out / "frames"))  // --force: frames of an earlier, longer bake must not linger
     for (const auto& entry : fs::directory_iterator(o.out / "frames"))
       if (entry.path().filename().string().starts_with("frame_")) fs::remove(entry.path());
   std::printf("sixway bake: %d frames, tiles of %dx%d, %s scattering\n", job.frameCount, tileWidth,
-              tileHeight, job.multipleScattering ? "multiple" : "single");
+              tileHeight, render::scatteringName(job.scattering));
   std::fflush(stdout);
   const render::FlipbookBakeResult result = withinDeviceLimits("--tile", "--tile", [&] {
     return render::bakeFlipbook(context, cache, *sequence, job, [](const std::string& line) {
@@ -212,11 +222,17 @@ void addBakeCommand(CLI::App& app) {
       ->check(CLI::Range(0.01f, 0.5f));
   bake->add_option("--light-spacing", o->lightSpacing, "Light-grid spacing in cells (default 1)")
       ->check(CLI::Range(0.1f, 8.0f));
-  bake->add_flag("--multiple-scattering", o->multipleScattering, "Path-traced multiple scattering");
-  bake->add_option("--spp", o->samples, "Multiple scattering: samples per pixel (default 256)")
+  bake->add_option("--scattering", o->scattering,
+                   "multiple (default: exact single scattering + path-traced higher orders) | single");
+  bake->add_option("--spp", o->samples, "Multiple scattering: samples per traced pixel (default 64)")
       ->check(CLI::Range(1, 1 << 20));
   bake->add_option("--orders", o->orders, "Multiple scattering: scattering orders (default 64)")
-      ->check(CLI::Range(1, 100000));
+      ->check(CLI::Range(2, 100000));
+  bake->add_option(
+      "--ms-downsample", o->downsample,
+      "Multiple scattering: orders >= 2 traced at 1/N of the tile size, N = 1, 2, 4, 8 (default 1)");
+  bake->add_flag("--ms-all-orders", o->traceAllOrders,
+                 "Multiple scattering: every order path-traced at full resolution (slow; the reference)");
   bake->add_option("--seed", o->seed, "Multiple scattering: random seed (default: the scene's, or 1)");
   bake->callback([o] { run(*o); });
 }

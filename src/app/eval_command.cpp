@@ -32,6 +32,7 @@ struct EvalOptions {
   CommonOptions common;
   fs::path dataset;
   std::vector<std::string> splits{"heldout_sequence", "heldout_camera"};
+  std::string target = "single";  // the shards' targets compared with: single or multiple scattering
   eval::SceneEvalSettings scene;  // --scene, and the report, weights and --force of both paths
 };
 
@@ -99,7 +100,13 @@ void evaluateDataset(const EvalOptions& o) {
       throw io::InputError(shardPath.string(), "lightmap size " + std::to_string(shardSize) +
                                                    " differs from the first shard's " + std::to_string(size));
     }
-    const std::vector<float> guides = shard.at("guide").toFloat(), targets = shard.at("target").toFloat();
+    const std::string targetName =
+        render::parseScattering(o.target, "--target") == render::Scattering::Single ? "target" : "target_ms";
+    if (!shard.contains(targetName))
+      throw io::InputError(shardPath.string(), "no tensor " + targetName +
+                                                   " (the dataset config's \"targets\" " +
+                                                   "did not include " + o.target + " scattering)");
+    const std::vector<float> guides = shard.at("guide").toFloat(), targets = shard.at(targetName).toFloat();
     const int64_t pixels = int64_t(size) * size;
     const nlohmann::json& samples = description["samples"];
     if (int64_t(guides.size()) != int64_t(samples.size()) * 3 * pixels ||
@@ -124,6 +131,7 @@ void evaluateDataset(const EvalOptions& o) {
 
   nlohmann::json report = {{"weights", fs::absolute(weightsPath).string()},
                            {"dataset", fs::absolute(o.dataset).string()},
+                           {"target", o.target},
                            {"device", context.properties().deviceName},
                            {"lightmap_size", size}};
   for (const auto& [split, m] : metrics) {
@@ -161,6 +169,8 @@ void addEvalCommand(CLI::App& app) {
   eval->add_option("--dataset", o->dataset, "Dataset directory (sixway dataset): evaluate its samples");
   eval->add_option("--split", o->splits,
                    "Dataset: splits evaluated (default heldout_sequence heldout_camera)");
+  eval->add_option("--target", o->target,
+                   "Dataset: the targets compared with, single (default) or multiple scattering");
   eval::SceneEvalSettings& s = o->scene;
   eval->add_option("--scene", s.scene, "Scene JSON: evaluate its sequence against the path tracer");
   eval->add_option("--frames", s.frames, "Scene: frames evaluated");
@@ -170,6 +180,16 @@ void addEvalCommand(CLI::App& app) {
       ->check(CLI::Range(1, 1 << 20));
   eval->add_option("--orders", s.orders, "Scene: path-tracer scattering orders (default 64)")
       ->check(CLI::Range(1, 100000));
+  eval->add_option(
+          "--ms-spp", s.multipleScattering.samples,
+          "Scene: reference-ms/traditional-ms, samples per traced pixel of the orders >= 2 (default 64)")
+      ->check(CLI::Range(1, 1 << 20));
+  eval->add_option(
+          "--ms-downsample", s.multipleScattering.downsample,
+          "Scene: reference-ms/traditional-ms, orders >= 2 traced at 1/N of the lightmap size (default 1)")
+      ->check(CLI::IsMember({1, 2, 4, 8}));
+  eval->add_flag("--ms-all-orders", s.multipleScattering.traceAllOrders,
+                 "Scene: reference-ms/traditional-ms path-trace every order at full resolution (slow)");
   eval->add_option("--density-scale", s.densityScale,
                    "Scene: the smoke's extinction (optical density) x this");
   eval->add_flag(

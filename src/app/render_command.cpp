@@ -42,6 +42,7 @@ struct RenderOptions {
   int fps = 30;
   uint32_t samples = 64;
   int orders = 64;
+  render::MultipleScattering multiple;
 };
 
 // The default network, next to the executable's source tree.
@@ -107,6 +108,7 @@ void run(const RenderOptions& o) {
   options.shadows = !o.noShadows;
   options.pathTraceSamples = o.samples;
   options.pathTraceOrders = o.orders;
+  options.multipleScattering = o.multiple;
   io::requireWritable(o.out, o.force);
 
   const gpu::ContextOptions contextOptions = o.common.contextOptions();
@@ -176,8 +178,8 @@ void addRenderCommand(CLI::App& app) {
   render->add_flag("--force", o->force, "Write into an existing output directory");
   render->add_option(
       "--mode", o->mode,
-      "neural | reference | traditional | guide | guide-lit | pathtrace (default: neural when the weights "
-      "exist, else reference)");
+      "neural | reference | reference-ms | traditional | traditional-ms | guide | guide-lit | pathtrace "
+      "(default: neural when the weights exist, else reference)");
   render->add_option("--weights", o->weights, "Network file (default weights/sixway-unet.safetensors)");
   render->add_flag("--fp16", o->fp16, "Neural: fp16 feature maps");
   render->add_flag("--no-shadows", o->noShadows, "No obstacle shadows on the smoke");
@@ -186,6 +188,14 @@ void addRenderCommand(CLI::App& app) {
   render
       ->add_option("--orders", o->orders, "Pathtrace: scattering orders (default 64; 1 = single scattering)")
       ->check(CLI::Range(1, 100000));
+  render
+      ->add_option("--ms-spp", o->multiple.samples,
+                   "reference-ms/traditional-ms: samples per traced pixel of the orders >= 2 (default 64)")
+      ->check(CLI::Range(1, 1 << 20));
+  render
+      ->add_option("--ms-downsample", o->multiple.downsample,
+                   "reference-ms/traditional-ms: orders >= 2 traced at 1/N of the lightmap size (default 1)")
+      ->check(CLI::IsMember({1, 2, 4, 8}));
   render->add_flag("--exr", o->exr, "Also write each frame as a linear EXR");
   render->add_flag("--video", o->video, "Also write video.mp4 (needs ffmpeg)");
   render->add_option("--fps", o->fps, "Video frame rate (default 30)")->check(CLI::Range(1, 240));

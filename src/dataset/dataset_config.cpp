@@ -325,12 +325,43 @@ nlohmann::json obstacleJson(const DatasetConfig& c, const Draws& s, ObstacleChoi
   return nullptr;
 }
 
+// "targets" and, for multiple scattering, "multiple_scattering" {samples, orders, downsample}.
+DatasetTargets parseTargets(io::JsonReader& r) {
+  DatasetTargets t;
+  const std::string which = r.optional<std::string>("targets", "single", [](const std::string& s) {
+    return s == "single" || s == "multiple" || s == "both"
+               ? ""
+               : "must be \"single\", \"multiple\" or \"both\" (got \"" + s + "\")";
+  });
+  t.single = which != "multiple";
+  t.multiple = which != "single";
+  if (!t.multiple) {
+    r.forbid("multiple_scattering", "targets is \"single\"");
+    return t;
+  }
+  t.multipleScattering = r.object("multiple_scattering", [](io::JsonReader& m) {
+    render::MultipleScattering ms;
+    ms.samples = uint32_t(m.optional<int>("samples", int(ms.samples), io::inRange(1, 1 << 20)));
+    ms.maxOrders = m.optional<int>("orders", ms.maxOrders, io::inRange(2, 100000));
+    ms.downsample = m.optional<int>("downsample", ms.downsample, [](int d) {
+      return d == 1 || d == 2 || d == 4 || d == 8 ? ""
+                                                  : "must be 1, 2, 4 or 8 (got " + std::to_string(d) + ")";
+    });
+    return ms;
+  });
+  return t;
+}
+
 }  // namespace
 
 const char* obstacleChoiceName(ObstacleChoice choice) {
   for (const auto& [name, value] : kObstacleChoices)
     if (value == choice) return name.data();
   return "?";
+}
+
+int shardChannels(const DatasetTargets& targets) {
+  return 3 + 8 * (int(targets.single) + int(targets.multiple)) + 2;
 }
 
 DatasetConfig parseDatasetConfig(const nlohmann::json& j, const fs::path& file) {
@@ -381,8 +412,9 @@ DatasetConfig parseDatasetConfig(const nlohmann::json& j, const fs::path& file) 
   });
   c.lightmapSize = r.optional<int>("lightmap_size", base.render.lightmapSize,
                                    io::both(io::inRange(16, 4096), io::multipleOf(16)));
-  const double shardBytes =
-      double(c.frames.count) * c.cameraCount() * kShardChannels * 2.0 * c.lightmapSize * c.lightmapSize;
+  c.targets = parseTargets(r);
+  const double shardBytes = double(c.frames.count) * c.cameraCount() * shardChannels(c.targets) * 2.0 *
+                            c.lightmapSize * c.lightmapSize;
   if (shardBytes > kMaxShardBytes)
     r.fail("frames.count", std::to_string(c.frames.count) + " frames x " + std::to_string(c.cameraCount()) +
                                " cameras of " + std::to_string(c.lightmapSize) +

@@ -15,6 +15,8 @@
 #include "render/camera.h"
 #include "render/volume.h"
 
+#include "reference/scattered_lightmaps.h"
+
 namespace sixway::dataset {
 
 // [min, max], min ≤ max; a single number in the file is [x, x].
@@ -54,11 +56,18 @@ struct DatasetCameras {
   std::optional<float> distance;  // m from the volume centre; default: the bounding sphere fills the view
 };
 
-// A shard holds per sample the guide (3), target (8) and motion (2) channels as F16 (dataset_sequence.h). It
-// is built in host memory whole and read whole by the trainer, so its size is bounded when the config is
-// read.
-inline constexpr int kShardChannels = 3 + 8 + 2;
+// The lightmaps a shard stores as training targets ("targets": "single", "multiple" or "both"): `target`,
+// the exact single-scattering baker's, and `target_ms`, multiply-scattered (render::ScatteredLightmaps).
+struct DatasetTargets {
+  bool single = true, multiple = false;
+  render::MultipleScattering multipleScattering;  // "multiple_scattering": samples, orders, downsample
+};
+
+// A shard holds per sample the guide (3), targets (8 each) and motion (2) channels as F16
+// (dataset_sequence.h). It is built in host memory whole and read whole by the trainer, so its size is
+// bounded when the config is read.
 inline constexpr double kMaxShardBytes = 4.0 * (1 << 30);
+int shardChannels(const DatasetTargets& targets);
 
 struct DatasetConfig {
   std::filesystem::path file;       // as given, for messages
@@ -75,6 +84,7 @@ struct DatasetConfig {
   DatasetFrames frames;
   DatasetCameras cameras;
   int lightmapSize = 64;
+  DatasetTargets targets;
   std::vector<int> heldoutSequences, heldoutCameras;
   DatasetVariations variations;
   std::optional<DatasetObstacles> obstacles;  // none: the base scene's obstacles

@@ -8,7 +8,7 @@
 #include "gpu/image.h"
 #include "gpu/pipeline.h"
 #include "gpu/sequence.h"
-#include "reference/lightmap_baker.h"
+#include "reference/scattered_lightmaps.h"
 #include "render/billboard.h"
 #include "render/guiding_map.h"
 #include "render/projection.h"
@@ -18,6 +18,16 @@ namespace sixway::dataset {
 namespace {
 
 constexpr int kGuideChannels = 3, kTargetChannels = 8, kMotionChannels = 2;
+
+// The seed of one sample's multiple-scattering trace: the scene's render.seed mixed with the sample's
+// sequence, frame and camera, so a shard regenerates bit for bit and no two samples share their noise.
+uint32_t sampleSeed(uint32_t seed, int sequence, int frame, int camera) {
+  uint32_t h = seed;
+  for (uint32_t v : {uint32_t(sequence), uint32_t(frame), uint32_t(camera)}) {
+    h ^= v + 0x9E3779B9u + (h << 6) + (h >> 2);  // boost::hash_combine's mixing
+  }
+  return h;
+}
 
 // An F16 tensor [samples, channels, size, size], filled sample by sample from interleaved float images.
 class PlanarTensor {
@@ -76,7 +86,7 @@ DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCa
   render::GuidingMap guiding(context, cache, render::GuideSettings::fromScene(scene));
   const gpu::Image guide(context, guiding.imageDesc());
   dataset::MotionField motion(context, cache, uint32_t(size));
-  render::LightmapBaker baker(context, cache);
+  render::ScatteredLightmaps baker(context, cache);
   render::BakeSettings bake;
   bake.width = bake.height = size;
   // The smoke travels over the interval between two samples: stride frames of steps, at the lattice velocity
@@ -86,7 +96,9 @@ DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCa
   const render::VolumeGrid velocityGrid{scene.grid.size, scene.grid.origin, scene.grid.cellSize};
 
   PlanarTensor guides("guide", samples, kGuideChannels, size),
-      targets("target", samples, kTargetChannels, size), motions("motion", samples, kMotionChannels, size);
+      targets("target", config.targets.single ? samples : 0, kTargetChannels, size),
+      targetsMs("target_ms", config.targets.multiple ? samples : 0, kTargetChannels, size),
+      motions("motion", samples, kMotionChannels, size);
   gpu::Sequence realtime(context);
   bool recorded = false;
   size_t next = 0;  // the next sampled frame
@@ -107,8 +119,21 @@ DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCa
         realtime.submit();
         const int sample = c.index * samplesPerCamera + int(next);
         guides.set(sample, downloadHalfTexels(guide), 4);
-        targets.set(sample, baker.bake(volume, scene.smoke, c.camera, billboard, bake).pixels,
-                    kTargetChannels);
+        if (config.targets.multiple) {
+          render::MultipleScattering ms = config.targets.multipleScattering;
+          ms.seed = sampleSeed(scene.render.seed, plan.sequence, frame, c.index);
+          targetsMs.set(
+              sample,
+              baker.bake(volume, scene.smoke, c.camera, billboard, bake, render::Scattering::Multiple, ms)
+                  .pixels,
+              kTargetChannels);
+          if (config.targets.single) targets.set(sample, baker.singleScattering().pixels, kTargetChannels);
+        } else {
+          targets.set(
+              sample,
+              baker.bake(volume, scene.smoke, c.camera, billboard, bake, render::Scattering::Single).pixels,
+              kTargetChannels);
+        }
         // The first sample of a camera has no previous one to move from.
         if (next > 0) motions.set(sample, motion.download().pixels, kMotionChannels);
       }
@@ -137,18 +162,24 @@ DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCa
                             {"elevation_deg", c.elevationDeg}});
   }
   DatasetShard shard;
-  shard.tensors = {guides.take(samples), targets.take(samples), motions.take(samples)};
-  shard.metadata = {{"version", 1},
-                    {"sequence", plan.sequence},
-                    {"attempt", plan.attempt},
-                    {"lightmap_size", size},
-                    {"config", config.json},
-                    {"scene", plan.sceneJson},
-                    {"obstacle", plan.obstacle},
-                    {"frame_dt", scene.time.frameDt},
-                    {"stride", config.frames.stride},
-                    {"cameras", cameraJson},
-                    {"samples", sampleJson}};
+  shard.tensors = {guides.take(samples)};
+  nlohmann::json targetNames = nlohmann::json::array();
+  if (config.targets.single) {
+    shard.tensors.push_back(targets.take(samples));
+    targetNames.push_back("single");
+  }
+  if (config.targets.multiple) {
+    shard.tensors.push_back(targetsMs.take(samples));
+    targetNames.push_back("multiple");
+  }
+  shard.tensors.push_back(motions.take(samples));
+  // Version 2: the targets are named (a reader of version 1 expects `target` alone, so it refuses these).
+  const bool singleOnly = config.targets.single && !config.targets.multiple;
+  shard.metadata = {
+      {"version", singleOnly ? 1 : 2},  {"targets", targetNames},    {"sequence", plan.sequence},
+      {"attempt", plan.attempt},        {"lightmap_size", size},     {"config", config.json},
+      {"scene", plan.sceneJson},        {"obstacle", plan.obstacle}, {"frame_dt", scene.time.frameDt},
+      {"stride", config.frames.stride}, {"cameras", cameraJson},     {"samples", sampleJson}};
   return shard;
 }
 

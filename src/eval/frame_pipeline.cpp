@@ -10,8 +10,8 @@
 #include "io/safetensors.h"
 #include "nn/network.h"
 #include "reference/guide_lightmaps.h"
-#include "reference/lightmap_baker.h"
 #include "reference/path_tracer.h"
+#include "reference/scattered_lightmaps.h"
 #include "render/billboard.h"
 #include "render/camera.h"
 #include "render/guiding_map.h"
@@ -52,15 +52,29 @@ render::ImagePlane facingBillboard(const render::Camera& camera, const render::C
           centreNow + (bakedPlane.max - bakedCentre) * scale};
 }
 
+bool isTraditional(RenderMode mode) {
+  return mode == RenderMode::Traditional || mode == RenderMode::TraditionalMs;
+}
+
+// The modes whose lightmaps the reference baker computes, and with which scattering.
+std::optional<render::Scattering> bakedScattering(RenderMode mode) {
+  if (mode == RenderMode::Reference || mode == RenderMode::Traditional) return render::Scattering::Single;
+  if (mode == RenderMode::ReferenceMs || mode == RenderMode::TraditionalMs)
+    return render::Scattering::Multiple;
+  return std::nullopt;
+}
+
 }  // namespace
 
 RenderMode parseRenderMode(const std::string& name) {
-  for (RenderMode m : {RenderMode::Neural, RenderMode::Reference, RenderMode::Traditional, RenderMode::Guide,
-                       RenderMode::GuideLit, RenderMode::PathTrace})
+  for (RenderMode m :
+       {RenderMode::Neural, RenderMode::Reference, RenderMode::ReferenceMs, RenderMode::Traditional,
+        RenderMode::TraditionalMs, RenderMode::Guide, RenderMode::GuideLit, RenderMode::PathTrace})
     if (name == renderModeName(m)) return m;
-  throw io::InputError(
-      "--mode",
-      "unknown mode \"" + name + "\" (known: neural, reference, traditional, guide, guide-lit, pathtrace)");
+  throw io::InputError("--mode",
+                       "unknown mode \"" + name +
+                           "\" (known: neural, reference, reference-ms, traditional, traditional-ms, "
+                           "guide, guide-lit, pathtrace)");
 }
 
 const char* renderModeName(RenderMode mode) {
@@ -69,8 +83,12 @@ const char* renderModeName(RenderMode mode) {
       return "neural";
     case RenderMode::Reference:
       return "reference";
+    case RenderMode::ReferenceMs:
+      return "reference-ms";
     case RenderMode::Traditional:
       return "traditional";
+    case RenderMode::TraditionalMs:
+      return "traditional-ms";
     case RenderMode::Guide:
       return "guide";
     case RenderMode::GuideLit:
@@ -104,8 +122,7 @@ struct FramePipeline::Passes {
       network =
           std::make_unique<nn::Network>(context, cache, weights, lightmapSize, lightmapSize, networkOptions);
     }
-    if (options.mode == RenderMode::Reference || options.mode == RenderMode::Traditional)
-      baker = std::make_unique<render::LightmapBaker>(context, cache);
+    if (bakedScattering(options.mode)) baker = std::make_unique<render::ScatteredLightmaps>(context, cache);
     if (options.mode == RenderMode::PathTrace) tracer = std::make_unique<render::PathTracer>(context, cache);
     if (options.mode == RenderMode::GuideLit)
       guideLit = std::make_unique<render::GuideLightmaps>(context, cache,
@@ -117,10 +134,10 @@ struct FramePipeline::Passes {
     return sequence.get({render::handleKey(volume.density->handle())}, [&](gpu::Sequence& s) {
       // A flipbook has no guide: its shell depth is uploaded per frame instead.
       const runtime::FrameStages stages =
-          options.mode == RenderMode::PathTrace     ? runtime::FrameStages::ObstaclesOnly
-          : options.mode == RenderMode::Guide       ? runtime::FrameStages::UpToGuide
-          : options.mode == RenderMode::Traditional ? runtime::FrameStages::AllButGuide
-                                                    : runtime::FrameStages::All;
+          options.mode == RenderMode::PathTrace ? runtime::FrameStages::ObstaclesOnly
+          : options.mode == RenderMode::Guide   ? runtime::FrameStages::UpToGuide
+          : isTraditional(options.mode)         ? runtime::FrameStages::AllButGuide
+                                                : runtime::FrameStages::All;
       frame.record(s, volume, stages, [&](gpu::Sequence& s) {
         if (network) {
           s.beginStage("network");
@@ -137,7 +154,7 @@ struct FramePipeline::Passes {
   FramePipelineOptions options;
   runtime::RealtimeFrame frame;
   std::unique_ptr<nn::Network> network;
-  std::unique_ptr<render::LightmapBaker> baker;
+  std::unique_ptr<render::ScatteredLightmaps> baker;
   std::unique_ptr<render::PathTracer> tracer;
   std::unique_ptr<render::GuideLightmaps> guideLit;
   render::RecordedSequence sequence;
@@ -172,24 +189,26 @@ RenderedFrame FramePipeline::render(const FrameView& view, int index, double sec
   RenderedFrame result;
   result.notes = p.frame.takeNotes();
 
-  const bool guided = p.options.mode != RenderMode::Traditional && p.options.mode != RenderMode::PathTrace;
+  const bool traditional = isTraditional(p.options.mode);
+  const bool guided = !traditional && p.options.mode != RenderMode::PathTrace;
   render::ImagePlane billboard = guided ? p.frame.updateGuide(camera, volumeBox, index)
                                         : render::billboardBounds(camera, volumeBox, 1.0f);
   const uint32_t lightmapSize = p.frame.lightmapSize();
-  if (p.options.mode == RenderMode::Reference) {
+  if (const std::optional<render::Scattering> scattering = bakedScattering(p.options.mode)) {
+    // Reference: baked for this frame's view. Traditional: for the first frame's, as a flipbook is.
+    if (traditional && !p.bakedView) p.bakedView.emplace(camera, billboard);
+    const render::Camera& bakeCamera = traditional ? p.bakedView->first : camera;
+    const render::ImagePlane& bakePlane = traditional ? p.bakedView->second : billboard;
     render::BakeSettings bake;
     bake.width = bake.height = int(lightmapSize);
-    p.frame.lightmaps().upload(p.baker->bake(volume, scene.smoke, camera, billboard, bake));
-    for (const gpu::StageTime& t : p.baker->stageTimes())
-      result.stages.push_back({"bake/" + t.name, t.milliseconds});
-  } else if (p.options.mode == RenderMode::Traditional) {
-    if (!p.bakedView) p.bakedView.emplace(camera, billboard);
-    render::BakeSettings bake;
-    bake.width = bake.height = int(lightmapSize);
+    render::MultipleScattering multiple = p.options.multipleScattering;
+    multiple.seed = scene.render.seed + uint32_t(index);  // independent noise frame to frame
     p.frame.lightmaps().upload(
-        p.baker->bake(volume, scene.smoke, p.bakedView->first, p.bakedView->second, bake));
+        p.baker->bake(volume, scene.smoke, bakeCamera, bakePlane, bake, *scattering, multiple));
     for (const gpu::StageTime& t : p.baker->stageTimes())
       result.stages.push_back({"bake/" + t.name, t.milliseconds});
+  }
+  if (traditional) {
     billboard = facingBillboard(camera, p.bakedView->first, p.bakedView->second, volumeBox.centre());
     // A flipbook knows no depth but its quad's: the shell is the billboard plane through the volume centre.
     const render::DepthRange shellRange = render::boxDepthRange(camera, volumeBox);

@@ -3,7 +3,10 @@
 // `sixway render`:
 //   neural       guiding map → network → six-way shading
 //   reference    the reference baker's lightmaps (exact single scattering) → the same shading
+//   reference-ms multiply-scattered lightmaps (ScatteredLightmaps) → the same shading: the best any six-way
+//                method can do under full transport
 //   traditional  a flipbook baked from the first frame's view, on a camera-facing billboard (today's games)
+//   traditional-ms  the same flipbook baked with multiple scattering (what DCC tools bake)
 //   guide        the guiding map itself (guide, alpha, shell depth)
 //   guide-lit    the guiding map's mean light as all six lightmaps → the same shading (no network: the
 //                evaluation's "guide only" baseline)
@@ -19,6 +22,7 @@
 #include "gpu/sequence.h"
 #include "io/image.h"
 #include "io/scene.h"
+#include "reference/scattered_lightmaps.h"
 #include "render/camera.h"
 #include "render/volume.h"
 
@@ -30,7 +34,16 @@ class PipelineCache;
 
 namespace sixway::eval {
 
-enum class RenderMode { Neural, Reference, Traditional, Guide, GuideLit, PathTrace };
+enum class RenderMode {
+  Neural,
+  Reference,
+  ReferenceMs,
+  Traditional,
+  TraditionalMs,
+  Guide,
+  GuideLit,
+  PathTrace
+};
 
 // "neural", "reference", ...; throws io::InputError (source "--mode") for another name.
 RenderMode parseRenderMode(const std::string& name);
@@ -43,6 +56,8 @@ struct FramePipelineOptions {
   bool shadows = true;             // obstacle shadows on the smoke
   uint32_t pathTraceSamples = 64;  // pathtrace: samples per pixel
   int pathTraceOrders = 64;        // pathtrace: scattering orders (1: single scattering, like the baker)
+  // reference-ms, traditional-ms: the higher orders' tracing (its seed is the scene's render.seed + frame)
+  render::MultipleScattering multipleScattering;
   // Shadow atlas tiles; unset: one per shadow-casting light of the scene (the demo reserves room for the
   // lights a user may add).
   std::optional<uint32_t> shadowTiles;

@@ -32,8 +32,10 @@ namespace {
 namespace fs = std::filesystem;
 
 // The methods measured against the path tracer, by their render-mode names (frame_pipeline.h). guide-lit is
-// the guide-only baseline: the guiding map's light as all six lightmaps.
-const std::vector<std::string> kMethods{"neural", "reference", "traditional", "guide-lit"};
+// the guide-only baseline: the guiding map's light as all six lightmaps; reference-ms the six-way ceiling
+// under full transport (multiply-scattered lightmaps); traditional-ms the flipbook users bake in DCC tools.
+const std::vector<std::string> kMethods{"neural",      "reference",      "reference-ms",
+                                        "traditional", "traditional-ms", "guide-lit"};
 
 double median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
@@ -125,6 +127,7 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
   options.shadows = s.shadows;
   options.pathTraceSamples = s.samples;
   options.pathTraceOrders = s.orders;
+  options.multipleScattering = s.multipleScattering;
   std::map<std::string, std::unique_ptr<FramePipeline>> pipelines;
   for (const std::string& method : kMethods) {
     options.mode = parseRenderMode(method);
@@ -142,7 +145,7 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
   std::fflush(stdout);
 
   const render::Camera firstCamera = render::sceneCamera(scene.camera, 0);
-  LightmapMetrics lightmapTotal;
+  LightmapMetrics lightmapTotal, lightmapMsTotal;
   std::map<std::string, ImageError> imageTotal;
   std::map<std::string, std::vector<double>> framePsnrs;
   std::map<std::string, std::vector<nlohmann::json>> frameStages;
@@ -195,6 +198,12 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
     lightmaps.add(predicted.pixels, reference.pixels);
     lightmapTotal.add(predicted.pixels, reference.pixels);
     frame["lightmap"] = lightmapFrame(lightmaps);
+    // The same against the multiply-scattered lightmaps: what a network trained on the truth should match.
+    LightmapMetrics lightmapsMs;
+    const io::Image referenceMs = pipelines["reference-ms"]->lightmaps();
+    lightmapsMs.add(predicted.pixels, referenceMs.pixels);
+    lightmapMsTotal.add(predicted.pixels, referenceMs.pixels);
+    frame["lightmap_ms"] = lightmapFrame(lightmapsMs);
 
     if (i == stripFrame) {
       if (!s.out.empty()) {
@@ -222,7 +231,8 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
     std::fflush(stdout);
   }
 
-  nlohmann::json summary = {{"lightmap", lightmapTotal.summary()}};
+  nlohmann::json summary = {{"lightmap", lightmapTotal.summary()},
+                            {"lightmap_ms", lightmapMsTotal.summary()}};
   for (const std::string& method : kMethods) {
     nlohmann::json image = imageTotal[method].json();  // pooled over the frames' pixels
     const std::vector<double>& psnrs = framePsnrs[method];
@@ -245,6 +255,11 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
       {"lightmap_size", scene.render.lightmapSize},
       {"pathtrace_spp", s.samples},
       {"pathtrace_orders", s.orders},
+      {"multiple_scattering",
+       {{"samples_per_pixel", s.multipleScattering.samples},
+        {"orders", s.multipleScattering.maxOrders},
+        {"downsample", s.multipleScattering.traceAllOrders ? 1 : s.multipleScattering.downsample},
+        {"all_orders_traced", s.multipleScattering.traceAllOrders}}},
       {"density_scale", s.densityScale},
       {"obstacles_drawn", s.drawObstacles},
       {"obstacle_count", scene.obstacles.size()},

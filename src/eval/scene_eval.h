@@ -3,9 +3,8 @@
 // frame by frame by every method and measured (issue #9, docs/results.md):
 //   - the network's lightmaps against the reference baker's, same view (lightmap PSNR,
 //     docs/conventions.md, "Metrics");
-//   - the final images of neural, reference-lightmap, traditional-flipbook and guide-lit rendering against
-//   the
-//     path tracer (ground truth, multiple scattering);
+//   - the final images of neural, reference-lightmap (single and multiple scattering), traditional-flipbook
+//     (single and multiple scattering) and guide-lit rendering against the path tracer (ground truth);
 //   - GPU time per stage of every method and of the simulation;
 //   - the path tracer at the neural frame's time (equal_time.h), and a side-by-side strip of one frame.
 // The path tracer knows no obstacles, so by default the obstacles shape the flow but no method draws them
@@ -15,14 +14,16 @@
 #include <optional>
 
 #include "gpu/context.h"
+#include "reference/scattered_lightmaps.h"
 
 namespace sixway::eval {
 
 struct SceneEvalSettings {
   std::filesystem::path scene, weights, report, out;  // out: strip.png (none when empty)
   int frames = 0;
-  uint32_t samples = 64;  // path-tracer ground truth, per pixel
-  int orders = 64;        // its scattering orders
+  uint32_t samples = 64;                          // path-tracer ground truth, per pixel
+  int orders = 64;                                // its scattering orders
+  render::MultipleScattering multipleScattering;  // of reference-ms and traditional-ms
   float densityScale = 1.0f;
   bool shadows = true, drawObstacles = false;
   std::optional<float> cameraOrbitDeg;  // replaces the scene's camera path by an orbit (degrees per frame)

@@ -6,7 +6,6 @@
 #include "io/error.h"
 #include "io/exr.h"
 #include "reference/flipbook.h"
-#include "reference/path_tracer.h"
 #include "render/billboard.h"
 #include "render/sixway.h"
 
@@ -18,11 +17,17 @@ nlohmann::json vec(glm::vec3 v) {
 }
 
 nlohmann::json describe(const FlipbookBake& job, const ImagePlane& billboard, const nlohmann::json& frames) {
-  nlohmann::json scattering = "single";
-  if (job.multipleScattering)
-    scattering = {{"orders", job.multipleScattering->maxOrders},
-                  {"samples_per_pixel", job.multipleScattering->samples},
-                  {"seed", job.multipleScattering->seed}};
+  nlohmann::json scattering = {{"mode", scatteringName(job.scattering)}};
+  if (job.scattering == Scattering::Multiple) {
+    const MultipleScattering& m = job.multiple;
+    scattering["method"] = m.traceAllOrders
+                               ? "every order path-traced at full resolution"
+                               : "exact single scattering + orders >= 2 path-traced at 1/downsample";
+    scattering["orders"] = m.maxOrders;
+    scattering["samples_per_pixel"] = m.samples;
+    if (!m.traceAllOrders) scattering["downsample"] = m.downsample;
+    scattering["seed"] = m.seed;
+  }
   nlohmann::json p = job.provenance;
   p["camera"] = {{"position", vec(job.camera.position)},
                  {"right", vec(job.camera.right)},
@@ -58,17 +63,7 @@ FlipbookBakeResult bakeFlipbook(const gpu::Context& context, const gpu::Pipeline
   FlipbookBakeResult result;
   result.billboard = billboardBounds(job.camera, sequence.bounds(), float(width) / float(height));
 
-  LightmapBaker baker(context, cache);
-  std::optional<PathTracer> tracer;
-  TraceSettings trace;
-  if (job.multipleScattering) {
-    tracer.emplace(context, cache);
-    trace.width = width;
-    trace.height = height;
-    trace.maxOrders = job.multipleScattering->maxOrders;
-    trace.seed = job.multipleScattering->seed;
-    trace.jitter = false;  // pixel centres, as the exact baker samples
-  }
+  ScatteredLightmaps baker(context, cache);
   std::filesystem::create_directories(job.out / "frames");
 
   const auto& names = sixWayChannelNames();
@@ -81,17 +76,9 @@ FlipbookBakeResult bakeFlipbook(const gpu::Context& context, const gpu::Pipeline
     io::Image tile(width, height, {names.begin(), names.end()});
     double gpuMs = 0;
     if (volume) {
-      tile = baker.bake(*volume, job.smoke, job.camera, result.billboard, job.settings);
-      for (const gpu::StageTime& t : baker.stageTimes()) gpuMs += t.milliseconds;
-      if (tracer) {
-        tracer->beginSixWay(*volume, job.smoke, job.camera, result.billboard, trace);
-        tracer->accumulate(job.multipleScattering->samples);
-        const io::Image multiple = tracer->image();
-        for (int p = 0; p < width * height; ++p)
-          for (int c = 0; c < kSixWayLights; ++c)
-            tile.pixels[p * kSixWayChannels + c] = multiple.pixels[p * kSixWayChannels + c];
-        gpuMs += tracer->traceMilliseconds();
-      }
+      tile = baker.bake(*volume, job.smoke, job.camera, result.billboard, job.settings, job.scattering,
+                        job.multiple);
+      gpuMs = baker.milliseconds();
     }
     char name[32];
     std::snprintf(name, sizeof(name), "frame_%04d.exr", index);
@@ -110,7 +97,7 @@ FlipbookBakeResult bakeFlipbook(const gpu::Context& context, const gpu::Pipeline
     progress(line);
   }
   result.sidecar = writeFlipbook(job.out, "flipbook", tiles, layout, unityPacking(),
-                                 describe(job, result.billboard, frames));
+                                 describe(job, result.billboard, frames), job.scattering);
   return result;
 }
 

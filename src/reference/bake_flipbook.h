@@ -1,8 +1,7 @@
 #pragma once
 // The traditional six-way workflow: a sequence baked from one fixed view into flipbooks (Unity packing,
-// EXR + PNG + TGA, JSON sidecar) plus one EXR per frame. Single scattering comes from the exact baker;
-// with multiple scattering the six light channels come from the path tracer (alpha and emission, which do
-// not depend on scattering, still from the exact march).
+// EXR + PNG + TGA, JSON sidecar) plus one EXR per frame, with multiple scattering (the default, as DCC
+// tools bake) or single scattering (ScatteredLightmaps). The sidecar says which.
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -14,6 +13,7 @@
 #include "gpu/sequence.h"
 #include "io/scene.h"
 #include "reference/lightmap_baker.h"
+#include "reference/scattered_lightmaps.h"
 #include "render/camera.h"
 #include "render/volume_sequence.h"
 
@@ -24,12 +24,6 @@ class PipelineCache;
 
 namespace sixway::render {
 
-struct MultipleScattering {
-  uint32_t samples = 256;  // per pixel
-  int maxOrders = 64;
-  uint32_t seed = 1;
-};
-
 struct FlipbookBake {
   std::filesystem::path out;  // an existing, empty directory
   int firstFrame = 0;         // frames [firstFrame, firstFrame + frameCount) of the sequence
@@ -38,8 +32,9 @@ struct FlipbookBake {
   Camera camera;          // fixed for the whole sequence
   io::Smoke smoke;        // optics
   BakeSettings settings;  // tile size and quadrature
-  std::optional<MultipleScattering> multipleScattering;
-  nlohmann::json provenance;  // added to the sidecar (where the volumes came from, the command)
+  Scattering scattering = Scattering::Multiple;
+  MultipleScattering multiple;  // with Scattering::Multiple; the same seed every frame (coherent noise)
+  nlohmann::json provenance;    // added to the sidecar (where the volumes came from, the command)
 };
 
 struct FlipbookBakeResult {

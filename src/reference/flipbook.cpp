@@ -163,7 +163,8 @@ std::vector<io::Image> unpackFlipbook(const std::vector<io::Image>& textures, co
 
 std::filesystem::path writeFlipbook(const std::filesystem::path& directory, const std::string& stem,
                                     const std::vector<io::Image>& frames, const FlipbookLayout& layout,
-                                    const ChannelPacking& packing, const nlohmann::json& provenance) {
+                                    const ChannelPacking& packing, const nlohmann::json& provenance,
+                                    std::optional<Scattering> scattering) {
   const std::vector<io::Image> textures = packFlipbook(frames, layout, packing);
   nlohmann::json files = nlohmann::json::object();
   for (std::size_t t = 0; t < textures.size(); ++t) {
@@ -177,7 +178,7 @@ std::filesystem::path writeFlipbook(const std::filesystem::path& directory, cons
   nlohmann::json channels = nlohmann::json::object();
   for (int c = 0; c < kSixWayChannels; ++c)
     if (packing.slots[c].texture >= 0) channels[channelKeys()[c]] = reference(packing, c);
-  const nlohmann::json sidecar = {
+  nlohmann::json sidecar = {
       {"format", kFormat},
       {"version", 1},
       {"layout",
@@ -195,6 +196,7 @@ std::filesystem::path writeFlipbook(const std::filesystem::path& directory, cons
        "(1 = a white Lambertian surface facing the light); alpha = 1 - view transmittance"},
       {"provenance", provenance},
   };
+  if (scattering) sidecar["scattering"] = scatteringName(*scattering);
   const std::filesystem::path path = directory / (stem + ".json");
   io::AtomicFile file(path);
   {
@@ -219,6 +221,9 @@ Flipbook readFlipbook(const std::filesystem::path& description) {
   r.has("provenance");  // free-form: where the flipbook came from
 
   Flipbook book;
+  if (const auto scattering = r.maybe<std::string>("scattering"))
+    book.scattering = r.pick<Scattering>(
+        "scattering", *scattering, {{"single", Scattering::Single}, {"multiple", Scattering::Multiple}});
   FlipbookLayout& l = book.layout;
   r.object("layout", [&l](io::JsonReader& o) {
     l.columns = o.required<int>("columns", io::inRange(1, 4096));

@@ -7,10 +7,12 @@
 #include <array>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "io/image.h"
+#include "reference/scattering.h"
 #include "render/sixway.h"
 
 namespace sixway::render {
@@ -54,15 +56,17 @@ std::vector<io::Image> unpackFlipbook(const std::vector<io::Image>& textures, co
                                       const ChannelPacking& packing);
 
 // Writes <stem>_<texture>.exr (half), .png and .tga (8-bit, linear) for each texture of `packing`, and the
-// sidecar <stem>.json (layout, files, channels, colour space, normalisation, and `provenance` as given).
-// Returns the sidecar's path.
+// sidecar <stem>.json (layout, files, channels, colour space, normalisation, the scattering the lightmaps
+// hold when known, and `provenance` as given). Returns the sidecar's path.
 std::filesystem::path writeFlipbook(const std::filesystem::path& directory, const std::string& stem,
                                     const std::vector<io::Image>& frames, const FlipbookLayout& layout,
-                                    const ChannelPacking& packing, const nlohmann::json& provenance);
+                                    const ChannelPacking& packing, const nlohmann::json& provenance,
+                                    std::optional<Scattering> scattering = std::nullopt);
 
 struct Flipbook {
   FlipbookLayout layout;
-  std::vector<io::Image> frames;  // eight channels each, premultiplied, linear
+  std::vector<io::Image> frames;         // eight channels each, premultiplied, linear
+  std::optional<Scattering> scattering;  // as the sidecar says (other tools' descriptions may not)
 };
 
 // Reads the flipbook a description (a sidecar of writeFlipbook, or one written by hand for another tool's

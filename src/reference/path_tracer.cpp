@@ -24,6 +24,7 @@ void checkSettings(const TraceSettings& s, size_t lights) {
   if (s.width < 1 || s.height < 1 || s.width > 16384 || s.height > 16384)
     fail("image size " + std::to_string(s.width) + "x" + std::to_string(s.height) + " is outside 1..16384");
   if (s.maxOrders < 0) fail("the number of scattering orders must be >= 0");
+  if (s.minOrder < 1) fail("the lowest recorded scattering order must be >= 1");
   if (s.samplesPerPass < 1 || s.samplesPerPass > 4096) fail("samples per pass must be in 1..4096");
   if (s.brickCells < 1 || s.brickCells > 64) fail("majorant bricks must be 1..64 cells wide");
   if (lights > size_t(layout::kMaxLights))
@@ -115,7 +116,8 @@ void PathTracer::begin(const Volume& volume, const io::Smoke& smoke, const Camer
   p.image.x = settings.width;
   p.image.y = settings.height;
   p.image.z = layout::emissionRamp(smoke.emission, p.ramp);
-  p.flags = glm::uvec4(settings.jitter ? 1u : 0u, volume.temperature ? 1u : 0u, 0u, 0u);
+  p.flags =
+      glm::uvec4(settings.jitter ? 1u : 0u, volume.temperature ? 1u : 0u, uint32_t(settings.minOrder), 0u);
 
   const gpu::Buffer& density = *volume.density;
   prepare_

@@ -123,6 +123,18 @@ TEST_F(DatasetConfigTest, OtherMistakesAreErrors) {
   j = validConfig();
   j.erase("frames");
   EXPECT_THAT(error(j), namesFileAndProblem(dir_ / "config.json", "frames.count: required key missing"));
+  j = validConfig();
+  j["targets"] = "double";
+  EXPECT_THAT(error(j), namesFileAndProblem(dir_ / "config.json",
+                                            "targets: must be \"single\", \"multiple\" or \"both\""));
+  j = validConfig();
+  j["multiple_scattering"] = {{"samples", 16}};
+  EXPECT_THAT(error(j), namesFileAndProblem(dir_ / "config.json",
+                                            "multiple_scattering: not allowed (targets is \"single\")"));
+  j["targets"] = "both";
+  j["multiple_scattering"]["downsample"] = 3;
+  EXPECT_THAT(error(j), namesFileAndProblem(dir_ / "config.json",
+                                            "multiple_scattering.downsample: must be 1, 2, 4 or 8 (got 3)"));
 }
 
 TEST_F(DatasetConfigTest, ShardsBeyondTheLimitAreRefused) {

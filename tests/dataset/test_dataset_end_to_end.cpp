@@ -164,5 +164,45 @@ TEST_F(DatasetEndToEnd, ShardsMatchDirectRendersFollowTheRuleAndAreReproducible)
   EXPECT_EQ(again.metadata.dump(), first.metadata.at("sixway.dataset"));
 }
 
+// "targets": "both": the shard holds the single-scattering targets it held before (bit for bit) and the
+// multiply-scattered ones, each the ScatteredLightmaps bake of its frame and camera with a seed of its own.
+TEST_F(DatasetEndToEnd, BothTargetsHoldSingleAndMultipleScattering) {
+  nlohmann::json json = dataset::loadDatasetConfig(kTinyConfig).json;
+  json["targets"] = "both";
+  json["multiple_scattering"] = {{"samples", 8}, {"orders", 8}};
+  json["frames"]["count"] = 1;
+  const dataset::DatasetConfig both = dataset::parseDatasetConfig(json, kTinyConfig);
+  json.erase("targets");
+  json.erase("multiple_scattering");
+  const dataset::DatasetConfig single = dataset::parseDatasetConfig(json, kTinyConfig);
+  const dataset::SequencePlan plan = dataset::planSequence(both, 0);
+  const dataset::DatasetShard shard = dataset::generateSequence(context(), pipelineCache(), both, plan);
+  const dataset::DatasetShard before =
+      dataset::generateSequence(context(), pipelineCache(), single, dataset::planSequence(single, 0));
+  ASSERT_EQ(shard.tensors.size(), 4u);
+  EXPECT_EQ(shard.tensors[1].name, "target");
+  EXPECT_EQ(shard.tensors[1].bytes, before.tensors[1].bytes) << "the single-scattering targets changed";
+  ASSERT_EQ(shard.tensors[2].name, "target_ms");
+  EXPECT_EQ(shard.metadata["version"], 2);
+  EXPECT_EQ(shard.metadata["targets"], nlohmann::json({"single", "multiple"}));
+
+  const std::vector<float> singleTargets = shard.tensors[1].toFloat(), multiple = shard.tensors[2].toFloat();
+  const size_t plane = size_t(both.lightmapSize) * both.lightmapSize;
+  double gain = 0.0;
+  for (size_t i = 0; i < multiple.size(); ++i) {
+    const size_t channel = (i / plane) % 8;
+    if (channel >= 6)
+      ASSERT_EQ(multiple[i], singleTargets[i]) << "alpha and emission are the baker's";
+    else
+      ASSERT_GE(multiple[i], singleTargets[i]) << i;
+    gain += multiple[i] - singleTargets[i];
+  }
+  EXPECT_GT(gain, 0.0) << "multiple scattering adds light";
+  // The two cameras' traces have their own noise: their multiple-scattering gains differ.
+  const size_t sample = 8 * plane;
+  EXPECT_NE(std::vector<float>(multiple.begin(), multiple.begin() + sample),
+            std::vector<float>(multiple.begin() + sample, multiple.begin() + 2 * sample));
+}
+
 }  // namespace
 }  // namespace sixway::test

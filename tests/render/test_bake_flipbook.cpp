@@ -30,6 +30,7 @@ class BakeFlipbookTest : public RenderTest {
     j.camera = render::framingCamera(sequence.bounds());
     j.smoke.extinction = 2.0f;
     j.settings.width = j.settings.height = 16;
+    j.scattering = render::Scattering::Single;  // the exact baker's tiles, compared with direct bakes
     return j;
   }
   render::FlipbookBakeResult bake(render::VolumeSequence& sequence, const render::FlipbookBake& j) {
@@ -124,15 +125,22 @@ TEST_F(BakeFlipbookTest, RealVdbFilesBakeAndTheEmptyFrameIsTransparent) {
   }
 }
 
-// --multiple-scattering: the six light channels come from the path tracer (brighter: more orders), alpha and
-// emission stay the exact ones.
-TEST_F(BakeFlipbookTest, MultipleScatteringReplacesOnlyTheLightChannels) {
+// Multiple scattering (the default of `sixway bake`) adds the higher orders to the six light channels;
+// alpha and emission stay the exact ones. The sidecar says which scattering the flipbook holds.
+TEST_F(BakeFlipbookTest, MultipleScatteringAddsToTheLightChannelsAndIsNamed) {
   render::VdbSequence sequence(context(), {kVdb / "smoke_000002.vdb"}, 24, false);
   render::FlipbookBake j = job(sequence, 1);
-  const io::Image single = render::readFlipbook(bake(sequence, j).sidecar).frames.at(0);
+  const render::Flipbook singleBook = render::readFlipbook(bake(sequence, j).sidecar);
+  EXPECT_EQ(singleBook.scattering, render::Scattering::Single);
+  const io::Image single = singleBook.frames.at(0);
   j.out = dir.path() / "multiple";
-  j.multipleScattering = render::MultipleScattering{64, 32, 5};
-  const io::Image multiple = render::readFlipbook(bake(sequence, j).sidecar).frames.at(0);
+  j.scattering = render::Scattering::Multiple;
+  j.multiple.samples = 64;
+  j.multiple.maxOrders = 32;
+  j.multiple.seed = 5;
+  const render::Flipbook multipleBook = render::readFlipbook(bake(sequence, j).sidecar);
+  EXPECT_EQ(multipleBook.scattering, render::Scattering::Multiple);
+  const io::Image multiple = multipleBook.frames.at(0);
   double gain = 0;
   for (int y = 0; y < 16; ++y)
     for (int x = 0; x < 16; ++x) {

@@ -218,6 +218,10 @@ TEST_F(FlipbookFilesTest, BadDescriptionsAreOneLineErrors) {
   d = good;
   d["layout"]["frames"] = 2;
   EXPECT_THAT(problem(d), namesFileAndProblem(file, "layout.frames: must be in [1, 1]"));
+  d = good;
+  d["scattering"] = "double";
+  EXPECT_THAT(problem(d), namesFileAndProblem(file, "scattering: must be one of \"single\", \"multiple\""));
+  EXPECT_FALSE(render::readFlipbook((writeDescription(good), file)).scattering) << "another tool's: unknown";
 }
 
 }  // namespace

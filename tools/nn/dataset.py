@@ -1,11 +1,13 @@
 """The training shards written by `sixway dataset` (docs/dataset-format.md), read with numpy alone.
 
-A directory holds one `shard_SSSSS.safetensors` per simulated sequence: F16 tensors `guide` [N,3,H,W],
-`target` [N,8,H,W] (the baker's channels: Right, Left, Top, Bottom, Back, Front, alpha, emissive) and
-`motion` [N,2,H,W] (lightmap pixels, x right, y down: the smoke at p now was at p - motion(p) one frame
-before), and the metadata `sixway.dataset` that names each sample's camera, frame and split.
+A directory holds one `shard_SSSSS.safetensors` per simulated sequence: F16 tensors `guide` [N,3,H,W], the
+targets [N,8,H,W] (the baker's channels: Right, Left, Top, Bottom, Back, Front, alpha, emissive): `target`
+(single scattering) and/or `target_ms` (multiple scattering), as the metadata's `targets` says (version 2;
+version 1 shards hold `target` alone), and `motion` [N,2,H,W] (lightmap pixels, x right, y down: the smoke at
+p now was at p - motion(p) one frame before), and the metadata `sixway.dataset` that names each sample's
+camera, frame and split.
 
-    data = ShardDataset("/work/data/cpu_small")
+    data = ShardDataset("/work/data/cpu_small")    # target="multiple": train on target_ms
     pairs = data.pairs("train")                    # samples that have the previous frame of their camera
     current, previous = data.pair_batch(pairs[:8], crop=64, rng=np.random.default_rng(0))
 
@@ -29,6 +31,13 @@ GUIDE_CHANNELS = 3
 TARGET_TO_NETWORK = [1, 0, 2, 3, 5, 4, 6, 7]
 # Mirroring the image left-right swaps the Left and Right lightmaps (network channels 0 and 1).
 MIRRORED_CHANNELS = [1, 0, 2, 3, 4, 5, 6, 7]
+# The targets a shard may hold, by the name `targets` gives them, and their tensors.
+TARGET_TENSORS = {"single": "target", "multiple": "target_ms"}
+
+
+def shard_targets(info):
+    """The targets a shard holds: version 1 shards hold single scattering alone."""
+    return ["single"] if info.get("version") == 1 else list(info.get("targets", []))
 
 
 def shard_paths(directory):
@@ -46,11 +55,14 @@ def read_shard(path):
     if "sixway.dataset" not in metadata:
         raise ValueError(f"{path}: metadata has no 'sixway.dataset'")
     info = json.loads(metadata["sixway.dataset"])
-    if info.get("version") != 1:
-        raise ValueError(f"{path}: sixway.dataset.version is {info.get('version')}, this reader knows 1")
+    if info.get("version") not in (1, 2):
+        raise ValueError(f"{path}: sixway.dataset.version is {info.get('version')}, this reader knows 1 and 2")
+    targets = shard_targets(info)
+    if not targets or any(t not in TARGET_TENSORS for t in targets):
+        raise ValueError(f"{path}: sixway.dataset.targets is {info.get('targets')!r}")
     size = info["lightmap_size"]
     samples = info["samples"]
-    for name, channels in (("guide", GUIDE_CHANNELS), ("target", 8), ("motion", 2)):
+    for name, channels in (("guide", GUIDE_CHANNELS), *((TARGET_TENSORS[t], 8) for t in targets), ("motion", 2)):
         if name not in tensors:
             raise ValueError(f"{path}: no tensor '{name}'")
         expected = [len(samples), channels, size, size]
@@ -65,8 +77,11 @@ def read_shard(path):
 class ShardDataset:
     """Every sample of every shard of a directory, in memory as F16 (a CPU dataset is a few hundred MB)."""
 
-    def __init__(self, directory):
+    def __init__(self, directory, target="single"):
+        if target not in TARGET_TENSORS:
+            raise ValueError(f"target is {target!r}: single or multiple")
         self.directory = directory
+        self.target_kind = target
         self.paths = shard_paths(directory)
         guides, targets, motions = [], [], []
         self.samples = []  # per sample: dict(camera, frame, split, sequence, ...)
@@ -76,9 +91,12 @@ class ShardDataset:
             if self.infos and info["lightmap_size"] != self.infos[0]["lightmap_size"]:
                 raise ValueError(f"{path}: lightmap_size {info['lightmap_size']} differs from "
                                  f"{self.paths[0]}'s {self.infos[0]['lightmap_size']}")
+            if target not in shard_targets(info):
+                raise ValueError(f"{path}: holds {', '.join(shard_targets(info))} scattering targets, not {target} "
+                                 f"(the dataset config's \"targets\")")
             self.infos.append(info)
             guides.append(tensors["guide"])
-            targets.append(tensors["target"][:, TARGET_TO_NETWORK])
+            targets.append(tensors[TARGET_TENSORS[target]][:, TARGET_TO_NETWORK])
             motions.append(tensors["motion"])
             self.samples += [dict(s, sequence=info["sequence"]) for s in info["samples"]]
         self.guide = np.concatenate(guides)

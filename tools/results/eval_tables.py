@@ -12,7 +12,7 @@ import math
 import os
 import sys
 
-METHODS = ["neural", "reference", "traditional", "guide-lit"]
+METHODS = ["neural", "reference", "reference-ms", "traditional", "traditional-ms", "guide-lit"]
 
 
 def load(directory, name):
@@ -51,6 +51,9 @@ def quality_table(report):
                     f"{db(i['psnr_full_db'])} | {sci(i['mse_masked'])} |")
     lm = s["lightmap"]
     rows.append(f"| *neural lightmaps vs the baker's* | **{db(lm['psnr_masked_db'])}** | "
+                f"{db(lm['mean_sample_psnr_masked_db'])} | {db(lm['psnr_full_db'])} | |")
+    lm = s["lightmap_ms"]
+    rows.append(f"| *neural lightmaps vs the multiply-scattered ones* | **{db(lm['psnr_masked_db'])}** | "
                 f"{db(lm['mean_sample_psnr_masked_db'])} | {db(lm['psnr_full_db'])} | |")
     return "\n".join(rows)
 
@@ -151,9 +154,12 @@ the ground truth's alpha > 0.01, the full-frame figure next to it; "PSNR masked"
 frames, "mean of frames" averages the frames' own PSNRs.
 
 Methods: **neural** (guiding map → network → six-way shading), **reference** (the exact single-scattering baker's
-lightmaps, same shading: the best the six-way model can do), **traditional** (lightmaps baked from frame 0's view,
-played back on a camera-facing billboard, as games do), **guide-lit** (the guiding map's light used as all six
-lightmaps, its alpha as transparency: the network's input without the network).
+lightmaps, same shading), **reference-ms** (multiply-scattered lightmaps: the exact single scattering plus the
+higher orders path-traced at 64 samples per pixel, same shading: the best the six-way model can do under full
+transport), **traditional** (lightmaps baked from frame 0's view, played back on a camera-facing billboard, as
+games do), **traditional-ms** (the same flipbook baked with multiple scattering, as DCC tools bake it),
+**guide-lit** (the guiding map's light used as all six lightmaps, its alpha as transparency: the network's input
+without the network).
 
 ![side by side](results/strip.png)
 

@@ -95,6 +95,30 @@ class DatasetTest(unittest.TestCase):
             with self.assertRaisesRegex(ValueError, r"samples\[1\]\.split is 'test'"):
                 ShardDataset(tmp)
 
+    def test_version_2_shards_choose_their_targets(self):
+        """A shard with single- and multiple-scattering targets: each reads its own tensor; a shard without the
+        asked-for targets is named."""
+        with tempfile.TemporaryDirectory() as tmp:
+            path = synthetic_shards.write_shards(tmp, size=8, cameras=1, frames=2, sequences=1)[0]
+            tensors, metadata = read_safetensors(path)
+            info = json.loads(metadata["sixway.dataset"])
+            info.update(version=2, targets=["single", "multiple"])
+            tensors["target_ms"] = (tensors["target"].astype(np.float32) * 2).astype(np.float16)
+            write_safetensors(path, tensors, {"sixway.dataset": json.dumps(info)})
+            single, multiple = ShardDataset(tmp), ShardDataset(tmp, target="multiple")
+            np.testing.assert_allclose(multiple.target.astype(np.float32), 2 * single.target.astype(np.float32),
+                                       rtol=1e-3)
+            info["targets"] = ["single"]
+            del tensors["target_ms"]
+            write_safetensors(path, tensors, {"sixway.dataset": json.dumps(info)})
+            with self.assertRaisesRegex(ValueError, r"shard_00000\.safetensors: holds single scattering targets, "
+                                                    r"not multiple"):
+                ShardDataset(tmp, target="multiple")
+            info["version"] = 3
+            write_safetensors(path, tensors, {"sixway.dataset": json.dumps(info)})
+            with self.assertRaisesRegex(ValueError, r"version is 3, this reader knows 1 and 2"):
+                ShardDataset(tmp)
+
 
 if __name__ == "__main__":
     unittest.main()

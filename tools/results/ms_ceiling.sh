@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# The six-way ceiling under full transport on every shipped scene (issue #19): `sixway eval --scene` of each
+# assets/scenes/*.json (but bench.json) at a small size (128x128 frames, 64x64 lightmaps), against the path
+# tracer with every scattering order, printed as a markdown table of masked PSNRs (reference-ms: the
+# multiply-scattered lightmaps through the six-way shading; reference: single scattering; neural;
+# traditional-ms: a flipbook baked with multiple scattering). Reports go to out/ms_ceiling/.
+# About 10-15 minutes on the 2-core lavapipe machine. FRAMES=N (default 8) SPP=N (truth, default 128).
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+frames="${FRAMES:-8}"
+spp="${SPP:-128}"
+python=/usr/bin/python3
+out="$root/out/ms_ceiling"
+sixway="${SIXWAY:-$root/build/src/app/sixway}"
+[ -x "$sixway" ] || source "$root/tools/build.sh"
+mkdir -p "$out"
+for scene in "$root"/assets/scenes/*.json; do
+  name=$(basename "$scene" .json)
+  [ "$name" = bench ] && continue
+  small="$out/$name.json"
+  "$python" - "$scene" "$small" <<'PY'
+import json, os, sys
+scene = json.load(open(sys.argv[1]))
+scene["render"].update({"width": 128, "height": 128, "lightmap_size": 64})
+# Mesh paths are relative to the scene's folder: make them absolute for the copy.
+for obstacle in scene.get("obstacles", []):
+    if "file" in obstacle:
+        obstacle["file"] = os.path.join(os.path.dirname(os.path.abspath(sys.argv[1])), obstacle["file"])
+json.dump(scene, open(sys.argv[2], "w"), indent=1)
+PY
+  echo "ms_ceiling.sh: $name" >&2
+  "$sixway" eval --scene "$small" --frames "$frames" --spp "$spp" --orders 64 --report "$out/$name.report.json" \
+    --force >&2
+done
+"$python" - "$out" <<'PY'
+import glob, json, os, sys
+methods = ["reference-ms", "reference", "neural", "traditional-ms", "traditional"]
+print("| scene | " + " | ".join(methods) + " |")
+print("|---|" + "---|" * len(methods))
+for path in sorted(glob.glob(os.path.join(sys.argv[1], "*.report.json"))):
+    image = json.load(open(path))["summary"]["image"]
+    name = os.path.basename(path).removesuffix(".report.json")
+    print(f"| {name} | " + " | ".join(f"{image[m]['psnr_masked_db']:.2f}" for m in methods) + " |")
+PY
