@@ -12,10 +12,10 @@
 
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
-#include "io/vdb.h"
 #include "reference/lightmap_baker.h"
 #include "reference/path_tracer.h"
 #include "render/billboard.h"
+#include "vdb_cube.h"
 
 namespace {
 
@@ -74,18 +74,7 @@ int main() {
   gpu::PipelineCache cache(context);
   std::printf("device: %s (%s)\n", context.properties().deviceName, context.driver().driverInfo);
 
-  const std::string file = SIXWAY_TEST_DATA_DIR "/vdb/densityAndHeat.vdb";
-  const io::VdbFile info = io::readVdbInfo(file);
-  glm::vec3 lo(1e30f), hi(-1e30f);
-  for (const auto& g : info.grids) {
-    lo = glm::min(lo, g.worldMin);
-    hi = glm::max(hi, g.worldMax);
-  }
-  const float side = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
-  const glm::vec3 centre = 0.5f * (lo + hi);
-  const io::DenseGrid density = io::readVdbDense(
-      file, "density", io::ExplicitBounds{centre - 0.5f * side, centre + 0.5f * side, glm::ivec3(128)});
-  const render::DeviceVolume volume = render::uploadVolume(context, density);
+  const render::DeviceVolume volume = render::uploadVolume(context, test::densityAndHeatCube(128));
 
   io::Smoke smoke;  // about 0.3 optical depth per cell at the densest cells, as in the simulated scenes
   smoke.extinction = 0.3f / volume.grid().cellSize;

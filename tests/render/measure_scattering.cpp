@@ -12,10 +12,10 @@
 
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
-#include "io/vdb.h"
 #include "reference/scattered_lightmaps.h"
 #include "render/billboard.h"
 #include "render/sixway.h"
+#include "vdb_cube.h"
 
 namespace {
 
@@ -66,20 +66,9 @@ int main(int argc, char** argv) {
   std::printf("device: %s; lightmaps %d², volume %d³, truth %u spp\n", context.properties().deviceName, size,
               cells, truthSpp);
 
-  const std::string file = SIXWAY_TEST_DATA_DIR "/vdb/densityAndHeat.vdb";
-  const io::VdbFile info = io::readVdbInfo(file);
-  glm::vec3 lo(1e30f), hi(-1e30f);
-  for (const auto& g : info.grids) {
-    lo = glm::min(lo, g.worldMin);
-    hi = glm::max(hi, g.worldMax);
-  }
-  const float side = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
-  const glm::vec3 centre = 0.5f * (lo + hi);
-  const io::DenseGrid density = io::readVdbDense(
-      file, "density", io::ExplicitBounds{centre - 0.5f * side, centre + 0.5f * side, glm::ivec3(cells)});
-  const render::DeviceVolume volume = render::uploadVolume(context, density);
+  const render::DeviceVolume volume = render::uploadVolume(context, test::densityAndHeatCube(cells));
   io::Smoke smoke;  // 0.3 optical depth per cell of a 128³ lattice at the densest cells, albedo 0.9
-  smoke.extinction = 0.3f / (side / 128.0f);
+  smoke.extinction = 0.3f / (volume.grid().cellSize * float(cells) / 128.0f);
   const render::Box box = volume.grid().bounds();
   const render::Camera camera = render::Camera::lookAt(
       box.centre() + glm::length(box.size()) * glm::vec3(0.9f, 0.6f, 1.2f), box.centre(), {0, 1, 0}, 40.0f);
