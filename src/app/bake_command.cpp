@@ -19,7 +19,7 @@
 #include "reference/flipbook.h"
 #include "reference/vdb_sequence.h"
 #include "render/scene_frame.h"
-#include "runtime/scene_volumes.h"
+#include "sources/scene_volumes.h"
 
 namespace sixway::app {
 namespace {
@@ -109,7 +109,8 @@ void run(const BakeOptions& o) {
                                                       : parseTile(o.tile);
   // The flipbook's size is known before anything is simulated or loaded (a scene bakes 16 frames unless
   // told).
-  const int frameCount = o.frames.value_or(scene ? 16 : int(o.vdb.size()) - o.first);
+  const int sourceFrames = scene ? io::sceneFrameCount(*scene) : int(o.vdb.size());
+  const int frameCount = o.frames.value_or(scene && !scene->vdb ? 16 : sourceFrames - o.first);
   render::requireFlipbookFits(
       render::flipbookLayout(frameCount, tileWidth, tileHeight, o.columns.value_or(0)), "--frames/--tile");
 
@@ -118,10 +119,12 @@ void run(const BakeOptions& o) {
   std::unique_ptr<render::VolumeSequence> sequence;
   nlohmann::json provenance;
   if (scene) {
-    sequence = withinDeviceLimits(o.scene.string(), gridSetting(scene->grid), [&] {
-      return std::make_unique<runtime::SimulatedVolumes>(context, cache, *scene, o.first + frameCount);
-    });
+    sequence =
+        withinDeviceLimits(o.scene.string(), scene->vdb ? "vdb.voxels" : gridSetting(scene->grid), [&] {
+          return sources::openSceneVolumes(context, cache, *scene, o.first + frameCount, o.scene.string());
+        });
     provenance["source"] = {{"scene", fs::absolute(o.scene).string()}};
+    if (scene->vdb) provenance["source"].update(sources::describeSource(*sequence));
   } else {
     auto vdb = withinDeviceLimits("--voxels " + std::to_string(o.voxels.value_or(128)), "--voxels", [&] {
       return std::make_unique<render::VdbSequence>(context, o.vdb, o.voxels.value_or(128),

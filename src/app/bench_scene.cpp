@@ -38,6 +38,7 @@ float valueNoise(glm::vec3 p) {
 
 io::Scene benchScene(const std::filesystem::path& file, glm::ivec3 lattice) {
   io::Scene scene = io::loadScene(file);
+  io::requireSimulated(scene, file.string());
   if (scene.inlets.empty()) throw io::InputError(file.string(), "the bench scene needs an inlet");
   scene.grid.cellSize *= float(scene.grid.size.x) / float(lattice.x);
   scene.grid.size = lattice;

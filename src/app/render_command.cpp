@@ -27,6 +27,7 @@
 #include "runtime/device_impl.h"
 #include "runtime/scene_volumes.h"
 #include "runtime/smoke_simulation_impl.h"
+#include "sources/scene_volumes.h"
 
 namespace sixway::app {
 namespace {
@@ -51,20 +52,22 @@ fs::path defaultWeights() {
 }
 
 // The frames of one mode: neural through the public SmokeRenderer (the product's path, as an engine runs
-// it); the evaluation's modes through eval::FramePipeline on the same simulation.
+// it); the evaluation's modes through eval::FramePipeline on the same simulation. A VDB scene has no
+// simulation for the public API to run: every mode, neural included, goes through FramePipeline on the
+// played-back volumes.
 class FrameSource {
  public:
-  FrameSource(sixway::Device& device, sixway::SmokeSimulation& simulation, const io::Scene& scene,
-              const fs::path& scenePath, const eval::FramePipelineOptions& options)
-      : simulation_(simulation), scene_(scene) {
+  FrameSource(sixway::Device& device, sixway::SmokeSimulation* simulation, render::VolumeSequence* playback,
+              const io::Scene& scene, const fs::path& scenePath, const eval::FramePipelineOptions& options)
+      : simulation_(simulation), playback_(playback), scene_(scene) {
     const std::string settings = "render.lightmap_size, render.width or render.height";
-    if (options.mode == eval::RenderMode::Neural) {
+    if (options.mode == eval::RenderMode::Neural && simulation) {
       sixway::RendererOptions rendererOptions;
       rendererOptions.weights = options.weights;
       rendererOptions.fp16 = options.fp16;
       rendererOptions.shadows = options.shadows;
       renderer_ = withinDeviceLimits(scenePath.string(), settings, [&] {
-        return std::make_unique<sixway::SmokeRenderer>(device, simulation, rendererOptions);
+        return std::make_unique<sixway::SmokeRenderer>(device, *simulation, rendererOptions);
       });
     } else {
       const sixway::Device::Impl& d = device.impl();
@@ -74,11 +77,12 @@ class FrameSource {
     }
   }
 
-  // Frame `index`, the simulation's current smoke: its image, GPU stage times and notes.
+  // Frame `index`: its image, GPU stage times and notes (the simulation has been advanced to it).
   eval::RenderedFrame render(int index) {
     if (pipeline_)
-      return pipeline_->render(index, runtime::SimulatedVolumes::frameSeconds(scene_, index),
-                               simulation_.impl().volumes->currentVolume());
+      return pipeline_->render(
+          index, runtime::SimulatedVolumes::frameSeconds(scene_, index),
+          playback_ ? playback_->volume(index) : simulation_->impl().volumes->currentVolume());
     renderer_->render();
     eval::RenderedFrame frame;
     frame.image = io::Image(int(renderer_->width()), int(renderer_->height()), {"R", "G", "B", "A"});
@@ -90,14 +94,15 @@ class FrameSource {
   }
 
  private:
-  sixway::SmokeSimulation& simulation_;
+  sixway::SmokeSimulation* simulation_;
+  render::VolumeSequence* playback_;
   const io::Scene& scene_;
   std::unique_ptr<sixway::SmokeRenderer> renderer_;
   std::unique_ptr<eval::FramePipeline> pipeline_;
 };
 
 void run(const RenderOptions& o) {
-  const io::Scene scene = io::loadScene(o.scene);
+  io::Scene scene = io::loadScene(o.scene);
   eval::FramePipelineOptions options;
   options.weights = o.weights.empty() ? defaultWeights() : o.weights;
   // Without --mode: the network when its weights exist, else the reference lightmaps (said on the terminal).
@@ -113,9 +118,20 @@ void run(const RenderOptions& o) {
 
   const gpu::ContextOptions contextOptions = o.common.contextOptions();
   sixway::Device device(sixway::DeviceOptions{contextOptions.validate, contextOptions.deviceIndex});
-  sixway::SmokeSimulation simulation = withinDeviceLimits(
-      o.scene.string(), gridSetting(scene.grid), [&] { return sixway::SmokeSimulation(device, o.scene); });
-  FrameSource source(device, simulation, scene, o.scene, options);
+  std::optional<sixway::SmokeSimulation> simulation;
+  std::unique_ptr<render::VolumeSequence> playback;
+  if (scene.vdb) {
+    const sixway::Device::Impl& d = device.impl();
+    playback = withinDeviceLimits(o.scene.string(), "vdb.voxels", [&] {
+      return sources::openSceneVolumes(*d.context, *d.cache, scene, o.frames, o.scene.string());
+    });
+  } else {
+    withinDeviceLimits(o.scene.string(), gridSetting(scene.grid), [&] {
+      simulation.emplace(device, o.scene);
+      return true;
+    });
+  }
+  FrameSource source(device, simulation ? &*simulation : nullptr, playback.get(), scene, o.scene, options);
   // The output directory appears only once everything it needs has been checked.
   FrameWriterOptions writerOptions;
   writerOptions.exr = o.exr;
@@ -131,13 +147,14 @@ void run(const RenderOptions& o) {
   TimingsLog timings(o.frames);
   const auto started = std::chrono::steady_clock::now();
   for (int i = 0; i < o.frames; ++i) {
-    simulation.advance();
+    if (simulation) simulation->advance();
     const eval::RenderedFrame frame = source.render(i);
     writer.write(i, frame.image);
     for (const std::string& note : frame.notes) std::printf("  note: %s\n", note.c_str());
 
     std::vector<gpu::StageTime> stages;
-    for (const sixway::StageTime& t : simulation.stageTimes()) stages.push_back({t.name, t.milliseconds});
+    if (simulation)
+      for (const sixway::StageTime& t : simulation->stageTimes()) stages.push_back({t.name, t.milliseconds});
     stages.insert(stages.end(), frame.stages.begin(), frame.stages.end());
     // Memory in use, for long-run checks: flat from the first frames on, or something leaks.
     const sixway::Device::MemoryUse memory = device.memoryUse();
@@ -170,7 +187,8 @@ void run(const RenderOptions& o) {
 
 void addRenderCommand(CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
-  CLI::App* render = app.add_subcommand("render", "Headless frame capture of a scene's simulation");
+  CLI::App* render =
+      app.add_subcommand("render", "Headless frame capture of a scene's simulation or VDB playback");
   o->common.addTo(*render);
   render->add_option("--scene", o->scene, "Scene JSON")->required();
   render->add_option("--frames", o->frames, "Frames rendered")->required()->check(CLI::Range(1, 100000));

@@ -46,6 +46,7 @@ void prepareOutputs(const SimOptions& o) {
 
 void run(const SimOptions& o) {
   const io::Scene scene = io::loadScene(o.scene);
+  io::requireSimulated(scene, o.scene.string());
   prepareOutputs(o);
   gpu::Context context(o.common.contextOptions());
   gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));

@@ -25,6 +25,7 @@
 #include "render/camera.h"
 #include "render/scene_frame.h"
 #include "runtime/scene_volumes.h"
+#include "sources/scene_volumes.h"
 
 namespace sixway::eval {
 namespace {
@@ -111,17 +112,19 @@ void check(const SceneEvalSettings& s) {
 
 void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s) {
   check(s);
-  const io::Scene scene = evaluatedScene(s);
+  io::Scene scene = evaluatedScene(s);
   io::requireWritable(s.report, s.force);
   if (!s.out.empty()) io::requireWritable(s.out, s.force);
-  // What the renderers see: the obstacles only when asked (the path tracer cannot draw them).
-  io::Scene renderScene = scene;
-  if (!s.drawObstacles) renderScene.obstacles.clear();
   const int stripFrame = s.stripFrame.value_or(s.frames - 1);
 
   gpu::Context context(device);
   gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));
-  runtime::SimulatedVolumes volumes(context, cache, scene, s.frames);
+  const std::unique_ptr<render::VolumeSequence> volumes =
+      sources::openSceneVolumes(context, cache, scene, s.frames, s.scene.string());
+  const auto* simulated = dynamic_cast<const runtime::SimulatedVolumes*>(volumes.get());
+  // What the renderers see: the obstacles only when asked (the path tracer cannot draw them).
+  io::Scene renderScene = scene;
+  if (!s.drawObstacles) renderScene.obstacles.clear();
   FramePipelineOptions options;
   options.weights = s.weights;
   options.shadows = s.shadows;
@@ -154,21 +157,24 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
   nlohmann::json frames = nlohmann::json::array(), equalTime, strip;
   const auto started = std::chrono::steady_clock::now();
   for (int i = 0; i < s.frames; ++i) {
-    const render::Volume volume = volumes.volume(i);
+    const render::Volume volume = volumes->volume(i);
     const double seconds = runtime::SimulatedVolumes::frameSeconds(scene, i);
-    const sim::StepTimes& sim = volumes.frameTimes();
-    const nlohmann::json simStages = {{"obstacles", sim.obstacles},
-                                      {"lbm", sim.lbm},
-                                      {"smoke", sim.smoke},
-                                      {"forces+watchdog", sim.forces + sim.watchdog}};
-    frameStages["simulation"].push_back(simStages);
     // The view's angle away from the first frame's: where the traditional flipbook was baked.
     const render::Camera camera = render::sceneCamera(scene.camera, i);
     const float cosine = std::clamp(glm::dot(camera.forward, firstCamera.forward), -1.0f, 1.0f);
     nlohmann::json frame = {{"frame", i},
                             {"seconds", seconds},
                             {"view_angle_deg", glm::degrees(std::acos(cosine))},
-                            {"stages_ms", {{"simulation", simStages}}}};
+                            {"stages_ms", nlohmann::json::object()}};
+    if (simulated) {  // a played-back VDB scene has no simulation stages
+      const sim::StepTimes& sim = simulated->frameTimes();
+      const nlohmann::json simStages = {{"obstacles", sim.obstacles},
+                                        {"lbm", sim.lbm},
+                                        {"smoke", sim.smoke},
+                                        {"forces+watchdog", sim.forces + sim.watchdog}};
+      frameStages["simulation"].push_back(simStages);
+      frame["stages_ms"]["simulation"] = simStages;
+    }
 
     const auto traced = std::chrono::steady_clock::now();
     const RenderedFrame truth = truthPipeline.render(i, seconds, volume);
@@ -263,6 +269,7 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
       {"density_scale", s.densityScale},
       {"obstacles_drawn", s.drawObstacles},
       {"obstacle_count", scene.obstacles.size()},
+      {"source", sources::describeSource(*volumes)},
       {"shadows", s.drawObstacles && s.shadows},
       {"camera_orbit_deg_per_frame", s.cameraOrbitDeg ? number(*s.cameraOrbitDeg) : nullptr},
       {"methods", kMethods},

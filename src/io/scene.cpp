@@ -8,6 +8,7 @@
 #include <glm/vector_relational.hpp>
 #include <nlohmann/json.hpp>
 
+#include "io/error.h"
 #include "io/file_access.h"
 #include "io/json_reader.h"
 
@@ -59,6 +60,13 @@ const Choices<GuideLight> kGuideLights = {{"front", GuideLight::Front},   {"top"
 // sim/watchdog.h) with a margin; the bound is free fall, which drag and mixing keep the real plume below.
 constexpr double kBuoyantLatticeVelocity = 0.25;
 
+constexpr std::string_view kPlaybackOnly = "the scene plays back vdb files: there is no simulation to set up";
+// The playback lattice's longest axis: the renderers' volumes are at most this many cells a side.
+constexpr int kMaxVdbVoxels = 1024;
+constexpr int kMaxVdbFrames = 100000;
+
+const Choices<VdbUp> kVdbUps = {{"y", VdbUp::Y}, {"z", VdbUp::Z}};
+
 // Steps per frame that bring the fastest inflow down to fluid.max_lattice_velocity and the buoyant plume's
 // speed bound down to kBuoyantLatticeVelocity: lattice speed = speed · (frameDt / steps) / cellSize.
 double stepsForLatticeVelocity(const Scene& s) {
@@ -103,9 +111,13 @@ Grid parseGrid(JsonReader& r) {
   return g;
 }
 
-TimeStepping parseTime(JsonReader& r) {
+TimeStepping parseTime(JsonReader& r, bool playback) {
   TimeStepping t;
   t.frameDt = r.optional<float>("frame_dt", t.frameDt, positive());
+  if (playback) {
+    r.forbid("steps_per_frame", kPlaybackOnly);
+    return t;
+  }
   t.stepsPerFrame = r.optional<int>("steps_per_frame", t.stepsPerFrame, inRange(1, kMaxStepsPerFrame));
   return t;
 }
@@ -286,8 +298,9 @@ Emission parseEmission(JsonReader& r) {
   return e;
 }
 
-Smoke parseSmoke(JsonReader& r) {
+Smoke parseSmoke(JsonReader& r, bool playback) {
   Smoke s;
+  if (playback) r.forbid("dissipation", kPlaybackOnly);
   s.extinction = r.optional<float>("extinction", s.extinction, positive());
   s.albedo = r.optional<float>("albedo", s.albedo, inRange(0, 1));
   s.phaseG = r.optional<float>("phase_g", s.phaseG, inRange(-0.99, 0.99));
@@ -392,23 +405,101 @@ RenderSettings parseRender(JsonReader& r) {
 
 }  // namespace
 
+fs::path existingVdbFile(JsonReader& r, std::string_view key, const fs::path& baseDir,
+                         const std::string& name) {
+  const fs::path file = fs::absolute(baseDir / name).lexically_normal();
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) r.fail(key, "vdb file not found: " + file.string());
+  return file;
+}
+
+// "smoke_%06d.vdb" with frame 12 → "smoke_000012.vdb": exactly one %d, optionally zero-padded to a width.
+std::string expandPattern(JsonReader& r, const std::string& pattern, int frame) {
+  const std::size_t at = pattern.find('%');
+  std::size_t end = at == std::string::npos ? at : at + 1;
+  bool zeros = false;
+  if (end != std::string::npos && end < pattern.size() && pattern[end] == '0') zeros = true, ++end;
+  int width = 0;
+  while (end != std::string::npos && end < pattern.size() &&
+         std::isdigit(static_cast<unsigned char>(pattern[end])))
+    width = std::min(width * 10 + (pattern[end++] - '0'), 32);
+  if (end == std::string::npos || end >= pattern.size() || pattern[end] != 'd' ||
+      pattern.find('%', end) != std::string::npos)
+    r.fail("pattern", "must hold exactly one %d (or %0Nd) for the frame number (got \"" + pattern + "\")");
+  std::string number = std::to_string(frame);
+  if (int(number.size()) < width) number.insert(0, std::size_t(width) - number.size(), zeros ? '0' : ' ');
+  return pattern.substr(0, at) + number + pattern.substr(end + 1);
+}
+
+VdbSource parseVdb(JsonReader& r, const fs::path& baseDir) {
+  VdbSource v;
+  const bool listed = r.has("files"), patterned = r.has("pattern");
+  if (listed == patterned)
+    r.failHere("give either \"files\" (a list) or \"pattern\" with \"first\" and \"last\"");
+  if (listed) {
+    for (std::string_view key : {"first", "last"}) r.forbid(key, "only used with \"pattern\"");
+    const auto names = r.required<std::vector<std::string>>("files");
+    if (names.empty() || names.size() > std::size_t(kMaxVdbFrames))
+      r.fail("files",
+             "needs 1 to " + show(kMaxVdbFrames) + " files (got " + std::to_string(names.size()) + ")");
+    for (const std::string& name : names) v.files.push_back(existingVdbFile(r, "files", baseDir, name));
+  } else {
+    const auto pattern = r.required<std::string>("pattern");
+    const int first = r.required<int>("first", atLeast(0));
+    const int last = r.required<int>("last", inRange(first, first + kMaxVdbFrames - 1));
+    for (int frame = first; frame <= last; ++frame)
+      v.files.push_back(existingVdbFile(r, "pattern", baseDir, expandPattern(r, pattern, frame)));
+  }
+  v.densityGrid = r.optional<std::string>("density_grid", v.densityGrid);
+  v.temperatureGrid = r.maybe<std::string>("temperature_grid");
+  v.densityScale = r.optional<float>("density_scale", v.densityScale, positive());
+  v.framesPerFile = r.optional<int>("frames_per_file", v.framesPerFile, inRange(1, 1000));
+  v.voxels = r.optional<int>("voxels", v.voxels, inRange(8, kMaxVdbVoxels));
+  v.scale = r.optional<float>("scale", v.scale, positive());
+  v.translate = r.optional<glm::vec3>("translate", v.translate);
+  v.up = r.choice("up", kVdbUps, v.up);
+  const auto boxMin = r.maybe<glm::vec3>("box_min"), boxMax = r.maybe<glm::vec3>("box_max");
+  if (boxMin.has_value() != boxMax.has_value())
+    r.fail(boxMin ? "box_max" : "box_min", "box_min and box_max go together");
+  if (boxMin) {
+    if (!glm::all(glm::lessThan(*boxMin, *boxMax))) r.fail("box_max", "must exceed box_min on every axis");
+    v.box = std::pair(*boxMin, *boxMax);
+  }
+  if (v.densityGrid.empty()) r.fail("density_grid", "must name a grid");
+  if (v.temperatureGrid && v.temperatureGrid->empty()) r.fail("temperature_grid", "must name a grid");
+  return v;
+}
+
 Scene parseScene(const nlohmann::json& j, std::string_view sourceName, const fs::path& baseDir) {
   JsonReader r(j, "", sourceName);
   Scene s;
   s.name = r.optional<std::string>("name", fs::path(sourceName).stem().string());
-  s.grid = r.object("grid", parseGrid);
-  s.time = r.object("time", parseTime);
-  s.fluid = r.object("fluid", parseFluid);
-  s.boundaries = r.object("boundaries", parseBoundaries);
-  s.inlets = r.objects("inlets", parseInlet, 0, kMaxSceneInlets);
-  s.obstacles = r.objects(
-      "obstacles", [&baseDir](JsonReader& o) { return parseObstacle(o, baseDir); }, 0, kMaxSceneObstacles);
-  s.smoke = r.object("smoke", parseSmoke);
+  s.vdb = r.optionalObject("vdb", [&baseDir](JsonReader& v) { return parseVdb(v, baseDir); });
+  const bool playback = s.vdb.has_value();
+  if (playback) {
+    // Obstacles would neither move the recorded smoke nor be moved by it: refused rather than half-done.
+    for (std::string_view key : {"grid", "fluid", "boundaries", "inlets", "obstacles"})
+      r.forbid(key, kPlaybackOnly);
+  } else {
+    s.grid = r.object("grid", parseGrid);
+    s.fluid = r.object("fluid", parseFluid);
+    s.boundaries = r.object("boundaries", parseBoundaries);
+    s.inlets = r.objects("inlets", parseInlet, 0, kMaxSceneInlets);
+    s.obstacles = r.objects(
+        "obstacles", [&baseDir](JsonReader& o) { return parseObstacle(o, baseDir); }, 0, kMaxSceneObstacles);
+  }
+  s.time = r.object("time", [playback](JsonReader& t) { return parseTime(t, playback); });
+  s.smoke = r.object("smoke", [playback](JsonReader& m) { return parseSmoke(m, playback); });
   s.camera = r.object("camera", parseCamera);
   s.lights = r.objects("lights", parseLight, 0, kMaxSceneLights);
   s.ambient = r.optionalObject("ambient", parseAmbient);
   s.render = r.object("render", parseRender);
   r.finish();
+  if (playback) {
+    if (s.smoke.emission.intensity > 0 && !s.vdb->temperatureGrid)
+      r.fail("smoke.emission", "needs a temperature: name the grid with vdb.temperature_grid");
+    return s;
+  }
 
   // Checks that need several sections.
   if (s.fluid.reynolds && referenceSpeed(s) <= 0)
@@ -427,6 +518,18 @@ Scene loadScene(const fs::path& file) {
   const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   const fs::path baseDir = file.has_parent_path() ? file.parent_path() : fs::path(".");
   return parseScene(parseJsonText(text, file.string()), file.string(), baseDir);
+}
+
+int sceneFrameCount(const Scene& scene) {
+  if (!scene.vdb) return std::numeric_limits<int>::max();
+  return int(scene.vdb->files.size()) * scene.vdb->framesPerFile;
+}
+
+void requireSimulated(const Scene& scene, std::string_view source) {
+  if (scene.vdb)
+    throw InputError(source,
+                     "the scene plays back vdb files: there is nothing to simulate (render, eval, bake "
+                     "and dataset play it back)");
 }
 
 float referenceSpeed(const Scene& scene) {

@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -226,8 +227,32 @@ struct RenderSettings {
   std::uint32_t seed = 1;
 };
 
+// Which way is up in a VDB file's world: "y" (Houdini, EmberGen) or "z" (Blender).
+enum class VdbUp { Y, Z };
+
+// A scene that plays OpenVDB files back instead of simulating. Frame i is file ⌊i / framesPerFile⌋; the
+// files are resampled onto one lattice of cubic cells that covers every file's active voxels.
+// world = translate + scale · U(p), U = identity (up y) or (x, y, z) → (x, z, −y) (up z: a −90° turn about
+// x).
+struct VdbSource {
+  std::vector<std::filesystem::path> files;  // absolute, each exists
+  std::string densityGrid = "density";
+  std::optional<std::string> temperatureGrid;  // the emission's temperature; none: no emission source
+  float densityScale = 1;                      // multiplies the density grid's values
+  int framesPerFile = 1;
+  int voxels = 128;  // cells along the longest axis of the playback lattice
+  // The world box the lattice covers (min, max); none: the box of the files' active voxels.
+  std::optional<std::pair<glm::vec3, glm::vec3>> box;
+  float scale = 1;
+  glm::vec3 translate{0};
+  VdbUp up = VdbUp::Y;
+};
+
 struct Scene {
   std::string name;
+  // With vdb, grid is the playback lattice, filled in when the files are opened (sources/scene_volumes.h);
+  // fluid, boundaries, inlets and obstacles are empty.
+  std::optional<VdbSource> vdb;
   Grid grid;
   TimeStepping time;
   Fluid fluid;
@@ -245,6 +270,10 @@ struct Scene {
 // Throws InputError for anything the format does not allow.
 Scene parseScene(const nlohmann::json& j, std::string_view sourceName, const std::filesystem::path& baseDir);
 Scene loadScene(const std::filesystem::path& file);
+// Frames a scene can give: unbounded for a simulation, files · frames_per_file for VDB playback.
+int sceneFrameCount(const Scene& scene);
+// Throws InputError naming `source` when the scene plays VDB files back: what simulates refuses it.
+void requireSimulated(const Scene& scene, std::string_view source);
 
 // The speed that fixes the time step and the Reynolds number: the fastest inlet, or the wind when a
 // face is inflow, in m/s.

@@ -10,61 +10,147 @@
 namespace sixway::render {
 namespace {
 
-const std::vector<std::string> kDensity = {"density"};
-const std::vector<std::string> kTemperatureNames = {"temperature", "heat"};
-
 bool usable(const io::VdbGridInfo& grid) {
   return grid.valueType == "float" && !grid.empty;
 }
 
-// The lattice of cubic cells over the union of the world boxes of the grids the sequence reads.
-VolumeGrid unionLattice(const std::vector<std::filesystem::path>& files, int longestAxisCells,
-                        bool withTemperature) {
-  glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
-  for (const auto& file : files) {
-    for (const io::VdbGridInfo& grid : io::readVdbInfo(file).grids) {
-      const bool wanted = grid.name == "density" ||
-                          (withTemperature && std::find(kTemperatureNames.begin(), kTemperatureNames.end(),
-                                                        grid.name) != kTemperatureNames.end());
-      if (!wanted || !usable(grid)) continue;
-      lo = glm::min(lo, grid.worldMin);
-      hi = glm::max(hi, grid.worldMax);
-    }
-  }
-  if (lo.x > hi.x) return {glm::ivec3(1), glm::vec3(0.0f), 1.0f};  // nothing anywhere: every frame is empty
+// U of io::VdbSource: file space to the scene's y-up space, and back.
+glm::vec3 toScene(glm::vec3 p, io::VdbUp up) {
+  return up == io::VdbUp::Z ? glm::vec3(p.x, p.z, -p.y) : p;
+}
+glm::vec3 toFile(glm::vec3 p, io::VdbUp up) {
+  return up == io::VdbUp::Z ? glm::vec3(p.x, -p.z, p.y) : p;
+}
+
+std::vector<std::string> gridNames(const io::VdbSource& source) {
+  std::vector<std::string> names = {source.densityGrid};
+  if (source.temperatureGrid) names.push_back(*source.temperatureGrid);
+  return names;
+}
+
+// Cubic cells over [lo, hi], `cells` along the longest axis; the box grows at its max side to whole cells.
+VolumeGrid cubicLattice(glm::vec3 lo, glm::vec3 hi, int longestAxisCells) {
   const glm::vec3 extent = hi - lo;
   const float cell = std::max({extent.x, extent.y, extent.z}) / float(longestAxisCells);
   const glm::ivec3 cells = glm::max(glm::ivec3(glm::ceil(extent / cell - 1e-4f)), glm::ivec3(1));
   return {cells, lo, cell};
 }
 
+// A lattice of the file's space placed in the scene: the same cells, turned, scaled and moved.
+VolumeGrid inScene(const VolumeGrid& file, const io::VdbSource& source) {
+  const Box box = file.bounds();
+  const glm::vec3 a = toScene(box.min, source.up), b = toScene(box.max, source.up);
+  return {glm::abs(glm::ivec3(toScene(glm::vec3(file.size), source.up))),
+          source.translate + source.scale * glm::min(a, b), source.scale * file.cellSize};
+}
+
+// The playback lattice: over the scene's box when it gives one, else over the union of the world boxes of
+// the grids read (sized in the file's own space, so that turning a file moves its cells exactly).
+VolumeGrid playbackLattice(const io::VdbSource& source, std::vector<std::string>& notes) {
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+  bool anyTemperature = false;
+  for (const auto& file : source.files) {
+    for (const io::VdbGridInfo& grid : io::readVdbInfo(file).grids) {
+      const bool density = grid.name == source.densityGrid;
+      const bool temperature = source.temperatureGrid && grid.name == *source.temperatureGrid;
+      if (!(density || temperature) || !usable(grid)) continue;
+      anyTemperature = anyTemperature || temperature;
+      if (grid.voxelSize.x != grid.voxelSize.y || grid.voxelSize.y != grid.voxelSize.z) {
+        const std::string note = file.filename().string() + ": grid '" + grid.name +
+                                 "' has non-uniform voxels; resampled onto cubic cells";
+        if (std::find(notes.begin(), notes.end(), note) == notes.end()) notes.push_back(note);
+      }
+      lo = glm::min(lo, grid.worldMin);
+      hi = glm::max(hi, grid.worldMax);
+    }
+  }
+  const std::string first = source.files.front().string();
+  if (lo.x > hi.x)
+    throw io::InputError(first, "no file of the vdb sequence has a non-empty float grid '" +
+                                    source.densityGrid + "' (set vdb.density_grid to the density's name)");
+  if (source.temperatureGrid && !anyTemperature)
+    throw io::InputError(first, "no file of the vdb sequence has a non-empty float grid '" +
+                                    *source.temperatureGrid + "' (vdb.temperature_grid)");
+  if (source.box) return cubicLattice(source.box->first, source.box->second, source.voxels);
+  return inScene(cubicLattice(lo, hi, source.voxels), source);
+}
+
+// The grid read on the file's own axes, turned onto the scene's: scene cell (i, j, k) is file cell
+// (i, n_y − 1 − k, j) when z is up.
+std::vector<float> toSceneAxes(const io::DenseGrid& grid, io::VdbUp up, glm::ivec3 cells) {
+  if (up == io::VdbUp::Y) return grid.values;
+  std::vector<float> out(grid.values.size());
+  std::size_t at = 0;
+  for (int k = 0; k < cells.z; ++k)
+    for (int j = 0; j < cells.y; ++j)
+      for (int i = 0; i < cells.x; ++i) out[at++] = grid.at(i, grid.size.y - 1 - k, j);
+  return out;
+}
+
+std::optional<std::string> temperatureGridIn(const std::vector<std::filesystem::path>& files) {
+  for (const char* name : {"temperature", "heat"})
+    for (const auto& file : files)
+      for (const io::VdbGridInfo& grid : io::readVdbInfo(file).grids)
+        if (grid.name == name && usable(grid)) return name;
+  return std::nullopt;
+}
+
+io::VdbSource fileList(std::vector<std::filesystem::path> files, int longestAxisCells, bool withTemperature) {
+  io::VdbSource source;
+  source.temperatureGrid = withTemperature ? temperatureGridIn(files) : std::nullopt;
+  source.files = std::move(files);
+  source.voxels = longestAxisCells;
+  return source;
+}
+
 }  // namespace
+
+VdbSequence::VdbSequence(const gpu::Context& context, io::VdbSource source)
+    : source_(std::move(source)),
+      lattice_(playbackLattice(source_, notes_)),
+      volume_(context, lattice_, source_.temperatureGrid.has_value()) {}
 
 VdbSequence::VdbSequence(const gpu::Context& context, std::vector<std::filesystem::path> files,
                          int longestAxisCells, bool withTemperature)
-    : files_(std::move(files)),
-      withTemperature_(withTemperature),
-      lattice_(unionLattice(files_, longestAxisCells, withTemperature)),
-      volume_(context, lattice_, withTemperature) {}
+    : VdbSequence(context, fileList(std::move(files), longestAxisCells, withTemperature)) {}
+
+bool VdbSequence::load(int frame) {
+  const int fileIndex = frame / source_.framesPerFile;
+  if (fileIndex == loadedFile_) return !loadedEmpty_;
+  // The lattice back in the file's space: the same box, its axes turned back.
+  const Box box = lattice_.bounds();
+  const glm::vec3 a = toFile((box.min - source_.translate) / source_.scale, source_.up);
+  const glm::vec3 b = toFile((box.max - source_.translate) / source_.scale, source_.up);
+  const glm::ivec3 fileCells = glm::abs(glm::ivec3(toFile(glm::vec3(lattice_.size), source_.up)));
+  const std::filesystem::path& path = source_.files[fileIndex];
+  io::VdbDenseGrids read = io::readVdbGrids(path, gridNames(source_),
+                                            io::ExplicitBounds{glm::min(a, b), glm::max(a, b), fileCells});
+  notes_.insert(notes_.end(), read.notes.begin(), read.notes.end());
+  loadedFile_ = fileIndex;
+  const auto density = read.grids.find(source_.densityGrid);
+  loadedEmpty_ = density == read.grids.end();
+  const std::size_t cells = std::size_t(lattice_.size.x) * lattice_.size.y * lattice_.size.z;
+  std::vector<float> rho = loadedEmpty_ ? std::vector<float>(cells, 0.0f)
+                                        : toSceneAxes(density->second, source_.up, lattice_.size);
+  for (float& value : rho) value *= source_.densityScale;
+  std::vector<float> temperature;
+  if (source_.temperatureGrid) {
+    const auto found = read.grids.find(*source_.temperatureGrid);
+    temperature = found == read.grids.end() || loadedEmpty_
+                      ? std::vector<float>(cells, 0.0f)
+                      : toSceneAxes(found->second, source_.up, lattice_.size);
+  }
+  volume_.upload(rho, temperature);
+  return !loadedEmpty_;
+}
 
 std::optional<Volume> VdbSequence::frame(int index) {
-  std::vector<std::string> names = kDensity;
-  if (withTemperature_) names.insert(names.end(), kTemperatureNames.begin(), kTemperatureNames.end());
-  const Box box = lattice_.bounds();
-  io::VdbDenseGrids read =
-      io::readVdbGrids(files_[index], names, io::ExplicitBounds{box.min, box.max, lattice_.size});
-  // A missing temperature or heat grid is expected (a file has one or the other, or neither); the rest is
-  // news.
-  for (const std::string& note : read.notes)
-    if (note.find("no grid '") == std::string::npos || note.find("no grid 'density'") != std::string::npos)
-      notes_.push_back(note);
-  const auto density = read.grids.find("density");
-  if (density == read.grids.end()) return std::nullopt;
-  const io::DenseGrid* temperature = nullptr;
-  for (const std::string& name : kTemperatureNames)
-    if (!temperature && read.grids.count(name)) temperature = &read.grids.at(name);
-  volume_.upload(density->second.values,
-                 temperature ? std::span<const float>(temperature->values) : std::span<const float>());
+  if (!load(index)) return std::nullopt;
+  return volume_.view();
+}
+
+Volume VdbSequence::volume(int index) {
+  load(index);
   return volume_.view();
 }
 

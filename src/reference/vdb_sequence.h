@@ -1,11 +1,13 @@
 #pragma once
-// A sequence of OpenVDB files, one frame each, resampled onto one lattice of cubic cells that covers the
-// active voxels of every file (so that non-uniform voxel sizes and transforms are honoured, and every frame
-// shares the same buffers). Files whose density grid is missing or empty are empty frames.
+// A sequence of OpenVDB files resampled onto one lattice of cubic cells that covers the active voxels of
+// every file (so that non-uniform voxel sizes and transforms are honoured, and every frame shares the same
+// buffers), placed in the world by the scene's transform (io::VdbSource). Files whose density grid is
+// missing or empty are empty frames.
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "io/scene.h"
 #include "render/volume.h"
 #include "render/volume_sequence.h"
 
@@ -18,26 +20,36 @@ namespace sixway::render {
 class VdbSequence : public VolumeSequence {
  public:
   // Reads every file's grid list up front (so a missing or corrupt file fails before any work) and sizes the
-  // lattice: `longestAxisCells` cells along the longest axis of the union of the grids' world boxes. With
-  // `withTemperature`, a float grid named "temperature" (else "heat") becomes the temperature.
+  // lattice: source.voxels cells along the longest axis of the union of the grids' world boxes. Throws
+  // InputError when no file has a usable density grid, or when the temperature grid is named but in no file.
+  VdbSequence(const gpu::Context& context, io::VdbSource source);
+  // `sixway bake --vdb`: files as given, one frame each; with `withTemperature`, a float grid named
+  // "temperature" (else "heat") becomes the temperature.
   VdbSequence(const gpu::Context& context, std::vector<std::filesystem::path> files, int longestAxisCells,
               bool withTemperature);
 
-  int frameCount() const override { return int(files_.size()); }
+  int frameCount() const override { return int(source_.files.size()) * source_.framesPerFile; }
   std::optional<Volume> frame(int index) override;
+  Volume volume(int index) override;
   Box bounds() const override { return lattice_.bounds(); }
-  std::string frameName(int index) const override { return files_[index].filename().string(); }
+  std::string frameName(int index) const override { return file(index).filename().string(); }
 
   const VolumeGrid& lattice() const { return lattice_; }
-  // What the reader skipped so far ("<file>: grid 'obstacles' is int32, not float: skipped").
+  const io::VdbSource& source() const { return source_; }
+  const std::filesystem::path& file(int frame) const { return source_.files[frame / source_.framesPerFile]; }
+  // What the reader skipped or changed so far ("<file>: grid 'obstacles' is int32, not float: skipped").
   const std::vector<std::string>& notes() const { return notes_; }
 
  private:
-  std::vector<std::filesystem::path> files_;
-  bool withTemperature_;
+  // Reads the file of `frame` into the buffers unless it is there already; false for an empty frame.
+  bool load(int frame);
+
+  io::VdbSource source_;
+  std::vector<std::string> notes_;  // before lattice_: sizing the lattice adds notes
   VolumeGrid lattice_;
   DeviceVolume volume_;
-  std::vector<std::string> notes_;
+  int loadedFile_ = -1;
+  bool loadedEmpty_ = true;
 };
 
 }  // namespace sixway::render

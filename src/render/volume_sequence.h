@@ -18,6 +18,8 @@ class VolumeSequence {
   // Indices come in increasing order, not necessarily consecutive; the volume's buffers need to stay valid
   // only until the next call.
   virtual std::optional<Volume> frame(int index) = 0;
+  // The volume of frame `index` even when it holds no smoke (then all zero); the same order rule.
+  virtual Volume volume(int index) = 0;
   // A box that holds every frame's volume: it places the default camera and the billboard.
   virtual Box bounds() const = 0;
   // Says what frame `index` is (a file name, a simulated time), for progress lines and the sidecar.

@@ -30,7 +30,7 @@ class SimulatedVolumes : public render::VolumeSequence {
   std::string frameName(int index) const override;
 
   // The volume of frame `index` even when it is empty; indices in increasing order.
-  render::Volume volume(int index);
+  render::Volume volume(int index) override;
   // Records the next frame's simulation and the smoke's export into the volume into `commands`, a caller's
   // command buffer, as frame `frame`; nothing waits (sim::Simulation::record).
   void recordFrame(VkCommandBuffer commands, uint64_t frame);

@@ -21,8 +21,19 @@ void SmokeSimulation::Impl::start() {
   ++starts;
 }
 
+namespace {
+
+// The runtime simulates; a scene that plays VDB files back is refused naming its file.
+io::Scene simulatedScene(const std::filesystem::path& file) {
+  io::Scene scene = io::loadScene(file);
+  io::requireSimulated(scene, file.string());
+  return scene;
+}
+
+}  // namespace
+
 SmokeSimulation::SmokeSimulation(Device& device, const std::filesystem::path& scene)
-    : impl_(std::make_unique<Impl>(device.impl(), io::loadScene(scene))) {}
+    : impl_(std::make_unique<Impl>(device.impl(), simulatedScene(scene))) {}
 
 SmokeSimulation::~SmokeSimulation() = default;
 

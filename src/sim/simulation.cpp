@@ -12,9 +12,17 @@
 #include "sim/watchdog.h"
 
 namespace sixway::sim {
+namespace {
+
+const io::Scene& simulated(const io::Scene& scene) {
+  io::requireSimulated(scene, scene.name);
+  return scene;
+}
+
+}  // namespace
 
 Simulation::Simulation(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene)
-    : context_(&context), scene_(scene), units_(latticeUnits(scene)) {
+    : context_(&context), scene_(simulated(scene)), units_(latticeUnits(scene)) {
   obstacles_ = std::make_unique<ObstacleSet>(context, cache, scene, units_);
   lbm_ = std::make_unique<LbmSolver>(context, cache, lbmSettings(scene, units_));
   SmokeSettings smoke;

@@ -5,6 +5,7 @@
 #include <functional>
 #include <numbers>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -241,6 +242,114 @@ TEST(SceneTest, MeshPathIsResolvedAgainstTheSceneFile) {
   EXPECT_TRUE(mesh.file.is_absolute());
   EXPECT_FLOAT_EQ(mesh.scale, 2);
   expectVec(mesh.rotateDeg, {0, 90, 0});
+}
+
+// A scene that plays back three files written into `dir`/vdb (empty: existence is all the parser checks).
+json vdbScene(const fs::path& dir) {
+  for (int i = 1; i <= 3; ++i) writeFile(dir / "vdb" / ("smoke_00" + std::to_string(i) + ".vdb"), "");
+  return R"({
+    "vdb": {"pattern": "vdb/smoke_%03d.vdb", "first": 1, "last": 3},
+    "camera": {"position": [0, 1, 3], "target": [0, 1, 0]}
+  })"_json;
+}
+
+TEST(SceneTest, VdbSceneReadsFilesAndDefaults) {
+  TempDir dir;
+  json j = vdbScene(dir.path());
+  j["smoke"] = {
+      {"emission",
+       {{"intensity", 2.0},
+        {"ramp", {{{"temperature", 0}, {"color", {0, 0, 0}}}, {{"temperature", 1}, {"color", {1, 1, 1}}}}}}}};
+  j["vdb"].update(R"({"temperature_grid": "heat", "density_scale": 0.5, "frames_per_file": 4, "voxels": 64,
+                      "scale": 0.01, "translate": [1, 2, 3], "up": "z",
+                      "box_min": [-1, 0, -1], "box_max": [1, 2, 1]})"_json);
+  const Scene s = parseScene(j, "v.json", dir.path());
+  ASSERT_TRUE(s.vdb);
+  ASSERT_EQ(s.vdb->files.size(), 3u);
+  EXPECT_EQ(s.vdb->files[1], fs::absolute(dir / "vdb" / "smoke_002.vdb").lexically_normal());
+  EXPECT_EQ(s.vdb->densityGrid, "density");
+  EXPECT_EQ(s.vdb->temperatureGrid, "heat");
+  EXPECT_FLOAT_EQ(s.vdb->densityScale, 0.5f);
+  EXPECT_EQ(s.vdb->framesPerFile, 4);
+  EXPECT_EQ(s.vdb->voxels, 64);
+  EXPECT_FLOAT_EQ(s.vdb->scale, 0.01f);
+  expectVec(s.vdb->translate, {1, 2, 3});
+  EXPECT_EQ(s.vdb->up, VdbUp::Z);
+  ASSERT_TRUE(s.vdb->box);
+  expectVec(s.vdb->box->second, {1, 2, 1});
+  EXPECT_EQ(sceneFrameCount(s), 12);
+  EXPECT_TRUE(s.inlets.empty());
+  EXPECT_THAT(errorOf([&] { requireSimulated(s, "v.json"); }),
+              ::testing::HasSubstr("v.json: the scene plays back vdb files"));
+
+  j.erase("smoke");  // emission needs the temperature grid the list below leaves out
+  j["vdb"] = {{"files", {"vdb/smoke_003.vdb", "vdb/smoke_001.vdb"}}};
+  const Scene listed = parseScene(j, "v.json", dir.path());
+  EXPECT_EQ(listed.vdb->files[0].filename(), "smoke_003.vdb");
+  EXPECT_EQ(listed.vdb->up, VdbUp::Y);
+  EXPECT_FALSE(listed.vdb->box);
+  EXPECT_EQ(sceneFrameCount(listed), 2);
+}
+
+TEST(SceneParse, VdbSceneRefusesWhatOnlySimulationUses) {
+  TempDir dir;
+  const json base = vdbScene(dir.path());
+  for (const char* key : {"grid", "fluid", "boundaries", "inlets", "obstacles"}) {
+    json j = base;
+    j[key] = json::object();
+    EXPECT_TRUE(rejected(j, key, "plays back vdb files", dir.path())) << key;
+  }
+  json j = base;
+  j["time"] = {{"steps_per_frame", 4}};
+  EXPECT_TRUE(rejected(j, "time.steps_per_frame", "plays back vdb files", dir.path()));
+  j = base;
+  j["smoke"] = {{"dissipation", 0.1}};
+  EXPECT_TRUE(rejected(j, "smoke.dissipation", "plays back vdb files", dir.path()));
+  j = base;
+  j["smoke"] = {
+      {"emission",
+       {{"intensity", 1.0},
+        {"ramp", {{{"temperature", 0}, {"color", {0, 0, 0}}}, {{"temperature", 1}, {"color", {1, 1, 1}}}}}}}};
+  EXPECT_TRUE(rejected(j, "smoke.emission", "name the grid with vdb.temperature_grid", dir.path()));
+}
+
+TEST(SceneParse, BadVdbSections) {
+  TempDir dir;
+  const json base = vdbScene(dir.path());
+  auto with = [&](const json& vdb) {
+    json j = base;
+    j["vdb"] = vdb;
+    return j;
+  };
+  EXPECT_TRUE(rejected(with(json::object()), "vdb", "give either \"files\"", dir.path()));
+  EXPECT_TRUE(
+      rejected(with({{"files", {"a.vdb"}}, {"pattern", "b_%d.vdb"}}), "vdb", "give either", dir.path()));
+  EXPECT_TRUE(rejected(with({{"files", json::array()}}), "vdb.files", "needs 1 to", dir.path()));
+  const fs::path missing = fs::absolute(dir / "vdb" / "smoke_004.vdb").lexically_normal();
+  EXPECT_TRUE(rejected(with({{"pattern", "vdb/smoke_%03d.vdb"}, {"first", 2}, {"last", 4}}), "vdb.pattern",
+                       "vdb file not found: " + missing.string(), dir.path()));
+  EXPECT_TRUE(rejected(with({{"files", {"vdb/none.vdb"}}}), "vdb.files", "vdb file not found", dir.path()));
+  EXPECT_TRUE(rejected(with({{"pattern", "vdb/smoke_001.vdb"}, {"first", 1}, {"last", 1}}), "vdb.pattern",
+                       "exactly one %d", dir.path()));
+  EXPECT_TRUE(rejected(with({{"pattern", "vdb/%d_%d.vdb"}, {"first", 1}, {"last", 1}}), "vdb.pattern",
+                       "exactly one %d", dir.path()));
+  EXPECT_TRUE(rejected(with({{"pattern", "vdb/smoke_%03d.vdb"}, {"first", 3}, {"last", 1}}), "vdb.last",
+                       "must be in", dir.path()));
+  EXPECT_TRUE(rejected(with({{"files", {"vdb/smoke_001.vdb"}}, {"first", 1}}), "vdb.first",
+                       "only used with \"pattern\"", dir.path()));
+  EXPECT_TRUE(rejected(with({{"files", {"vdb/smoke_001.vdb"}}, {"up", "x"}}), "vdb.up", "must be one of",
+                       dir.path()));
+  EXPECT_TRUE(rejected(with({{"files", {"vdb/smoke_001.vdb"}}, {"density_scale", 0}}), "vdb.density_scale",
+                       "must be > 0", dir.path()));
+  EXPECT_TRUE(rejected(with({{"files", {"vdb/smoke_001.vdb"}}, {"voxels", 4096}}), "vdb.voxels", "must be in",
+                       dir.path()));
+  EXPECT_TRUE(rejected(with({{"files", {"vdb/smoke_001.vdb"}}, {"density_grid", ""}}), "vdb.density_grid",
+                       "must name a grid", dir.path()));
+  EXPECT_TRUE(rejected(with({{"files", {"vdb/smoke_001.vdb"}}, {"box_min", {0, 0, 0}}}), "vdb.box_max",
+                       "go together", dir.path()));
+  EXPECT_TRUE(
+      rejected(with({{"files", {"vdb/smoke_001.vdb"}}, {"box_min", {0, 0, 0}}, {"box_max", {1, 0, 1}}}),
+               "vdb.box_max", "must exceed box_min", dir.path()));
 }
 
 // --- one test per kind of error -------------------------------------------------------------------
