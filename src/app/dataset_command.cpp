@@ -39,10 +39,11 @@ nlohmann::json datasetIndex(const dataset::DatasetConfig& config) {
   for (const dataset::DatasetCamera& c : dataset::datasetCameras(config, render::domainBox(first.scene.grid)))
     cameras.push_back(
         {{"camera", c.index}, {"azimuth_deg", c.azimuthDeg}, {"elevation_deg", c.elevationDeg}});
-  for (int s = 0; s < config.sequences; ++s) shards.push_back(dataset::shardFileName(s));
+  for (int s = 0; s < config.sequenceCount(); ++s) shards.push_back(dataset::shardFileName(s));
   return {{"version", 1},
           {"config", config.json},
-          {"sequences", config.sequences},
+          {"sequences", config.sequenceCount()},
+          {"vdb_sequences", config.vdbScenes.size()},
           {"lightmap_size", config.lightmapSize},
           {"cameras", cameras},
           {"heldout", {{"sequences", config.heldoutSequences}, {"cameras", config.heldoutCameras}}},
@@ -86,7 +87,7 @@ void run(const DatasetOptions& o) {
   if (!o.force && fs::exists(indexFile) && indexConfig(indexFile) != config.json) otherConfig(indexFile);
   std::vector<dataset::SequencePlan> plans;
   int kept = 0;
-  for (int s = 0; s < config.sequences; ++s) {
+  for (int s = 0; s < config.sequenceCount(); ++s) {
     if (!selection.contains(s)) continue;
     dataset::SequencePlan plan = dataset::planSequence(config, s);
     const fs::path file = o.out / dataset::shardFileName(s);
@@ -107,9 +108,9 @@ void run(const DatasetOptions& o) {
   std::printf(
       "sixway dataset: %s, sequences %d..%d step %d of %d: %zu to make, %d already made; %d cameras, "
       "%d samples per camera, %d² lightmaps, on %s\n",
-      o.config.string().c_str(), selection.index, config.sequences - 1, selection.count, config.sequences,
-      plans.size(), kept, config.cameraCount(), config.frames.count, config.lightmapSize,
-      context.properties().deviceName);
+      o.config.string().c_str(), selection.index, config.sequenceCount() - 1, selection.count,
+      config.sequenceCount(), plans.size(), kept, config.cameraCount(), config.frames.count,
+      config.lightmapSize, context.properties().deviceName);
   std::fflush(stdout);
 
   DatasetProgress progress(int(plans.size()), totalFrames);

@@ -422,9 +422,24 @@ DatasetConfig parseDatasetConfig(const nlohmann::json& j, const fs::path& file) 
                                io::show(std::round(shardBytes / (1 << 30) * 10) / 10) +
                                " GiB, more than 4 GiB; reduce frames.count, the cameras or lightmap_size "
                                "(more sequences hold more samples)");
+  for (const std::string& name : r.optional<std::vector<std::string>>("vdb_scenes", {})) {
+    const fs::path scene = resolve(dir, name);
+    if (!fs::is_regular_file(scene)) r.fail("vdb_scenes", "no such file '" + scene.string() + "'");
+    const std::vector<uint8_t> text = io::readFileBytes(scene);
+    nlohmann::json json = io::parseJsonText(
+        std::string_view(reinterpret_cast<const char*>(text.data()), text.size()), scene.string());
+    const io::Scene parsed = io::parseScene(json, scene.string(), folderOf(scene));
+    if (!parsed.vdb) r.fail("vdb_scenes", "'" + scene.string() + "' has no vdb section: it simulates");
+    const int needed = int(c.frames.warmup.max) + (c.frames.count - 1) * c.frames.stride + 1;
+    if (needed > io::sceneFrameCount(parsed))
+      r.fail("vdb_scenes", "'" + scene.string() + "' has " + std::to_string(io::sceneFrameCount(parsed)) +
+                               " frames; frames.warmup, count and stride need " + std::to_string(needed));
+    c.vdbScenes.push_back(scene);
+    c.vdbSceneJsons.push_back(std::move(json));
+  }
   r.object("heldout", [&](io::JsonReader& h) {
     c.heldoutSequences =
-        h.optional<IndexList>("sequences", {}, indicesBelow(c.sequences, "sequences")).values;
+        h.optional<IndexList>("sequences", {}, indicesBelow(c.sequenceCount(), "sequences")).values;
     c.heldoutCameras = h.optional<IndexList>("cameras", {}, indicesBelow(c.cameraCount(), "cameras")).values;
     return 0;
   });
@@ -454,7 +469,59 @@ DatasetConfig loadDatasetConfig(const fs::path& file) {
       file);
 }
 
+namespace {
+
+void varySmoke(nlohmann::json& scene, const DatasetVariations& v, const Draws& s) {
+  if (v.extinction) scene["smoke"]["extinction"] = tidy(v.extinction->at(uniform(s, kExtinction)));
+  if (v.albedo) scene["smoke"]["albedo"] = tidy(v.albedo->at(uniform(s, kAlbedo)));
+}
+
+// The first sampled frame is drawn from frames.warmup, the rest follow every stride frames.
+std::vector<int> sampledFrames(const DatasetConfig& c, const Draws& s) {
+  const int warmup = std::min(
+      int(c.frames.warmup.max),
+      int(c.frames.warmup.min) + int(uniform(s, kWarmup) * (c.frames.warmup.max - c.frames.warmup.min + 1)));
+  std::vector<int> frames;
+  for (int k = 0; k < c.frames.count; ++k) frames.push_back(warmup + k * c.frames.stride);
+  return frames;
+}
+
+std::string sequenceSuffix(int sequence) {
+  char suffix[16];
+  std::snprintf(suffix, sizeof(suffix), "_%05d", sequence);
+  return suffix;
+}
+
+// Sequence `sequence` ≥ c.sequences: a VDB scene played back, its files listed with absolute paths so that
+// the plan's scene loads from any folder. Only the smoke's variations apply: there is no inlet or flow.
+SequencePlan planVdbSequence(const DatasetConfig& c, int sequence, int attempt) {
+  const Draws s{c.seed, sequence, attempt};
+  const std::size_t i = std::size_t(sequence - c.sequences);
+  const io::Scene played =
+      io::parseScene(c.vdbSceneJsons[i], c.vdbScenes[i].string(), folderOf(c.vdbScenes[i]));
+  SequencePlan plan;
+  plan.sequence = sequence;
+  plan.attempt = attempt;
+  plan.obstacle = "none";
+  nlohmann::json& j = plan.sceneJson;
+  j = c.vdbSceneJsons[i];
+  j["name"] = played.name + sequenceSuffix(sequence);
+  for (const char* key : {"pattern", "first", "last"}) j["vdb"].erase(key);
+  j["vdb"]["files"] = nlohmann::json::array();
+  for (const fs::path& file : played.vdb->files) j["vdb"]["files"].push_back(file.string());
+  j["render"]["lightmap_size"] = c.lightmapSize;
+  j["render"]["seed"] = uint32_t(hashOf(s, kSceneSeed));
+  varySmoke(j, c.variations, s);
+  plan.frames = sampledFrames(c, s);
+  plan.scene =
+      io::parseScene(j, c.file.string() + " (sequence " + std::to_string(sequence) + ")", folderOf(c.file));
+  return plan;
+}
+
+}  // namespace
+
 SequencePlan planSequence(const DatasetConfig& c, int sequence, int attempt) {
+  if (sequence >= c.sequences) return planVdbSequence(c, sequence, attempt);
   const Draws s{c.seed, sequence, attempt};
   const fs::path configDir = folderOf(c.file);
   const io::Scene base = io::parseScene(c.baseSceneJson, c.baseScene.string(), folderOf(c.baseScene));
@@ -463,9 +530,7 @@ SequencePlan planSequence(const DatasetConfig& c, int sequence, int attempt) {
   plan.attempt = attempt;
   nlohmann::json& j = plan.sceneJson;
   j = c.baseSceneJson;
-  char suffix[16];
-  std::snprintf(suffix, sizeof(suffix), "_%05d", sequence);
-  j["name"] = base.name + suffix;
+  j["name"] = base.name + sequenceSuffix(sequence);
 
   const io::Grid grid = effectiveGrid(c, base.grid);
   j["grid"]["size"] = {grid.size.x, grid.size.y, grid.size.z};
@@ -492,8 +557,7 @@ SequencePlan planSequence(const DatasetConfig& c, int sequence, int attempt) {
     inlet["center"] = tidy(inletCentre);
   }
   if (v.buoyancy) j["fluid"]["buoyancy"]["temperature"] = tidy(v.buoyancy->at(uniform(s, kBuoyancy)));
-  if (v.extinction) j["smoke"]["extinction"] = tidy(v.extinction->at(uniform(s, kExtinction)));
-  if (v.albedo) j["smoke"]["albedo"] = tidy(v.albedo->at(uniform(s, kAlbedo)));
+  varySmoke(j, v, s);
 
   if (c.obstacles) {
     const ObstacleChoice choice = c.obstacles->choices[size_t(sequence) % c.obstacles->choices.size()];
@@ -509,10 +573,7 @@ SequencePlan planSequence(const DatasetConfig& c, int sequence, int attempt) {
           o["file"] = rebase(o["file"].get<std::string>(), folderOf(c.baseScene), configDir);
   }
 
-  const int warmup = std::min(
-      int(c.frames.warmup.max),
-      int(c.frames.warmup.min) + int(uniform(s, kWarmup) * (c.frames.warmup.max - c.frames.warmup.min + 1)));
-  for (int k = 0; k < c.frames.count; ++k) plan.frames.push_back(warmup + k * c.frames.stride);
+  plan.frames = sampledFrames(c, s);
 
   plan.scene = io::parseScene(j, c.file.string() + " (sequence " + std::to_string(sequence) + ")", configDir);
   return plan;

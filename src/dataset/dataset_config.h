@@ -88,8 +88,14 @@ struct DatasetConfig {
   std::vector<int> heldoutSequences, heldoutCameras;
   DatasetVariations variations;
   std::optional<DatasetObstacles> obstacles;  // none: the base scene's obstacles
+  // "vdb_scenes": scenes that play OpenVDB files back (resolved against the config's folder, with their
+  // content). They are the sequences after the simulated ones: sequence `sequences + i` plays vdbScenes[i],
+  // with the config's cameras, frames, lightmap size and smoke variations, and no motion field.
+  std::vector<std::filesystem::path> vdbScenes;
+  std::vector<nlohmann::json> vdbSceneJsons;
 
   int cameraCount() const { return int(cameras.azimuthsDeg.size() * cameras.elevationsDeg.size()); }
+  int sequenceCount() const { return sequences + int(vdbScenes.size()); }
 };
 
 // `file` names the config in errors and anchors its relative paths. Reads and checks the base scene too.

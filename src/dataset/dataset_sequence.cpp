@@ -13,6 +13,7 @@
 #include "render/guiding_map.h"
 #include "render/projection.h"
 #include "runtime/scene_volumes.h"
+#include "sources/scene_volumes.h"
 
 namespace sixway::dataset {
 namespace {
@@ -74,11 +75,14 @@ nlohmann::json vec(glm::vec3 v) {
 DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCache& cache,
                               const DatasetConfig& config, const SequencePlan& plan,
                               const FrameProgress& progress) {
-  const io::Scene& scene = plan.scene;
+  io::Scene scene = plan.scene;
   const int size = config.lightmapSize;
   const int lastFrame = plan.frames.back();
-  runtime::SimulatedVolumes volumes(context, cache, scene, lastFrame + 1);
-  const render::Box box = volumes.bounds();
+  const std::unique_ptr<render::VolumeSequence> volumes =
+      sources::openSceneVolumes(context, cache, scene, lastFrame + 1, config.file.string());
+  // A played-back VDB scene has no velocity: its samples get no motion field (zero, "motion": false).
+  const auto* simulated = dynamic_cast<const runtime::SimulatedVolumes*>(volumes.get());
+  const render::Box box = volumes->bounds();
   const std::vector<DatasetCamera> cameras = datasetCameras(config, box);
   const int samplesPerCamera = int(plan.frames.size());
   const int samples = int(cameras.size()) * samplesPerCamera;
@@ -91,8 +95,10 @@ DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCa
   bake.width = bake.height = size;
   // The smoke travels over the interval between two samples: stride frames of steps, at the lattice velocity
   // (cells per step) the simulation's macro buffer holds.
-  const sim::LatticeUnits& units = volumes.simulation().units();
-  const float metresPerVelocityUnit = units.cellSize * float(units.stepsPerFrame * config.frames.stride);
+  const float metresPerVelocityUnit =
+      simulated ? simulated->simulation().units().cellSize *
+                      float(simulated->simulation().units().stepsPerFrame * config.frames.stride)
+                : 0.0f;
   const render::VolumeGrid velocityGrid{scene.grid.size, scene.grid.origin, scene.grid.cellSize};
 
   PlanarTensor guides("guide", samples, kGuideChannels, size),
@@ -103,11 +109,11 @@ DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCa
   bool recorded = false;
   size_t next = 0;  // the next sampled frame
   for (int frame = 0; frame <= lastFrame; ++frame) {
-    const render::Volume volume = volumes.volume(frame);
+    const render::Volume volume = volumes->volume(frame);
     if (frame == plan.frames[next]) {
       if (!recorded) {  // the volume's buffers stay the same from frame to frame
         guiding.record(realtime, volume, guide);
-        motion.record(realtime, guide, volumes.simulation().lbm().macro(), velocityGrid);
+        if (simulated) motion.record(realtime, guide, simulated->simulation().lbm().macro(), velocityGrid);
         realtime.finish();
         recorded = true;
       }
@@ -115,7 +121,7 @@ DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCa
         const render::ImagePlane billboard = render::billboardBounds(c.camera, box, 1.0f);
         const render::DepthRange shellRange = render::boxDepthRange(c.camera, box);
         guiding.update(c.camera, billboard, shellRange, scene.smoke, uint32_t(frame));
-        motion.update(c.camera, billboard, shellRange, metresPerVelocityUnit);
+        if (simulated) motion.update(c.camera, billboard, shellRange, metresPerVelocityUnit);
         realtime.submit();
         const int sample = c.index * samplesPerCamera + int(next);
         guides.set(sample, downloadHalfTexels(guide), 4);
@@ -135,7 +141,7 @@ DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCa
               kTargetChannels);
         }
         // The first sample of a camera has no previous one to move from.
-        if (next > 0) motions.set(sample, motion.download().pixels, kMotionChannels);
+        if (next > 0 && simulated) motions.set(sample, motion.download().pixels, kMotionChannels);
       }
       ++next;
     }
@@ -179,7 +185,8 @@ DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCa
       {"version", singleOnly ? 1 : 2},  {"targets", targetNames},    {"sequence", plan.sequence},
       {"attempt", plan.attempt},        {"lightmap_size", size},     {"config", config.json},
       {"scene", plan.sceneJson},        {"obstacle", plan.obstacle}, {"frame_dt", scene.time.frameDt},
-      {"stride", config.frames.stride}, {"cameras", cameraJson},     {"samples", sampleJson}};
+      {"stride", config.frames.stride}, {"cameras", cameraJson},     {"samples", sampleJson},
+      {"motion", simulated != nullptr}};
   return shard;
 }
 

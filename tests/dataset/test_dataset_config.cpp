@@ -60,6 +60,41 @@ class DatasetConfigTest : public ::testing::Test {
   TempDir dir_;
 };
 
+// "vdb_scenes": played-back sequences follow the simulated ones; a simulating scene, or one too short for the
+// sampled frames, is refused; the held-out rule may name them.
+TEST_F(DatasetConfigTest, VdbScenesAreSequencesAfterTheSimulatedOnes) {
+  const std::string vdbScene = SIXWAY_TEST_DATA_DIR "/scenes/vdb_blender.json";
+  nlohmann::json j = validConfig();
+  j["frames"] = {{"warmup", 2}, {"count", 2}, {"stride", 2}};
+  j["vdb_scenes"] = {vdbScene};
+  j["heldout"]["sequences"] = {j["sequences"].get<int>()};
+  const dataset::DatasetConfig c = dataset::loadDatasetConfig(write(j));
+  ASSERT_EQ(c.sequenceCount(), c.sequences + 1);
+  const dataset::SequencePlan plan = dataset::planSequence(c, c.sequences);
+  ASSERT_TRUE(plan.scene.vdb);
+  EXPECT_EQ(plan.scene.vdb->files.size(), 3u);
+  EXPECT_TRUE(plan.scene.vdb->files[0].is_absolute());
+  EXPECT_EQ(plan.frames, (std::vector<int>{2, 4}));
+  EXPECT_EQ(plan.obstacle, "none");
+  EXPECT_EQ(plan.scene.render.lightmapSize, c.lightmapSize);
+  EXPECT_GE(plan.scene.smoke.extinction, 10.0f);
+  EXPECT_LE(plan.scene.smoke.extinction, 40.0f);
+  EXPECT_EQ(dataset::sampleSplit(c, c.sequences, 0), "heldout_sequence");
+
+  j["frames"]["count"] = 3;
+  EXPECT_THAT(error(j),
+              namesFileAndProblem(dir_ / "config.json", "vdb_scenes: '" + vdbScene +
+                                                            "' has 6 frames; frames.warmup, count and "
+                                                            "stride need 7"));
+  j["frames"]["count"] = 2;
+  j["vdb_scenes"] = {(kAssets / "scenes" / "plume.json").string()};
+  EXPECT_THAT(error(j), namesFileAndProblem(dir_ / "config.json",
+                                            "vdb_scenes: '" + (kAssets / "scenes" / "plume.json").string() +
+                                                "' has no vdb section"));
+  j["vdb_scenes"] = {"none.json"};
+  EXPECT_THAT(error(j), namesFileAndProblem(dir_ / "config.json", "vdb_scenes: no such file"));
+}
+
 TEST_F(DatasetConfigTest, UnknownKeyNamesFileAndKey) {
   nlohmann::json j = validConfig();
   j["frames"]["strde"] = 1;

@@ -17,6 +17,7 @@
 #include "gpu/sequence.h"
 #include "io/safetensors.h"
 #include "reference/lightmap_baker.h"
+#include "reference/vdb_sequence.h"
 #include "render/billboard.h"
 #include "render/guiding_map.h"
 #include "render/obstacle_meshes.h"
@@ -202,6 +203,57 @@ TEST_F(DatasetEndToEnd, BothTargetsHoldSingleAndMultipleScattering) {
   const size_t sample = 8 * plane;
   EXPECT_NE(std::vector<float>(multiple.begin(), multiple.begin() + sample),
             std::vector<float>(multiple.begin() + sample, multiple.begin() + 2 * sample));
+}
+
+// A played-back VDB sequence in the mix: its shard's guide and targets are the direct renders of the VDB
+// frames from the config's cameras around the files' box, and it has no motion ("motion": false, zeros).
+TEST_F(DatasetEndToEnd, VdbSequencesPlayBackWithoutMotion) {
+  nlohmann::json json = dataset::loadDatasetConfig(kTinyConfig).json;
+  json["frames"] = {{"warmup", 2}, {"count", 2}, {"stride", 2}};
+  json["vdb_scenes"] = {SIXWAY_TEST_DATA_DIR "/scenes/vdb_blender.json"};
+  const dataset::DatasetConfig config = dataset::parseDatasetConfig(json, kTinyConfig);
+  const dataset::SequencePlan plan = dataset::planSequence(config, config.sequences);
+  const dataset::DatasetShard shard = dataset::generateSequence(context(), pipelineCache(), config, plan);
+  EXPECT_EQ(shard.metadata["motion"], false);
+  EXPECT_EQ(shard.metadata["obstacle"], "none");
+  const int size = config.lightmapSize, count = config.frames.count;
+  for (float m : shard.tensors[2].toFloat()) ASSERT_EQ(m, 0.0f) << "no motion field";
+
+  io::Scene scene = io::parseScene(shard.metadata["scene"], "shard scene", "/");
+  render::VdbSequence volumes(context(), *scene.vdb);
+  const render::Box box = volumes.bounds();
+  render::GuidingMap guiding(context(), pipelineCache(), render::GuideSettings::fromScene(scene));
+  gpu::Image guideImage(context(), guiding.imageDesc());
+  render::LightmapBaker baker(context(), pipelineCache());
+  render::BakeSettings bake;
+  bake.width = bake.height = size;
+  std::unique_ptr<gpu::Sequence> guideSequence;
+  double alpha = 0;
+  for (int k = 0; k < count; ++k) {
+    const render::Volume volume = volumes.volume(plan.frames[k]);
+    if (!guideSequence) {
+      guideSequence = std::make_unique<gpu::Sequence>(context());
+      guiding.record(*guideSequence, volume, guideImage);
+      guideSequence->finish();
+    }
+    for (int c = 0; c < config.cameraCount(); ++c) {
+      SCOPED_TRACE("camera " + std::to_string(c) + ", frame " + std::to_string(plan.frames[k]));
+      const render::Camera camera = expectedCamera(
+          box, config.cameras.azimuthsDeg[c % 2], config.cameras.elevationsDeg[c / 2], config.cameras.fovDeg);
+      const render::ImagePlane billboard = render::billboardBounds(camera, box, 1.0f);
+      guiding.update(camera, billboard, render::boxDepthRange(camera, box), scene.smoke,
+                     uint32_t(plan.frames[k]));
+      guideSequence->submit();
+      std::vector<float> texels;
+      for (uint16_t h : guideImage.download<uint16_t>()) texels.push_back(glm::unpackHalf1x16(h));
+      const int n = c * count + k;
+      EXPECT_EQ(sampleOf(shard.tensors[0], n), planarHalf(texels, 4, 3)) << "guide";
+      const std::vector<float> target = sampleOf(shard.tensors[1], n);
+      EXPECT_EQ(target, planarHalf(baker.bake(volume, scene.smoke, camera, billboard, bake).pixels, 8, 8));
+      for (int p = 0; p < size * size; ++p) alpha += target[6 * size * size + p];
+    }
+  }
+  EXPECT_GT(alpha, 1.0) << "the sampled frames hold smoke";
 }
 
 }  // namespace

@@ -98,7 +98,9 @@ class ShardDataset:
             guides.append(tensors["guide"])
             targets.append(tensors[TARGET_TENSORS[target]][:, TARGET_TO_NETWORK])
             motions.append(tensors["motion"])
-            self.samples += [dict(s, sequence=info["sequence"]) for s in info["samples"]]
+            # A played-back VDB sequence has no motion field ("motion": false): no temporal pairs.
+            moves = info.get("motion", True)
+            self.samples += [dict(s, sequence=info["sequence"], moves=moves) for s in info["samples"]]
         self.guide = np.concatenate(guides)
         self.target = np.concatenate(targets)
         self.motion = np.concatenate(motions)
@@ -107,9 +109,16 @@ class ShardDataset:
 
     def _previous_frames(self):
         """Index of the previous sample of the same sequence and camera (samples are ordered by camera, then
-        frame, so it is the sample before), -1 for a camera's first frame."""
+        frame, so it is the sample before), -1 for a camera's first frame. A sample without motion (a played-back
+        VDB sequence) is its own previous frame: its pair trains the reconstruction terms, and its temporal term
+        is zero."""
         previous = np.full(len(self.samples), -1, dtype=np.int64)
-        for i in range(1, len(self.samples)):
+        for i in range(len(self.samples)):
+            if not self.samples[i]["moves"]:
+                previous[i] = i
+                continue
+            if i == 0:
+                continue
             now, before = self.samples[i], self.samples[i - 1]
             if (now["sequence"], now["camera"]) == (before["sequence"], before["camera"]):
                 if before["frame"] >= now["frame"]:

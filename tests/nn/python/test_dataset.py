@@ -119,6 +119,23 @@ class DatasetTest(unittest.TestCase):
             with self.assertRaisesRegex(ValueError, r"version is 3, this reader knows 1 and 2"):
                 ShardDataset(tmp)
 
+    def test_a_sequence_without_motion_pairs_each_sample_with_itself(self):
+        """A played-back VDB sequence ("motion": false) has no previous frames to warp: every sample is its own
+        pair, so it trains the reconstruction terms and its temporal term is zero."""
+        with tempfile.TemporaryDirectory() as tmp:
+            paths = synthetic_shards.write_shards(tmp, size=8, cameras=2, frames=3, sequences=2)
+            tensors, metadata = read_safetensors(paths[1])
+            info = json.loads(metadata["sixway.dataset"])
+            info["motion"] = False
+            tensors["motion"] = np.zeros_like(tensors["motion"])
+            write_safetensors(paths[1], tensors, {"sixway.dataset": json.dumps(info)})
+            data = ShardDataset(tmp)
+            played = [i for i, s in enumerate(data.samples) if s["sequence"] == 1]
+            self.assertEqual(len(played), 2 * 3)
+            self.assertTrue(all(data.previous[i] == i for i in played))
+            self.assertEqual(len(data.pairs("heldout_sequence")), 2 * 3)
+            self.assertEqual(len(data.pairs("train")), 2 * 2)  # sequence 0: each camera's frames after its first
+
 
 if __name__ == "__main__":
     unittest.main()
