@@ -93,6 +93,11 @@ void run(const BakeOptions& o) {
 
   std::optional<io::Scene> scene;
   if (!o.scene.empty()) scene = io::loadScene(o.scene);
+  if (scene && o.voxels) {
+    if (!scene->vdb)
+      throw io::InputError("--voxels", "only for VDB input (--vdb, or a scene with a vdb section)");
+    scene->vdb->voxels = *o.voxels;
+  }
   io::Smoke smoke = scene ? scene->smoke : io::Smoke{};
   if (o.extinction) smoke.extinction = *o.extinction;
   if (o.albedo) smoke.albedo = *o.albedo;
@@ -219,7 +224,8 @@ void addBakeCommand(CLI::App& app) {
                    "Emission intensity (VDB: with a built-in black-body-like ramp)")
       ->check(CLI::NonNegativeNumber);
   bake->add_option("--voxels", o->voxels,
-                   "VDB: cells along the longest axis of the resampled lattice (default 128)")
+                   "VDB: cells along the longest axis of the resampled lattice (default 128, or the scene's "
+                   "vdb.voxels)")
       ->check(CLI::Range(2, 1024));
   bake->add_option("--step", o->step, "Longest march step in cells (default 0.5)")
       ->check(CLI::Range(0.01f, 0.5f));

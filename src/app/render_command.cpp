@@ -175,6 +175,7 @@ void run(const RenderOptions& o) {
                            {"median_stage_ms", timings.medianStageMs()},
                            {"frames", timings.frames()}};
   if (options.mode == eval::RenderMode::Neural) report["weights"] = fs::absolute(options.weights).string();
+  if (playback) report["source"] = sources::describeSource(*playback);
   io::writeReport(o.out / "timings.json", report);
   std::printf("sixway render: wrote %d frames, timings.json", o.frames);
   for (const std::string& f : extras) std::printf(", %s", f.c_str());

@@ -185,8 +185,8 @@ DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCa
       {"version", singleOnly ? 1 : 2},  {"targets", targetNames},    {"sequence", plan.sequence},
       {"attempt", plan.attempt},        {"lightmap_size", size},     {"config", config.json},
       {"scene", plan.sceneJson},        {"obstacle", plan.obstacle}, {"frame_dt", scene.time.frameDt},
-      {"stride", config.frames.stride}, {"cameras", cameraJson},     {"samples", sampleJson},
-      {"motion", simulated != nullptr}};
+      {"stride", config.frames.stride}, {"cameras", cameraJson},     {"samples", sampleJson}};
+  if (!simulated) shard.metadata["motion"] = false;  // absent: the shard has a motion field
   return shard;
 }
 

@@ -445,7 +445,7 @@ VdbSource parseVdb(JsonReader& r, const fs::path& baseDir) {
     for (const std::string& name : names) v.files.push_back(existingVdbFile(r, "files", baseDir, name));
   } else {
     const auto pattern = r.required<std::string>("pattern");
-    const int first = r.required<int>("first", atLeast(0));
+    const int first = r.required<int>("first", inRange(0, 1000000000));
     const int last = r.required<int>("last", inRange(first, first + kMaxVdbFrames - 1));
     for (int frame = first; frame <= last; ++frame)
       v.files.push_back(existingVdbFile(r, "pattern", baseDir, expandPattern(r, pattern, frame)));

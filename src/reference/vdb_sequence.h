@@ -29,6 +29,8 @@ class VdbSequence : public VolumeSequence {
               bool withTemperature);
 
   int frameCount() const override { return int(source_.files.size()) * source_.framesPerFile; }
+  // Unlike a simulation, frames may be asked for in any order (the demo loops them); a file is read again
+  // only when the frame asked for is in another file than the last one.
   std::optional<Volume> frame(int index) override;
   Volume volume(int index) override;
   Box bounds() const override { return lattice_.bounds(); }

@@ -8,6 +8,7 @@
 #include "runtime/scene_volumes.h"
 #include "runtime/smoke_renderer_impl.h"
 #include "runtime/smoke_simulation_impl.h"
+#include "sources/scene_volumes.h"
 
 namespace sixway::app::demo {
 std::vector<io::Light> startingLights(const io::Scene& scene) {
@@ -19,14 +20,19 @@ std::vector<io::Light> startingLights(const io::Scene& scene) {
 
 LiveScene::LiveScene(gpu::Context& context, gpu::PipelineCache& cache, const std::filesystem::path& scene,
                      const LiveSceneOptions& options)
-    : device_(std::make_unique<Device::Impl>(context, cache)),
-      options_(options),
-      simulation_(std::make_unique<SmokeSimulation>(device_, scene)) {
+    : device_(std::make_unique<Device::Impl>(context, cache)), options_(options) {
+  playedScene_ = io::loadScene(scene);
+  if (playedScene_.vdb) {
+    playback_ = sources::openSceneVolumes(context, cache, playedScene_, io::sceneFrameCount(playedScene_),
+                                          scene.string());
+    return;
+  }
+  simulation_ = std::make_unique<SmokeSimulation>(device_, scene);
   simulation_->advance();  // frame 0
 }
 
 const io::Scene& LiveScene::scene() const {
-  return simulation_->impl().scene;
+  return simulation_ ? simulation_->impl().scene : playedScene_;
 }
 
 double LiveScene::seconds() const {
@@ -34,32 +40,44 @@ double LiveScene::seconds() const {
 }
 
 void LiveScene::advance() {
+  if (!simulation_) {
+    playedFrame_ = (playedFrame_ + 1) % playback_->frameCount();
+    return;
+  }
   simulation_->advance();
 }
 
 void LiveScene::reset() {
+  if (!simulation_) {
+    playedFrame_ = 0;
+    return;
+  }
   simulation_->restart();
   followObstacles();
   simulation_->advance();
 }
 
 void LiveScene::steerObstacle(size_t obstacle, glm::vec3 target) {
+  if (!simulation_) return;  // a played-back scene has no obstacles
   simulation_->steerObstacle(obstacle, target);
   followObstacles();
 }
 
 void LiveScene::followObstacles() {
+  if (!simulation_) return;
   const sim::Simulation& simulation = simulation_->impl().volumes->simulation();
   for (auto& [key, pipeline] : pipelines_)
     for (size_t i = 0; i < obstacleCount(); ++i) pipeline->setObstacleMotion(i, simulation.obstacleMotion(i));
 }
 
 void LiveScene::setInletStrength(float strength) {
+  if (!simulation_) return;
   simulation_->setInletStrength(std::clamp(strength, 0.0f, simulation_->maxInletStrength()));
 }
 
 std::vector<gpu::StageTime> LiveScene::simulationTimes() const {
   std::vector<gpu::StageTime> times;
+  if (!simulation_) return times;
   for (const StageTime& t : simulation_->stageTimes()) times.push_back({t.name, t.milliseconds});
   return times;
 }
@@ -69,6 +87,8 @@ eval::FramePipeline& LiveScene::pipelineFor(eval::RenderMode mode, bool shadows)
   if (!slot) {
     eval::FramePipelineOptions options;
     options.mode = mode;
+    options.weights = options_.weights;
+    options.fp16 = options_.fp16;
     options.shadows = shadows;
     options.shadowTiles = kMaxDemoLights;
     options.download = false;
@@ -113,12 +133,13 @@ LiveFrame LiveScene::renderNeural(const Camera& camera, const std::vector<io::Li
 
 LiveFrame LiveScene::render(eval::RenderMode mode, const Camera& camera, const std::vector<io::Light>& lights,
                             bool shadows) {
-  if (mode == eval::RenderMode::Neural) return renderNeural(camera, lights, shadows);
+  if (mode == eval::RenderMode::Neural && simulation_) return renderNeural(camera, lights, shadows);
   eval::FramePipeline& pipeline = pipelineFor(mode, shadows);
   const eval::FrameView view{
       render::Camera::lookAt(camera.position, camera.target, camera.up, camera.fovYDegrees), lights};
-  eval::RenderedFrame r =
-      pipeline.render(view, frame(), seconds(), simulation_->impl().volumes->currentVolume());
+  eval::RenderedFrame r = pipeline.render(
+      view, frame(), seconds(),
+      simulation_ ? simulation_->impl().volumes->currentVolume() : playback_->volume(frame()));
   return {&pipeline.colorImage(), &pipeline.guideImage(), &pipeline.lightmapImageA(),
           &pipeline.lightmapImageB(), std::move(r.stages)};
 }

@@ -3,7 +3,8 @@
 // running frame by frame (pause, step, reset, inlet strength, obstacles dragged by the user) and a
 // SmokeRenderer for neural mode; the evaluation's other modes (reference, traditional, guide, ...) through
 // eval::FramePipeline on the same simulation. Renderers are built on first use, one per mode and shadow
-// setting, and all see the simulation's obstacle motions.
+// setting, and all see the simulation's obstacle motions. A scene that plays OpenVDB files back has no
+// simulation for the public API to run: its frames loop, and every mode (neural too) is a FramePipeline.
 #include <sixway/device.h>
 #include <sixway/smoke_renderer.h>
 #include <sixway/smoke_simulation.h>
@@ -17,6 +18,7 @@
 #include "eval/frame_pipeline.h"
 #include "gpu/sequence.h"
 #include "io/scene.h"
+#include "render/volume_sequence.h"
 
 namespace sixway::gpu {
 class Context;
@@ -56,16 +58,16 @@ class LiveScene {
   void advance();
   // The simulation from its start, obstacles back on the scene's motions.
   void reset();
-  int frame() const { return simulation_->framesSimulated() - 1; }
+  int frame() const { return simulation_ ? simulation_->framesSimulated() - 1 : playedFrame_; }
   double seconds() const;
 
-  size_t obstacleCount() const { return simulation_->obstacleCount(); }
+  size_t obstacleCount() const { return simulation_ ? simulation_->obstacleCount() : 0; }
   glm::vec3 obstaclePosition(size_t obstacle) const { return simulation_->obstaclePosition(obstacle); }
   // Drags the obstacle toward `target` (SmokeSimulation::steerObstacle); the renderers follow.
   void steerObstacle(size_t obstacle, glm::vec3 target);
   void setInletStrength(float strength);  // clamped to [0, maxInletStrength()]
-  float inletStrength() const { return simulation_->inletStrength(); }
-  float maxInletStrength() const { return simulation_->maxInletStrength(); }
+  float inletStrength() const { return simulation_ ? simulation_->inletStrength() : 0.0f; }
+  float maxInletStrength() const { return simulation_ ? simulation_->maxInletStrength() : 0.0f; }
   // GPU time of the last advance()'s simulation steps.
   std::vector<gpu::StageTime> simulationTimes() const;
 
@@ -81,7 +83,10 @@ class LiveScene {
 
   Device device_;  // around the demo's context
   LiveSceneOptions options_;
-  std::unique_ptr<SmokeSimulation> simulation_;
+  std::unique_ptr<SmokeSimulation> simulation_;       // a simulated scene
+  io::Scene playedScene_;                             // a played-back scene, its grid the playback lattice
+  std::unique_ptr<render::VolumeSequence> playback_;  // its files
+  int playedFrame_ = 0;
   std::map<bool, std::unique_ptr<SmokeRenderer>> renderers_;  // neural, by shadows
   std::map<std::pair<eval::RenderMode, bool>, std::unique_ptr<eval::FramePipeline>> pipelines_;
 };
