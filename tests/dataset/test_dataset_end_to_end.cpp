@@ -57,6 +57,53 @@ render::Camera expectedCamera(const render::Box& box, float azimuthDeg, float el
   return render::Camera::lookAt(position, box.centre(), {0, 1, 0}, fovDeg);
 }
 
+// The oracle of a shard's guide and target: the guiding map and the exact bake of the same frame, rendered
+// directly for a camera around the volume box.
+class DirectRenders {
+ public:
+  DirectRenders(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
+                int size)
+      : context_(context),
+        scene_(scene),
+        guiding_(context, cache, render::GuideSettings::fromScene(scene)),
+        guideImage_(context, guiding_.imageDesc()),
+        baker_(context, cache) {
+    bake_.width = bake_.height = size;
+  }
+
+  // The guide's four interleaved channels as floats (guide, alpha, shell depth, unused).
+  std::vector<float> guideTexels(const render::Volume& volume, const render::Camera& camera,
+                                 const render::Box& box, int frame) {
+    if (!sequence_) {  // the volume's buffers stay the same from frame to frame
+      sequence_ = std::make_unique<gpu::Sequence>(context_);
+      guiding_.record(*sequence_, volume, guideImage_);
+      sequence_->finish();
+    }
+    guiding_.update(camera, render::billboardBounds(camera, box, 1.0f), render::boxDepthRange(camera, box),
+                    scene_.smoke, uint32_t(frame));
+    sequence_->submit();
+    std::vector<float> texels;
+    for (uint16_t h : guideImage_.download<uint16_t>()) texels.push_back(glm::unpackHalf1x16(h));
+    return texels;
+  }
+  // The bake's eight channels, planar and rounded to F16 like the shards.
+  std::vector<float> target(const render::Volume& volume, const render::Camera& camera,
+                            const render::Box& box) {
+    return planarHalf(
+        baker_.bake(volume, scene_.smoke, camera, render::billboardBounds(camera, box, 1.0f), bake_).pixels,
+        8, 8);
+  }
+
+ private:
+  const gpu::Context& context_;
+  const io::Scene& scene_;
+  render::GuidingMap guiding_;
+  gpu::Image guideImage_;
+  render::LightmapBaker baker_;
+  render::BakeSettings bake_;
+  std::unique_ptr<gpu::Sequence> sequence_;
+};
+
 class DatasetEndToEnd : public GpuTest {};
 
 TEST_F(DatasetEndToEnd, ShardsMatchDirectRendersFollowTheRuleAndAreReproducible) {
@@ -101,22 +148,12 @@ TEST_F(DatasetEndToEnd, ShardsMatchDirectRendersFollowTheRuleAndAreReproducible)
     const io::Scene scene = io::parseScene(meta["scene"], "shard scene", kTinyConfig.parent_path());
     runtime::SimulatedVolumes volumes(context(), pipelineCache(), scene, plan.frames.back() + 1);
     const render::Box box = render::domainBox(scene.grid);
-    render::GuidingMap guiding(context(), pipelineCache(), render::GuideSettings::fromScene(scene));
-    gpu::Image guideImage(context(), guiding.imageDesc());
-    render::LightmapBaker baker(context(), pipelineCache());
-    render::BakeSettings bake;
-    bake.width = bake.height = size;
-    std::unique_ptr<gpu::Sequence> guideSequence;
+    DirectRenders direct(context(), pipelineCache(), scene, size);
     const sim::LatticeUnits& units = volumes.simulation().units();
     int moving = 0;
     for (int k = 0; k < count; ++k) {
       const int frame = plan.frames[k];
       const render::Volume volume = volumes.volume(frame);
-      if (!guideSequence) {
-        guideSequence = std::make_unique<gpu::Sequence>(context());
-        guiding.record(*guideSequence, volume, guideImage);
-        guideSequence->finish();
-      }
       // The velocity now, in m/s, for the motion oracle.
       CpuVelocityGrid flow{{scene.grid.size, scene.grid.origin, scene.grid.cellSize}, {}};
       for (const glm::vec4& m : volumes.simulation().lbm().macro().download<glm::vec4>())
@@ -129,13 +166,9 @@ TEST_F(DatasetEndToEnd, ShardsMatchDirectRendersFollowTheRuleAndAreReproducible)
                            config.cameras.fovDeg);
         const render::ImagePlane billboard = render::billboardBounds(camera, box, 1.0f);
         const render::DepthRange range = render::boxDepthRange(camera, box);
-        guiding.update(camera, billboard, range, scene.smoke, uint32_t(frame));
-        guideSequence->submit();
-        std::vector<float> texels;
-        for (uint16_t h : guideImage.download<uint16_t>()) texels.push_back(glm::unpackHalf1x16(h));
+        const std::vector<float> texels = direct.guideTexels(volume, camera, box, frame);
         EXPECT_EQ(sampleOf(guide, n), planarHalf(texels, 4, 3)) << "guide";
-        const io::Image baked = baker.bake(volume, scene.smoke, camera, billboard, bake);
-        EXPECT_EQ(sampleOf(target, n), planarHalf(baked.pixels, 8, 8)) << "target";
+        EXPECT_EQ(sampleOf(target, n), direct.target(volume, camera, box)) << "target";
 
         // Motion: none for a camera's first sample; else the oracle over one stride of frames, to fp16.
         const std::vector<float> got = sampleOf(motion, n);
@@ -222,34 +255,20 @@ TEST_F(DatasetEndToEnd, VdbSequencesPlayBackWithoutMotion) {
   io::Scene scene = io::parseScene(shard.metadata["scene"], "shard scene", "/");
   render::VdbSequence volumes(context(), *scene.vdb);
   const render::Box box = volumes.bounds();
-  render::GuidingMap guiding(context(), pipelineCache(), render::GuideSettings::fromScene(scene));
-  gpu::Image guideImage(context(), guiding.imageDesc());
-  render::LightmapBaker baker(context(), pipelineCache());
-  render::BakeSettings bake;
-  bake.width = bake.height = size;
-  std::unique_ptr<gpu::Sequence> guideSequence;
+  DirectRenders direct(context(), pipelineCache(), scene, size);
   double alpha = 0;
   for (int k = 0; k < count; ++k) {
     const render::Volume volume = volumes.volume(plan.frames[k]);
-    if (!guideSequence) {
-      guideSequence = std::make_unique<gpu::Sequence>(context());
-      guiding.record(*guideSequence, volume, guideImage);
-      guideSequence->finish();
-    }
     for (int c = 0; c < config.cameraCount(); ++c) {
       SCOPED_TRACE("camera " + std::to_string(c) + ", frame " + std::to_string(plan.frames[k]));
       const render::Camera camera = expectedCamera(
           box, config.cameras.azimuthsDeg[c % 2], config.cameras.elevationsDeg[c / 2], config.cameras.fovDeg);
-      const render::ImagePlane billboard = render::billboardBounds(camera, box, 1.0f);
-      guiding.update(camera, billboard, render::boxDepthRange(camera, box), scene.smoke,
-                     uint32_t(plan.frames[k]));
-      guideSequence->submit();
-      std::vector<float> texels;
-      for (uint16_t h : guideImage.download<uint16_t>()) texels.push_back(glm::unpackHalf1x16(h));
       const int n = c * count + k;
-      EXPECT_EQ(sampleOf(shard.tensors[0], n), planarHalf(texels, 4, 3)) << "guide";
+      EXPECT_EQ(sampleOf(shard.tensors[0], n),
+                planarHalf(direct.guideTexels(volume, camera, box, plan.frames[k]), 4, 3))
+          << "guide";
       const std::vector<float> target = sampleOf(shard.tensors[1], n);
-      EXPECT_EQ(target, planarHalf(baker.bake(volume, scene.smoke, camera, billboard, bake).pixels, 8, 8));
+      EXPECT_EQ(target, direct.target(volume, camera, box)) << "target";
       for (int p = 0; p < size * size; ++p) alpha += target[6 * size * size + p];
     }
   }
