@@ -10,8 +10,8 @@
 // tracking. Each pass adds its samples to the running sums in `accumulated`.
 //
 // SIXWAY: six-way lightmaps: each light writes the channel it names; channel 6 is alpha and channel 7
-// the luminance of the emission seen directly (no background, no environment). Otherwise: RGB radiance
-// in channels 0–2 and alpha in channel 3.
+// the luminance of the emission, seen directly and after scattering (no background, no environment).
+// Otherwise: RGB radiance in channels 0–2 and alpha in channel 3.
 #extension GL_GOOGLE_include_directive : require
 #include "camera.glsl"
 #include "emission.glsl"
@@ -145,12 +145,14 @@ void main() {
     vec3 radiance = vec3(0.0);  // RGB mode only
     float weight = 1.0;         // path throughput: albedo^(collisions so far)
     for (uint order = 0u;; ++order) {
-      bool emitting = hasEmission && (!SIXWAY || order == 0u);
+      // Emission seen after `order` scatterings; with flags.z = 2 (the orders the exact baker lacks) only the
+      // scattered part, order >= 1.
+      bool emitting = hasEmission && order + 1u >= params.flags.z;
       vec3 emitted = vec3(0.0);
       float t = span.x;
       bool collided = span.x < span.y && deltaTrack(o, w, span.y, t, rng, emitting, emitted);
       if (SIXWAY) {
-        sums[7] += luminance(emitted);
+        sums[7] += weight * luminance(emitted);
       } else {
         radiance += weight * emitted;
       }

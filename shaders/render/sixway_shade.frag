@@ -80,6 +80,14 @@ void main() {
     radiance += (visibility / kPi) * irradiance * lightResponse(t, alpha, color, range, absorption);
   }
   radiance += sixWayAmbient(rightTopBack, leftBottomFront, params.ambient, alpha, color, range, absorption);
-  radiance += params.misc.y * gradientColor(params.gradient, params.counts.y, emissive);
+  // Emission (docs/real-time-rendering.md, "Emission"): Unity's gradient of the channel, or, with a straight
+  // scale s, the gradient at the straight value e / (alpha s) times alpha s: the hue of the smoke's temperature.
+  float straight = params.misc.z;
+  vec3 emission = straight > 0.0 ? (alpha > 0.0 ? alpha * straight *
+                                                      gradientColor(params.gradient, params.counts.y,
+                                                                    emissive / (alpha * straight))
+                                                : vec3(0.0))
+                                 : gradientColor(params.gradient, params.counts.y, emissive);
+  radiance += params.misc.y * emission;
   outColor = vec4(radiance, alpha);
 }

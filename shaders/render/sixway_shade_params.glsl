@@ -16,7 +16,7 @@ layout(std140, binding = 0) uniform ShadeParams {
   vec4 lightmapRemap;   // (inMin, inMax, outMin, outMax) for the six light channels
   vec4 alphaRemap;      // (inMin, inMax, outMin, outMax) for alpha
   vec4 misc;            // x: view depth of the billboard (the shaded point where there is no shell);
-                        // y: emissive multiplier
+                        // y: emissive multiplier; z: emissive straight scale (0: Unity's gradient)
   ivec4 counts;         // x: lights; y: emissive gradient keys; z: flags (1 absorption, 2 lightmap remap,
                         // 4 alpha remap)
   vec4 ambient[4];      // rgb: L0, then L1 along the six-way x, y, z; radiance L(w) = L0 + L1·w; zero: none

@@ -31,8 +31,10 @@ struct TraceSettings {
   int width = 128, height = 128;
   uint32_t seed = 1;
   int maxOrders = 64;  // scattering orders followed (1 = single scattering, 0 = none)
-  int minOrder = 1;    // the lowest scattering order whose light is recorded (2: multiple scattering only)
-  bool jitter = true;  // random points inside pixels; false: pixel centres, as the baker samples
+  // The lowest scattering order whose light is recorded (2: multiple scattering only, and in six-way mode the
+  // emission only once it has been scattered).
+  int minOrder = 1;
+  bool jitter = true;       // random points inside pixels; false: pixel centres, as the baker samples
   int samplesPerPass = 4;   // samples per pixel in one dispatch
   int brickCells = 8;       // side of the majorant bricks, in cells
   glm::vec3 background{0};  // radiance seen where camera rays leave the volume

@@ -9,7 +9,7 @@
 namespace sixway::render {
 namespace {
 
-constexpr int kAlpha = 6;
+constexpr int kAlpha = 6, kEmissive = 7;
 constexpr float kEmptyAlpha = 1e-6f;  // below it a pixel holds no smoke to scatter light
 
 void checkMultiple(const MultipleScattering& m, const BakeSettings& settings) {
@@ -59,6 +59,7 @@ io::Image upsampleAlphaGuided(const io::Image& low, const io::Image& full) {
       const float alphaLow = up(kAlpha), alphaFull = full.pixels[p + kAlpha];
       if (alphaLow <= kEmptyAlpha) continue;
       for (int c = 0; c < kSixWayLights; ++c) out.pixels[p + c] = alphaFull * up(c) / alphaLow;
+      out.pixels[p + kEmissive] = alphaFull * up(kEmissive) / alphaLow;
     }
   }
   return out;
@@ -107,7 +108,7 @@ io::Image ScatteredLightmaps::bake(const Volume& volume, const io::Smoke& smoke,
 
   if (multiple.traceAllOrders) {
     for (size_t p = 0; p < size_t(settings.width) * settings.height; ++p)
-      for (int c = 0; c < kSixWayLights; ++c)
+      for (int c : {0, 1, 2, 3, 4, 5, kEmissive})
         lightmaps.pixels[p * kSixWayChannels + c] = traced.pixels[p * kSixWayChannels + c];
     return lightmaps;
   }

@@ -2,9 +2,10 @@
 // Six-way lightmaps with single or multiple scattering (docs/reference-rendering.md, "Multiple
 // scattering"). Single: the exact baker. Multiple, split (the default): the exact baker's single
 // scattering at full resolution, plus the higher orders (≥ 2, smooth) path-traced at 1/downsample of the
-// resolution and upsampled guided by the full-resolution alpha; alpha and emission, which do not depend on
-// scattering, stay the baker's. Multiple, traced: every order path-traced at full resolution (the slow
-// reference the split is measured against).
+// resolution and upsampled guided by the full-resolution alpha; the emissive channel gains the emission
+// scattered by the smoke the same way (its direct part stays the baker's exact one), and alpha, which does
+// not depend on scattering, stays the baker's. Multiple, traced: every order (and the emission, direct and
+// scattered) path-traced at full resolution (the slow reference the split is measured against).
 #include <cstdint>
 #include <memory>
 #include <optional>

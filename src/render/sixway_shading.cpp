@@ -1,5 +1,7 @@
 #include "render/sixway_shading.h"
 
+#include <cmath>
+
 #include <glm/geometric.hpp>
 #include <stdexcept>
 #include <string>
@@ -78,6 +80,9 @@ void checkControls(const ShadingControls& c) {
   }
   if (!(c.emissiveMultiplier >= 0.0f))
     throw io::InputError("shading", "the emissive multiplier must be >= 0");
+  if (c.emissiveStraightScale &&
+      !(*c.emissiveStraightScale > 0.0f && std::isfinite(*c.emissiveStraightScale)))
+    throw io::InputError("shading", "the emissive straight scale must be a positive number");
 }
 
 // L0 and L1 of the ambient radiance, L1 turned into the six-way frame (camera right, up, forward).
@@ -128,6 +133,11 @@ std::vector<GradientKey> emissiveGradientFromRamp(const io::Emission& emission) 
     if (l > (keys.empty() ? 0.0f : keys.back().position)) keys.push_back({l, k.color});
   }
   return keys;
+}
+
+std::optional<float> emissiveStraightScale(const io::Smoke& smoke) {
+  if (smoke.emission.intensity <= 0.0f) return std::nullopt;
+  return smoke.emission.intensity / smoke.extinction;
 }
 
 SixWayShading::SixWayShading(const gpu::Context& context, const gpu::PipelineCache& cache,
@@ -189,7 +199,7 @@ void SixWayShading::update(const Camera& camera, const ImagePlane& frame, const 
   const RemapRange& am = controls.alphaRemap.value_or(identity);
   p.lightmapRemap = glm::vec4(lm.inMin, lm.inMax, lm.outMin, lm.outMax);
   p.alphaRemap = glm::vec4(am.inMin, am.inMax, am.outMin, am.outMax);
-  p.misc = glm::vec4(depth, controls.emissiveMultiplier, 0.0f, 0.0f);
+  p.misc = glm::vec4(depth, controls.emissiveMultiplier, controls.emissiveStraightScale.value_or(0.0f), 0.0f);
   std::vector<GradientKey> gradient = controls.emissiveGradient;
   if (gradient.empty()) gradient.push_back({1.0f, glm::vec3(1.0f)});
   for (size_t k = 0; k < gradient.size(); ++k)

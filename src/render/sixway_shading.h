@@ -73,12 +73,23 @@ struct ShadingControls {
   // channel value as grey.
   std::vector<GradientKey> emissiveGradient;
   float emissiveMultiplier = 1.0f;
+  // Set (> 0) for lightmaps that sixway bakes or predicts, whose emissive channel is premultiplied luminance:
+  // the gradient is looked up at the channel's straight value e / (alpha · s) instead, and its colour scaled
+  // by alpha · s. With s = emission intensity / extinction that value is the absorption-weighted mean
+  // luminance of the ramp along the ray, so the hue follows the smoke's temperature rather than its
+  // thickness, and the luminance stays e. Unset: Unity's gradient(e), for emissive masks.
+  std::optional<float> emissiveStraightScale;
 };
 
 // The default gradient for a scene's emission: the ramp's colours placed at their own luminance (keys that
 // are not brighter than the one before are dropped), so the emissive colour has exactly the luminance the
-// baker wrote into the emissive channel, and the ramp's hue at that brightness. Empty for no emission.
+// baker wrote into the emissive channel, and, looked up at the straight value (emissiveStraightScale), the
+// ramp's colour of that luminance. Empty for no emission.
 std::vector<GradientKey> emissiveGradientFromRamp(const io::Emission& emission);
+// emissiveStraightScale for a scene's smoke: intensity / extinction, the emitted luminance of opaque smoke
+// per unit of ramp luminance (the source function j/σ_t of shaders/render/sixway_march.comp). None without
+// emission.
+std::optional<float> emissiveStraightScale(const io::Smoke& smoke);
 
 // The obstacle shadow maps: one D32 depth image, `tileSize` wide, a vertical stack of square tiles, tile t
 // holding the light with shadowTile t (docs/real-time-rendering.md, "Obstacles and shadows").

@@ -41,6 +41,7 @@ RealtimeFrame::RealtimeFrame(const gpu::Context& context, const gpu::PipelineCac
     obstacles_ = std::make_unique<render::ObstaclePass>(context, cache, scene.render.background);
   }
   controls_.emissiveGradient = render::emissiveGradientFromRamp(scene.smoke.emission);
+  controls_.emissiveStraightScale = render::emissiveStraightScale(scene.smoke);
 }
 
 void RealtimeFrame::record(gpu::Sequence& s, const render::Volume& volume, FrameStages stages,

@@ -220,7 +220,14 @@ io::Image cpuSixWayShading(const CpuShadingInputs& in, const io::Image& backgrou
         ambient += response(positive[i], alpha, controls) * (l0 + l1[i]) +
                    response(negative[i], alpha, controls) * (l0 - l1[i]);
       radiance += (2.0 / 3.0) * ambient;
-      radiance += double(controls.emissiveMultiplier) * gradient(controls.emissiveGradient, emissive);
+      if (controls.emissiveStraightScale) {
+        const double s = *controls.emissiveStraightScale;
+        if (alpha > 0.0)
+          radiance += double(controls.emissiveMultiplier) * alpha * s *
+                      gradient(controls.emissiveGradient, emissive / (alpha * s));
+      } else {
+        radiance += double(controls.emissiveMultiplier) * gradient(controls.emissiveGradient, emissive);
+      }
 
       for (int c = 0; c < 4; ++c) {
         const double source = c < 3 ? radiance[c] : alpha;

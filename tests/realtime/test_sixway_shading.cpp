@@ -267,6 +267,7 @@ TEST_P(SixWayShadingVariants, MatchesTheCpuEvaluationOnRandomInputs) {
         {0.2f, {0.4f, 0.05f, 0.0f}}, {0.7f, {1.0f, 0.5f, 0.1f}}, {1.5f, {1, 1, 0.9f}}};
     f.controls.emissiveMultiplier = uniform(rng, 0.5f, 2.0f);
   }
+  frames[1].controls.emissiveStraightScale = uniform(rng, 0.05f, 0.5f);  // sixway's own lightmaps
   const std::vector<io::Image> images = render(frames, true, false, false);
   for (size_t i = 0; i < frames.size(); ++i) {
     const Mismatch m = mismatch(images[i], expected(frames[i], true, false, false));
@@ -533,6 +534,46 @@ TEST_F(SixWayShadingTest, DefaultEmissiveGradientKeepsTheBakedLuminance) {
   RecordProperty("luminance_error", scientific(worst));
   for (int i = 0; i < 3; ++i)
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(image.at(i, 0, c), keys[i].color[c], 1e-5) << "key " << i;
+}
+
+// With the straight scale s, lightmaps of smoke at one temperature shade to the ramp's colour at that
+// temperature times alpha · s, however thick the smoke: the hue no longer follows the emissive channel's
+// brightness (Unity's gradient(e) would turn thin hot smoke into the coolest key's colour).
+TEST_F(SixWayShadingTest, StraightEmissionShowsTheRampColourAtAnyThickness) {
+  io::Emission emission;
+  emission.intensity = 4.0f;
+  emission.ramp = {
+      {0.3f, {0, 0, 0}}, {1.0f, {1.0f, 0.25f, 0.02f}}, {2.0f, {1.0f, 0.65f, 0.2f}}, {3.0f, {1, 0.95f, 0.8f}}};
+  io::Smoke smoke;
+  smoke.extinction = 30.0f;
+  smoke.emission = emission;
+  const float s = *render::emissiveStraightScale(smoke);
+  EXPECT_FLOAT_EQ(s, 4.0f / 30.0f);
+  auto luminance = [](glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; };
+  const glm::vec3 hot{1.0f, 0.8f, 0.5f};  // the ramp at temperature 2.5: halfway between its last two keys
+
+  lightmapA = io::Image(kWidth, kHeight, {"R", "G", "B", "A"});
+  lightmapB = io::Image(kWidth, kHeight, {"R", "G", "B", "A"});
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      const float alpha = 0.02f + 0.98f * float(x) / float(kWidth - 1);  // thin to opaque
+      lightmapA.at(x, y, 3) = alpha;
+      lightmapB.at(x, y, 3) = alpha * s * luminance(hot);  // what the baker writes for one temperature
+    }
+  background = io::Image(kWidth, kHeight, {"R", "G", "B", "A"});
+  Frame frame;
+  frame.controls.emissiveGradient = render::emissiveGradientFromRamp(emission);
+  frame.controls.emissiveStraightScale = s;
+  const io::Image image = render({frame}, false, false, false)[0];
+  double worst = 0.0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const double expected = lightmapA.at(x, y, 3) * s * hot[c];
+        worst = std::max(worst, std::abs(image.at(x, y, c) - expected) / (expected + 1e-6));
+      }
+  EXPECT_LT(worst, 1e-4);
+  RecordProperty("relative_error", scientific(worst));
 }
 
 TEST_F(SixWayShadingTest, MoreLightsThanItTakesIsAnInputError) {

@@ -137,7 +137,9 @@ TEST_F(PathTracerTest, SingleScatteringConvergesToTheBakerAsOneOverSqrtSpp) {
   fineSettings.lightSpacingCells = 0.25f;
   fineSettings.stepCells = 0.125f;
   const io::Image fine = baker.bake(device.view(), smoke, camera, plane, fineSettings);
-  std::vector<int> channels(render::kSixWayChannels);
+  // Not the emissive channel: with one order the tracer's holds the emission scattered once too, the baker's
+  // only the direct emission (ScatteredLightmaps adds the scattered part).
+  std::vector<int> channels(render::kSixWayChannels - 1);
   std::iota(channels.begin(), channels.end(), 0);
   const double discretisation = rms(baked, fine, channels);
 
