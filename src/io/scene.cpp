@@ -405,6 +405,8 @@ RenderSettings parseRender(JsonReader& r) {
 
 }  // namespace
 
+namespace {
+
 fs::path existingVdbFile(JsonReader& r, std::string_view key, const fs::path& baseDir,
                          const std::string& name) {
   const fs::path file = fs::absolute(baseDir / name).lexically_normal();
@@ -418,7 +420,10 @@ std::string expandPattern(JsonReader& r, const std::string& pattern, int frame) 
   const std::size_t at = pattern.find('%');
   std::size_t end = at == std::string::npos ? at : at + 1;
   bool zeros = false;
-  if (end != std::string::npos && end < pattern.size() && pattern[end] == '0') zeros = true, ++end;
+  if (end != std::string::npos && end < pattern.size() && pattern[end] == '0') {
+    zeros = true;
+    ++end;
+  }
   int width = 0;
   while (end != std::string::npos && end < pattern.size() &&
          std::isdigit(static_cast<unsigned char>(pattern[end])))
@@ -469,6 +474,8 @@ VdbSource parseVdb(JsonReader& r, const fs::path& baseDir) {
   if (v.temperatureGrid && v.temperatureGrid->empty()) r.fail("temperature_grid", "must name a grid");
   return v;
 }
+
+}  // namespace
 
 Scene parseScene(const nlohmann::json& j, std::string_view sourceName, const fs::path& baseDir) {
   JsonReader r(j, "", sourceName);

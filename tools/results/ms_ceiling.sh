@@ -3,14 +3,17 @@
 # assets/scenes/*.json (but bench.json) at a small size (128x128 frames, 64x64 lightmaps), against the path
 # tracer with every scattering order, printed as a markdown table of masked PSNRs (reference-ms: the
 # multiply-scattered lightmaps through the six-way shading; reference: single scattering; neural;
-# traditional-ms: a flipbook baked with multiple scattering). Reports go to out/ms_ceiling/.
-# About 10-15 minutes on the 2-core lavapipe machine. FRAMES=N (default 8) SPP=N (truth, default 128).
+# traditional-ms: a flipbook baked with multiple scattering).
+# About 10-15 minutes on the 2-core lavapipe machine. FRAMES=N (default 8) SPP=N (truth, default 128)
+# LIGHTMAP=N (lightmap size, default 64: half the frame's; 128 separates the lightmaps' resolution from the
+# six-way model); reports go to out/ms_ceiling/lightmap_N/.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 frames="${FRAMES:-8}"
 spp="${SPP:-128}"
+lightmap="${LIGHTMAP:-64}"
 python=/usr/bin/python3
-out="$root/out/ms_ceiling"
+out="$root/out/ms_ceiling/lightmap_$lightmap"
 sixway="${SIXWAY:-$root/build/src/app/sixway}"
 [ -x "$sixway" ] || source "$root/tools/build.sh"
 mkdir -p "$out"
@@ -18,10 +21,10 @@ for scene in "$root"/assets/scenes/*.json; do
   name=$(basename "$scene" .json)
   [ "$name" = bench ] && continue
   small="$out/$name.json"
-  "$python" - "$scene" "$small" <<'PY'
+  "$python" - "$scene" "$small" "$lightmap" <<'PY'
 import json, os, sys
 scene = json.load(open(sys.argv[1]))
-scene["render"].update({"width": 128, "height": 128, "lightmap_size": 64})
+scene["render"].update({"width": 128, "height": 128, "lightmap_size": int(sys.argv[3])})
 # Mesh paths are relative to the scene's folder: make them absolute for the copy.
 for obstacle in scene.get("obstacles", []):
     if "file" in obstacle:
