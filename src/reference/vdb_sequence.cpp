@@ -125,7 +125,9 @@ bool VdbSequence::load(int frame) {
   const std::filesystem::path& path = source_.files[fileIndex];
   io::VdbDenseGrids read = io::readVdbGrids(path, gridNames(source_),
                                             io::ExplicitBounds{glm::min(a, b), glm::max(a, b), fileCells});
-  notes_.insert(notes_.end(), read.notes.begin(), read.notes.end());
+  // Each note once: a looping playback (the demo) reads the same files again and again.
+  for (const std::string& note : read.notes)
+    if (std::find(notes_.begin(), notes_.end(), note) == notes_.end()) notes_.push_back(note);
   loadedFile_ = fileIndex;
   const auto density = read.grids.find(source_.densityGrid);
   loadedEmpty_ = density == read.grids.end();

@@ -39,7 +39,8 @@ class VdbSequence : public VolumeSequence {
   const VolumeGrid& lattice() const { return lattice_; }
   const io::VdbSource& source() const { return source_; }
   const std::filesystem::path& file(int frame) const { return source_.files[frame / source_.framesPerFile]; }
-  // What the reader skipped or changed so far ("<file>: grid 'obstacles' is int32, not float: skipped").
+  // What the reader skipped or changed so far, each once ("<file>: grid 'obstacles' is int32, not float:
+  // skipped").
   const std::vector<std::string>& notes() const { return notes_; }
 
  private:

@@ -170,6 +170,10 @@ TEST_F(VdbPlaybackTest, FramesRepeatPerFileAndAnEmptyFrameIsZero) {
   EXPECT_GT(mass, 1.0);
   for (float v : download(sequence.volume(2).density)) ASSERT_EQ(v, 0.0f) << "the empty frame keeps no smoke";
   EXPECT_FALSE(sequence.frame(3).has_value());
+  const std::size_t notes = sequence.notes().size();
+  sequence.volume(0);  // played again from the start, as the demo loops
+  sequence.volume(2);
+  EXPECT_EQ(sequence.notes().size(), notes) << "each note once";
   EXPECT_THAT(sequence.notes(), ::testing::Contains(::testing::HasSubstr("grid 'density' is empty")));
   EXPECT_THAT(sequence.notes(), ::testing::Contains(::testing::HasSubstr("non-uniform voxels")));
 }
