@@ -183,6 +183,11 @@ against single scattering but {db(multiple['summary']['image']['reference']['psn
 the gap between neural and reference is the network's error, the gap between guide-lit and neural what the
 network adds to its input.
 
+The same ceiling on every shipped scene (`tools/results/ms_ceiling.sh`, with lightmaps at half and at the full
+frame size), on played-back OpenVDB scenes, and where the error of `reference-ms` sits (light directions between
+the six basis directions, the glow's hue) are measured in
+[reference-rendering.md, "The six-way ceiling under full transport"](reference-rendering.md#the-six-way-ceiling-under-full-transport).
+
 ![PSNR over frames](results/psnr_frames.png)
 
 ## Time per stage
