@@ -12,7 +12,9 @@
 // Opposite lights share a grid: the optical depth toward the far end of a column is its total minus the
 // depth toward the near end, so e.g. top's grid also serves bottom.
 // Output (RGBA16F): R = the sum over the guide lights, G = alpha = 1 − T, B = the encoded view depth where
-// alpha first reaches the shell threshold (exact within the slab; 1 where it never does), A = 0.
+// alpha first reaches the shell threshold (exact within the slab; 1 where it never does), A = 0, or with
+// kFineAlpha the alpha of a second, fine march (step march.z, midpoints, not jittered: the baker's alpha
+// quadrature), an input the network need not guess (issue #20).
 // Samples in empty bricks (majorant.comp) are skipped without moving the sample lattice: same sums.
 #extension GL_GOOGLE_include_directive : require
 #include "bake_params.glsl"
@@ -27,6 +29,7 @@ layout(constant_id = 1) const bool kFrontLight = true;  // whether the front lig
 // bit 3k + 2: the light lies at the grid's far end. Constants, so that after unrolling the loop over lights
 // every grid choice below is resolved at compile time.
 layout(constant_id = 2) const int kLightGrids = 0;
+layout(constant_id = 3) const bool kFineAlpha = false;
 
 // Per-frame values besides BakeParams (whose lights[] hold the light grids, at most one per axis, march.x the
 // step and march.y the transmittance below which a ray stops once its shell depth is known).
@@ -83,6 +86,28 @@ vec3 towardLight(int k) {
   return atFarEnd(k) ? -d : d;
 }
 
+// 1 − T along the ray through [span.x, span.y] by midpoint steps of length h (the last one shortened), empty
+// bricks skipped; stops once T < 1e-4.
+float fineAlpha(vec3 origin, vec3 dir, vec3 invDir, vec3 boxMin, float brickSize, vec2 span, float h) {
+  float tau = 0.0;
+  for (float t0 = span.x; t0 < span.y && tau < 9.2; t0 += h) {
+    float dt = min(h, span.y - t0);
+    vec3 p = origin + (t0 + 0.5 * dt) * dir;
+    ivec3 b = clamp(ivec3(floor((p - boxMin) / brickSize)), ivec3(0), params.bricks.xyz - 1);
+    if (brickMax[(b.z * params.bricks.y + b.y) * params.bricks.x + b.x] <= 0.0) {
+      // On to the first step whose midpoint may lie past this empty brick.
+      vec3 lo = boxMin + vec3(b) * brickSize;
+      vec3 far = max((lo - origin) * invDir, (lo + brickSize - origin) * invDir);
+      float exit = min(far.x, min(far.y, far.z));
+      t0 += max(0.0, floor((exit - t0 - 0.5 * h) / h)) * h;
+      continue;
+    }
+    Lerp8 l = lerp8(params.volume.size.xyz, volumeSampleCoord(params.volume, p));
+    tau += params.optics.x * max(0.0, LERP8(density, l)) * dt;
+  }
+  return oneMinusExp(tau);
+}
+
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   ivec2 size = params.image.xy;
@@ -137,5 +162,7 @@ void main() {
     }
   }
   float depth = shell < 0.0 ? 1.0 : encodeShellDepth(shell, frame.shell.yz);
-  imageStore(guide, pixel, vec4(radiance, 1.0 - transmittance, depth, 0.0));
+  float fine =
+      kFineAlpha && span.x < span.y ? fineAlpha(origin, dir, invDir, boxMin, brickSize, span, params.march.z) : 0.0;
+  imageStore(guide, pixel, vec4(radiance, 1.0 - transmittance, depth, fine));
 }

@@ -48,6 +48,8 @@ void checkSettings(const GuideSettings& s) {
     if (std::count(s.lights.begin(), s.lights.end(), s.lights[i]) > 1) fail("lists a light twice");
   if (!(s.shellThreshold > 0.0f && s.shellThreshold < 1.0f))
     fail("the shell threshold must be in (0, 1) (got " + text(s.shellThreshold) + ")");
+  if (!(s.alphaStepCells >= 0.0f && std::isfinite(s.alphaStepCells)))
+    fail("the fine alpha step must be >= 0 cells (got " + text(s.alphaStepCells) + ")");
 }
 
 // The axis of the six-way frame a light lies on: opposite lights share a light grid.
@@ -129,6 +131,7 @@ GuidingMap::GuidingMap(const gpu::Context& context, const gpu::PipelineCache& ca
   constants.set(spec::kShadowedLights, shadowed);
   constants.set(spec::kFrontLight, size_t(shadowed) < settings_.lights.size());
   constants.set(spec::kLightGrids, lightGrids);
+  constants.set(spec::kFineAlpha, settings_.alphaStepCells > 0.0f);
   marchPass_ = std::make_unique<gpu::Pipeline>(
       context, cache, gpu::ComputePipelineDesc{"render/guide_march.comp", march, 0, constants});
 }
@@ -208,7 +211,8 @@ void GuidingMap::update(const Camera& camera, const ImagePlane& billboard, const
   p.volume = layout::volumeGrid(grid_);
   p.camera = layout::cameraRays(camera, billboard);
   p.optics = glm::vec4(smoke.extinction, smoke.albedo, smoke.phaseG, 0.0f);
-  p.march = glm::vec4(settings_.stepCells * grid_.cellSize, kStopTransmittance, 0.0f, 0.0f);
+  p.march = glm::vec4(settings_.stepCells * grid_.cellSize, kStopTransmittance,
+                      settings_.alphaStepCells * grid_.cellSize, 0.0f);
   p.image = glm::ivec4(int(settings_.size), int(settings_.size), 0, 0);
   p.bricks = glm::ivec4((grid_.size + kBrickCells - 1) / kBrickCells, kBrickCells);
   for (size_t i = 0; i < grids_.size(); ++i) p.lights[i] = layout::lightGrid(grids_[i]);

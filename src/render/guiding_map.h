@@ -1,10 +1,11 @@
 #pragma once
 // The guiding map, the network's input (docs/conventions.md, "The frame"; docs/real-time-rendering.md,
 // "Guiding map"): a coarse, jittered view-ray march of the density over the billboard, into one RGBA16F image
-// of (guide, alpha, shell depth, 0). The guide is the single-scattered radiance under the surrogate lights,
-// summed, in the bake normalisation; the front light's transmittance is the view transmittance, the others
-// read a coarse light-space optical-depth grid (the baker's light_depth.comp at a coarse spacing). Recorded
-// once into a gpu::Sequence and replayed each frame: update() writes the per-frame values.
+// of (guide, alpha, shell depth, 0 or the fine alpha). The guide is the single-scattered radiance under the
+// surrogate lights, summed, in the bake normalisation; the front light's transmittance is the view
+// transmittance, the others read a coarse light-space optical-depth grid (the baker's light_depth.comp at a
+// coarse spacing). Recorded once into a gpu::Sequence and replayed each frame: update() writes the per-frame
+// values.
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -34,6 +35,9 @@ struct GuideSettings {
   std::vector<io::GuideLight> lights{io::GuideLight::Front, io::GuideLight::Top, io::GuideLight::Bottom};
   float shellThreshold = 0.1f;  // alpha at which the shell depth is taken, in (0, 1)
   uint32_t seed = 1;            // of the per-pixel, per-frame jitter
+  // > 0: channel A holds the alpha of a second, fine view march of this step (cells; midpoints, not
+  // jittered, as the exact baker's alpha); 0: A = 0 (the shipped network's input has no such channel).
+  float alphaStepCells = 0.0f;
 
   // render.lightmap_size, guide_step_voxels, guide_lights, shell_threshold, seed; the rest default.
   static GuideSettings fromScene(const io::Scene& scene);
