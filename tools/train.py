@@ -304,8 +304,14 @@ class Trainer:
 
     def _load_data(self):
         directory = self.config["data"]["dir"]
+        model = full_config(self.config["model"])
         self.data = ShardDataset(directory if os.path.isabs(directory) else os.path.join(REPO_ROOT, directory),
-                                 target=self.config["data"]["target"])
+                                 target=self.config["data"]["target"], guide_channels=model["guide_channels"])
+        # The network reads the guide it was trained on: a fine alpha of another step is another input.
+        wanted, held = model.get("guide_alpha_step_voxels", 0), self.data.guide_alpha_step_voxels()
+        if wanted and wanted != held:
+            raise ConfigError(f"{self.data.directory}: the shards' fine alpha step is {held} voxels, "
+                              f"model.guide_alpha_step_voxels is {wanted}")
         self.pairs = self.data.pairs("train")
         if len(self.pairs) == 0:
             raise ConfigError(f"{self.data.directory}: no training pairs (split 'train', two consecutive frames)")

@@ -21,9 +21,12 @@ class LightmapNetwork {
   LightmapNetwork& operator=(const LightmapNetwork&) = delete;
 
   uint32_t size() const;
-  // `guide`: size² RGBA pixels, row 0 at the top (guide light, alpha, shell depth, unused; the guiding map
-  // of docs/real-time-rendering.md). Returns size² pixels of eight channels: right, left, top, bottom,
-  // back, front, alpha, emissive (docs/conventions.md). Waits for the GPU.
+  // 0: the guide's 4th channel is unused; > 0: the network reads there the fine alpha of this step (voxels;
+  // the guiding map's render.guide_alpha_step_voxels), as it was trained.
+  float fineAlphaStepVoxels() const;
+  // `guide`: size² RGBA pixels, row 0 at the top (guide light, alpha, shell depth, fine alpha or unused; the
+  // guiding map of docs/real-time-rendering.md). Returns size² pixels of eight channels: right, left, top,
+  // bottom, back, front, alpha, emissive (docs/conventions.md). Waits for the GPU.
   std::vector<float> run(std::span<const float> guide);
 
  private:

@@ -1,6 +1,7 @@
 // `sixway bench` sections "lightmaps" and "frame": the real-time stages of the neural render mode
 // (app/frame_pipeline.h: shadow maps, obstacles, guiding map, network, six-way shading) at fixed lightmap
-// sizes, and the whole frame of the paper's setting: one frame of simulation plus those stages.
+// sizes, beside the exact single-scattering baker they replace (the same volume, camera and size, in the same
+// run), and the whole frame of the paper's setting: one frame of simulation plus those stages.
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -33,6 +34,17 @@ void addFrameStages(StageTimes& times, const std::vector<gpu::StageTime>& stages
     times.add(t.name == "network" ? "network fp32" : t.name, t.milliseconds);
 }
 
+// The GPU time of a stage, or of the stages whose names start with `prefix` + "/".
+double stageMs(const std::vector<gpu::StageTime>& stages, const std::string& name) {
+  double ms = 0.0;
+  for (const gpu::StageTime& t : stages)
+    if (t.name == name || t.name.starts_with(name + "/")) ms += t.milliseconds;
+  return ms;
+}
+
+constexpr const char* kNeuralRow = "neural lightmaps: guide + network fp32";
+constexpr const char* kBakerRow = "exact baker (single scattering)";
+
 nlohmann::json sceneSettings(const io::Scene& scene) {
   return {{"lattice", {scene.grid.size.x, scene.grid.size.y, scene.grid.size.z}},
           {"frame", {scene.render.width, scene.render.height}},
@@ -64,22 +76,33 @@ nlohmann::json benchLightmaps(const gpu::Context& context, const gpu::PipelineCa
     eval::FramePipeline pipeline(context, cache, scene, neural(o, false));
     std::unique_ptr<eval::FramePipeline> half;
     if (fp16) half = std::make_unique<eval::FramePipeline>(context, cache, scene, neural(o, true));
+    eval::FramePipelineOptions exact;
+    exact.mode = eval::RenderMode::Reference;
+    eval::FramePipeline baker(context, cache, scene, exact);
     const auto render = [&](StageTimes* times) {
       const eval::RenderedFrame frame = pipeline.render(0, 0.0, volume.view());
       const std::vector<gpu::StageTime> halfStages =
           half ? half->render(0, 0.0, volume.view()).stages : std::vector<gpu::StageTime>{};
+      const eval::RenderedFrame baked = baker.render(0, 0.0, volume.view());
       if (!times) return;
       times->beginRun();
       addFrameStages(*times, frame.stages);
       for (const gpu::StageTime& t : halfStages)
         if (t.name == "network") times->add("network fp16", t.milliseconds, false);
+      times->add(kNeuralRow, stageMs(frame.stages, "guide") + stageMs(frame.stages, "network"), false);
+      times->add(kBakerRow, stageMs(baked.stages, "bake"), false);
     };
     for (int i = 0; i < o.warmup; ++i) render(nullptr);
     StageTimes times;
     for (int r = 0; r < o.repeats; ++r) render(&times);
     times.print("  " + std::to_string(size) + "x" + std::to_string(size) + " lightmaps");
+    const double neuralMs = summarize(times.samples(kNeuralRow)).median,
+                 bakerMs = summarize(times.samples(kBakerRow)).median;
+    std::printf("  neural lightmaps / exact baker: %.3f / %.3f ms = %.2fx (medians)\n", neuralMs, bakerMs,
+                neuralMs / bakerMs);
     nlohmann::json entry = times.json();
     entry["size"] = size;
+    entry["neural_over_baker"] = neuralMs / bakerMs;
     sizes.push_back(entry);
   }
   nlohmann::json report = sceneSettings(scene);

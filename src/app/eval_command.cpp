@@ -18,6 +18,7 @@
 #include "gpu/pipeline.h"
 #include "gpu/sequence.h"
 #include "io/error.h"
+#include "io/json_reader.h"
 #include "io/report.h"
 #include "io/safetensors.h"
 #include "nn/network.h"
@@ -57,6 +58,25 @@ std::vector<float> interleaved(const std::vector<float>& nchw, int64_t n, int ch
   for (int64_t p = 0; p < pixels; ++p)
     for (int c = 0; c < channels; ++c) out[size_t(p) * channels + c] = sample[c * pixels + p];
   return out;
+}
+
+// The guide channels of a shard (3, or 4 with the fine alpha: version 3), checked against what the network
+// reads: a network that reads the fine alpha needs it, of the step it was trained on.
+int guideChannels(const fs::path& shard, const nlohmann::json& description, const nn::Graph& graph) {
+  const int channels = description.contains("guide_channels") ? int(description["guide_channels"].size()) : 3;
+  if (channels != 3 && channels != 4)
+    throw io::InputError(shard.string(), "guide_channels must name 3 or 4 channels");
+  const float wanted = graph.nodes.front().guideAlphaStepVoxels;
+  if (wanted == 0.0f) return channels;
+  const nlohmann::json render =
+      description.value("scene", nlohmann::json::object()).value("render", nlohmann::json::object());
+  const float held = channels == 4 ? render.value("guide_alpha_step_voxels", 0.0f) : 0.0f;
+  if (held != wanted)
+    throw io::InputError(shard.string(), "the network reads a fine alpha of step " + io::show(wanted) +
+                                             " voxels; the shard's guide has " +
+                                             (held > 0.0f ? "step " + io::show(held) : std::string("none")) +
+                                             " (the dataset config's \"guide\")");
+  return channels;
 }
 
 void evaluateDataset(const EvalOptions& o) {
@@ -109,17 +129,18 @@ void evaluateDataset(const EvalOptions& o) {
     const std::vector<float> guides = shard.at("guide").toFloat(), targets = shard.at(targetName).toFloat();
     const int64_t pixels = int64_t(size) * size;
     const nlohmann::json& samples = description["samples"];
-    if (int64_t(guides.size()) != int64_t(samples.size()) * 3 * pixels ||
+    const int channels = guideChannels(shardPath, description, network->graph());
+    if (int64_t(guides.size()) != int64_t(samples.size()) * channels * pixels ||
         int64_t(targets.size()) != int64_t(samples.size()) * 8 * pixels)
       throw io::InputError(shardPath.string(),
                            "tensor shapes do not match its " + std::to_string(samples.size()) + " samples");
     for (int64_t n = 0; n < int64_t(samples.size()); ++n) {
       const std::string split = samples[size_t(n)].value("split", "");
       if (!splits.count(split)) continue;
-      const std::vector<float> g = interleaved(guides, n, 3, pixels);
+      const std::vector<float> g = interleaved(guides, n, channels, pixels);
       std::vector<float> rgba(size_t(pixels) * 4, 0.0f);
       for (int64_t p = 0; p < pixels; ++p)
-        for (int c = 0; c < 3; ++c) rgba[size_t(p) * 4 + c] = g[size_t(p) * 3 + c];
+        for (int c = 0; c < channels; ++c) rgba[size_t(p) * 4 + c] = g[size_t(p) * channels + c];
       guide->upload(std::as_bytes(std::span(rgba)));
       sequence->submit();
       inferenceMs.push_back(sequence->stageTimes().front().milliseconds);

@@ -360,8 +360,8 @@ const char* obstacleChoiceName(ObstacleChoice choice) {
   return "?";
 }
 
-int shardChannels(const DatasetTargets& targets) {
-  return 3 + 8 * (int(targets.single) + int(targets.multiple)) + 2;
+int shardChannels(int guideChannels, const DatasetTargets& targets) {
+  return guideChannels + 8 * (int(targets.single) + int(targets.multiple)) + 2;
 }
 
 DatasetConfig parseDatasetConfig(const nlohmann::json& j, const fs::path& file) {
@@ -413,8 +413,12 @@ DatasetConfig parseDatasetConfig(const nlohmann::json& j, const fs::path& file) 
   c.lightmapSize = r.optional<int>("lightmap_size", base.render.lightmapSize,
                                    io::both(io::inRange(16, 4096), io::multipleOf(16)));
   c.targets = parseTargets(r);
-  const double shardBytes = double(c.frames.count) * c.cameraCount() * shardChannels(c.targets) * 2.0 *
-                            c.lightmapSize * c.lightmapSize;
+  c.guideAlphaStepVoxels = r.object("guide", [&](io::JsonReader& g) {
+    return g.optional<float>("alpha_step_voxels", base.render.guideAlphaStepVoxels, io::inRange(0, 64));
+  });
+  const double shardBytes = double(c.frames.count) * c.cameraCount() *
+                            shardChannels(c.guideChannels(), c.targets) * 2.0 * c.lightmapSize *
+                            c.lightmapSize;
   if (shardBytes > kMaxShardBytes)
     r.fail("frames.count", std::to_string(c.frames.count) + " frames x " + std::to_string(c.cameraCount()) +
                                " cameras of " + std::to_string(c.lightmapSize) +
@@ -494,6 +498,14 @@ std::string sequenceSuffix(int sequence) {
 
 // Sequence `sequence` ≥ c.sequences: a VDB scene played back, its files listed with absolute paths so that
 // the plan's scene loads from any folder. Only the smoke's variations apply: there is no inlet or flow.
+// The config's guide into a sequence's scene (left out when off and the base scene has no such key, so that
+// the scenes of configs without it stay what they were).
+void setGuide(nlohmann::json& scene, const DatasetConfig& c) {
+  nlohmann::json& render = scene["render"];
+  if (c.guideAlphaStepVoxels > 0 || render.contains("guide_alpha_step_voxels"))
+    render["guide_alpha_step_voxels"] = c.guideAlphaStepVoxels;
+}
+
 SequencePlan planVdbSequence(const DatasetConfig& c, int sequence, int attempt) {
   const Draws s{c.seed, sequence, attempt};
   const std::size_t i = std::size_t(sequence - c.sequences);
@@ -511,6 +523,7 @@ SequencePlan planVdbSequence(const DatasetConfig& c, int sequence, int attempt) 
   for (const fs::path& file : played.vdb->files) j["vdb"]["files"].push_back(file.string());
   j["render"]["lightmap_size"] = c.lightmapSize;
   j["render"]["seed"] = uint32_t(hashOf(s, kSceneSeed));
+  setGuide(j, c);
   varySmoke(j, c.variations, s);
   plan.frames = sampledFrames(c, s);
   plan.scene =
@@ -539,6 +552,7 @@ SequencePlan planSequence(const DatasetConfig& c, int sequence, int attempt) {
   j["grid"]["origin"] = tidy(grid.origin);
   j["render"]["lightmap_size"] = c.lightmapSize;
   j["render"]["seed"] = uint32_t(hashOf(s, kSceneSeed));
+  setGuide(j, c);
 
   const DatasetVariations& v = c.variations;
   glm::vec3 inletCentre = render::domainBox(grid).centre();

@@ -63,11 +63,11 @@ struct DatasetTargets {
   render::MultipleScattering multipleScattering;  // "multiple_scattering": samples, orders, downsample
 };
 
-// A shard holds per sample the guide (3), targets (8 each) and motion (2) channels as F16
-// (dataset_sequence.h). It is built in host memory whole and read whole by the trainer, so its size is
+// A shard holds per sample the guide (3, or 4 with the fine alpha), targets (8 each) and motion (2) channels
+// as F16 (dataset_sequence.h). It is built in host memory whole and read whole by the trainer, so its size is
 // bounded when the config is read.
 inline constexpr double kMaxShardBytes = 4.0 * (1 << 30);
-int shardChannels(const DatasetTargets& targets);
+int shardChannels(int guideChannels, const DatasetTargets& targets);
 
 struct DatasetConfig {
   std::filesystem::path file;       // as given, for messages
@@ -85,6 +85,9 @@ struct DatasetConfig {
   DatasetCameras cameras;
   int lightmapSize = 64;
   DatasetTargets targets;
+  // "guide": {"alpha_step_voxels"}: > 0 adds the fine alpha as the guide's 4th channel (every sequence's
+  // render.guide_alpha_step_voxels); default: the base scene's.
+  float guideAlphaStepVoxels = 0;
   std::vector<int> heldoutSequences, heldoutCameras;
   DatasetVariations variations;
   std::optional<DatasetObstacles> obstacles;  // none: the base scene's obstacles
@@ -96,6 +99,7 @@ struct DatasetConfig {
 
   int cameraCount() const { return int(cameras.azimuthsDeg.size() * cameras.elevationsDeg.size()); }
   int sequenceCount() const { return sequences + int(vdbScenes.size()); }
+  int guideChannels() const { return guideAlphaStepVoxels > 0 ? 4 : 3; }  // guide, alpha, depth[, alpha_fine]
 };
 
 // `file` names the config in errors and anchors its relative paths. Reads and checks the base scene too.

@@ -18,7 +18,7 @@
 namespace sixway::dataset {
 namespace {
 
-constexpr int kGuideChannels = 3, kTargetChannels = 8, kMotionChannels = 2;
+constexpr int kTargetChannels = 8, kMotionChannels = 2;
 
 // The seed of one sample's multiple-scattering trace: the scene's render.seed mixed with the sample's
 // sequence, frame and camera, so a shard regenerates bit for bit and no two samples share their noise.
@@ -101,7 +101,7 @@ DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCa
                 : 0.0f;
   const render::VolumeGrid velocityGrid{scene.grid.size, scene.grid.origin, scene.grid.cellSize};
 
-  PlanarTensor guides("guide", samples, kGuideChannels, size),
+  PlanarTensor guides("guide", samples, config.guideChannels(), size),
       targets("target", config.targets.single ? samples : 0, kTargetChannels, size),
       targetsMs("target_ms", config.targets.multiple ? samples : 0, kTargetChannels, size),
       motions("motion", samples, kMotionChannels, size);
@@ -179,14 +179,26 @@ DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCa
     targetNames.push_back("multiple");
   }
   shard.tensors.push_back(motions.take(samples));
-  // Version 2: the targets are named (a reader of version 1 expects `target` alone, so it refuses these).
+  // Version 2: the targets are named (a reader of version 1 expects `target` alone, so it refuses these);
+  // version 3: so are the guide's channels, one more than before (a reader of 2 expects 3).
   const bool singleOnly = config.targets.single && !config.targets.multiple;
-  shard.metadata = {
-      {"version", singleOnly ? 1 : 2},  {"targets", targetNames},    {"sequence", plan.sequence},
-      {"attempt", plan.attempt},        {"lightmap_size", size},     {"config", config.json},
-      {"scene", plan.sceneJson},        {"obstacle", plan.obstacle}, {"frame_dt", scene.time.frameDt},
-      {"stride", config.frames.stride}, {"cameras", cameraJson},     {"samples", sampleJson}};
+  const bool fineAlpha = config.guideChannels() == 4;
+  shard.metadata = {{"version", fineAlpha    ? 3
+                                : singleOnly ? 1
+                                             : 2},
+                    {"targets", targetNames},
+                    {"sequence", plan.sequence},
+                    {"attempt", plan.attempt},
+                    {"lightmap_size", size},
+                    {"config", config.json},
+                    {"scene", plan.sceneJson},
+                    {"obstacle", plan.obstacle},
+                    {"frame_dt", scene.time.frameDt},
+                    {"stride", config.frames.stride},
+                    {"cameras", cameraJson},
+                    {"samples", sampleJson}};
   if (!simulated) shard.metadata["motion"] = false;  // absent: the shard has a motion field
+  if (fineAlpha) shard.metadata["guide_channels"] = {"guide", "alpha", "depth", "alpha_fine"};
   return shard;
 }
 

@@ -18,7 +18,7 @@ class PipelineCache;
 namespace sixway::dataset {
 
 struct DatasetShard {
-  std::vector<io::Tensor> tensors;  // guide [N,3,H,W], target [N,8,H,W], motion [N,2,H,W], F16
+  std::vector<io::Tensor> tensors;  // guide [N,3 or 4,H,W], target [N,8,H,W], motion [N,2,H,W], F16
   nlohmann::json metadata;          // the value of the header's "sixway.dataset"
 };
 

@@ -105,28 +105,33 @@ struct FramePipeline::Passes {
       : context(context),
         scene(scene),
         options(options),
+        network(options.mode == RenderMode::Neural ? loadNetwork(context, cache, scene, options) : nullptr),
         frame(context, cache, this->scene,
               runtime::FrameTarget{uint32_t(scene.render.width), uint32_t(scene.render.height), {}, {}},
               !options.shadows      ? 0
               : options.shadowTiles ? *options.shadowTiles
-                                    : render::shadowTileCount(scene.lights, scene.obstacles)),
+                                    : render::shadowTileCount(scene.lights, scene.obstacles),
+              network ? runtime::networkGuide(scene, network->graph())
+                      : render::GuideSettings::fromScene(scene)),
         sequence(context) {
-    const uint32_t lightmapSize = frame.lightmapSize();
-    if (options.mode == RenderMode::Neural) {
-      if (!std::filesystem::exists(options.weights))
-        throw io::InputError(options.weights.string(),
-                             "no such weights file (train one with tools/train.py, or pass --weights)");
-      const io::SafetensorsFile weights = io::readSafetensors(options.weights);
-      nn::NetworkOptions networkOptions;
-      networkOptions.precision = options.fp16 ? nn::Precision::Fp16 : nn::Precision::Fp32;
-      network =
-          std::make_unique<nn::Network>(context, cache, weights, lightmapSize, lightmapSize, networkOptions);
-    }
     if (bakedScattering(options.mode)) baker = std::make_unique<render::ScatteredLightmaps>(context, cache);
     if (options.mode == RenderMode::PathTrace) tracer = std::make_unique<render::PathTracer>(context, cache);
     if (options.mode == RenderMode::GuideLit)
       guideLit = std::make_unique<render::GuideLightmaps>(context, cache,
                                                           uint32_t(frame.guiding().settings().lights.size()));
+  }
+
+  static std::unique_ptr<nn::Network> loadNetwork(const gpu::Context& context,
+                                                  const gpu::PipelineCache& cache, const io::Scene& scene,
+                                                  const FramePipelineOptions& options) {
+    if (!std::filesystem::exists(options.weights))
+      throw io::InputError(options.weights.string(),
+                           "no such weights file (train one with tools/train.py, or pass --weights)");
+    nn::NetworkOptions networkOptions;
+    networkOptions.precision = options.fp16 ? nn::Precision::Fp16 : nn::Precision::Fp32;
+    const uint32_t size = uint32_t(scene.render.lightmapSize);
+    return std::make_unique<nn::Network>(context, cache, io::readSafetensors(options.weights), size, size,
+                                         networkOptions);
   }
 
   // The real-time stages of the mode, recorded once for the volume's buffers.
@@ -152,8 +157,8 @@ struct FramePipeline::Passes {
   const gpu::Context& context;
   io::Scene scene;
   FramePipelineOptions options;
+  std::unique_ptr<nn::Network> network;  // before the frame, whose guide it sets
   runtime::RealtimeFrame frame;
-  std::unique_ptr<nn::Network> network;
   std::unique_ptr<render::ScatteredLightmaps> baker;
   std::unique_ptr<render::PathTracer> tracer;
   std::unique_ptr<render::GuideLightmaps> guideLit;

@@ -43,6 +43,8 @@ void LightmapMetrics::add(std::span<const float> predicted, std::span<const floa
       ++sample.values;
       pairs_[kPairOf[c]].squared += d * d;
       ++pairs_[kPairOf[c]].values;
+      channels_[c].squared += d * d;
+      ++channels_[c].values;
     }
   }
   masked_.squared += sample.squared;
@@ -56,6 +58,9 @@ void LightmapMetrics::add(std::span<const float> predicted, std::span<const floa
 
 nlohmann::json LightmapMetrics::summary() const {
   const auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  nlohmann::json channels = nlohmann::json::object();
+  for (int c = 0; c < render::kSixWayChannels; ++c)
+    channels[render::sixWayChannelNames()[c]] = number(channels_[c].psnr());
   return {
       {"samples", samples_},
       {"psnr_masked_db", number(masked_.psnr())},
@@ -65,7 +70,8 @@ nlohmann::json LightmapMetrics::summary() const {
        {{"right_left", number(pairs_[0].psnr())},
         {"top_bottom", number(pairs_[1].psnr())},
         {"back_front", number(pairs_[2].psnr())},
-        {"alpha_emissive", number(pairs_[3].psnr())}}}};
+        {"alpha_emissive", number(pairs_[3].psnr())}}},
+      {"channels_psnr_masked_db", channels}};
 }
 
 }  // namespace sixway::eval

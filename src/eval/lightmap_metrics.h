@@ -17,7 +17,8 @@ class LightmapMetrics {
 
   uint64_t samples() const { return samples_; }
   // PSNR of the pooled squared errors (every pixel of every sample weighs the same), and the mean of the
-  // samples' own masked PSNRs; "pairs": masked PSNR per channel pair.
+  // samples' own masked PSNRs; masked PSNR per channel pair and per channel (null where exact, e.g. the
+  // emission of smoke that has none).
   nlohmann::json summary() const;
 
  private:
@@ -27,7 +28,8 @@ class LightmapMetrics {
     double psnr() const;
   };
   Sum masked_, full_;
-  std::array<Sum, 4> pairs_;  // right/left, top/bottom, back/front, alpha/emissive
+  std::array<Sum, 4> pairs_;     // right/left, top/bottom, back/front, alpha/emissive
+  std::array<Sum, 8> channels_;  // sixWayChannelNames() order
   double samplePsnrSum_ = 0;
   uint64_t samples_ = 0, maskedSamples_ = 0;  // all, and those with any masked pixel
 };

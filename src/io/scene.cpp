@@ -386,6 +386,8 @@ RenderSettings parseRender(JsonReader& r) {
   s.height = r.optional<int>("height", s.height, inRange(16, 8192));
   s.lightmapSize = r.optional<int>("lightmap_size", s.lightmapSize, both(inRange(16, 4096), multipleOf(16)));
   s.guideStepVoxels = r.optional<float>("guide_step_voxels", s.guideStepVoxels, positive());
+  s.guideAlphaStepVoxels =
+      r.optional<float>("guide_alpha_step_voxels", s.guideAlphaStepVoxels, inRange(0, 64));
   if (const auto names = r.maybe<std::vector<std::string>>("guide_lights")) {
     if (names->empty()) r.fail("guide_lights", "needs at least one light");
     s.guideLights.clear();

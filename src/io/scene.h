@@ -221,6 +221,7 @@ struct RenderSettings {
   int height = 256;
   int lightmapSize = 128;  // multiple of 16
   float guideStepVoxels = 3;
+  float guideAlphaStepVoxels = 0;  // > 0: the guide's channel A holds a fine alpha march of this step
   std::vector<GuideLight> guideLights{GuideLight::Front, GuideLight::Top, GuideLight::Bottom};
   glm::vec3 background{0};
   float shellThreshold = 0.1f;  // alpha at which the smoke shell depth is taken

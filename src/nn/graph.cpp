@@ -78,6 +78,12 @@ Node readNode(io::JsonReader& r) {
   if (n.op == Op::Input) {
     n.outChannels = r.required<int>("out_channels", io::inRange(1, 4));
     n.guideChannels = r.required<int>("guide_channels", io::inRange(1, n.outChannels));
+    // The guide's 4th channel is the fine alpha, which the runtime's guide computes only when asked.
+    n.guideAlphaStepVoxels = r.optional<float>("guide_alpha_step_voxels", 0.0f, io::inRange(0, 64));
+    if ((n.guideChannels == 4) != (n.guideAlphaStepVoxels > 0.0f))
+      r.fail("guide_channels",
+             "a 4th guide channel is the fine alpha: guide_channels 4 goes with "
+             "guide_alpha_step_voxels > 0");
     return n;
   }
   n.inputs = r.required<std::vector<std::string>>("inputs");

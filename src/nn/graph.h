@@ -34,6 +34,7 @@ struct Node {
   float eps = 1e-6f;
   // input
   int guideChannels = 3;
+  float guideAlphaStepVoxels = 0.0f;  // > 0: channel 4 is the guide's fine alpha of this step
   // output: the eight channels (names, encodings) and the lightmaps' components as indices into them
   std::vector<std::string> channels;
   std::vector<Encoding> encodings;

@@ -95,6 +95,7 @@ GuideSettings GuideSettings::fromScene(const io::Scene& scene) {
   GuideSettings s;
   s.size = uint32_t(scene.render.lightmapSize);
   s.stepCells = scene.render.guideStepVoxels;
+  s.alphaStepCells = scene.render.guideAlphaStepVoxels;
   s.lights = scene.render.guideLights;
   s.shellThreshold = scene.render.shellThreshold;
   s.seed = scene.render.seed;

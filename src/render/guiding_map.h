@@ -39,7 +39,8 @@ struct GuideSettings {
   // jittered, as the exact baker's alpha); 0: A = 0 (the shipped network's input has no such channel).
   float alphaStepCells = 0.0f;
 
-  // render.lightmap_size, guide_step_voxels, guide_lights, shell_threshold, seed; the rest default.
+  // render.lightmap_size, guide_step_voxels, guide_alpha_step_voxels, guide_lights, shell_threshold, seed;
+  // the rest default.
   static GuideSettings fromScene(const io::Scene& scene);
 };
 

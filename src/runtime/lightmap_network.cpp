@@ -50,6 +50,10 @@ uint32_t LightmapNetwork::size() const {
   return impl_->size;
 }
 
+float LightmapNetwork::fineAlphaStepVoxels() const {
+  return impl_->network->graph().nodes.front().guideAlphaStepVoxels;
+}
+
 std::vector<float> LightmapNetwork::run(std::span<const float> guide) {
   const size_t pixels = size_t(impl_->size) * impl_->size;
   if (guide.size() != pixels * 4)

@@ -15,8 +15,16 @@ gpu::Image ownImage(const gpu::Context& context, uint32_t width, uint32_t height
 
 }  // namespace
 
+render::GuideSettings networkGuide(const io::Scene& scene, const nn::Graph& graph) {
+  render::GuideSettings guide = render::GuideSettings::fromScene(scene);
+  const nn::Node& input = graph.nodes.front();
+  if (input.guideAlphaStepVoxels > 0.0f) guide.alphaStepCells = input.guideAlphaStepVoxels;
+  return guide;
+}
+
 RealtimeFrame::RealtimeFrame(const gpu::Context& context, const gpu::PipelineCache& cache,
-                             const io::Scene& scene, FrameTarget target, uint32_t shadowTiles)
+                             const io::Scene& scene, FrameTarget target, uint32_t shadowTiles,
+                             const render::GuideSettings& guide)
     : scene_(&scene),
       width_(target.width),
       height_(target.height),
@@ -28,7 +36,7 @@ RealtimeFrame::RealtimeFrame(const gpu::Context& context, const gpu::PipelineCac
       lightmaps_(context, lightmapSize_, lightmapSize_),
       meshes_(context, scene.obstacles),
       shadowMaps_(context, cache, render::kDefaultShadowTileSize, shadowTiles),
-      guiding_(context, cache, render::GuideSettings::fromScene(scene)),
+      guiding_(context, cache, guide),
       shading_(context, cache, engineColor_ ? engineColor_->desc().format : kColorFormat) {
   if (engineColor_.has_value() != engineDepth_.has_value())
     throw std::invalid_argument("RealtimeFrame: an engine target needs both colour and depth");

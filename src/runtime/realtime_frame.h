@@ -12,6 +12,7 @@
 #include "gpu/image.h"
 #include "gpu/sequence.h"
 #include "io/scene.h"
+#include "nn/graph.h"
 #include "render/camera.h"
 #include "render/guiding_map.h"
 #include "render/lightmap_images.h"
@@ -40,11 +41,17 @@ struct FrameTarget {
 // guiding map (a flipbook's shell depth is uploaded into guide() instead).
 enum class FrameStages { All, UpToGuide, ObstaclesOnly, AllButGuide };
 
+// The guiding map a network reads: the scene's, with the fine alpha (channel A) when the network's input
+// takes it (the graph's guide_alpha_step_voxels wins over the scene's render.guide_alpha_step_voxels: the
+// network was trained on that step).
+render::GuideSettings networkGuide(const io::Scene& scene, const nn::Graph& graph);
+
 class RealtimeFrame {
  public:
-  // `shadowTiles`: the shadow atlas's tiles (0: no shadows).
+  // `shadowTiles`: the shadow atlas's tiles (0: no shadows); `guide`: the guiding map's settings, the scene's
+  // (GuideSettings::fromScene) or a network's (networkGuide).
   RealtimeFrame(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
-                FrameTarget target, uint32_t shadowTiles);
+                FrameTarget target, uint32_t shadowTiles, const render::GuideSettings& guide);
 
   // Records the passes for `volume` into `sequence`; `lightmaps` records what fills lightmaps() between the
   // guiding map and the shading (nothing: the caller uploads them before each submission).

@@ -52,9 +52,11 @@ SmokeRenderer::Impl::Impl(Device::Impl& device, SmokeSimulation::Impl& simulatio
                           const RendererOptions& options, const RenderTarget* target)
     : simulation(simulation),
       engineTarget(target != nullptr),
+      network(loadNetwork(*device.context, *device.cache, options,
+                          uint32_t(simulation.scene.render.lightmapSize))),
       frame(*device.context, *device.cache, simulation.scene,
-            frameTarget(*device.context, simulation.scene, target), shadowTiles(simulation.scene, options)),
-      network(loadNetwork(*device.context, *device.cache, options, frame.lightmapSize())),
+            frameTarget(*device.context, simulation.scene, target), shadowTiles(simulation.scene, options),
+            runtime::networkGuide(simulation.scene, network->graph())),
       sequence(*device.context) {}
 
 gpu::Sequence& SmokeRenderer::Impl::prepare() {

@@ -23,8 +23,8 @@ struct SmokeRenderer::Impl {
 
   SmokeSimulation::Impl& simulation;
   bool engineTarget;
+  std::unique_ptr<nn::Network> network;  // before the frame, whose guide it sets
   runtime::RealtimeFrame frame;
-  std::unique_ptr<nn::Network> network;
   render::RecordedSequence sequence;
   std::optional<Camera> camera;
   std::optional<std::vector<io::Light>> lights;

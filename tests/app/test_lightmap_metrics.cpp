@@ -35,6 +35,9 @@ TEST(LightmapMetrics, AConstantErrorGivesItsPsnrAndTheMaskLeavesOutEmptyPixels) 
   EXPECT_NEAR(s["psnr_full_db"].get<double>(), 10 * std::log10(1 / (0.5 * 0.875 * 0.01 + 0.5 * 0.09)), kDb);
   EXPECT_NEAR(s["pairs_psnr_masked_db"]["right_left"].get<double>(), 20.0, kDb);
   EXPECT_NEAR(s["pairs_psnr_masked_db"]["alpha_emissive"].get<double>(), 10 * std::log10(1 / 0.005), kDb);
+  EXPECT_NEAR(s["channels_psnr_masked_db"]["Right"].get<double>(), 20.0, kDb);
+  EXPECT_NEAR(s["channels_psnr_masked_db"]["emissive"].get<double>(), 20.0, kDb);
+  EXPECT_TRUE(s["channels_psnr_masked_db"]["alpha"].is_null()) << "exact: no finite PSNR";
 }
 
 TEST(LightmapMetrics, ValuesAreClippedToTheUnitRangeAndNanCountsAsZero) {

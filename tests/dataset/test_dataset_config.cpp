@@ -170,6 +170,25 @@ TEST_F(DatasetConfigTest, OtherMistakesAreErrors) {
   j["multiple_scattering"]["downsample"] = 3;
   EXPECT_THAT(error(j), namesFileAndProblem(dir_ / "config.json",
                                             "multiple_scattering.downsample: must be 1, 2, 4 or 8 (got 3)"));
+  j = validConfig();
+  j["guide"] = {{"alpha_step_voxels", -0.5}};
+  EXPECT_THAT(error(j),
+              namesFileAndProblem(dir_ / "config.json", "guide.alpha_step_voxels: must be in [0, 64]"));
+  j["guide"] = {{"alpha_step", 0.5}};
+  EXPECT_THAT(error(j), namesFileAndProblem(dir_ / "config.json", "guide.alpha_step: unknown key"));
+}
+
+// The guide block goes into every sequence's scene; without it the scenes stay as they were.
+TEST_F(DatasetConfigTest, TheGuideBlockSetsEverySequencesFineAlpha) {
+  nlohmann::json j = validConfig();
+  EXPECT_EQ(dataset::loadDatasetConfig(write(j)).guideChannels(), 3);
+  EXPECT_FALSE(dataset::planSequence(dataset::loadDatasetConfig(write(j)), 1)
+                   .sceneJson["render"]
+                   .contains("guide_alpha_step_voxels"));
+  j["guide"] = {{"alpha_step_voxels", 1}};
+  const dataset::DatasetConfig config = dataset::loadDatasetConfig(write(j));
+  EXPECT_EQ(config.guideChannels(), 4);
+  EXPECT_FLOAT_EQ(dataset::planSequence(config, 1).scene.render.guideAlphaStepVoxels, 1.0f);
 }
 
 TEST_F(DatasetConfigTest, ShardsBeyondTheLimitAreRefused) {

@@ -160,6 +160,7 @@ TEST(SceneTest, MinimalSceneGetsDefaults) {
   EXPECT_EQ(s.render.height, 256);
   EXPECT_EQ(s.render.lightmapSize, 128);
   EXPECT_FLOAT_EQ(s.render.guideStepVoxels, 3);
+  EXPECT_FLOAT_EQ(s.render.guideAlphaStepVoxels, 0);
   EXPECT_EQ(s.render.guideLights, (std::vector{GuideLight::Front, GuideLight::Top, GuideLight::Bottom}));
   expectVec(s.render.background, {0, 0, 0});
   EXPECT_FLOAT_EQ(s.render.shellThreshold, 0.1f);
@@ -183,7 +184,7 @@ TEST(SceneTest, OtherShapesLightsAndPathsAreRead) {
     "lights": [{"type": "point", "position": [1, 1, 1],
                 "path": {"type": "orbit", "center": [0, 1, 0], "degrees_per_frame": 2}}],
     "ambient": {"sh": [[0.1, 0.1, 0.1], [0, 0, 0], [0, 0.05, 0], [0, 0, 0]]},
-    "render": {"guide_lights": ["front", "left", "right"], "seed": 4000000000}
+    "render": {"guide_lights": ["front", "left", "right"], "seed": 4000000000, "guide_alpha_step_voxels": 0.5}
   })"_json),
                              "s.json", ".");
   EXPECT_EQ(s.boundaries.faces[Boundaries::XMinus], BoundaryType::Inflow);
@@ -205,6 +206,7 @@ TEST(SceneTest, OtherShapesLightsAndPathsAreRead) {
   EXPECT_FLOAT_EQ(std::get<AmbientSh>(*s.ambient).coefficients[2].y, 0.05f);
   EXPECT_EQ(s.render.guideLights, (std::vector{GuideLight::Front, GuideLight::Left, GuideLight::Right}));
   EXPECT_EQ(s.render.seed, 4000000000u);
+  EXPECT_FLOAT_EQ(s.render.guideAlphaStepVoxels, 0.5f);
 }
 
 TEST(SceneTest, ReynoldsUsesTheFastestInlet) {
@@ -550,6 +552,11 @@ TEST(SceneParse, CameraUpAlongView) {
 TEST(SceneParse, DuplicateGuideLight) {
   EXPECT_TRUE(rejected(minimalWith(R"({"render": {"guide_lights": ["front", "top", "front"]}})"_json),
                        "render.guide_lights[2]", "\"front\" is listed twice"));
+}
+
+TEST(SceneParse, GuideAlphaStepOutOfRange) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"render": {"guide_alpha_step_voxels": -1}})"_json),
+                       "render.guide_alpha_step_voxels", "must be in [0, 64]"));
 }
 
 TEST(SceneParse, ZeroDirection) {

@@ -102,6 +102,28 @@ TEST_F(MalformedWeights, UnknownKey) {
   EXPECT_THAT(error, namesFileAndProblem(path(), "kernal: unknown key"));
 }
 
+// The guide's 4th channel is the fine alpha: reading it needs the step the runtime's guide marches with.
+TEST_F(MalformedWeights, FourGuideChannelsNeedTheFineAlphaStep) {
+  const std::string error = errorAfter([this](std::vector<io::Tensor>&, nlohmann::json& graph) {
+    node(graph, "input")["guide_channels"] = 4;
+  });
+  EXPECT_THAT(error, namesFileAndProblem(path(), "guide_channels: a 4th guide channel is the fine alpha"));
+  const std::string negative = errorAfter([this](std::vector<io::Tensor>&, nlohmann::json& graph) {
+    node(graph, "input")["guide_alpha_step_voxels"] = -1;
+  });
+  EXPECT_THAT(negative, namesFileAndProblem(path(), "guide_alpha_step_voxels: must be in [0, 64]"));
+  io::SafetensorsFile file = io::readSafetensors(kTiny);
+  nlohmann::json json = nlohmann::json::parse(file.metadata.at("sixway.graph"));
+  node(json, "input")["guide_channels"] = 4;
+  node(json, "input")["guide_alpha_step_voxels"] = 0.5;
+  file.metadata["sixway.graph"] = json.dump();
+  io::writeSafetensors(path(), file.tensors, file.metadata);
+  const nn::Graph graph = nn::parseGraph(io::readSafetensors(path()));
+  EXPECT_EQ(graph.nodes.front().guideChannels, 4);
+  EXPECT_FLOAT_EQ(graph.nodes.front().guideAlphaStepVoxels, 0.5f);
+  EXPECT_FLOAT_EQ(nn::parseGraph(io::readSafetensors(kTiny)).nodes.front().guideAlphaStepVoxels, 0.0f);
+}
+
 TEST_F(MalformedWeights, BadGraphJson) {
   io::SafetensorsFile file = io::readSafetensors(kTiny);
   file.metadata["sixway.graph"] = "{\"version\": 1, \"nodes\": [";

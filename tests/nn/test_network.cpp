@@ -65,7 +65,7 @@ TEST_P(NetworkParity, MatchesPyTorch) {
   std::vector<float> rgba(pixels * 4, 0.0f);
   const std::vector<float> guideValues = input.toFloat();
   for (size_t p = 0; p < pixels; ++p)
-    for (size_t ch = 0; ch < 3; ++ch) rgba[p * 4 + ch] = guideValues[ch * pixels + p];
+    for (size_t ch = 0; ch < size_t(input.shape[0]); ++ch) rgba[p * 4 + ch] = guideValues[ch * pixels + p];
   const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
   gpu::Image guide(context(), {width, height, 1, VK_FORMAT_R32G32B32A32_SFLOAT, usage, "guide"});
   guide.upload(std::as_bytes(std::span(rgba)));
@@ -93,7 +93,8 @@ TEST_P(NetworkParity, MatchesPyTorch) {
 
 INSTANTIATE_TEST_SUITE_P(Vectors, NetworkParity,
                          ::testing::Values(ParityCase{"default"}, ParityCase{"tiny"},
-                                           ParityCase{"tiny", Precision::Fp32, false}),
+                                           ParityCase{"tiny", Precision::Fp32, false},
+                                           ParityCase{"fine_alpha"}),
                          [](const ::testing::TestParamInfo<ParityCase>& info) {
                            return caseName(info.param);
                          });

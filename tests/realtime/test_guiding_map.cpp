@@ -83,7 +83,9 @@ class GuideRun {
     io::Image image(all.width, all.height, {"guide", "alpha", "depth"});
     for (size_t i = 0; i < size_t(all.width) * all.height; ++i) {
       for (int c = 0; c < 3; ++c) image.pixels[i * 3 + c] = all.pixels[i * 4 + c];
-      if (map_.settings().alphaStepCells == 0.0f) EXPECT_EQ(all.pixels[i * 4 + 3], 0.0f);
+      if (map_.settings().alphaStepCells == 0.0f) {
+        EXPECT_EQ(all.pixels[i * 4 + 3], 0.0f);
+      }
     }
     return image;
   }

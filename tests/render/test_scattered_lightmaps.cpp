@@ -104,7 +104,9 @@ TEST_F(ScatteredLightmapsTest, AlbedoZeroHasNoMultipleScatteringAndMultipleOnlyA
   double gain = 0, emissionGain = 0;
   for (size_t i = 0; i < ss.pixels.size(); ++i) {
     ASSERT_GE(ms.pixels[i], ss.pixels[i]) << i;
-    if (i % 8 == 6) ASSERT_EQ(ms.pixels[i], ss.pixels[i]) << "alpha is the baker's";
+    if (i % 8 == 6) {
+      ASSERT_EQ(ms.pixels[i], ss.pixels[i]) << "alpha is the baker's";
+    }
     (i % 8 == 7 ? emissionGain : gain) += ms.pixels[i] - ss.pixels[i];
   }
   EXPECT_GT(gain, 0.1 * std::accumulate(ss.pixels.begin(), ss.pixels.end(), 0.0));

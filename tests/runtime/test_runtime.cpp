@@ -19,11 +19,13 @@
 #include "gpu/check.h"
 #include "gpu/device_features.h"
 #include "gpu/image.h"
+#include "io/safetensors.h"
 #include "io/scene.h"
 #include "render/scene_frame.h"
 #include "runtime/device_impl.h"
 #include "runtime/scene_lights.h"
 #include "runtime/scene_volumes.h"
+#include "runtime/smoke_renderer_impl.h"
 #include "runtime/smoke_simulation_impl.h"
 #include "support/temp_dir.h"
 
@@ -330,6 +332,49 @@ TEST(Runtime, ErrorsNameTheFile) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("small_plume.json: "), std::string::npos) << e.what();
   }
+}
+
+// The tiny network made to read the guide's 4th channel as the fine alpha of `step` voxels (its input
+// convolution already takes 4 channels; the 4th was zero).
+std::filesystem::path fineAlphaNetwork(const std::filesystem::path& dir, float step) {
+  io::SafetensorsFile file = io::readSafetensors(kWeights);
+  nlohmann::json graph = nlohmann::json::parse(file.metadata.at("sixway.graph"));
+  graph["nodes"][0]["guide_channels"] = 4;
+  graph["nodes"][0]["guide_alpha_step_voxels"] = step;
+  file.metadata["sixway.graph"] = graph.dump();
+  const std::filesystem::path path = dir / "fine_alpha.safetensors";
+  io::writeSafetensors(path, file.tensors, file.metadata);
+  return path;
+}
+
+// A network that reads the fine alpha turns it on in the frame's guiding map, in the public renderer and in
+// the evaluation's pipeline alike (same pixels), and its frame differs from the 3-channel network's.
+TEST(Runtime, ANetworkThatReadsTheFineAlphaGetsIt) {
+  TempDir dir;
+  const std::filesystem::path weights = fineAlphaNetwork(dir.path(), 1.0f);
+  Device device({.validate = true});
+  SmokeSimulation simulation(device, kScene);
+  SmokeRenderer renderer(device, simulation, {.weights = weights});
+  EXPECT_FLOAT_EQ(renderer.impl().frame.guiding().settings().alphaStepCells, 1.0f);
+  for (int frame = 0; frame < 2; ++frame) simulation.advance();
+  renderer.render();
+  const std::vector<float> image = renderer.image();
+
+  const gpu::Context& context = *device.impl().context;
+  const io::Scene scene = io::loadScene(kScene);
+  runtime::SimulatedVolumes volumes(context, *device.impl().cache, scene, 2);
+  eval::FramePipelineOptions options;
+  options.weights = weights;
+  eval::FramePipeline pipeline(context, *device.impl().cache, scene, options);
+  const double seconds = runtime::SimulatedVolumes::frameSeconds(scene, 1);
+  EXPECT_EQ(maxDifference(image, pipeline.render(1, seconds, volumes.volume(1)).image.pixels), 0.0);
+  options.weights = kWeights;
+  eval::FramePipeline threeChannels(context, *device.impl().cache, scene, options);
+  EXPECT_GT(maxDifference(image, threeChannels.render(1, seconds, volumes.volume(1)).image.pixels), 1e-3);
+
+  EXPECT_FLOAT_EQ(LightmapNetwork(device, weights, 16).fineAlphaStepVoxels(), 1.0f);
+  EXPECT_FLOAT_EQ(LightmapNetwork(device, kWeights, 16).fineAlphaStepVoxels(), 0.0f);
+  EXPECT_EQ(device.validationMessages(), 0u);
 }
 
 TEST(Runtime, TheNetworkAloneGivesEightChannels) {

@@ -45,7 +45,7 @@ def layer_kind(node):
 
 
 def bench_size(model, size, warmup, repeats):
-    guide = torch.rand(1, 3, size, size)
+    guide = torch.rand(1, model.config["guide_channels"], size, size)
     with torch.no_grad():
         for _ in range(warmup):
             model(guide)

@@ -1,13 +1,15 @@
 """The training shards written by `sixway dataset` (docs/dataset-format.md), read with numpy alone.
 
-A directory holds one `shard_SSSSS.safetensors` per simulated sequence: F16 tensors `guide` [N,3,H,W], the
+A directory holds one `shard_SSSSS.safetensors` per simulated sequence: F16 tensors `guide` [N,3,H,W] (guide,
+alpha, depth; version 3: [N,4,H,W] with the fine alpha, as the metadata's `guide_channels` says), the
 targets [N,8,H,W] (the baker's channels: Right, Left, Top, Bottom, Back, Front, alpha, emissive): `target`
-(single scattering) and/or `target_ms` (multiple scattering), as the metadata's `targets` says (version 2;
-version 1 shards hold `target` alone), and `motion` [N,2,H,W] (lightmap pixels, x right, y down: the smoke at
+(single scattering) and/or `target_ms` (multiple scattering), as the metadata's `targets` says (versions 2 and
+3; version 1 shards hold `target` alone), and `motion` [N,2,H,W] (lightmap pixels, x right, y down: the smoke at
 p now was at p - motion(p) one frame before), and the metadata `sixway.dataset` that names each sample's
 camera, frame and split.
 
-    data = ShardDataset("/work/data/cpu_small")    # target="multiple": train on target_ms
+    data = ShardDataset("/work/data/cpu_small")    # target="multiple": train on target_ms; guide_channels=4:
+                                                   # with the fine alpha
     pairs = data.pairs("train")                    # samples that have the previous frame of their camera
     current, previous = data.pair_batch(pairs[:8], crop=64, rng=np.random.default_rng(0))
 
@@ -26,7 +28,8 @@ from safetensors_io import read_safetensors
 
 SPLITS = ("train", "heldout_sequence", "heldout_camera")
 SHARD_NAME = re.compile(r"shard_(\d{5})\.safetensors$")
-GUIDE_CHANNELS = 3
+# The guide's channels by name; version 3 shards add the fine alpha (the dataset config's "guide" block).
+GUIDE_NAMES = ["guide", "alpha", "depth", "alpha_fine"]
 # Network channel i is baker channel TARGET_TO_NETWORK[i] (baker: Right, Left, Top, Bottom, Back, Front, ...).
 TARGET_TO_NETWORK = [1, 0, 2, 3, 5, 4, 6, 7]
 # Mirroring the image left-right swaps the Left and Right lightmaps (network channels 0 and 1).
@@ -55,14 +58,17 @@ def read_shard(path):
     if "sixway.dataset" not in metadata:
         raise ValueError(f"{path}: metadata has no 'sixway.dataset'")
     info = json.loads(metadata["sixway.dataset"])
-    if info.get("version") not in (1, 2):
-        raise ValueError(f"{path}: sixway.dataset.version is {info.get('version')}, this reader knows 1 and 2")
+    if info.get("version") not in (1, 2, 3):
+        raise ValueError(f"{path}: sixway.dataset.version is {info.get('version')}, this reader knows 1 to 3")
+    guide_names = info.get("guide_channels", GUIDE_NAMES[:3]) if info["version"] == 3 else GUIDE_NAMES[:3]
+    if guide_names != GUIDE_NAMES[:len(guide_names)] or len(guide_names) < 3:
+        raise ValueError(f"{path}: sixway.dataset.guide_channels is {guide_names!r}")
     targets = shard_targets(info)
     if not targets or any(t not in TARGET_TENSORS for t in targets):
         raise ValueError(f"{path}: sixway.dataset.targets is {info.get('targets')!r}")
     size = info["lightmap_size"]
     samples = info["samples"]
-    for name, channels in (("guide", GUIDE_CHANNELS), *((TARGET_TENSORS[t], 8) for t in targets), ("motion", 2)):
+    for name, channels in (("guide", len(guide_names)), *((TARGET_TENSORS[t], 8) for t in targets), ("motion", 2)):
         if name not in tensors:
             raise ValueError(f"{path}: no tensor '{name}'")
         expected = [len(samples), channels, size, size]
@@ -75,11 +81,14 @@ def read_shard(path):
 
 
 class ShardDataset:
-    """Every sample of every shard of a directory, in memory as F16 (a CPU dataset is a few hundred MB)."""
+    """Every sample of every shard of a directory, in memory as F16 (a CPU dataset is a few hundred MB), with
+    the first `guide_channels` channels of the guide (3, or 4 for the fine alpha)."""
 
-    def __init__(self, directory, target="single"):
+    def __init__(self, directory, target="single", guide_channels=3):
         if target not in TARGET_TENSORS:
             raise ValueError(f"target is {target!r}: single or multiple")
+        if guide_channels not in (3, 4):
+            raise ValueError(f"guide_channels is {guide_channels!r}: 3 or 4")
         self.directory = directory
         self.target_kind = target
         self.paths = shard_paths(directory)
@@ -94,8 +103,11 @@ class ShardDataset:
             if target not in shard_targets(info):
                 raise ValueError(f"{path}: holds {', '.join(shard_targets(info))} scattering targets, not {target} "
                                  f"(the dataset config's \"targets\")")
+            if tensors["guide"].shape[1] < guide_channels:
+                raise ValueError(f"{path}: its guide has no {GUIDE_NAMES[guide_channels - 1]} channel (the dataset "
+                                 f"config's \"guide\": {{\"alpha_step_voxels\"}})")
             self.infos.append(info)
-            guides.append(tensors["guide"])
+            guides.append(tensors["guide"][:, :guide_channels])
             targets.append(tensors[TARGET_TENSORS[target]][:, TARGET_TO_NETWORK])
             motions.append(tensors["motion"])
             # A played-back VDB sequence has no motion field ("motion": false): no temporal pairs.
@@ -127,6 +139,13 @@ class ShardDataset:
                 previous[i] = i - 1
         return previous
 
+    def guide_alpha_step_voxels(self):
+        """The fine alpha's step of the shards' guide (0: none), the same for every shard."""
+        steps = {info["scene"].get("render", {}).get("guide_alpha_step_voxels", 0) for info in self.infos}
+        if len(steps) > 1:
+            raise ValueError(f"{self.directory}: the shards' guides have fine alpha steps {sorted(steps)}")
+        return steps.pop()
+
     def dataset_config(self):
         """The dataset config that the shards were generated from (the same for every shard)."""
         return self.infos[0]["config"]
@@ -139,7 +158,7 @@ class ShardDataset:
         return np.array([i for i in self.indices(split) if self.previous[i] >= 0], dtype=np.int64)
 
     def batch(self, indices, crop=None, offsets=None, mirror=None):
-        """float32 tensors guide [B,3,c,c], target [B,8,c,c], motion [B,2,c,c] of the samples `indices`;
+        """float32 tensors guide [B,3 or 4,c,c], target [B,8,c,c], motion [B,2,c,c] of the samples `indices`;
         `offsets` (B x 2: row, column) place the crops of size `crop`; `mirror` (B booleans) flips left-right."""
         c = crop or self.size
         offsets = np.zeros((len(indices), 2), dtype=np.int64) if offsets is None else offsets

@@ -6,8 +6,10 @@
   tiny.safetensors             a tiny config that exercises the other options (NAF levels, gelu, bilinear
                                upsampling, odd channel counts, an adapter with dw_expand 3)
   tiny_vectors.safetensors     a 29x45 guide (not a multiple of the size multiple: padded, then cropped)
+  fine_alpha.safetensors       a small network whose guide has the fine alpha as a 4th channel
+  fine_alpha_vectors.safetensors  a 20x36 guide of 4 channels
 
-A vectors file holds "input" (3 x H x W), "raw" (the 8 output channels in the network's encoding), "lightmap_a"
+A vectors file holds "input" (3 or 4 x H x W), "raw" (the 8 output channels in the network's encoding), "lightmap_a"
 and "lightmap_b" (decoded and packed, 4 x H x W each) and "node.<name>" intermediates (at the padded size).
 Everything is deterministic (numpy PCG64 seeds, float32 CPU evaluation), so `--out DIR` regenerates the same
 files; check_test_vectors.py compares a regeneration with the committed ones.
@@ -36,21 +38,31 @@ TINY_CONFIG = {
     "adapters": {"enabled": True, "width": 6, "blocks": 1, "dw_expand": 3, "ffn_expand": 2},
 }
 
+FINE_ALPHA_CONFIG = {
+    "guide_channels": 4,
+    "guide_alpha_step_voxels": 0.5,
+    "widths": [5, 8],
+    "depth": 1,
+    "adapters": {"enabled": True, "width": 4, "blocks": 1},
+}
+
 # name: (config, weights seed, guide seed, guide height, guide width, intermediates)
 CASES = {
     "default": (None, 6, 60, 32, 48, ["enc.0.1", "down.0", "mid.1", "up.0", "dec.0.1", "adapters.0.blocks.0",
                                       "adapters.3.head"]),
     "tiny": (TINY_CONFIG, 7, 70, 29, 45, ["enc.0.1", "mid.1", "up.1", "dec.0.1", "adapters.1.proj",
                                           "adapters.1.blocks.0", "adapters.2.head"]),
+    "fine_alpha": (FINE_ALPHA_CONFIG, 8, 80, 20, 36, ["enc.0.0", "adapters.3.head"]),
 }
 
 
-def guide_image(seed, height, width):
-    """A guide-like input: smooth blobs of guide and alpha in [0, 1], depth in [0, 1], plus a little noise."""
+def guide_image(seed, height, width, count=3):
+    """A guide-like input: smooth blobs of guide and alpha in [0, 1], depth in [0, 1] (and the fine alpha), plus a
+    little noise."""
     rng = np.random.default_rng(seed)
     y, x = np.meshgrid(np.linspace(-1, 1, height), np.linspace(-1, 1, width), indexing="ij")
     channels = []
-    for _ in range(3):
+    for _ in range(count):
         cx, cy, r = rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5), rng.uniform(0.3, 0.8)
         blob = np.exp(-((x - cx) ** 2 + (y - cy) ** 2) / (r * r))
         channels.append(np.clip(blob + rng.uniform(-0.05, 0.05, blob.shape), 0.0, 1.0))
@@ -64,7 +76,7 @@ def make_case(name, out_dir):
     export_safetensors(model, os.path.join(out_dir, f"{name}.safetensors"),
                        {"sixway.training": {"note": "untrained: random weights for tests and benchmarks",
                                             "seed": weight_seed}})
-    guide = guide_image(guide_seed, height, width)
+    guide = guide_image(guide_seed, height, width, model.config["guide_channels"])
     intermediates = {}
     with torch.no_grad():
         raw = run_padded(model, guide, intermediates)

@@ -2,7 +2,8 @@
 
 PSNR = 10 log10(1 / MSE) on linear values clipped to [0, 1], the MSE pooled over every pixel and channel of
 every sample of a split: "masked" counts only pixels where the reference alpha > 0.01, "full" every pixel.
-Per channel group (the network's adapters: left_right, top_bottom, front_back, alpha_emissive) masked.
+Per channel group (the network's adapters: left_right, top_bottom, front_back, alpha_emissive) masked, and alpha
+and emissive alone.
 Temporal stability: the mean absolute frame-to-frame difference (consecutive frames of one camera) of the
 prediction and of the reference, side by side.
 """
@@ -45,6 +46,8 @@ class SplitMetrics:
         for i, (group, _) in enumerate(ADAPTERS):
             part = squared[:, 2 * i:2 * i + 2]
             self._add(f"masked_{group}", (part * mask).sum(), mask.sum() * 2)
+        for channel in (6, 7):  # alpha and emissive alone (network order)
+            self._add(f"masked_{ADAPTERS[3][1][channel - 6]}", (squared[:, channel] * mask[:, 0]).sum(), mask.sum())
 
     def add_frame_differences(self, prediction, prediction_previous, target, target_previous):
         for key, (a, b) in {"prediction": (prediction, prediction_previous),

@@ -40,6 +40,10 @@ DEFAULT_CONFIG = {
     "encoding": "srgb",  # lightmap channels are learnt sRGB-encoded; alpha is always linear
 }
 
+# Keys a config may add to DEFAULT_CONFIG; absent, the config (and so the export) stays as it was.
+# guide_alpha_step_voxels: the fine alpha's step of a 4-channel guide (the runtime's guide computes it).
+OPTIONAL_CONFIG = {"guide_alpha_step_voxels": 0.0}
+
 # The four adapters and the two channels of each head (docs/conventions.md, "Channels and packing").
 ADAPTERS = [("left_right", ["left", "right"]), ("top_bottom", ["top", "bottom"]),
             ("front_back", ["front", "back"]), ("alpha_emissive", ["alpha", "emissive"])]
@@ -53,7 +57,7 @@ def full_config(config=None):
     """DEFAULT_CONFIG overridden by `config` (one level deep for "adapters"), checked."""
     merged = copy.deepcopy(DEFAULT_CONFIG)
     for key, value in (config or {}).items():
-        if key not in merged:
+        if key not in merged and key not in OPTIONAL_CONFIG:
             raise ValueError(f"config: unknown key '{key}'")
         if key == "adapters":
             for sub in value:
@@ -74,6 +78,11 @@ def full_config(config=None):
         raise ValueError("config: encoding must be srgb or linear")
     if merged["input_channels"] < merged["guide_channels"]:
         raise ValueError("config: input_channels < guide_channels")
+    if not 1 <= merged["guide_channels"] <= 4:
+        raise ValueError("config: guide_channels must be 1 to 4")
+    if (merged["guide_channels"] == 4) != (merged.get("guide_alpha_step_voxels", 0) > 0):
+        raise ValueError("config: a 4th guide channel is the fine alpha: guide_channels 4 goes with "
+                         "guide_alpha_step_voxels > 0")
     return merged
 
 
@@ -184,8 +193,11 @@ class SixwayNet(nn.Module):
         c = self.config
         widths = c["widths"]
         levels = len(widths) - 1
-        x = self._add({"name": "input", "op": "input", "out_channels": c["input_channels"],
-                       "guide_channels": c["guide_channels"], "scale": 1})
+        node = {"name": "input", "op": "input", "out_channels": c["input_channels"],
+                "guide_channels": c["guide_channels"], "scale": 1}
+        if c.get("guide_alpha_step_voxels", 0) > 0:
+            node["guide_alpha_step_voxels"] = c["guide_alpha_step_voxels"]
+        x = self._add(node)
         skips = []
         cin = c["input_channels"]
         for level in range(levels):

@@ -86,10 +86,14 @@ def lightmaps(section):
         for entry in sizes:
             s = stage_map(entry).get(name)
             cells.append(timing(s) if s else "—")
-        label = name if all(stage_map(e).get(name, {"in_total": True})["in_total"] for e in sizes) \
-            else f"{name} (instead of fp32; not in the total)"
+        in_total = all(stage_map(e).get(name, {"in_total": True})["in_total"] for e in sizes)
+        label = name if in_total else f"{name} (instead of fp32; not in the total)" if name == "network fp16" \
+            else f"{name} (not in the total)"
         rows.append(f"| {label} | " + " | ".join(cells) + " |")
     rows.append("| **real-time total** | " + " | ".join(timing(e["total"], True) for e in sizes) + " |")
+    if all("neural_over_baker" in e for e in sizes):
+        rows.append("| neural lightmaps / exact baker (medians) | " +
+                    " | ".join(f"{e['neural_over_baker']:.2f}x" for e in sizes) + " |")
     frame = "x".join(str(n) for n in section["frame"])
     lattice = "x".join(str(n) for n in section["lattice"])
     note = (f"Frame {frame}, the bench plume on a {lattice} grid, {section['lights']} lights, "

@@ -114,9 +114,36 @@ class DatasetTest(unittest.TestCase):
             with self.assertRaisesRegex(ValueError, r"shard_00000\.safetensors: holds single scattering targets, "
                                                     r"not multiple"):
                 ShardDataset(tmp, target="multiple")
-            info["version"] = 3
+            info["version"] = 4
             write_safetensors(path, tensors, {"sixway.dataset": json.dumps(info)})
-            with self.assertRaisesRegex(ValueError, r"version is 3, this reader knows 1 and 2"):
+            with self.assertRaisesRegex(ValueError, r"version is 4, this reader knows 1 to 3"):
+                ShardDataset(tmp)
+
+    def test_version_3_shards_add_the_fine_alpha(self):
+        """A shard whose guide holds the fine alpha: a 3-channel reader takes the first three, a 4-channel one all
+        four, and the step comes from the shards' scenes; a shard without it is named."""
+        with tempfile.TemporaryDirectory() as tmp:
+            path = synthetic_shards.write_shards(tmp, size=8, cameras=1, frames=2, sequences=1)[0]
+            tensors, metadata = read_safetensors(path)
+            info = json.loads(metadata["sixway.dataset"])
+            three = ShardDataset(tmp, guide_channels=3)
+            with self.assertRaisesRegex(ValueError, r"shard_00000\.safetensors: its guide has no alpha_fine channel"):
+                ShardDataset(tmp, guide_channels=4)
+            fine = np.clip(tensors["guide"][:, 1:2].astype(np.float32) * 1.1, 0, 1).astype(np.float16)
+            tensors["guide"] = np.concatenate([tensors["guide"], fine], axis=1)
+            info.update(version=3, targets=["single"], guide_channels=["guide", "alpha", "depth", "alpha_fine"],
+                        scene={"render": {"guide_alpha_step_voxels": 0.5}})
+            write_safetensors(path, tensors, {"sixway.dataset": json.dumps(info)})
+            four = ShardDataset(tmp, guide_channels=4)
+            self.assertEqual(four.guide.shape[1], 4)
+            np.testing.assert_array_equal(four.guide[:, :3], three.guide)
+            np.testing.assert_array_equal(four.guide[:, 3:], fine)
+            self.assertEqual(four.guide_alpha_step_voxels(), 0.5)
+            self.assertEqual(ShardDataset(tmp).guide.shape[1], 3)
+            self.assertEqual(tuple(four.batch(np.array([0]), mirror=np.array([True]))["guide"].shape), (1, 4, 8, 8))
+            info["guide_channels"] = ["guide", "alpha", "depth", "alpha_coarse"]
+            write_safetensors(path, tensors, {"sixway.dataset": json.dumps(info)})
+            with self.assertRaisesRegex(ValueError, r"guide_channels is \['guide', 'alpha', 'depth', 'alpha_coarse'\]"):
                 ShardDataset(tmp)
 
     def test_a_sequence_without_motion_pairs_each_sample_with_itself(self):

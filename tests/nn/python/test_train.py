@@ -109,6 +109,17 @@ class TrainTest(unittest.TestCase):
         run = subprocess.run([sys.executable, TRAIN, "--config", bad, "--out", os.path.join(WORK, "bad")],
                              capture_output=True, text=True)
         self.assertEqual(run.stderr.strip(), f"train: {bad}: unknown key 'train.stpes'")
+        # A network that reads the fine alpha needs shards whose guide has it (version 3).
+        with open(CONFIG) as f:
+            fine = json.load(f)
+        fine["model"].update(guide_channels=4, guide_alpha_step_voxels=1.0)
+        with open(bad, "w") as f:
+            json.dump(fine, f)
+        run = subprocess.run([sys.executable, TRAIN, "--config", bad, "--data", os.path.join(WORK, "data"),
+                              "--out", os.path.join(WORK, "fine")], capture_output=True, text=True)
+        self.assertNotEqual(run.returncode, 0)
+        self.assertEqual(run.stderr.strip().count("\n"), 0, run.stderr)
+        self.assertIn("shard_00000.safetensors: its guide has no alpha_fine channel", run.stderr)
 
 
 if __name__ == "__main__":
