@@ -6,7 +6,8 @@
   tiny.safetensors             a tiny config that exercises the other options (NAF levels, gelu, bilinear
                                upsampling, odd channel counts, an adapter with dw_expand 3)
   tiny_vectors.safetensors     a 29x45 guide (not a multiple of the size multiple: padded, then cropped)
-  fine_alpha.safetensors       a small network whose guide has the fine alpha as a 4th channel
+  fine_alpha.safetensors       a small network whose guide has the fine alpha as a 4th channel, passed through
+                               as its alpha
   fine_alpha_vectors.safetensors  a 20x36 guide of 4 channels
 
 A vectors file holds "input" (3 or 4 x H x W), "raw" (the 8 output channels in the network's encoding), "lightmap_a"
@@ -41,6 +42,7 @@ TINY_CONFIG = {
 FINE_ALPHA_CONFIG = {
     "guide_channels": 4,
     "guide_alpha_step_voxels": 0.5,
+    "alpha": "guide",
     "widths": [5, 8],
     "depth": 1,
     "adapters": {"enabled": True, "width": 4, "blocks": 1},
@@ -52,7 +54,7 @@ CASES = {
                                       "adapters.3.head"]),
     "tiny": (TINY_CONFIG, 7, 70, 29, 45, ["enc.0.1", "mid.1", "up.1", "dec.0.1", "adapters.1.proj",
                                           "adapters.1.blocks.0", "adapters.2.head"]),
-    "fine_alpha": (FINE_ALPHA_CONFIG, 8, 80, 20, 36, ["enc.0.0", "adapters.3.head"]),
+    "fine_alpha": (FINE_ALPHA_CONFIG, 8, 80, 20, 36, ["enc.0.0", "adapters.3.head", "alpha_from_guide"]),
 }
 
 

@@ -42,7 +42,8 @@ DEFAULT_CONFIG = {
 
 # Keys a config may add to DEFAULT_CONFIG; absent, the config (and so the export) stays as it was.
 # guide_alpha_step_voxels: the fine alpha's step of a 4-channel guide (the runtime's guide computes it).
-OPTIONAL_CONFIG = {"guide_alpha_step_voxels": 0.0}
+# alpha: "network" (the alpha_emissive head's) or "guide" (the fine alpha passed through: 4 guide channels).
+OPTIONAL_CONFIG = {"guide_alpha_step_voxels": 0.0, "alpha": "network"}
 
 # The four adapters and the two channels of each head (docs/conventions.md, "Channels and packing").
 ADAPTERS = [("left_right", ["left", "right"]), ("top_bottom", ["top", "bottom"]),
@@ -83,6 +84,10 @@ def full_config(config=None):
     if (merged["guide_channels"] == 4) != (merged.get("guide_alpha_step_voxels", 0) > 0):
         raise ValueError("config: a 4th guide channel is the fine alpha: guide_channels 4 goes with "
                          "guide_alpha_step_voxels > 0")
+    if merged.get("alpha", "network") not in ("network", "guide"):
+        raise ValueError("config: alpha must be network or guide")
+    if merged.get("alpha") == "guide" and merged["guide_channels"] != 4:
+        raise ValueError("config: alpha from the guide needs its fine alpha (guide_channels 4)")
     return merged
 
 
@@ -147,6 +152,20 @@ def activate(x, node):
     if kind == "silu":
         return F.silu(x)
     return x
+
+
+class FixedSelection(nn.Conv2d):
+    """A 1x1 convolution that copies input channels `picks` (one per output channel) and is not trained: the
+    graph has no copy op, and a conv that selects is exact in GLSL too."""
+
+    def __init__(self, in_channels, picks):
+        super().__init__(in_channels, len(picks), 1)
+        with torch.no_grad():
+            self.weight.zero_()
+            self.bias.zero_()
+            for out, pick in enumerate(picks):
+                self.weight[out, pick] = 1.0
+        self.requires_grad_(False)
 
 
 class SixwayNet(nn.Module):
@@ -234,6 +253,12 @@ class SixwayNet(nn.Module):
                     y = self._naf(f"{prefix}.blocks.{b}", y, channels, 1, adapters["dw_expand"],
                                   adapters["ffn_expand"])
             heads.append(self._conv(f"{prefix}.head", [y], channels, 2, 1, 1, 1, activation=False))
+        if c.get("alpha") == "guide":
+            # alpha = the guide's fine alpha (input channel 3), emissive = the head's (its channel 1).
+            node = {"name": "alpha_from_guide", "op": "conv2d", "inputs": [heads[3], "input"],
+                    "in_channels": 2 + c["input_channels"], "out_channels": 2, "kernel": 1, "stride": 1,
+                    "scale": 1, "activation": "none"}
+            heads[3] = self._add(node, FixedSelection(2 + c["input_channels"], [2 + 3, 1]))
         channel_names = [ch for _, pair in ADAPTERS for ch in pair]
         encodings = ["linear" if ch == "alpha" else c["encoding"] for ch in channel_names]
         self._add({"name": "output", "op": "output", "inputs": heads, "in_channels": 8, "channels": channel_names,
@@ -356,6 +381,8 @@ def randomize(model, seed, scale=1.0):
     uniform = lambda low, high, t: torch.from_numpy(rng.uniform(low, high, tuple(t.shape)).astype(np.float32))
     with torch.no_grad():
         for module in model.modules():
+            if isinstance(module, FixedSelection):
+                continue
             if isinstance(module, (nn.Conv2d, nn.ConvTranspose2d)):
                 transposed = isinstance(module, nn.ConvTranspose2d)
                 fan_in = module.weight.shape[0] if transposed else module.weight[0].numel()
