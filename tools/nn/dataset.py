@@ -80,6 +80,12 @@ def read_shard(path):
     return tensors, info
 
 
+def guide_channel_count(directory):
+    """How many guide channels the directory's first shard holds: 3, or 4 with the fine alpha."""
+    tensors, _ = read_shard(shard_paths(directory)[0])
+    return tensors["guide"].shape[1]
+
+
 class ShardDataset:
     """Every sample of every shard of a directory, in memory as F16 (a CPU dataset is a few hundred MB), with
     the first `guide_channels` channels of the guide (3, or 4 for the fine alpha)."""

@@ -17,6 +17,7 @@ here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, here)
 sys.path.insert(0, os.path.join(here, "..", "..", "..", "tools", "nn"))
 import synthetic_shards  # noqa: E402
+from baselines import baselines  # noqa: E402
 from dataset import ShardDataset  # noqa: E402
 from losses import warp  # noqa: E402
 from safetensors_io import read_safetensors, write_safetensors  # noqa: E402
@@ -145,6 +146,36 @@ class DatasetTest(unittest.TestCase):
             write_safetensors(path, tensors, {"sixway.dataset": json.dumps(info)})
             with self.assertRaisesRegex(ValueError, r"guide_channels is \['guide', 'alpha', 'depth', 'alpha_coarse'\]"):
                 ShardDataset(tmp)
+
+    def test_baselines_score_the_baker_and_the_alphas(self):
+        """tools/nn/baselines.py on shards whose light and emissive channels are 0.25 (single) and 0.5 (multiple
+        scattering): the baker's masked MSE is 7/8 of 0.25² (the alphas agree); the guide's alpha equals the targets' (inf), the
+        fine alpha is off by 0.1 where the smoke is."""
+        with tempfile.TemporaryDirectory() as tmp:
+            path = synthetic_shards.write_shards(tmp, size=8, cameras=2, frames=2, sequences=2)[1]
+            tensors, metadata = read_safetensors(path)
+            info = json.loads(metadata["sixway.dataset"])
+            alpha = tensors["target"][:, 6:7].astype(np.float32)
+            tensors["target"][:, :6] = 0.25
+            tensors["target"][:, 7] = 0.25
+            tensors["target_ms"] = tensors["target"].copy()
+            tensors["target_ms"][:, :6] = 0.5
+            tensors["target_ms"][:, 7] = 0.5
+            tensors["guide"] = np.concatenate([tensors["guide"][:, :1], alpha.astype(np.float16),
+                                               tensors["guide"][:, 2:3], np.clip(alpha + 0.1, 0, 1).astype(np.float16)],
+                                              axis=1)
+            info.update(version=3, targets=["single", "multiple"],
+                        guide_channels=["guide", "alpha", "depth", "alpha_fine"])
+            write_safetensors(path, tensors, {"sixway.dataset": json.dumps(info)})
+            os.remove(os.path.join(tmp, "shard_00000.safetensors"))
+            figures = baselines(tmp)["heldout_sequence"]
+            self.assertEqual(figures["samples"], 4)
+            self.assertAlmostEqual(figures["single_vs_multiple"], 10 * np.log10(1 / (7 / 8 * 0.0625)), places=3)
+            self.assertEqual(figures["guide_alpha"], float("inf"))
+            mask = alpha > 0.01
+            fine = np.clip(alpha + 0.1, 0, 1).astype(np.float16).astype(np.float64)
+            expected = 10 * np.log10(mask.sum() / (((fine - alpha.astype(np.float64)) ** 2) * mask).sum())
+            self.assertAlmostEqual(figures["fine_alpha"], expected, places=3)
 
     def test_a_sequence_without_motion_pairs_each_sample_with_itself(self):
         """A played-back VDB sequence ("motion": false) has no previous frames to warp: every sample is its own
