@@ -175,6 +175,7 @@ DatasetVariations parseVariations(io::JsonReader& r) {
   v.buoyancy = r.maybe<Range>("buoyancy", nonNegativeRange());
   v.extinction = r.maybe<Range>("extinction", positiveRange());
   v.albedo = r.maybe<Range>("albedo", rangeWithin(0.0, 1.0));
+  v.densityScale = r.maybe<Range>("density_scale", positiveRange());
   return v;
 }
 
@@ -224,6 +225,7 @@ enum Slot : uint64_t {
   kObstacleRadius,
   kObstacleAngle,
   kMovingSpeed,
+  kDensityScale,  // appended: slots keep their numbers, so older configs plan as they did
 };
 
 uint64_t splitMix(uint64_t x) {
@@ -476,8 +478,14 @@ DatasetConfig loadDatasetConfig(const fs::path& file) {
 namespace {
 
 void varySmoke(nlohmann::json& scene, const DatasetVariations& v, const Draws& s) {
-  if (v.extinction) scene["smoke"]["extinction"] = tidy(v.extinction->at(uniform(s, kExtinction)));
-  if (v.albedo) scene["smoke"]["albedo"] = tidy(v.albedo->at(uniform(s, kAlbedo)));
+  nlohmann::json& smoke = scene["smoke"];
+  if (v.extinction) smoke["extinction"] = tidy(v.extinction->at(uniform(s, kExtinction)));
+  if (v.albedo) smoke["albedo"] = tidy(v.albedo->at(uniform(s, kAlbedo)));
+  if (v.densityScale) {  // log-uniform: x0.5 and x2 are equally likely around x1
+    const double scale = v.densityScale->min * std::pow(double(v.densityScale->max) / v.densityScale->min,
+                                                        uniform(s, kDensityScale));
+    smoke["extinction"] = tidy(smoke.value("extinction", double(io::Smoke{}.extinction)) * scale);
+  }
 }
 
 // The first sampled frame is drawn from frames.warmup, the rest follow every stride frames.

@@ -42,6 +42,7 @@ struct DatasetVariations {  // each unset one keeps the base scene's value
   std::optional<Range> inletSpeed, inletRadius, inletDensity, inletTemperature;
   glm::vec3 inletOffset{0};  // m, largest offset of the inlet's centre per axis
   std::optional<Range> buoyancy, extinction, albedo;
+  std::optional<Range> densityScale;  // × the (drawn or base) extinction, log-uniform; VDB scenes too
 };
 
 struct DatasetFrames {

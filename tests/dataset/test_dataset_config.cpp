@@ -95,6 +95,31 @@ TEST_F(DatasetConfigTest, VdbScenesAreSequencesAfterTheSimulatedOnes) {
   EXPECT_THAT(error(j), namesFileAndProblem(dir_ / "config.json", "vdb_scenes: no such file"));
 }
 
+// "variations.density_scale" multiplies each sequence's extinction (drawn or the base scene's) by a
+// log-uniform factor, and leaves every other draw as it was.
+TEST_F(DatasetConfigTest, TheDensityScaleMultipliesTheExtinction) {
+  nlohmann::json j = validConfig();
+  j["sequences"] = 16;
+  const dataset::DatasetConfig plain = dataset::loadDatasetConfig(write(j));
+  j["variations"]["density_scale"] = {0.5, 2};
+  const dataset::DatasetConfig scaled = dataset::loadDatasetConfig(write(j));
+  int below = 0, above = 0;
+  for (int sequence = 0; sequence < 16; ++sequence) {
+    const io::Scene a = dataset::planSequence(plain, sequence).scene,
+                    b = dataset::planSequence(scaled, sequence).scene;
+    const float scale = b.smoke.extinction / a.smoke.extinction;
+    EXPECT_GE(scale, 0.5f - 1e-3f);
+    EXPECT_LE(scale, 2.0f + 1e-3f);
+    (scale < 1.0f ? below : above) += 1;
+    EXPECT_EQ(a.smoke.albedo, b.smoke.albedo);
+    EXPECT_EQ(a.inlets[0].velocity, b.inlets[0].velocity);
+  }
+  EXPECT_GT(below, 2);
+  EXPECT_GT(above, 2);
+  j["variations"]["density_scale"] = {0, 2};
+  EXPECT_THAT(error(j), namesFileAndProblem(dir_ / "config.json", "variations.density_scale: must be > 0"));
+}
+
 TEST_F(DatasetConfigTest, UnknownKeyNamesFileAndKey) {
   nlohmann::json j = validConfig();
   j["frames"]["strde"] = 1;
