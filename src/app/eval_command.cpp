@@ -68,9 +68,12 @@ int guideChannels(const fs::path& shard, const nlohmann::json& description, cons
     throw io::InputError(shard.string(), "guide_channels must name 3 or 4 channels");
   const float wanted = graph.nodes.front().guideAlphaStepVoxels;
   if (wanted == 0.0f) return channels;
-  const nlohmann::json render =
-      description.value("scene", nlohmann::json::object()).value("render", nlohmann::json::object());
-  const float held = channels == 4 ? render.value("guide_alpha_step_voxels", 0.0f) : 0.0f;
+  // Absent (or under a scene that is not an object): no fine alpha.
+  const nlohmann::json step = description.value(
+      nlohmann::json::json_pointer("/scene/render/guide_alpha_step_voxels"), nlohmann::json(0.0));
+  if (!step.is_number())
+    throw io::InputError(shard.string(), "scene.render.guide_alpha_step_voxels is not a number");
+  const float held = channels == 4 ? step.get<float>() : 0.0f;
   if (held != wanted)
     throw io::InputError(shard.string(), "the network reads a fine alpha of step " + io::show(wanted) +
                                              " voxels; the shard's guide has " +
