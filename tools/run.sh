@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and renders the default scene headless into out/: the plume rising around a
 # cylinder under an orbiting light, 64 frames (out/render: PNG per frame, contact sheet, video, per-stage GPU
-# timings), with the shipped network when weights/sixway-unet.safetensors exists, else the reference lightmaps;
+# timings), with the shipped all-orders network when weights/sixway-unet-ms.safetensors exists, else the reference lightmaps;
 # plus the device description (out/info.json).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

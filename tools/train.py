@@ -45,7 +45,7 @@ from sixway_net import SixwayNet, decode_output, export_safetensors, full_config
 DEFAULTS = {
     "model": {},  # sixway_net.DEFAULT_CONFIG overrides
     "data": {
-        "dir": None,  # the shards; relative paths are relative to the repository root
+        "dir": None,  # the shards: a directory or a list of them; relative paths are relative to the repository root
         "crop": None,  # random square crops of this size (None: whole maps)
         "mirror": True,  # random left-right mirroring (swaps the Left and Right lightmaps)
         "target": "single",  # the shards' targets learnt: single or multiple scattering (target_ms)
@@ -215,7 +215,7 @@ def parse_args():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--config", help="training config JSON (tools/train_configs/); optional with --resume")
     parser.add_argument("--out", required=True, help="output directory")
-    parser.add_argument("--data", help="shard directory (overrides data.dir)")
+    parser.add_argument("--data", nargs="+", help="shard directories (override data.dir)")
     parser.add_argument("--seed", type=int, help="overrides train.seed")
     parser.add_argument("--resume", action="store_true", help="continue from OUT/checkpoint.pt")
     parser.add_argument("--force", action="store_true", help="start afresh in an existing OUT")
@@ -238,11 +238,15 @@ def load_config(args, checkpoint):
     else:
         raise ConfigError("--config is required (unless resuming)")
     if args.data:
-        config["data"]["dir"] = args.data
+        config["data"]["dir"] = args.data[0] if len(args.data) == 1 else args.data
     if args.seed is not None:
         config["train"]["seed"] = args.seed
-    if config["data"]["dir"] is None:
+    directories = config["data"]["dir"]
+    if directories is None:
         raise ConfigError(f"{args.config}: data.dir is missing (or pass --data)")
+    if not (isinstance(directories, str) or (isinstance(directories, list) and directories
+                                             and all(isinstance(d, str) for d in directories))):
+        raise ConfigError(f"{args.config}: data.dir must be a directory or a list of directories")
     if checkpoint is not None:
         differs = first_difference(dict(config, data=dict(config["data"], dir=None)),
                                    dict(checkpoint["config"], data=dict(checkpoint["config"]["data"], dir=None)))
@@ -303,9 +307,10 @@ class Trainer:
             self._prepare_out(resumed=checkpoint is not None)
 
     def _load_data(self):
-        directory = self.config["data"]["dir"]
+        directories = self.config["data"]["dir"]
+        directories = [directories] if isinstance(directories, str) else directories
         model = full_config(self.config["model"])
-        self.data = ShardDataset(directory if os.path.isabs(directory) else os.path.join(REPO_ROOT, directory),
+        self.data = ShardDataset([os.path.join(REPO_ROOT, d) for d in directories],
                                  target=self.config["data"]["target"], guide_channels=model["guide_channels"])
         # The network reads the guide it was trained on: a fine alpha of another step is another input.
         wanted, held = model.get("guide_alpha_step_voxels", 0), self.data.guide_alpha_step_voxels()
@@ -438,7 +443,8 @@ def finish(out, net, data, config, seconds, device, world):
         "torch": torch.__version__,
         "parameters": sum(p.numel() for p in net.parameters()),
         "flops_256": flops_at(net, 256),
-        "dataset": {"dir": data.directory, "shards": len(data.paths), "lightmap_size": data.size,
+        "dataset": {"dir": data.directories[0] if len(data.directories) == 1 else data.directories,
+                    "shards": len(data.paths), "lightmap_size": data.size,
                     "samples": {split: len(data.indices(split)) for split in SPLITS},
                     "config": data.dataset_config()},
     }

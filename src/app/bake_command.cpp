@@ -85,6 +85,23 @@ io::Emission defaultRamp(float intensity) {
   return e;
 }
 
+// After a bake with --force into an earlier one: the earlier bake's frames that this one did not rewrite
+// (frames/frame_NNNN.exr outside first..first+count-1) go; nothing else in frames/ is touched. Done once the
+// bake has finished, so an interrupted rerun loses none of the earlier frames.
+void removeFramesOfAnEarlierBake(const fs::path& frames, int first, int count) {
+  static const std::regex name(R"(frame_([0-9]{4,9})\.exr)");
+  std::error_code error;
+  std::vector<fs::path> stale;
+  for (const auto& entry : fs::directory_iterator(frames, error)) {
+    std::smatch match;
+    const std::string filename = entry.path().filename();
+    if (!std::regex_match(filename, match, name) || !entry.is_regular_file()) continue;
+    const long index = std::stol(match[1]);
+    if (index < first || index >= long(first) + count) stale.push_back(entry.path());
+  }
+  for (const fs::path& path : stale) fs::remove(path, error);
+}
+
 void run(const BakeOptions& o) {
   if (o.scene.empty() && o.vdb.empty()) throw io::InputError("bake", "give --scene S or --vdb F...");
   if (o.cameraPosition.empty() != o.cameraTarget.empty())
@@ -172,9 +189,6 @@ void run(const BakeOptions& o) {
   job.multiple.seed = o.seed.value_or(scene ? scene->render.seed : 1u);
   job.provenance = provenance;
 
-  if (fs::exists(o.out / "frames"))  // --force: frames of an earlier, longer bake must not linger
-    for (const auto& entry : fs::directory_iterator(o.out / "frames"))
-      if (entry.path().filename().string().starts_with("frame_")) fs::remove(entry.path());
   std::printf("sixway bake: %d frames, tiles of %dx%d, %s scattering\n", job.frameCount, tileWidth,
               tileHeight, render::scatteringName(job.scattering));
   std::fflush(stdout);
@@ -184,8 +198,9 @@ void run(const BakeOptions& o) {
       std::fflush(stdout);
     });
   });
+  removeFramesOfAnEarlierBake(o.out / "frames", job.firstFrame, job.frameCount);
   if (const auto* vdb = dynamic_cast<const render::VdbSequence*>(sequence.get()))
-    for (const std::string& note : vdb->notes()) std::printf("  note: %s\n", note.c_str());
+    for (const std::string& note : vdb->notes()) std::fprintf(stderr, "sixway: note: %s\n", note.c_str());
   std::printf("sixway bake: wrote %s\n", result.sidecar.string().c_str());
   if (context.validationMessageCount() > 0)
     throw std::runtime_error(std::to_string(context.validationMessageCount()) + " validation messages");
@@ -215,14 +230,14 @@ void addBakeCommand(CLI::App& app) {
   bake->add_option("--fov", o->fov, "Vertical field of view in degrees (default: the scene's, or 40)")
       ->check(CLI::Range(1.0f, 170.0f));
   bake->add_option("--extinction", o->extinction, "σ_t per unit density, 1/m (default: the scene's, or 20)")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumber());
   bake->add_option("--albedo", o->albedo, "Single-scattering albedo (default: the scene's, or 0.9)")
       ->check(CLI::Range(0.0f, 1.0f));
   bake->add_option("--g", o->g, "Henyey-Greenstein asymmetry (default: the scene's, or 0.2)")
       ->check(CLI::Range(-0.99f, 0.99f));
   bake->add_option("--emission", o->emission,
                    "Emission intensity (VDB: with a built-in black-body-like ramp)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(nonNegativeNumber());
   bake->add_option("--voxels", o->voxels,
                    "VDB: cells along the longest axis of the resampled lattice (default 128, or the scene's "
                    "vdb.voxels)")

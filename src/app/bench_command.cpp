@@ -1,6 +1,7 @@
 #include "app/bench_command.h"
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -14,6 +15,7 @@
 
 #include "app/bench_options.h"
 #include "app/bench_scene.h"
+#include "app/shipped_weights.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "io/error.h"
@@ -43,15 +45,29 @@ std::string knownSections() {
   return names;
 }
 
-// "64x128x64" → (64, 128, 64); throws io::InputError naming --grid.
+// "64x128x64" → (64, 128, 64); throws io::InputError naming --grid. Each axis is read with overflow checked
+// (sscanf's %d wrapped 4294967312 to 16).
 glm::ivec3 parseLattice(const std::string& text) {
+  const auto malformed = [&text] {
+    return io::InputError("--grid", "expected NXxNYxNZ, e.g. 64x128x64 (got \"" + text + "\")");
+  };
   glm::ivec3 n(0);
-  char x1 = 0, x2 = 0, rest = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c%d%c", &n.x, &x1, &n.y, &x2, &n.z, &rest) != 5 || x1 != 'x' ||
-      x2 != 'x')
-    throw io::InputError("--grid", "expected NXxNYxNZ, e.g. 64x128x64 (got \"" + text + "\")");
+  const char* cursor = text.data();
+  const char* end = text.data() + text.size();
+  for (int axis = 0; axis < 3; ++axis) {
+    if (axis > 0 && (cursor == end || *cursor++ != 'x')) throw malformed();
+    const auto [next, error] = std::from_chars(cursor, end, n[axis]);
+    if (error == std::errc::result_out_of_range)
+      throw io::InputError("--grid " + text, "axis " + std::string(1, "xyz"[axis]) +
+                                                 " is more than 2048 cells; reduce its size");
+    if (error != std::errc() || next == cursor) throw malformed();
+    cursor = next;
+  }
+  if (cursor != end) throw malformed();
   if (glm::any(glm::lessThan(n, glm::ivec3(8))))
     throw io::InputError("--grid " + text, "every axis needs at least 8 cells");
+  if (glm::any(glm::greaterThan(n, glm::ivec3(2048))))
+    throw io::InputError("--grid " + text, "an axis has more than 2048 cells; reduce its size");
   if (uint64_t(n.x) * uint64_t(n.y) * uint64_t(n.z) > (uint64_t(1) << 31))
     throw io::InputError("--grid " + text, "more than 2^31 cells; reduce its size");
   return n;
@@ -101,7 +117,8 @@ BenchInputs prepare(BenchOptions& o) {
     return s.needsWeights && std::find(sections.begin(), sections.end(), s.name) != sections.end();
   });
   if (needsWeights) {
-    if (!std::filesystem::exists(o.weights)) throw io::InputError(o.weights.string(), "no such weights file");
+    if (!std::filesystem::is_regular_file(o.weights))
+      throw io::InputError(o.weights.string(), "no such weights file");
     inputs.weights = io::readSafetensors(o.weights);
     nn::parseGraph(inputs.weights);  // the graph is valid
   }
@@ -134,6 +151,7 @@ std::string utcNow() {
 }
 
 void run(BenchOptions& o) {
+  o.weights = resolveWeights(o.weights);
   const BenchInputs inputs = prepare(o);
   gpu::Context context(o.common.contextOptions());
   gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));
@@ -195,7 +213,7 @@ void addBenchCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--frame-lightmaps", o->frameLightmapSize, "Lightmap size of the end-to-end frame")
       ->capture_default_str();
-  command->add_option("--weights", o->weights, "Network weights (safetensors)")->capture_default_str();
+  command->add_option("--weights", o->weights, kWeightsHelp);
   command->add_option("--warmup", o->warmup, "Untimed runs first (at most 1 for the large lattices)")
       ->capture_default_str();
   command->add_option("--repeats", o->repeats, "Timed runs (median, min and max are reported)")

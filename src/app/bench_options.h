@@ -23,7 +23,7 @@ struct BenchOptions {
   bool force = false;
   std::vector<std::string> sections = {"sim", "lightmaps", "frame", "network"};
   std::filesystem::path scene = SIXWAY_BENCH_SCENE;
-  std::filesystem::path weights = std::filesystem::path(SIXWAY_WEIGHTS_DIR) / "sixway-unet.safetensors";
+  std::filesystem::path weights;  // --weights as given (app/shipped_weights.h)
   std::vector<std::string> grids = {"64x128x64", "128x256x128"};  // simulation lattices
   std::vector<uint32_t> sizes = {128, 256, 512};                  // square lightmap sizes
   uint32_t frameLightmapSize = 256;  // the end-to-end frame (the paper's setting)

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "app/options.h"
+#include "app/shipped_weights.h"
 #include "eval/lightmap_metrics.h"
 #include "eval/scene_eval.h"
 #include "gpu/context.h"
@@ -18,6 +19,7 @@
 #include "gpu/pipeline.h"
 #include "gpu/sequence.h"
 #include "io/error.h"
+#include "io/file_access.h"
 #include "io/json_reader.h"
 #include "io/report.h"
 #include "io/safetensors.h"
@@ -37,9 +39,29 @@ struct EvalOptions {
   eval::SceneEvalSettings scene;  // --scene, and the report, weights and --force of both paths
 };
 
+// The shards that the directory's dataset.json lists, every one required (a missing shard would silently drop
+// its sequences, and with them perhaps a whole split); without a dataset.json, the shard files present.
 std::vector<fs::path> shardFiles(const fs::path& directory) {
   if (!fs::is_directory(directory)) throw io::InputError(directory.string(), "no such dataset directory");
   std::vector<fs::path> shards;
+  if (const fs::path indexFile = directory / "dataset.json"; fs::exists(indexFile)) {
+    const std::vector<uint8_t> bytes = io::readFileBytes(indexFile);
+    const nlohmann::json index = io::parseJsonText(
+        std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), indexFile.string());
+    const nlohmann::json* listed = index.is_object() && index.contains("shards") ? &index["shards"] : nullptr;
+    if (!listed || !listed->is_array() || listed->empty())
+      throw io::InputError(indexFile.string(), "shards: expected the list of shard files");
+    for (const nlohmann::json& name : *listed) {
+      if (!name.is_string() || fs::path(name.get<std::string>()).has_parent_path())
+        throw io::InputError(indexFile.string(), "shards: expected file names");
+      const fs::path shard = directory / name.get<std::string>();
+      if (!fs::is_regular_file(shard))
+        throw io::InputError(shard.string(), "missing: dataset.json lists " + std::to_string(listed->size()) +
+                                                 " shards (is `sixway dataset` still making it?)");
+      shards.push_back(shard);
+    }
+    return shards;
+  }
   for (const auto& entry : fs::directory_iterator(directory)) {
     const std::string name = entry.path().filename().string();
     if (name.starts_with("shard_") && entry.path().extension() == ".safetensors")
@@ -102,8 +124,9 @@ void evaluateDataset(const EvalOptions& o) {
     const io::SafetensorsFile shard = io::readSafetensors(shardPath);
     const auto meta = shard.metadata.find("sixway.dataset");
     if (meta == shard.metadata.end()) throw io::InputError(shardPath.string(), "no sixway.dataset metadata");
-    const nlohmann::json description = nlohmann::json::parse(meta->second, nullptr, false);
-    if (description.is_discarded() || !description.contains("samples") ||
+    const nlohmann::json description =
+        io::parseJsonText(meta->second, shardPath.string() + ": sixway.dataset");
+    if (!description.is_object() || !description.contains("samples") ||
         !description.contains("lightmap_size"))
       throw io::InputError(shardPath.string(), "sixway.dataset metadata is not a dataset description");
     const int shardSize = description["lightmap_size"].get<int>();
@@ -175,7 +198,7 @@ void evaluateDataset(const EvalOptions& o) {
 }
 
 void run(EvalOptions o) {
-  if (o.scene.weights.empty()) o.scene.weights = fs::path(SIXWAY_WEIGHTS_DIR) / "sixway-unet.safetensors";
+  o.scene.weights = resolveWeights(o.scene.weights);
   if (!o.dataset.empty() && !o.scene.scene.empty())
     throw io::InputError("eval", "give --dataset DIR or --scene S, not both");
   if (!o.dataset.empty()) return evaluateDataset(o);
@@ -197,7 +220,7 @@ void addEvalCommand(CLI::App& app) {
                    "Dataset: the targets compared with, single (default) or multiple scattering");
   eval::SceneEvalSettings& s = o->scene;
   eval->add_option("--scene", s.scene, "Scene JSON: evaluate its sequence against the path tracer");
-  eval->add_option("--frames", s.frames, "Scene: frames evaluated");
+  eval->add_option("--frames", s.frames, "Scene: frames evaluated")->check(CLI::Range(1, 100000));
   eval->add_option("--out", s.out, "Scene: directory for the side-by-side strip (strip.png)");
   eval->add_option("--spp", s.samples,
                    "Scene: path-tracer samples per pixel of the ground truth (default 64)")
@@ -229,7 +252,7 @@ void addEvalCommand(CLI::App& app) {
   eval->add_option("--equal-time-reference-spp", s.equalTimeReferenceSamples,
                    "Scene: samples per pixel of the equal-time study's reference (default 256)")
       ->check(CLI::Range(4, 1 << 20));
-  eval->add_option("--weights", s.weights, "Network file (default weights/sixway-unet.safetensors)");
+  eval->add_option("--weights", s.weights, kWeightsHelp);
   eval->add_option("--report", s.report, "JSON report")->required();
   eval->add_flag("--force", s.force, "Overwrite an existing report (and --out directory)");
   eval->callback([o] { run(*o); });

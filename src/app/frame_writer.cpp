@@ -1,9 +1,16 @@
 #include "app/frame_writer.h"
 
+#include <signal.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
+#include <regex>
+#include <set>
 
 #include "io/error.h"
 #include "io/exr.h"
@@ -48,13 +55,75 @@ FrameWriter::FrameWriter(fs::path directory, const FrameWriterOptions& options)
     : directory_(std::move(directory)), options_(options) {
   if (options_.video && !ffmpegInstalled())
     throw io::InputError("--video", "ffmpeg is not installed (apt-get install ffmpeg)");
-  fs::create_directories(directory_);
-  // --force into an earlier render: its frames beyond this one's must not linger (nor run on in the video),
-  // nor its video when this render makes none.
-  for (const auto& entry : fs::directory_iterator(directory_)) {
-    const std::string name = entry.path().filename().string();
-    if (name.starts_with("frame_") || name == "video.mp4") fs::remove(entry.path());
+  staging_ = directory_ / (".render." + std::to_string(getpid()) + ".partial");
+  std::error_code error;
+  createdDirectory_ = fs::create_directories(directory_, error);
+  if (!error) fs::remove_all(staging_, error);  // left by a killed run of a process with this id
+  if (!error) fs::create_directory(staging_, error);
+  if (error)
+    throw io::InputError(directory_.string(), "cannot create the output directory: " + error.message());
+}
+
+FrameWriter::~FrameWriter() {
+  if (committed_) return;
+  std::error_code ignored;
+  fs::remove_all(staging_, ignored);
+  if (createdDirectory_) fs::remove(directory_, ignored);  // only if empty: a failed first run leaves nothing
+}
+
+// An error writing a staged file names the file the user will look for, not the hidden staging directory.
+void FrameWriter::underFinalNames(const std::function<void()>& write) const {
+  try {
+    write();
+  } catch (const io::InputError& e) {
+    std::string message = e.what();
+    const std::string staged = staging_.string() + "/";
+    if (message.starts_with(staged)) message.replace(0, staged.size(), (directory_ / "").string());
+    throw io::InputError(message.substr(0, message.find(": ")), message.substr(message.find(": ") + 2));
   }
+}
+
+bool FrameWriter::isRenderOutput(const std::string& name) {
+  static const std::regex frame(R"(frame_[0-9]{4,}\.(png|exr))");
+  return std::regex_match(name, frame) || name == "contact_sheet.png" || name == "video.mp4" ||
+         name == "timings.json";
+}
+
+void FrameWriter::commit() {
+  std::set<std::string> staged;
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator(staging_, error)) staged.insert(entry.path().filename());
+  for (const std::string& name : staged) {
+    fs::rename(staging_ / name, directory_ / name, error);
+    if (error)
+      throw io::InputError((directory_ / name).string(), "cannot move the new file in: " + error.message());
+  }
+  std::vector<fs::path> earlier;
+  for (const auto& entry : fs::directory_iterator(directory_, error)) {
+    const std::string name = entry.path().filename();
+    if (!staged.contains(name) && isRenderOutput(name) && entry.is_regular_file())
+      earlier.push_back(entry.path());
+  }
+  for (const fs::path& path : earlier) fs::remove(path, error);
+  fs::remove(staging_, error);
+  committed_ = true;
+  removeStagingOfKilledRuns();
+}
+
+// A render killed half-way leaves its hidden staging directory; the next render into the directory removes
+// it once its process is gone.
+void FrameWriter::removeStagingOfKilledRuns() const {
+  static const std::regex name(R"(\.render\.([0-9]{1,9})\.partial)");
+  std::error_code error;
+  std::vector<fs::path> stale;
+  for (const auto& entry : fs::directory_iterator(directory_, error)) {
+    std::smatch match;
+    const std::string filename = entry.path().filename();
+    if (!std::regex_match(filename, match, name) || !entry.is_directory()) continue;
+    const long pid = std::stol(match[1]);
+    if (pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH) stale.push_back(entry.path());
+  }
+  for (const fs::path& path : stale) fs::remove_all(path, error);
 }
 
 std::string FrameWriter::frameName(int index) {
@@ -64,11 +133,13 @@ std::string FrameWriter::frameName(int index) {
 }
 
 void FrameWriter::write(int index, const io::Image& frame) {
-  const fs::path base = directory_ / frameName(index);
+  const fs::path base = staging_ / frameName(index);
   const io::Image rgb = rgbOf(frame);
-  io::writePng(fs::path(base) += ".png", rgb);
-  if (options_.exr)
-    io::writeExr(fs::path(base) += ".exr", frame, io::ExrPixelType::Half, {{"colorspace", "linear"}});
+  underFinalNames([&] {
+    io::writePng(fs::path(base) += ".png", rgb);
+    if (options_.exr)
+      io::writeExr(fs::path(base) += ".exr", frame, io::ExrPixelType::Half, {{"colorspace", "linear"}});
+  });
   const int stride = std::max(1, (options_.frames + kMaxSheetCells - 1) / kMaxSheetCells);
   if (index % stride == 0) thumbnails_.push_back(thumbnail(rgb, options_.thumbnailWidth));
 }
@@ -86,16 +157,16 @@ std::vector<std::string> FrameWriter::finish() {
         for (int x = 0; x < cellW; ++x)
           for (int c = 0; c < 3; ++c)
             sheet.at((t % columns) * cellW + x, (t / columns) * cellH + y, c) = thumbnails_[t].at(x, y, c);
-    io::writePng(directory_ / "contact_sheet.png", sheet);
+    underFinalNames([&] { io::writePng(staging_ / "contact_sheet.png", sheet); });
     files.push_back("contact_sheet.png");
   }
   if (options_.video && !thumbnails_.empty()) {
     // yuv420p needs even sides; the scale filter rounds them down. ffmpeg writes the temporary file (-f: its
     // name does not end in .mp4), renamed once ffmpeg has finished.
-    io::AtomicFile video(directory_ / "video.mp4");
+    io::AtomicFile video(staging_ / "video.mp4");
     const std::string command =
         "ffmpeg -loglevel error -y -framerate " + std::to_string(options_.fps) + " -i '" +
-        (directory_ / "frame_%04d.png").string() +
+        (staging_ / "frame_%04d.png").string() +
         "' -vf 'scale=trunc(iw/2)*2:trunc(ih/2)*2' -c:v libx264 -pix_fmt yuv420p -f mp4 '" +
         video.temporaryPath().string() + "'";
     if (std::system(command.c_str()) != 0)

@@ -1,14 +1,18 @@
 // sixway: the command line (docs/conventions.md, "Command line"). Every failure ends in one line on stderr
 // and exit 1.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <string>
+#include <vector>
 
 #include "app/bake_command.h"
 #include "app/bench_command.h"
 #include "app/dataset_command.h"
 #include "app/eval_command.h"
 #include "app/info_command.h"
+#include "app/options.h"
 #include "app/render_command.h"
 #include "app/sim_command.h"
 
@@ -22,6 +26,16 @@ int main(int argc, char** argv) {
   sixway::app::addRenderCommand(app);
   sixway::app::addDatasetCommand(app);
   sixway::app::addEvalCommand(app);
+  const std::vector<CLI::App*> commands = app.get_subcommands({});
+  for (CLI::App* command : commands) sixway::app::requireFiniteNumbers(*command);
+  // A mistyped command: CLI11 would say only "A subcommand is required".
+  if (argc > 1 && argv[1][0] != '-' &&
+      std::ranges::none_of(commands, [&](CLI::App* command) { return command->check_name(argv[1]); })) {
+    std::string names;
+    for (const CLI::App* command : commands) names += (names.empty() ? "" : ", ") + command->get_name();
+    std::fprintf(stderr, "sixway: error: unknown command '%s' (the commands: %s)\n", argv[1], names.c_str());
+    return 109;  // CLI11's exit code for an unexpected argument
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

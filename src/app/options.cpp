@@ -1,5 +1,6 @@
 #include "app/options.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <string>
 
@@ -9,9 +10,55 @@ void CommonOptions::addTo(CLI::App& command) {
   command
       .add_option("--device", device,
                   "Vulkan device index (see `sixway info`); default: SIXWAY_DEVICE or the best")
-      ->check(CLI::NonNegativeNumber);
+      ->check(nonNegativeNumber());
   command.add_flag("--validate", validate,
                    "Vulkan validation layers on; every message is printed as 'validation: ...'");
+}
+
+namespace {
+
+// "" when `text` is a value a float holds (or not a number at all: CLI11's conversion reports that).
+std::string checkFloat(const std::string& text) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || *end != '\0') return "";
+  if (!std::isfinite(value)) return "must be a finite number (got " + text + ")";
+  if (!std::isfinite(static_cast<float>(value)))
+    return "is beyond the range of a 32-bit float, ±3.4e38 (got " + text + ")";
+  if (value != 0 && static_cast<float>(value) == 0)
+    return "is too small for a 32-bit float, which would make it 0 (got " + text + ")";
+  return "";
+}
+
+// A lower bound on a number; "" for text that is not a number (CLI11's conversion reports that).
+CLI::Validator lowerBound(bool inclusive) {
+  return CLI::Validator(
+      [inclusive](const std::string& text) -> std::string {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0' || std::isnan(value)) return "";
+        if (inclusive ? value >= 0 : value > 0) return "";
+        return std::string("must be ") + (inclusive ? ">= 0" : "> 0") + " (got " + text + ")";
+      },
+      inclusive ? "NUMBER >= 0" : "NUMBER > 0");
+}
+
+}  // namespace
+
+CLI::Validator positiveNumber() {
+  return lowerBound(false);
+}
+
+CLI::Validator nonNegativeNumber() {
+  return lowerBound(true);
+}
+
+void requireFiniteNumbers(CLI::App& command) {
+  const CLI::Validator finite(checkFloat, "");
+  for (CLI::Option* option : command.get_options()) {
+    const std::string type = option->get_type_name();
+    if (type.substr(0, type.find(':')).find("FLOAT") != std::string::npos) option->check(finite);
+  }
 }
 
 gpu::ContextOptions CommonOptions::contextOptions() const {

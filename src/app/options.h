@@ -16,4 +16,15 @@ struct CommonOptions {
   gpu::ContextOptions contextOptions() const;
 };
 
+// Adds a finiteness check to every floating-point option of `command` (call it after the options are added):
+// CLI11's range checks compare with < and >, which NaN passes, and 1e39 or 1e-46 given to a float option
+// becomes inf or 0 after the checks. Such a value is one error line naming the option.
+void requireFiniteNumbers(CLI::App& command);
+
+// Replace CLI11's PositiveNumber and NonNegativeNumber, whose messages print the largest double in 309
+// digits:
+// "--emission: must be >= 0 (got -1)".
+CLI::Validator positiveNumber();
+CLI::Validator nonNegativeNumber();
+
 }  // namespace sixway::app

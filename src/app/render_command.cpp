@@ -18,6 +18,7 @@
 #include "app/frame_writer.h"
 #include "app/options.h"
 #include "app/process_memory.h"
+#include "app/shipped_weights.h"
 #include "app/timings_log.h"
 #include "eval/frame_pipeline.h"
 #include "gpu/context.h"
@@ -45,11 +46,6 @@ struct RenderOptions {
   int orders = 64;
   render::MultipleScattering multiple;
 };
-
-// The default network, next to the executable's source tree.
-fs::path defaultWeights() {
-  return fs::path(SIXWAY_WEIGHTS_DIR) / "sixway-unet.safetensors";
-}
 
 // The frames of one mode: neural through the public SmokeRenderer (the product's path, as an engine runs
 // it); the evaluation's modes through eval::FramePipeline on the same simulation. A VDB scene has no
@@ -104,11 +100,13 @@ class FrameSource {
 void run(const RenderOptions& o) {
   io::Scene scene = io::loadScene(o.scene);
   eval::FramePipelineOptions options;
-  options.weights = o.weights.empty() ? defaultWeights() : o.weights;
-  // Without --mode: the network when its weights exist, else the reference lightmaps (said on the terminal).
-  options.mode = o.mode
-                     ? eval::parseRenderMode(*o.mode)
-                     : (fs::exists(options.weights) ? eval::RenderMode::Neural : eval::RenderMode::Reference);
+  options.weights = resolveWeights(o.weights);
+  // Without --mode: the network when the shipped weights exist, else the reference lightmaps (said on the
+  // terminal). Weights named with --weights always mean the network, so a missing file is an error, not a
+  // silent change of mode.
+  const bool network = !o.weights.empty() || fs::exists(options.weights);
+  options.mode = o.mode ? eval::parseRenderMode(*o.mode)
+                        : (network ? eval::RenderMode::Neural : eval::RenderMode::Reference);
   options.fp16 = o.fp16;
   options.shadows = !o.noShadows;
   options.pathTraceSamples = o.samples;
@@ -150,7 +148,7 @@ void run(const RenderOptions& o) {
     if (simulation) simulation->advance();
     const eval::RenderedFrame frame = source.render(i);
     writer.write(i, frame.image);
-    for (const std::string& note : frame.notes) std::printf("  note: %s\n", note.c_str());
+    for (const std::string& note : frame.notes) std::fprintf(stderr, "sixway: note: %s\n", note.c_str());
 
     std::vector<gpu::StageTime> stages;
     if (simulation)
@@ -176,7 +174,8 @@ void run(const RenderOptions& o) {
                            {"frames", timings.frames()}};
   if (options.mode == eval::RenderMode::Neural) report["weights"] = fs::absolute(options.weights).string();
   if (playback) report["source"] = sources::describeSource(*playback);
-  io::writeReport(o.out / "timings.json", report);
+  io::writeReport(writer.stagedPath("timings.json"), report);
+  writer.commit();
   std::printf("sixway render: wrote %d frames, timings.json", o.frames);
   for (const std::string& f : extras) std::printf(", %s", f.c_str());
   std::printf(" to %s\n", o.out.string().c_str());
@@ -199,7 +198,7 @@ void addRenderCommand(CLI::App& app) {
       "--mode", o->mode,
       "neural | reference | reference-ms | traditional | traditional-ms | guide | guide-lit | pathtrace "
       "(default: neural when the weights exist, else reference)");
-  render->add_option("--weights", o->weights, "Network file (default weights/sixway-unet.safetensors)");
+  render->add_option("--weights", o->weights, kWeightsHelp);
   render->add_flag("--fp16", o->fp16, "Neural: fp16 feature maps");
   render->add_flag("--no-shadows", o->noShadows, "No obstacle shadows on the smoke");
   render->add_option("--spp", o->samples, "Pathtrace: samples per pixel (default 64)")

@@ -1,5 +1,7 @@
 #include "app/sim_command.h"
 
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -66,6 +68,7 @@ void run(const SimOptions& o) {
   uint64_t updates = 0;
   int frame = 0;
   const auto started = std::chrono::steady_clock::now();
+  const bool terminal = isatty(fileno(stdout));
   try {
     while (simulation.step() < o.steps) {
       const uint32_t n = std::min<uint64_t>(units.stepsPerFrame, o.steps - simulation.step());
@@ -92,10 +95,11 @@ void run(const SimOptions& o) {
                         {"watchdog_ms", r.times.watchdog},
                         {"total_ms", r.times.total()},
                         {"mlups", mlups}});
+      // On a terminal one line updated in place; into a file or pipe one line per frame, without '\r'.
       std::printf(
-          "\rstep %6llu/%u  frame %4d  max speed %6.3f m/s (lattice %.3f)  smoke mass %.4g  %6.1f MLUPs",
-          (unsigned long long)simulation.step(), o.steps, frame, r.maxSpeed, r.maxLatticeSpeed, r.smokeMass,
-          mlups);
+          "%sstep %6llu/%u  frame %4d  max speed %6.3f m/s (lattice %.3f)  smoke mass %.4g  %6.1f MLUPs%s",
+          terminal ? "\r" : "", (unsigned long long)simulation.step(), o.steps, frame, r.maxSpeed,
+          r.maxLatticeSpeed, r.smokeMass, mlups, terminal ? "" : "\n");
       std::fflush(stdout);
       if (!o.vdbOut.empty()) {
         auto [density, temperature] = simulation.smokeGrids();
@@ -107,7 +111,7 @@ void run(const SimOptions& o) {
   } catch (const sim::WatchdogError& e) {
     watchdog = e.what();
   }
-  std::printf("\n");
+  if (terminal) std::printf("\n");
   const double wallSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
@@ -141,7 +145,13 @@ void run(const SimOptions& o) {
                                {"obstacles", obstacles},
                                {"frames", frames}});
   }
-  if (watchdog != "ok") throw sim::WatchdogError(watchdog);
+  if (watchdog != "ok") {
+    // Nothing written yet: the output directory made for this run goes again (remove() leaves a non-empty
+    // one).
+    std::error_code ignored;
+    if (!o.vdbOut.empty()) fs::remove(o.vdbOut, ignored);
+    throw sim::WatchdogError(o.scene.string() + ": " + watchdog);
+  }
 }
 
 }  // namespace

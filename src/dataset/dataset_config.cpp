@@ -453,10 +453,16 @@ DatasetConfig parseDatasetConfig(const nlohmann::json& j, const fs::path& file) 
   c.obstacles = r.optionalObject("obstacles", [&](io::JsonReader& o) { return parseObstacles(o, dir); });
   r.finish();
 
-  if (variesInlet(c.variations) &&
-      (base.inlets.empty() || !std::holds_alternative<io::InletDisk>(base.inlets[0].shape)))
+  if (variesInlet(c.variations) && base.inlets.empty())
     r.fail("variations",
-           "the inlet variations need a disk as the base scene's first inlet (" + c.baseScene.string() + ")");
+           "the inlet variations need an inlet in the base scene (" + c.baseScene.string() + ")");
+  if (c.variations.inletRadius && !std::holds_alternative<io::InletDisk>(base.inlets[0].shape))
+    r.fail("variations.inlet_radius",
+           "needs a disk as the base scene's first inlet (" + c.baseScene.string() + " has a box)");
+  if (c.variations.inletSpeed && std::holds_alternative<io::InletBox>(base.inlets[0].shape) &&
+      glm::length(base.inlets[0].velocity) == 0.0f)
+    r.fail("variations.inlet_speed",
+           "the base scene's box inlet has no velocity to scale (" + c.baseScene.string() + ")");
   if (c.cameras.distance) {
     const io::Grid grid = effectiveGrid(c, base.grid);
     const float radius = 0.5f * glm::length(glm::vec3(grid.size) * grid.cellSize);
@@ -476,6 +482,38 @@ DatasetConfig loadDatasetConfig(const fs::path& file) {
 }
 
 namespace {
+
+glm::vec3 inletCentreOf(const io::Inlet& inlet) {
+  if (const auto* disk = std::get_if<io::InletDisk>(&inlet.shape)) return disk->center;
+  const auto& box = std::get<io::InletBox>(inlet.shape);
+  return 0.5f * (box.min + box.max);
+}
+
+// Draws the first inlet's variations into its scene JSON and returns its (moved) centre. A disk's speed is
+// along its normal; a box keeps its velocity's direction at the drawn speed, and its offset moves both
+// corners.
+glm::vec3 varyInlet(nlohmann::json& inlet, const io::Inlet& base, const DatasetVariations& v,
+                    const Draws& s) {
+  const bool disk = std::holds_alternative<io::InletDisk>(base.shape);
+  if (v.inletSpeed) {
+    const double speed = v.inletSpeed->at(uniform(s, kInletSpeed));
+    inlet["velocity"] =
+        disk ? nlohmann::json(tidy(speed)) : tidy(glm::normalize(base.velocity) * float(speed));
+  }
+  if (v.inletRadius) inlet["radius"] = tidy(v.inletRadius->at(uniform(s, kInletRadius)));
+  if (v.inletDensity) inlet["density"] = tidy(v.inletDensity->at(uniform(s, kInletDensity)));
+  if (v.inletTemperature) inlet["temperature"] = tidy(v.inletTemperature->at(uniform(s, kInletTemperature)));
+  const glm::vec3 u(uniform(s, kInletOffsetX), uniform(s, kInletOffsetY), uniform(s, kInletOffsetZ));
+  const glm::vec3 offset = (2.0f * u - 1.0f) * v.inletOffset;
+  if (disk) {
+    inlet["center"] = tidy(inletCentreOf(base) + offset);
+  } else {
+    const auto& box = std::get<io::InletBox>(base.shape);
+    inlet["min"] = tidy(box.min + offset);
+    inlet["max"] = tidy(box.max + offset);
+  }
+  return inletCentreOf(base) + offset;
+}
 
 void varySmoke(nlohmann::json& scene, const DatasetVariations& v, const Draws& s) {
   nlohmann::json& smoke = scene["smoke"];
@@ -564,20 +602,8 @@ SequencePlan planSequence(const DatasetConfig& c, int sequence, int attempt) {
 
   const DatasetVariations& v = c.variations;
   glm::vec3 inletCentre = render::domainBox(grid).centre();
-  if (!base.inlets.empty()) {
-    if (const auto* disk = std::get_if<io::InletDisk>(&base.inlets[0].shape)) inletCentre = disk->center;
-  }
-  if (variesInlet(v)) {
-    nlohmann::json& inlet = j["inlets"][0];
-    if (v.inletSpeed) inlet["velocity"] = tidy(v.inletSpeed->at(uniform(s, kInletSpeed)));
-    if (v.inletRadius) inlet["radius"] = tidy(v.inletRadius->at(uniform(s, kInletRadius)));
-    if (v.inletDensity) inlet["density"] = tidy(v.inletDensity->at(uniform(s, kInletDensity)));
-    if (v.inletTemperature)
-      inlet["temperature"] = tidy(v.inletTemperature->at(uniform(s, kInletTemperature)));
-    const glm::vec3 u(uniform(s, kInletOffsetX), uniform(s, kInletOffsetY), uniform(s, kInletOffsetZ));
-    inletCentre += (2.0f * u - 1.0f) * v.inletOffset;
-    inlet["center"] = tidy(inletCentre);
-  }
+  if (!base.inlets.empty()) inletCentre = inletCentreOf(base.inlets[0]);
+  if (variesInlet(v)) inletCentre = varyInlet(j["inlets"][0], base.inlets[0], v, s);
   if (v.buoyancy) j["fluid"]["buoyancy"]["temperature"] = tidy(v.buoyancy->at(uniform(s, kBuoyancy)));
   varySmoke(j, v, s);
 

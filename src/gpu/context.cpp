@@ -1,6 +1,8 @@
 #include "gpu/context.h"
 
 #include <algorithm>
+#include <cerrno>
+#include <climits>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -93,8 +95,10 @@ std::optional<int> deviceIndexFromEnvironment() {
   const char* value = std::getenv("SIXWAY_DEVICE");
   if (!value || !*value) return std::nullopt;
   char* end = nullptr;
-  long index = std::strtol(value, &end, 10);
-  if (*end != '\0' || index < 0)
+  errno = 0;
+  const long index = std::strtol(value, &end, 10);
+  // Out of long's range strtol saturates (ERANGE), and past int's the cast wrapped to "--device -1".
+  if (end == value || *end != '\0' || index < 0 || errno == ERANGE || index > INT_MAX)
     throw GpuError(std::string("SIXWAY_DEVICE: expected a device index, got '") + value + "'");
   return static_cast<int>(index);
 }

@@ -58,9 +58,14 @@ void writeExr(const std::filesystem::path& path, const Image& image, ExrPixelTyp
   const Imf::PixelType type = pixelType == ExrPixelType::Half ? Imf::HALF : Imf::FLOAT;
   const std::size_t channelCount = image.channels.size();
   const std::size_t elementSize = type == Imf::HALF ? sizeof(Imath::half) : sizeof(float);
-  // OpenEXR does not convert on output, so half channels need half values in memory.
+  // OpenEXR does not convert on output, so half channels need half values in memory. Values past the largest
+  // half (65504) saturate there instead of becoming inf.
   std::vector<Imath::half> halves;
-  if (type == Imf::HALF) halves.assign(image.pixels.begin(), image.pixels.end());
+  if (type == Imf::HALF) {
+    const float largest = HALF_MAX;
+    halves.reserve(image.pixels.size());
+    for (const float v : image.pixels) halves.emplace_back(std::clamp(v, -largest, largest));
+  }
   const char* base = type == Imf::HALF ? reinterpret_cast<const char*>(halves.data())
                                        : reinterpret_cast<const char*>(image.pixels.data());
 

@@ -1,7 +1,10 @@
 #include "io/file_access.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <string>
 #include <system_error>
@@ -32,6 +35,12 @@ std::vector<uint8_t> readFileBytes(const fs::path& path) {
   return bytes;
 }
 
+void appendBytes(void* context, void* data, int size) {
+  auto& out = *static_cast<std::vector<uint8_t>*>(context);
+  const auto* bytes = static_cast<const uint8_t*>(data);
+  out.insert(out.end(), bytes, bytes + size);
+}
+
 AtomicFile::AtomicFile(fs::path target) : target_(std::move(target)) {
   const fs::path directory = target_.parent_path().empty() ? fs::path(".") : target_.parent_path();
   std::error_code error;
@@ -51,6 +60,26 @@ AtomicFile::~AtomicFile() {
   if (committed_) return;
   std::error_code ignored;
   fs::remove(temporary_, ignored);
+}
+
+void AtomicFile::writeAll(std::span<const uint8_t> bytes) const {
+  const auto fail = [this](int error) {
+    throw InputError(target_.string(), std::string("cannot write the file: ") + std::strerror(error));
+  };
+  const int fd = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) fail(errno);
+  std::size_t written = 0;
+  while (written < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int error = n < 0 ? errno : ENOSPC;  // a write of 0 bytes makes no progress: the disk is full
+      ::close(fd);
+      fail(error);
+    }
+    written += static_cast<std::size_t>(n);
+  }
+  if (::close(fd) != 0) fail(errno);  // a deferred write error (NFS, quotas) surfaces here
 }
 
 void AtomicFile::commit() {

@@ -4,6 +4,7 @@
 // interrupted write never leaves a truncated file under the final name).
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <vector>
 
 namespace sixway::io {
@@ -13,6 +14,9 @@ void requireRegularFile(const std::filesystem::path& path);
 
 // The whole file; throws InputError naming `path` when it cannot be read.
 std::vector<uint8_t> readFileBytes(const std::filesystem::path& path);
+
+// stb_image_write's write callback (stbi_write_*_to_func): appends to the std::vector<uint8_t> `context`.
+void appendBytes(void* context, void* data, int size);
 
 // A temporary file next to `target`, renamed onto it by commit(); removed if commit() is never reached.
 class AtomicFile {
@@ -24,6 +28,10 @@ class AtomicFile {
   AtomicFile& operator=(const AtomicFile&) = delete;
 
   const std::filesystem::path& temporaryPath() const { return temporary_; }
+  // Writes `bytes` as the temporary file's whole content, checking every write and the close: a full disk
+  // (ENOSPC) or a short write throws InputError naming the target and the system's reason. For writers that
+  // can encode into memory (PNG, TGA, VDB), whose libraries do not report failed writes themselves.
+  void writeAll(std::span<const uint8_t> bytes) const;
   // Throws InputError naming the target when the temporary file is missing or cannot be renamed.
   void commit();
 

@@ -154,7 +154,10 @@ std::optional<std::vector<Element>> decodeList(const nlohmann::json& v) {
 
 nlohmann::json parseJsonText(std::string_view text, std::string_view source) {
   DuplicateKeyCheck duplicates(source);
-  auto callback = [&duplicates](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+  auto callback = [&duplicates, source](int depth, nlohmann::json::parse_event_t event,
+                                        nlohmann::json& parsed) {
+    if (depth >= kMaxJsonNesting)  // depth counts from 0: N nested levels reach N − 1
+      throw InputError(source, "JSON nested deeper than " + std::to_string(kMaxJsonNesting) + " levels");
     duplicates.onEvent(event, parsed);
     return true;
   };
@@ -171,8 +174,10 @@ nlohmann::json parseJsonText(std::string_view text, std::string_view source) {
 
 std::optional<float> JsonDecode<float>::from(const nlohmann::json& v) {
   if (!v.is_number()) return std::nullopt;
-  const float f = static_cast<float>(v.get<double>());
-  return std::isfinite(f) ? std::optional(f) : std::nullopt;
+  const double d = v.get<double>();
+  const float f = static_cast<float>(d);
+  // Beyond a float's range, or so small that it would read as 0: failType says which.
+  return std::isfinite(f) && (f != 0 || d == 0) ? std::optional(f) : std::nullopt;
 }
 
 std::optional<int> JsonDecode<int>::from(const nlohmann::json& v) {
@@ -276,6 +281,23 @@ void JsonReader::failMissing(std::string_view key) const {
 }
 
 void JsonReader::failType(std::string_view key, std::string_view expected, const nlohmann::json& got) const {
+  // A number of the right type that a 32-bit float cannot hold, alone or in a vector: say so, rather than
+  // "expected a number (got 1e+308)".
+  if (std::string_view(expected).find("number") != std::string_view::npos) {
+    const auto unrepresentable = [](const nlohmann::json& v) {
+      return v.is_number_float() && !JsonDecode<float>::from(v);
+    };
+    const nlohmann::json* culprit = unrepresentable(got) ? &got : nullptr;
+    if (got.is_array() && got.size() <= 16)
+      for (const nlohmann::json& element : got)
+        if (!culprit && unrepresentable(element)) culprit = &element;
+    if (culprit) {
+      const double d = culprit->get<double>();
+      fail(key, std::abs(d) < 1
+                    ? "is too small for a 32-bit float, which would make it 0 (got " + show(d) + ")"
+                    : "is beyond the range of a 32-bit float, ±3.4e38 (got " + show(d) + ")");
+    }
+  }
   fail(key, "expected " + std::string(expected) + " (got " + shortDump(got) + ")");
 }
 

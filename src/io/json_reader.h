@@ -21,7 +21,13 @@
 
 namespace sixway::io {
 
-// Parses JSON text. Syntax errors (with line and column) and keys repeated within one object are errors.
+// The deepest nesting of arrays and objects accepted. Sixway's own files nest fewer than 10 levels; a deeper
+// document is refused while it is parsed, because printing or copying it recurses once per level and would
+// overflow the stack.
+inline constexpr int kMaxJsonNesting = 64;
+
+// Parses JSON text. Syntax errors (with line and column), keys repeated within one object and nesting deeper
+// than kMaxJsonNesting are errors.
 nlohmann::json parseJsonText(std::string_view text, std::string_view source);
 
 // Conversion of one JSON value to T; nullopt when the value has the wrong type.

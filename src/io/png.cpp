@@ -87,11 +87,14 @@ void writePng(const std::filesystem::path& path, const Image& image, PngEncoding
     bytes[i] = toByte(image.pixels[i], encoding == PngEncoding::SRGB && !isAlpha);
   }
 
-  AtomicFile file(path);
-  if (!stbi_write_png(file.temporaryPath().c_str(), image.width, image.height, channels, bytes.data(),
-                      image.width * channels)) {
-    throw InputError(source, "cannot write the PNG file");
+  // Encoded in memory, then written with every write checked (stb does not report a full disk).
+  std::vector<uint8_t> encoded;
+  if (!stbi_write_png_to_func(appendBytes, &encoded, image.width, image.height, channels, bytes.data(),
+                              image.width * channels)) {
+    throw InputError(source, "cannot encode the PNG file");
   }
+  AtomicFile file(path);
+  file.writeAll(encoded);
   file.commit();
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -13,6 +14,7 @@
 
 #include "io/error.h"
 #include "io/file_access.h"
+#include "io/json_reader.h"
 
 namespace sixway::io {
 
@@ -309,7 +311,13 @@ SafetensorsFile readSafetensors(const std::filesystem::path& path) {
   const auto dataBegin = headerBegin + static_cast<std::ptrdiff_t>(headerLength);
   json header;
   try {
-    header = json::parse(headerBegin, dataBegin);
+    // A header nested past kMaxJsonNesting is refused as it is read: printing it would overflow the stack.
+    header = json::parse(headerBegin, dataBegin, [&source](int depth, json::parse_event_t, json&) {
+      if (depth >= kMaxJsonNesting)  // depth counts from 0: N nested levels reach N − 1
+        throw InputError(source,
+                         "header is nested deeper than " + std::to_string(kMaxJsonNesting) + " levels");
+      return true;
+    });
   } catch (const json::parse_error& error) {
     throw InputError(
         source, "header is not valid JSON (error at byte " + std::to_string(error.byte) + " of the header)");
@@ -385,7 +393,9 @@ void writeSafetensors(const std::filesystem::path& path, const std::vector<Tenso
       out.write(reinterpret_cast<const char*>(tensor.bytes.data()),
                 static_cast<std::streamsize>(tensor.bytes.size()));
     }
-    if (!out.flush()) throw InputError(source, "cannot write the file");
+    // Shards reach 4 GiB, so they stream rather than go through AtomicFile::writeAll; errno holds the
+    // failed write's reason (ENOSPC on a full disk).
+    if (!out.flush()) throw InputError(source, std::string("cannot write the file: ") + std::strerror(errno));
   }
   file.commit();
 }

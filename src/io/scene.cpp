@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/vector_relational.hpp>
@@ -17,10 +18,24 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// "" for a regular file; otherwise what the path is instead ("not found", "a directory", ...).
+std::string notARegularFile(const fs::path& path) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (!fs::exists(status)) return "not found";
+  if (fs::is_regular_file(status)) return "";
+  if (fs::is_directory(status)) return "is a directory";
+  return "is not a regular file (a FIFO, socket or device)";
+}
+
 // Beyond these a scene is a typo, not a simulation: refuse before anything is allocated.
 constexpr std::int64_t kMaxCells = 512LL * 512 * 512;
 constexpr int kMaxAxisCells = 2048;
 constexpr std::int64_t kMaxSmokeCells = 1024LL * 1024 * 1024;
+// The largest light, emission, ambient or background value: colour × intensity stays below 1e8, so that no
+// product along a frame (phase function, emission ramp, exposure) overflows a float into inf/NaN pixels.
+constexpr double kMaxRadiometric = 1e4;
+constexpr double kMaxWorldMetres = 1e6;
 
 const Choices<BoundaryType> kBoundaryTypes = {{"no_slip", BoundaryType::NoSlip},
                                               {"free_slip", BoundaryType::FreeSlip},
@@ -265,8 +280,8 @@ Obstacle parseObstacle(JsonReader& r, const fs::path& baseDir) {
     case ObstacleType::Mesh: {
       MeshObstacle mesh;
       mesh.file = fs::absolute(baseDir / r.required<std::string>("file")).lexically_normal();
-      std::error_code ec;
-      if (!fs::is_regular_file(mesh.file, ec)) r.fail("file", "mesh file not found: " + mesh.file.string());
+      if (const std::string problem = notARegularFile(mesh.file); !problem.empty())
+        r.fail("file", "mesh file " + problem + ": " + mesh.file.string());
       mesh.scale = r.optional<float>("scale", mesh.scale, positive());
       mesh.translate = position("translate", mesh.translate);
       mesh.rotateDeg = r.optional<glm::vec3>("rotate_deg", mesh.rotateDeg);
@@ -281,13 +296,13 @@ Obstacle parseObstacle(JsonReader& r, const fs::path& baseDir) {
 EmissionKey parseEmissionKey(JsonReader& r) {
   EmissionKey k;
   k.temperature = r.required<float>("temperature");
-  k.color = r.required<glm::vec3>("color", atLeast(0));
+  k.color = r.required<glm::vec3>("color", inRange(0, kMaxRadiometric));
   return k;
 }
 
 Emission parseEmission(JsonReader& r) {
   Emission e;
-  e.intensity = r.optional<float>("intensity", e.intensity, atLeast(0));
+  e.intensity = r.optional<float>("intensity", e.intensity, inRange(0, kMaxRadiometric));
   if (e.intensity > 0 && !r.has("ramp")) r.fail("ramp", "required key missing (intensity > 0 needs it)");
   e.ramp = r.objects("ramp", parseEmissionKey, 2, kMaxRampKeys);
   for (std::size_t i = 1; i < e.ramp.size(); ++i)
@@ -320,8 +335,10 @@ std::variant<CameraOrbit, CameraDolly> parseCameraPath(JsonReader& r) {
 
 Camera parseCamera(JsonReader& r) {
   Camera c;
-  c.position = r.required<glm::vec3>("position");
-  c.target = r.required<glm::vec3>("target");
+  // Beyond a million metres a float cannot resolve a smoke volume of metres, and |target - position|²
+  // overflows (a camera at 1e20 m was reported as "up must not be parallel").
+  c.position = r.required<glm::vec3>("position", inRange(-kMaxWorldMetres, kMaxWorldMetres));
+  c.target = r.required<glm::vec3>("target", inRange(-kMaxWorldMetres, kMaxWorldMetres));
   if (glm::distance(c.position, c.target) < 1e-6f)
     r.fail("target", "must differ from camera.position (both are " + show(c.position) + ")");
   c.up = direction(r, "up", c.up);
@@ -357,8 +374,8 @@ Light parseLight(JsonReader& r) {
       l.source = PointLight{.position = r.required<glm::vec3>("position")};
       break;
   }
-  l.color = r.optional<glm::vec3>("color", l.color, atLeast(0));
-  l.intensity = r.optional<float>("intensity", l.intensity, atLeast(0));
+  l.color = r.optional<glm::vec3>("color", l.color, inRange(0, kMaxRadiometric));
+  l.intensity = r.optional<float>("intensity", l.intensity, inRange(0, kMaxRadiometric));
   l.shadows = r.optional<bool>("shadows", l.shadows);
   const bool directional = std::holds_alternative<DirectionalLight>(l.source);
   l.path = r.optionalObject("path", [directional](JsonReader& p) { return parseLightOrbit(p, directional); });
@@ -366,10 +383,15 @@ Light parseLight(JsonReader& r) {
 }
 
 Ambient parseAmbient(JsonReader& r) {
-  const std::optional<glm::vec3> color = r.maybe<glm::vec3>("color", atLeast(0));
+  const std::optional<glm::vec3> color = r.maybe<glm::vec3>("color", inRange(0, kMaxRadiometric));
   const auto sh = r.maybe<std::vector<glm::vec3>>("sh", [](const std::vector<glm::vec3>& c) -> std::string {
-    return c.size() == 4 ? ""
-                         : "expected 4 coefficients L0, L1x, L1y, L1z (got " + std::to_string(c.size()) + ")";
+    if (c.size() != 4)
+      return "expected 4 coefficients L0, L1x, L1y, L1z (got " + std::to_string(c.size()) + ")";
+    for (const glm::vec3& coefficient : c)
+      if (glm::any(glm::greaterThan(glm::abs(coefficient), glm::vec3(float(kMaxRadiometric)))))
+        return "every component must be in [" + show(-kMaxRadiometric) + ", " + show(kMaxRadiometric) +
+               "] (got " + show(coefficient) + ")";
+    return "";
   });
   r.finish();  // a misspelt key explains the errors below better
   if (color && sh) r.failHere("give exactly one of color and sh, not both");
@@ -399,7 +421,7 @@ RenderSettings parseRender(JsonReader& r) {
       s.guideLights.push_back(light);
     }
   }
-  s.background = r.optional<glm::vec3>("background", s.background, atLeast(0));
+  s.background = r.optional<glm::vec3>("background", s.background, inRange(0, kMaxRadiometric));
   s.shellThreshold = r.optional<float>("shell_threshold", s.shellThreshold, inOpenRange(0, 1));
   s.seed = r.optional<std::uint32_t>("seed", s.seed);
   return s;
@@ -412,8 +434,8 @@ namespace {
 fs::path existingVdbFile(JsonReader& r, std::string_view key, const fs::path& baseDir,
                          const std::string& name) {
   const fs::path file = fs::absolute(baseDir / name).lexically_normal();
-  std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) r.fail(key, "vdb file not found: " + file.string());
+  if (const std::string problem = notARegularFile(file); !problem.empty())
+    r.fail(key, "vdb file " + problem + ": " + file.string());
   return file;
 }
 
@@ -482,7 +504,15 @@ VdbSource parseVdb(JsonReader& r, const fs::path& baseDir) {
 Scene parseScene(const nlohmann::json& j, std::string_view sourceName, const fs::path& baseDir) {
   JsonReader r(j, "", sourceName);
   Scene s;
-  s.name = r.optional<std::string>("name", fs::path(sourceName).stem().string());
+  // The name goes into file names (`sim --vdb-out`) and onto the terminal: no control characters (a terminal
+  // escape would be printed raw) and no path separators.
+  s.name = r.optional<std::string>("name", fs::path(sourceName).stem().string(), [](const std::string& name) {
+    const bool bad = name.empty() || std::ranges::any_of(name, [](unsigned char c) {
+                       return c < 0x20 || c == 0x7f || c == '/' || c == '\\';
+                     });
+    return bad ? std::string("must be a non-empty name without control characters or slashes")
+               : std::string();
+  });
   s.vdb = r.optionalObject("vdb", [&baseDir](JsonReader& v) { return parseVdb(v, baseDir); });
   const bool playback = s.vdb.has_value();
   if (playback) {

@@ -27,9 +27,12 @@ void writeTga(const std::filesystem::path& path, const Image& image) {
     const float v = image.pixels[i] > 0.0f ? std::min(image.pixels[i], 1.0f) : 0.0f;  // NaN → 0
     bytes[i] = static_cast<uint8_t>(std::lround(v * 255.0f));
   }
+  // Encoded in memory, then written with every write checked (stb does not report a full disk).
+  std::vector<uint8_t> encoded;
+  if (!stbi_write_tga_to_func(appendBytes, &encoded, image.width, image.height, channels, bytes.data()))
+    throw InputError(source, "cannot encode the TGA file");
   AtomicFile file(path);
-  if (!stbi_write_tga(file.temporaryPath().c_str(), image.width, image.height, channels, bytes.data()))
-    throw InputError(source, "cannot write the TGA file");
+  file.writeAll(encoded);
   file.commit();
 }
 

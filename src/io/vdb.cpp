@@ -1,5 +1,6 @@
 #include "io/vdb.h"
 
+#include <openvdb/io/Archive.h>
 #include <openvdb/io/File.h>
 #include <openvdb/io/Stream.h>
 #include <openvdb/openvdb.h>
@@ -12,6 +13,7 @@
 #include <fstream>
 #include <limits>
 #include <mutex>
+#include <sstream>
 #include <stdexcept>
 
 #include "io/error.h"
@@ -20,6 +22,18 @@
 namespace sixway::io {
 
 namespace {
+
+// io::File writes through a std::ofstream it never checks: on a full disk it leaves a truncated file and no
+// error. This encodes the same archive (seekable, as io::File::write does) in memory, so that
+// AtomicFile::writeAll can write it with every write checked.
+class MemoryArchive : public openvdb::io::Archive {
+ public:
+  std::string encode(const openvdb::GridCPtrVec& grids) const {
+    std::ostringstream out(std::ios_base::out | std::ios_base::binary);
+    Archive::write(out, grids, /*seekable=*/true);
+    return std::move(out).str();
+  }
+};
 
 constexpr float kInactiveTolerance = 1e-6f;
 
@@ -290,14 +304,14 @@ void writeVdb(const std::filesystem::path& path,
   openvdb::GridCPtrVec fogVolumes;
   for (const auto& [name, dense] : grids) fogVolumes.push_back(toFogVolume(name, *dense));
 
-  AtomicFile file(path);
+  std::string encoded;
   try {
-    openvdb::io::File out(file.temporaryPath().string());
-    out.write(fogVolumes);
-    out.close();
+    encoded = MemoryArchive().encode(fogVolumes);
   } catch (const std::exception& error) {
     throw InputError(source, "cannot write VDB: " + oneLine(error.what()));
   }
+  AtomicFile file(path);
+  file.writeAll(std::span(reinterpret_cast<const uint8_t*>(encoded.data()), encoded.size()));
   file.commit();
 }
 

@@ -1,6 +1,9 @@
 #include "nn/graph.h"
 
 #include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
 
 #include "io/error.h"
 #include "io/json_reader.h"
@@ -260,6 +263,14 @@ Graph parseGraph(const io::SafetensorsFile& file) {
         throw io::InputError(source, "tensor '" + required.name + "' is " +
                                          std::string(io::dtypeName(tensor.dtype)) +
                                          ", weights must be F32, F16 or BF16");
+      // A diverged training exports NaN/Inf weights, which would turn every frame into NaN pixels.
+      const std::vector<float> values = tensor.toFloat();
+      if (const auto bad = std::ranges::find_if(values, [](float v) { return !std::isfinite(v); });
+          bad != values.end())
+        throw io::InputError(source, "tensor '" + required.name + "' holds " +
+                                         (std::isnan(*bad) ? "NaN" : "Inf") + " at element " +
+                                         std::to_string(bad - values.begin()) +
+                                         ": the weights are broken (a diverged training?)");
     }
   return graph;
 }

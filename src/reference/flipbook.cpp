@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <span>
 
 #include "io/error.h"
 #include "io/exr.h"
@@ -198,12 +199,9 @@ std::filesystem::path writeFlipbook(const std::filesystem::path& directory, cons
   };
   if (scattering) sidecar["scattering"] = scatteringName(*scattering);
   const std::filesystem::path path = directory / (stem + ".json");
+  const std::string text = sidecar.dump(2) + '\n';
   io::AtomicFile file(path);
-  {
-    std::ofstream out(file.temporaryPath());
-    out << sidecar.dump(2) << '\n';
-    if (!out) throw io::InputError(path.string(), "cannot be written");
-  }
+  file.writeAll(std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
   file.commit();
   return path;
 }

@@ -50,7 +50,15 @@ VolumeGrid playbackLattice(const io::VdbSource& source, std::vector<std::string>
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
   bool anyTemperature = false;
   for (const auto& file : source.files) {
-    for (const io::VdbGridInfo& grid : io::readVdbInfo(file).grids) {
+    const std::vector<io::VdbGridInfo> grids = io::readVdbInfo(file).grids;
+    // A file without the density grid would play as an empty frame: more likely a wrong file or grid name
+    // than smoke that vanished (an empty grid, no active voxels, is a legitimate empty frame).
+    if (std::ranges::none_of(grids, [&](const io::VdbGridInfo& g) {
+          return g.name == source.densityGrid && g.valueType == "float";
+        }))
+      throw io::InputError(file.string(), "has no float grid '" + source.densityGrid +
+                                              "' (set vdb.density_grid to the density's name)");
+    for (const io::VdbGridInfo& grid : grids) {
       const bool density = grid.name == source.densityGrid;
       const bool temperature = source.temperatureGrid && grid.name == *source.temperatureGrid;
       if (!(density || temperature) || !usable(grid)) continue;

@@ -21,3 +21,16 @@ foreach(split train heldout_sequence heldout_camera)
     message(FATAL_ERROR "eval.json: split ${split}: ${samples} samples, PSNR ${psnr}")
   endif()
 endforeach()
+
+# Issue #21: a shard that dataset.json lists but that is gone is one line, not a silently smaller split.
+file(GLOB shards ${OUT}/dataset/shard_*.safetensors)
+list(SORT shards)
+list(GET shards -1 last)
+file(RENAME ${last} ${last}.moved)
+execute_process(COMMAND ${SIXWAY} eval --dataset ${OUT}/dataset --weights ${WEIGHTS} --report ${OUT}/eval_missing.json
+                RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+file(RENAME ${last}.moved ${last})
+get_filename_component(name ${last} NAME)
+if(code EQUAL 0 OR NOT err MATCHES "${name}: missing: dataset.json lists")
+  message(FATAL_ERROR "eval with ${name} missing: exit ${code}, stderr: ${err}")
+endif()

@@ -120,6 +120,41 @@ TEST_F(DatasetConfigTest, TheDensityScaleMultipliesTheExtinction) {
   EXPECT_THAT(error(j), namesFileAndProblem(dir_ / "config.json", "variations.density_scale: must be > 0"));
 }
 
+// A box inlet (the explosion's) varies too: its velocity keeps its direction at the drawn speed, the offset
+// moves both corners; a radius has no meaning for a box and is refused.
+TEST_F(DatasetConfigTest, ABoxInletVariesItsSpeedOffsetAndContents) {
+  nlohmann::json j = validConfig();
+  j["base_scene"] = (kAssets / "scenes" / "explosion.json").string();
+  j["variations"] = {{"inlet_speed", {0.5, 1.5}},
+                     {"inlet_offset", {0.2, 0, 0.1}},
+                     {"inlet_density", {1, 3}},
+                     {"inlet_temperature", {2, 4}}};
+  j.erase("obstacles");
+  const dataset::DatasetConfig config = dataset::loadDatasetConfig(write(j));
+  std::set<float> speeds;
+  for (int s = 0; s < config.sequences; ++s) {
+    const dataset::SequencePlan plan = dataset::planSequence(config, s);
+    const io::Inlet& inlet = plan.scene.inlets.at(0);
+    const float speed = glm::length(inlet.velocity);
+    speeds.insert(speed);
+    EXPECT_GE(speed, 0.5f - 1e-4f);
+    EXPECT_LE(speed, 1.5f + 1e-4f);
+    EXPECT_NEAR(inlet.velocity.y, speed, 1e-4f) << "the base's direction, +y";
+    EXPECT_GE(inlet.density, 1.0f);
+    EXPECT_LE(inlet.temperature, 4.0f);
+    const auto& box = std::get<io::InletBox>(inlet.shape);
+    EXPECT_NEAR(box.max.x - box.min.x, 0.3f, 1e-4f) << "the box keeps its size";
+    EXPECT_NEAR(box.min.y, 0.1f, 1e-4f);
+    EXPECT_LE(std::abs(box.min.x + 0.15f), 0.2f + 1e-4f);
+    EXPECT_LE(std::abs(box.min.z + 0.15f), 0.1f + 1e-4f);
+  }
+  EXPECT_EQ(speeds.size(), size_t(config.sequences));
+  j["variations"]["inlet_radius"] = {0.1, 0.2};
+  EXPECT_THAT(error(j),
+              namesFileAndProblem(dir_ / "config.json",
+                                  "variations.inlet_radius: needs a disk as the base scene's first inlet"));
+}
+
 TEST_F(DatasetConfigTest, UnknownKeyNamesFileAndKey) {
   nlohmann::json j = validConfig();
   j["frames"]["strde"] = 1;

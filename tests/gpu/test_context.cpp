@@ -54,13 +54,17 @@ TEST(ContextSelection, OutOfRangeDeviceIndexIsAClearError) {
   }
 }
 
+// 99999999999999999999 (issue #21) was read as "--device -1"; 4294967296 wrapped to 0.
 TEST(ContextSelection, MalformedEnvironmentDeviceIsAClearError) {
-  setenv("SIXWAY_DEVICE", "first", 1);
-  try {
-    gpu::Context context;
-    FAIL() << "no error";
-  } catch (const gpu::GpuError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("SIXWAY_DEVICE: expected a device index, got 'first'"));
+  for (const char* value : {"first", "99999999999999999999", "4294967296", "-1"}) {
+    setenv("SIXWAY_DEVICE", value, 1);
+    try {
+      gpu::Context context;
+      ADD_FAILURE() << "no error for " << value;
+    } catch (const gpu::GpuError& e) {
+      EXPECT_THAT(e.what(),
+                  HasSubstr(std::string("SIXWAY_DEVICE: expected a device index, got '") + value + "'"));
+    }
   }
   unsetenv("SIXWAY_DEVICE");
 }

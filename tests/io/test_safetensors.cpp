@@ -203,6 +203,13 @@ TEST_F(SafetensorsTest, HeaderNumberBeyondDouble) {
               namesFileAndProblem(file, "header is not valid JSON (a number is out of range)"));
 }
 
+// Issue #21: a header of 70,000 nested arrays crashed the error path; it is refused while it is parsed.
+TEST_F(SafetensorsTest, DeeplyNestedHeader) {
+  const std::string deep = std::string(70000, '[') + std::string(70000, ']');
+  EXPECT_THAT(errorForHeader(R"({"__metadata__": {"a": )" + deep + "}}", 0),
+              namesFileAndProblem(file, "header is nested deeper than 64 levels"));
+}
+
 TEST_F(SafetensorsTest, HeaderIsNotAnObject) {
   EXPECT_THAT(errorForHeader("[1, 2]", 0), namesFileAndProblem(file, "header is not a JSON object"));
 }

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/error.h"
+#include "io/json_reader.h"
 #include "support/temp_dir.h"
 
 namespace sixway::io {
@@ -437,6 +438,28 @@ TEST(SceneParse, AlbedoOutOfRange) {
                        "must be in [0, 1] (got 1.5)"));
 }
 
+// Issue #21: a light colour of 3.4e38 gave inf/NaN pixels; numbers a float cannot hold were reported as
+// "expected a number" (1e308) or read as 0 and then "must be > 0 (got 0)" (1e-308).
+TEST(SceneParse, NumbersBeyondWhatAFrameCanHold) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"lights": [{"type": "point", "position": [0, 0, 0],
+                                                   "color": [3.4e38, 1, 1]}]})"_json),
+                       "lights[0].color", "every component must be in [0, 10000]"));
+  EXPECT_TRUE(rejected(
+      minimalWith(R"({"lights": [{"type": "point", "position": [0, 0, 0], "intensity": 1e5}]})"_json),
+      "lights[0].intensity", "must be in [0, 10000] (got 1e+05)"));
+  EXPECT_TRUE(rejected(minimalWith(R"({"smoke": {"extinction": 1e308}})"_json), "smoke.extinction",
+                       "is beyond the range of a 32-bit float, ±3.4e38 (got 1e+308)"));
+  EXPECT_TRUE(rejected(minimalWith(R"({"smoke": {"extinction": 1e-308}})"_json), "smoke.extinction",
+                       "is too small for a 32-bit float, which would make it 0 (got 1e-308)"));
+  EXPECT_TRUE(rejected(minimalWith(R"({"camera": {"position": [0, 1e300, 3]}})"_json), "camera.position",
+                       "is beyond the range of a 32-bit float"));
+  EXPECT_TRUE(rejected(minimalWith(R"({"camera": {"position": [0, 1e20, 3]}})"_json), "camera.position",
+                       "every component must be in [-1e+06, 1e+06] (got [0, 1e+20, 3])"));
+  EXPECT_TRUE(
+      rejected(minimalWith(R"({"ambient": {"sh": [[1, 1, 1], [0, 0, 0], [0, -2e4, 0], [0, 0, 0]]}})"_json),
+               "ambient.sh", "every component must be in [-10000, 10000] (got [0, -20000, 0])"));
+}
+
 TEST(SceneParse, LightmapSizeNotMultipleOf16) {
   EXPECT_TRUE(rejected(minimalWith(R"({"render": {"lightmap_size": 100}})"_json), "render.lightmap_size",
                        "must be a multiple of 16 (got 100)"));
@@ -445,7 +468,7 @@ TEST(SceneParse, LightmapSizeNotMultipleOf16) {
 TEST(SceneParse, NegativeColorComponent) {
   EXPECT_TRUE(rejected(minimalWith(R"({"lights": [{"type": "point", "position": [0, 0, 0],
                                                    "color": [1, -1, 1]}]})"_json),
-                       "lights[0].color", "every component must be >= 0 (got [1, -1, 1])"));
+                       "lights[0].color", "every component must be in [0, 10000] (got [1, -1, 1])"));
 }
 
 TEST(SceneParse, BothViscosityAndReynolds) {
@@ -591,6 +614,28 @@ TEST(SceneTest, DuplicateJsonKeyNamesItsPath) {
                                  {"type": "point", "color": [1, 1, 1], "color": [1, 0, 0]}]})");
   EXPECT_TRUE(namesKeyAndReason(errorOf([&] { loadScene(file); }), file.string(), "lights[1].color",
                                 "key appears twice"));
+}
+
+// Issue #21: 70,000 nested arrays (140 KB) crashed the error path, which printed the value recursively. A
+// document nested past kMaxJsonNesting is refused while it is parsed, arrays and objects alike.
+TEST(SceneTest, DeepNestingIsOneLineNotACrash) {
+  TempDir dir;
+  const int levels = 70000;
+  const std::string arrays = std::string(levels, '[') + std::string(levels, ']');
+  std::string objects;
+  for (int i = 0; i < levels; ++i) objects += "{\"a\":";
+  objects += "1" + std::string(levels, '}');
+  for (const std::string& text : {arrays, objects}) {
+    const fs::path file = dir / "deep.json";
+    writeFile(file, text);
+    EXPECT_EQ(errorOf([&] { loadScene(file); }),
+              file.string() + ": JSON nested deeper than " + std::to_string(kMaxJsonNesting) + " levels");
+  }
+  // The limit itself is accepted: the error is then about the content (no grid).
+  const fs::path file = dir / "at_limit.json";
+  writeFile(file,
+            "{\"a\":" + std::string(kMaxJsonNesting - 1, '[') + std::string(kMaxJsonNesting - 1, ']') + "}");
+  EXPECT_EQ(errorOf([&] { loadScene(file); }), file.string() + ": grid.size: required key missing");
 }
 
 TEST(SceneTest, MissingSceneFile) {

@@ -5,6 +5,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
+#include <limits>
+
 #include "gpu/pipeline.h"
 #include "io/safetensors.h"
 #include "nn/graph.h"
@@ -74,6 +77,22 @@ TEST_F(MalformedWeights, WrongShape) {
   EXPECT_THAT(error, namesFileAndProblem(path(),
                                          "tensor 'enc.0.0.weight' has shape [7, 4, 1, 9], node 'enc.0.0' "
                                          "needs [7, 4, 3, 3]"));
+}
+
+// Issue #21: weights holding NaN or Inf were accepted, and every frame came out NaN.
+TEST_F(MalformedWeights, NotFiniteWeights) {
+  for (const float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+    const std::string error = errorAfter([bad](std::vector<io::Tensor>& tensors, nlohmann::json&) {
+      for (io::Tensor& t : tensors)
+        if (t.name == "enc.0.0.weight") {
+          std::vector<float> values = t.toFloat();
+          values[5] = bad;
+          t = io::Tensor::fromFloat(t.name, io::DType::F32, t.shape, values);
+        }
+    });
+    EXPECT_THAT(error, namesFileAndProblem(path(), std::string("tensor 'enc.0.0.weight' holds ") +
+                                                       (std::isnan(bad) ? "NaN" : "Inf") + " at element 5"));
+  }
 }
 
 TEST_F(MalformedWeights, UnknownLayerType) {

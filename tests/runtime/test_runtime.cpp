@@ -104,7 +104,8 @@ TEST(Runtime, EngineLightsRestartAndReports) {
   Device device({.validate = true});
   SmokeSimulation simulation(device, kScene);
   EXPECT_TRUE(simulation.stageTimes().empty());
-  RendererOptions options{.weights = std::filesystem::path(SIXWAY_WEIGHTS_DIR) / "sixway-unet.safetensors"};
+  RendererOptions options{.weights =
+                              std::filesystem::path(SIXWAY_WEIGHTS_DIR) / "sixway-unet-ms.safetensors"};
   options.shadowedLights = 1;  // small_plume's two lights both cast shadows
   SmokeRenderer renderer(device, simulation, options);
   for (int frame = 0; frame < 2; ++frame) simulation.advance();
@@ -381,6 +382,44 @@ TEST(Runtime, TheNetworkAloneGivesEightChannels) {
   const std::vector<float> lightmaps = network.run(guide);
   ASSERT_EQ(lightmaps.size(), size_t(16 * 16 * 8));
   for (float v : lightmaps) ASSERT_TRUE(std::isfinite(v));
+  EXPECT_EQ(device.validationMessages(), 0u);
+}
+
+// The two networks of weights/ (weights/README.md): trained on the all-orders and the single-scattering
+// targets, both reading the 1-cell fine alpha and passing it through as their alpha; each runs under
+// validation.
+TEST(Runtime, TheShippedNetworksAreBothTruthsWithTheFineAlphaPassedThrough) {
+  Device device({.validate = true});
+  for (const auto& [name, target] : {std::pair{"ms", "multiple"}, std::pair{"ss", "single"}}) {
+    const std::filesystem::path weights =
+        std::filesystem::path(SIXWAY_WEIGHTS_DIR) / ("sixway-unet-" + std::string(name) + ".safetensors");
+    const nlohmann::json training =
+        nlohmann::json::parse(io::readSafetensors(weights).metadata.at("sixway.training"));
+    EXPECT_EQ(training["config"]["data"]["target"], target) << weights;
+    EXPECT_EQ(training["config"]["model"]["alpha"], "guide") << weights;
+
+    constexpr uint32_t size = 64;
+    LightmapNetwork network(device, weights, size);
+    EXPECT_FLOAT_EQ(network.fineAlphaStepVoxels(), 1.0f) << weights;
+    std::vector<float> guide(size * size * 4);
+    for (uint32_t y = 0; y < size; ++y)
+      for (uint32_t x = 0; x < size; ++x) {
+        const float r = std::hypot(float(x) - 32.0f, float(y) - 32.0f) / 24.0f;  // a disk of smoke
+        const float alpha = std::clamp(1.0f - r, 0.0f, 1.0f);
+        float* g = &guide[(y * size + x) * 4];
+        g[0] = 0.6f * alpha, g[1] = alpha, g[2] = alpha > 0.0f ? 0.5f : 1.0f, g[3] = alpha;
+      }
+    const std::vector<float> lightmaps = network.run(guide);
+    ASSERT_EQ(lightmaps.size(), size_t(size * size * 8));
+    double alphaError = 0.0;
+    for (size_t i = 0; i < size_t(size * size); ++i) {
+      for (int c = 0; c < 8; ++c) ASSERT_TRUE(std::isfinite(lightmaps[i * 8 + c])) << weights;
+      // The guide map is RGBA16F, as the runtime's own: the alpha passed through is the half-rounded value.
+      const float fineAlpha = glm::unpackHalf1x16(glm::packHalf1x16(guide[i * 4 + 3]));
+      alphaError = std::max(alphaError, double(std::abs(lightmaps[i * 8 + 6] - fineAlpha)));
+    }
+    EXPECT_LT(alphaError, 1e-5) << weights << ": the alpha is the guide's fine alpha";
+  }
   EXPECT_EQ(device.validationMessages(), 0u);
 }
 

@@ -182,8 +182,13 @@ TEST_F(VdbPlaybackTest, BadFilesAndFrameCountsGetOneLine) {
   io::VdbSource wrongName = source({kVdb / "smoke_000002.vdb"});
   wrongName.densityGrid = "smoke";
   EXPECT_THAT(inputErrorMessage([&] { render::VdbSequence(context(), wrongName); }),
-              ::testing::HasSubstr(
-                  "smoke_000002.vdb: no file of the vdb sequence has a non-empty float grid 'smoke'"));
+              ::testing::HasSubstr("smoke_000002.vdb: has no float grid 'smoke' (set vdb.density_grid"));
+  // Issue #21: one file of a sequence without the density grid played as an empty frame, said only in a note.
+  io::DenseGrid heat{.size = {4, 4, 4}, .values = std::vector<float>(64, 1.0f)};
+  io::writeVdb(dir / "heat_only.vdb", {{"heat", &heat}});
+  io::VdbSource oneWithout = source({kVdb / "smoke_000002.vdb", dir / "heat_only.vdb"});
+  EXPECT_THAT(inputErrorMessage([&] { render::VdbSequence(context(), oneWithout); }),
+              ::testing::HasSubstr("heat_only.vdb: has no float grid 'density'"));
   io::VdbSource noHeat = source({kVdb / "smoke_000002.vdb"});
   noHeat.temperatureGrid = "heat";
   EXPECT_THAT(inputErrorMessage([&] { render::VdbSequence(context(), noHeat); }),

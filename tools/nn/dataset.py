@@ -87,21 +87,27 @@ def guide_channel_count(directory):
 
 
 class ShardDataset:
-    """Every sample of every shard of a directory, in memory as F16 (a CPU dataset is a few hundred MB), with
-    the first `guide_channels` channels of the guide (3, or 4 for the fine alpha)."""
+    """Every sample of every shard of a directory, or of several (one per scene family, say), in memory as F16
+    (a CPU dataset is a few hundred MB), with the first `guide_channels` channels of the guide (3, or 4 for the
+    fine alpha)."""
 
-    def __init__(self, directory, target="single", guide_channels=3):
+    def __init__(self, directories, target="single", guide_channels=3):
         if target not in TARGET_TENSORS:
             raise ValueError(f"target is {target!r}: single or multiple")
         if guide_channels not in (3, 4):
             raise ValueError(f"guide_channels is {guide_channels!r}: 3 or 4")
-        self.directory = directory
+        self.directories = [directories] if isinstance(directories, str) else list(directories)
+        if not self.directories:
+            raise ValueError("no shard directory given")
+        self.directory = ", ".join(self.directories)
         self.target_kind = target
-        self.paths = shard_paths(directory)
+        sources = [(path, source) for source, d in enumerate(self.directories) for path in shard_paths(d)]
+        self.paths = [path for path, _ in sources]
+        self.shard_sources = [source for _, source in sources]
         guides, targets, motions = [], [], []
-        self.samples = []  # per sample: dict(camera, frame, split, sequence, ...)
+        self.samples = []  # per sample: dict(camera, frame, split, sequence, source, ...)
         self.infos = []
-        for path in self.paths:
+        for path, source in sources:
             tensors, info = read_shard(path)
             if self.infos and info["lightmap_size"] != self.infos[0]["lightmap_size"]:
                 raise ValueError(f"{path}: lightmap_size {info['lightmap_size']} differs from "
@@ -118,7 +124,7 @@ class ShardDataset:
             motions.append(tensors["motion"])
             # A played-back VDB sequence has no motion field ("motion": false): no temporal pairs.
             moves = info.get("motion", True)
-            self.samples += [dict(s, sequence=info["sequence"], moves=moves) for s in info["samples"]]
+            self.samples += [dict(s, sequence=info["sequence"], source=source, moves=moves) for s in info["samples"]]
         self.guide = np.concatenate(guides)
         self.target = np.concatenate(targets)
         self.motion = np.concatenate(motions)
@@ -138,7 +144,8 @@ class ShardDataset:
             if i == 0:
                 continue
             now, before = self.samples[i], self.samples[i - 1]
-            if (now["sequence"], now["camera"]) == (before["sequence"], before["camera"]):
+            if (now["source"], now["sequence"], now["camera"]) == (before["source"], before["sequence"],
+                                                                   before["camera"]):
                 if before["frame"] >= now["frame"]:
                     raise ValueError(f"{self.directory}: sequence {now['sequence']} camera {now['camera']}: "
                                      f"frame {now['frame']} follows frame {before['frame']}")
@@ -153,8 +160,10 @@ class ShardDataset:
         return steps.pop()
 
     def dataset_config(self):
-        """The dataset config that the shards were generated from (the same for every shard)."""
-        return self.infos[0]["config"]
+        """The dataset config that the shards were generated from (the same for every shard of a directory):
+        one config, or a list of them (one per directory) when there are several directories."""
+        configs = [self.infos[self.shard_sources.index(k)]["config"] for k in range(len(self.directories))]
+        return configs[0] if len(configs) == 1 else configs
 
     def indices(self, split):
         return np.array([i for i, s in enumerate(self.samples) if s["split"] == split], dtype=np.int64)

@@ -6,19 +6,19 @@
 
 #include "app/demo/demo_app.h"
 #include "app/options.h"
+#include "app/shipped_weights.h"
 
 int main(int argc, char** argv) {
   namespace demo = sixway::app::demo;
   CLI::App app("sixway-demo: live smoke lit by neural six-way lightmaps, in a window");
   demo::DemoOptions options;
   options.scene = SIXWAY_SCENES_DIR "/plume.json";
-  options.weights = SIXWAY_WEIGHTS_DIR "/sixway-unet.safetensors";
   std::string script;
   bool noVsync = false;
   sixway::app::CommonOptions common;
   app.add_option("--scene", options.scene, "Scene JSON (default assets/scenes/plume.json)");
   app.add_option("--script", script, "Run the commands of this file, then quit (docs/demo.md, Scripts)");
-  app.add_option("--weights", options.weights, "Network file (default weights/sixway-unet.safetensors)");
+  app.add_option("--weights", options.weights, sixway::app::kWeightsHelp);
   app.add_flag("--fp16", options.fp16, "Neural: fp16 feature maps");
   app.add_flag("--no-vsync", noVsync, "Present without waiting for the display");
   app.add_option("--width", options.width, "Window width")->check(CLI::Range(64, 8192));
@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (!script.empty()) options.script = script;
+    options.weights = sixway::app::resolveWeights(options.weights);
     options.vsync = !noVsync;
     options.context = common.contextOptions();
     demo::Demo demo(options);

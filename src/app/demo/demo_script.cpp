@@ -1,6 +1,7 @@
 #include "app/demo/demo_script.h"
 
 #include <array>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -46,6 +47,10 @@ const std::map<std::string, std::vector<std::vector<std::string>>>& grammar() {
   return g;
 }
 
+constexpr float kMaxScriptNumber = 1e6f;
+constexpr int kMaxWaitFrames = 1000000;  // 4.6 hours at 60 frames per second
+
+// A number a float holds (1e20 is one; 1e39 and "nan" are not, and fail the pattern).
 bool isNumber(const std::string& word) {
   std::istringstream in(word);
   float value = 0;
@@ -97,8 +102,13 @@ std::vector<ScriptCommand> loadScript(const std::filesystem::path& path) {
     bool ok = false;
     for (const auto& pattern : known->second) ok = ok || matches(c.words, pattern);
     if (!ok) throw io::InputError(path.string(), where + "expected " + usage(c.name));
-    if (c.name == "wait" && c.number(0) < 1)
-      throw io::InputError(path.string(), where + "wait needs at least 1 frame");
+    // Numbers that a frame cannot use (a wait of 1e20 frames, a move to 1e30 m) are typos: one line each.
+    for (const std::string& w : c.words)
+      if (isNumber(w) && !(std::abs(std::stof(w)) <= kMaxScriptNumber))
+        throw io::InputError(path.string(), where + "numbers must be within ±1e6 (got " + w + ")");
+    if (c.name == "wait" && (c.number(0) < 1 || c.number(0) > kMaxWaitFrames))
+      throw io::InputError(path.string(), where + "wait takes 1 to " + std::to_string(kMaxWaitFrames) +
+                                              " frames (got " + c.words[0] + ")");
     commands.push_back(std::move(c));
   }
   return commands;

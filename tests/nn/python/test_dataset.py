@@ -50,6 +50,22 @@ class DatasetTest(unittest.TestCase):
         self.assertEqual(len(first), 2 * 3)
         self.assertTrue(all(self.data.previous[i] == -1 for i in first))
 
+    def test_several_directories_are_one_dataset_without_pairs_across_them(self):
+        with tempfile.TemporaryDirectory() as other:
+            synthetic_shards.write_shards(other, size=16, cameras=3, frames=4, sequences=2)
+            both = ShardDataset([self.tmp.name, other])
+            self.assertEqual(len(both.paths), 4)
+            for split in ("train", "heldout_camera", "heldout_sequence"):
+                self.assertEqual(len(both.indices(split)), 2 * len(self.data.indices(split)))
+                self.assertEqual(len(both.pairs(split)), 2 * len(self.data.pairs(split)))
+            second = len(self.data.samples)  # the other directory's first sample: sequence 0, camera 0 again
+            self.assertEqual(both.previous[second], -1)
+            self.assertEqual([s["source"] for s in both.samples[second - 1:second + 1]], [0, 1])
+            self.assertIsInstance(both.dataset_config(), list)
+            self.assertEqual(len(both.dataset_config()), 2)
+        with self.assertRaisesRegex(ValueError, "no shard directory"):
+            ShardDataset([])
+
     def test_targets_in_network_order(self):
         # Baker order Right, Left, Top, Bottom, Back, Front -> network left, right, top, bottom, front, back.
         _, target, _ = synthetic_shards.sample_tensors(16, 1, 0, 0)
