@@ -13,6 +13,7 @@
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "io/error.h"
+#include "io/file_access.h"
 #include "io/report.h"
 #include "io/scene.h"
 #include "reference/bake_flipbook.h"
@@ -90,16 +91,8 @@ io::Emission defaultRamp(float intensity) {
 // bake has finished, so an interrupted rerun loses none of the earlier frames.
 void removeFramesOfAnEarlierBake(const fs::path& frames, int first, int count) {
   static const std::regex name(R"(frame_([0-9]{4,9})\.exr)");
-  std::error_code error;
-  std::vector<fs::path> stale;
-  for (const auto& entry : fs::directory_iterator(frames, error)) {
-    std::smatch match;
-    const std::string filename = entry.path().filename();
-    if (!std::regex_match(filename, match, name) || !entry.is_regular_file()) continue;
-    const long index = std::stol(match[1]);
-    if (index < first || index >= long(first) + count) stale.push_back(entry.path());
-  }
-  for (const fs::path& path : stale) fs::remove(path, error);
+  io::removeNumberedEntries(frames, name, fs::file_type::regular,
+                            [&](long index) { return index < first || index >= long(first) + count; });
 }
 
 void run(const BakeOptions& o) {

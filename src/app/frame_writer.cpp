@@ -114,16 +114,8 @@ void FrameWriter::commit() {
 // it once its process is gone.
 void FrameWriter::removeStagingOfKilledRuns() const {
   static const std::regex name(R"(\.render\.([0-9]{1,9})\.partial)");
-  std::error_code error;
-  std::vector<fs::path> stale;
-  for (const auto& entry : fs::directory_iterator(directory_, error)) {
-    std::smatch match;
-    const std::string filename = entry.path().filename();
-    if (!std::regex_match(filename, match, name) || !entry.is_directory()) continue;
-    const long pid = std::stol(match[1]);
-    if (pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH) stale.push_back(entry.path());
-  }
-  for (const fs::path& path : stale) fs::remove_all(path, error);
+  io::removeNumberedEntries(directory_, name, fs::file_type::directory,
+                            [](long pid) { return pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH; });
 }
 
 std::string FrameWriter::frameName(int index) {

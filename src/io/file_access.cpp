@@ -35,6 +35,20 @@ std::vector<uint8_t> readFileBytes(const fs::path& path) {
   return bytes;
 }
 
+void removeNumberedEntries(const fs::path& directory, const std::regex& pattern, fs::file_type type,
+                           const std::function<bool(long)>& stale) {
+  std::error_code error;
+  std::vector<fs::path> doomed;
+  for (const auto& entry : fs::directory_iterator(directory, error)) {
+    std::smatch match;
+    const std::string name = entry.path().filename();
+    if (std::regex_match(name, match, pattern) && entry.symlink_status(error).type() == type &&
+        stale(std::stol(match[1])))
+      doomed.push_back(entry.path());
+  }
+  for (const fs::path& path : doomed) fs::remove_all(path, error);
+}
+
 void appendBytes(void* context, void* data, int size) {
   auto& out = *static_cast<std::vector<uint8_t>*>(context);
   const auto* bytes = static_cast<const uint8_t*>(data);

@@ -4,6 +4,8 @@
 // interrupted write never leaves a truncated file under the final name).
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <regex>
 #include <span>
 #include <vector>
 
@@ -14,6 +16,12 @@ void requireRegularFile(const std::filesystem::path& path);
 
 // The whole file; throws InputError naming `path` when it cannot be read.
 std::vector<uint8_t> readFileBytes(const std::filesystem::path& path);
+
+// Clean-up of numbered outputs: removes (recursively) each entry of `directory` of the given type whose name
+// matches `pattern`, a regex whose first group is 1 to 9 digits, and whose number `stale` accepts. Errors are
+// ignored.
+void removeNumberedEntries(const std::filesystem::path& directory, const std::regex& pattern,
+                           std::filesystem::file_type type, const std::function<bool(long)>& stale);
 
 // stb_image_write's write callback (stbi_write_*_to_func): appends to the std::vector<uint8_t> `context`.
 void appendBytes(void* context, void* data, int size);
