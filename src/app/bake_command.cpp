@@ -195,6 +195,9 @@ void run(const BakeOptions& o) {
   if (const auto* vdb = dynamic_cast<const render::VdbSequence*>(sequence.get()))
     for (const std::string& note : vdb->notes()) std::fprintf(stderr, "sixway: note: %s\n", note.c_str());
   std::printf("sixway bake: wrote %s\n", result.sidecar.string().c_str());
+  // What a Unity VFX Graph output needs besides the textures (their .meta files hold the import settings).
+  std::printf("sixway bake: Unity: Flip Book Size %d x %d, %d frames; textures linear, RGBA half (EXR)\n",
+              result.layout.columns, result.layout.rows, result.layout.frames);
   if (context.validationMessageCount() > 0)
     throw std::runtime_error(std::to_string(context.validationMessageCount()) + " validation messages");
 }

@@ -96,6 +96,7 @@ FlipbookBakeResult bakeFlipbook(const gpu::Context& context, const gpu::Pipeline
                   sequence.frameName(index).c_str(), volume ? "baked" : "empty", gpuMs, seconds);
     progress(line);
   }
+  result.layout = layout;
   result.sidecar = writeFlipbook(job.out, "flipbook", tiles, layout, unityPacking(),
                                  describe(job, result.billboard, frames), job.scattering);
   return result;

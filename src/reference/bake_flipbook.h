@@ -12,6 +12,7 @@
 
 #include "gpu/sequence.h"
 #include "io/scene.h"
+#include "reference/flipbook.h"
 #include "reference/lightmap_baker.h"
 #include "reference/scattered_lightmaps.h"
 #include "render/camera.h"
@@ -39,6 +40,7 @@ struct FlipbookBake {
 
 struct FlipbookBakeResult {
   std::filesystem::path sidecar;
+  FlipbookLayout layout;
   ImagePlane billboard;
   std::vector<double> frameMilliseconds;  // GPU time per baked frame
 };

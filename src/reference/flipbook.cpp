@@ -13,6 +13,7 @@
 #include "io/json_reader.h"
 #include "io/png.h"
 #include "io/tga.h"
+#include "reference/unity_meta.h"
 
 namespace sixway::render {
 namespace {
@@ -174,6 +175,19 @@ std::filesystem::path writeFlipbook(const std::filesystem::path& directory, cons
                  {{"colorspace", "linear"}, {"sixway", "six-way lightmaps, premultiplied"}});
     io::writePng(directory / (base + ".png"), textures[t], io::PngEncoding::Linear);
     io::writeTga(directory / (base + ".tga"), textures[t]);
+    for (const char* extension : {".exr", ".png", ".tga"}) {
+      const std::string file = base + extension;
+      // The id is seeded by what the texture is: a re-bake of the same source keeps Unity's references.
+      const std::string meta = unityTextureMeta({.guid = unityGuid(provenance.dump() + "/" + file),
+                                                 .halfFloat = std::string_view(extension) == ".exr",
+                                                 .width = textures[t].width,
+                                                 .height = textures[t].height,
+                                                 .columns = layout.columns,
+                                                 .rows = layout.rows});
+      io::AtomicFile metaFile(directory / (file + ".meta"));
+      metaFile.writeAll(std::span(reinterpret_cast<const uint8_t*>(meta.data()), meta.size()));
+      metaFile.commit();
+    }
     files[packing.textures[t]] = {{"exr", base + ".exr"}, {"png", base + ".png"}, {"tga", base + ".tga"}};
   }
   nlohmann::json channels = nlohmann::json::object();

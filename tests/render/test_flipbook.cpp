@@ -124,6 +124,57 @@ TEST_F(FlipbookFilesTest, WritesExrPngTgaAndASidecarThatReadsBack) {
   expectFramesNear(book.frames, frames, 2e-4f);  // EXR half
 }
 
+// The value of `key` in a Unity .meta file: the first line "<indent><key>: <value>" after the line `after`
+// (so that the platform settings' textureFormat is told from the importer's own).
+std::string metaValue(const std::filesystem::path& file, const std::string& key,
+                      const std::string& after = "") {
+  std::ifstream in(file);
+  bool found = after.empty();
+  for (std::string line; std::getline(in, line);) {
+    if (!found) {
+      found = line.find(after) != std::string::npos;
+      continue;
+    }
+    const std::size_t start = line.find_first_not_of(" -");
+    if (start != std::string::npos && line.compare(start, key.size() + 2, key + ": ") == 0)
+      return line.substr(start + key.size() + 2);
+  }
+  return "(no " + key + ")";
+}
+
+// Issue #22: each texture has Unity's import settings beside it: linear, no rescale, uncompressed RGBA half
+// for EXR (BC6H would drop alpha) and RGBA 8-bit for PNG/TGA, the flipbook grid; a stable id per texture.
+TEST_F(FlipbookFilesTest, WritesUnityImportSettingsBesideEachTexture) {
+  const FlipbookLayout layout = render::flipbookLayout(5, 48, 40);  // 3 × 2 tiles: 144 × 80 pixels
+  const auto frames = codedFrames(5, 48, 40);
+  render::writeFlipbook(dir.path(), "book", frames, layout, render::unityPacking(), {{"source", "a"}});
+  for (const char* texture : {"book_A", "book_B"})
+    for (const std::string extension : {".exr", ".png", ".tga"}) {
+      const std::filesystem::path meta = dir / (texture + extension + ".meta");
+      ASSERT_TRUE(std::filesystem::exists(meta)) << meta;
+      EXPECT_EQ(metaValue(meta, "fileFormatVersion"), "2");
+      EXPECT_THAT(metaValue(meta, "guid"), ::testing::MatchesRegex("[0-9a-f]{32}"));
+      EXPECT_EQ(metaValue(meta, "sRGBTexture"), "0") << meta;
+      EXPECT_EQ(metaValue(meta, "nPOTScale"), "0");
+      EXPECT_EQ(metaValue(meta, "enableMipMap"), "0");
+      EXPECT_EQ(metaValue(meta, "alphaUsage"), "1");
+      EXPECT_EQ(metaValue(meta, "flipbookColumns"), "3");
+      EXPECT_EQ(metaValue(meta, "flipbookRows"), "2");
+      EXPECT_EQ(metaValue(meta, "maxTextureSize", "buildTarget: DefaultTexturePlatform"), "256");
+      EXPECT_EQ(metaValue(meta, "textureFormat", "buildTarget: DefaultTexturePlatform"),
+                extension == ".exr" ? "17" : "4");
+      EXPECT_EQ(metaValue(meta, "textureCompression", "buildTarget: DefaultTexturePlatform"), "0");
+    }
+  // Every texture its own id; the same source gives the same ids again, another source other ids.
+  const std::string a = metaValue(dir / "book_A.exr.meta", "guid");
+  EXPECT_NE(a, metaValue(dir / "book_A.png.meta", "guid"));
+  EXPECT_NE(a, metaValue(dir / "book_B.exr.meta", "guid"));
+  render::writeFlipbook(dir.path(), "book", frames, layout, render::unityPacking(), {{"source", "a"}});
+  EXPECT_EQ(metaValue(dir / "book_A.exr.meta", "guid"), a);
+  render::writeFlipbook(dir.path(), "book", frames, layout, render::unityPacking(), {{"source", "b"}});
+  EXPECT_NE(metaValue(dir / "book_A.exr.meta", "guid"), a);
+}
+
 // Another tool's packing (here EmberGen-style "RLT"/"BBF" textures as TGA: R = Right, G = Left, B = Top,
 // A = alpha; R = Bottom, G = Back, B = Front, A = emissive), read through a hand-written description.
 TEST_F(FlipbookFilesTest, ReadsAnotherToolsPackingThroughADescription) {
