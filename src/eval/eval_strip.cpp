@@ -66,7 +66,7 @@ std::vector<std::string> writeEvalStrip(const std::filesystem::path& path, const
     });
     names.push_back("|" + methods[m].name + " - truth| x" + std::to_string(int(errorGain)));
   }
-  io::writePng(path, strip, io::PngEncoding::Linear);
+  io::writePng(path, strip, io::ByteEncoding::Linear);
   return names;
 }
 

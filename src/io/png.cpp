@@ -10,6 +10,7 @@
 #include <fstream>
 #include <memory>
 
+#include "io/byte_encoding.h"
 #include "io/error.h"
 #include "io/file_access.h"
 
@@ -18,15 +19,6 @@ namespace sixway::io {
 namespace {
 
 constexpr std::array<unsigned char, 8> kPngSignature = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
-
-float srgbEncode(float linear) {
-  return linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
-}
-
-uint8_t toByte(float value, bool applySrgb) {
-  const float clipped = value > 0.0f ? std::min(value, 1.0f) : 0.0f;  // also maps NaN to 0
-  return static_cast<uint8_t>(std::lround((applySrgb ? srgbEncode(clipped) : clipped) * 255.0f));
-}
 
 bool hasPngSignature(const std::filesystem::path& path) {
   std::array<unsigned char, 8> head{};
@@ -72,20 +64,14 @@ std::vector<std::string> channelNames(int count) {
 
 }  // namespace
 
-void writePng(const std::filesystem::path& path, const Image& image, PngEncoding encoding) {
+void writePng(const std::filesystem::path& path, const Image& image, ByteEncoding encoding) {
   const std::string source = path.string();
   requireConsistentImage(source, image);
   const int channels = image.channelCount();
   if (channels > 4) {
     throw InputError(source, "PNG holds 1 to 4 channels, the image has " + std::to_string(channels));
   }
-  // Grey+alpha and RGBA keep their last channel (alpha) linear.
-  const bool hasAlpha = channels == 2 || channels == 4;
-  std::vector<uint8_t> bytes(image.pixels.size());
-  for (std::size_t i = 0; i < bytes.size(); ++i) {
-    const bool isAlpha = hasAlpha && static_cast<int>(i % channels) == channels - 1;
-    bytes[i] = toByte(image.pixels[i], encoding == PngEncoding::SRGB && !isAlpha);
-  }
+  const std::vector<uint8_t> bytes = toBytes(image, encoding);
 
   // Encoded in memory, then written with every write checked (stb does not report a full disk).
   std::vector<uint8_t> encoded;

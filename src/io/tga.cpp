@@ -11,22 +11,19 @@
 #include <memory>
 #include <vector>
 
+#include "io/byte_encoding.h"
 #include "io/error.h"
 #include "io/file_access.h"
 
 namespace sixway::io {
 
-void writeTga(const std::filesystem::path& path, const Image& image) {
+void writeTga(const std::filesystem::path& path, const Image& image, ByteEncoding encoding) {
   const std::string source = path.string();
   requireConsistentImage(source, image);
   const int channels = image.channelCount();
   if (channels > 4)
     throw InputError(source, "TGA holds 1 to 4 channels, the image has " + std::to_string(channels));
-  std::vector<uint8_t> bytes(image.pixels.size());
-  for (std::size_t i = 0; i < bytes.size(); ++i) {
-    const float v = image.pixels[i] > 0.0f ? std::min(image.pixels[i], 1.0f) : 0.0f;  // NaN → 0
-    bytes[i] = static_cast<uint8_t>(std::lround(v * 255.0f));
-  }
+  const std::vector<uint8_t> bytes = toBytes(image, encoding);
   // Encoded in memory, then written with every write checked (stb does not report a full disk).
   std::vector<uint8_t> encoded;
   if (!stbi_write_tga_to_func(appendBytes, &encoded, image.width, image.height, channels, bytes.data()))

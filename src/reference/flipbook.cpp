@@ -163,6 +163,21 @@ std::vector<io::Image> unpackFlipbook(const std::vector<io::Image>& textures, co
   return frames;
 }
 
+// What the 8-bit files lose: texels of the colour channels above 1 are clipped there (emission, bright rims);
+// the EXR keeps them.
+nlohmann::json eightBitClipping(const std::vector<io::Image>& textures) {
+  std::size_t clipped = 0, colour = 0;
+  float largest = 0.0f;
+  for (const io::Image& t : textures)
+    for (std::size_t i = 0; i < t.pixels.size(); ++i) {
+      if (i % 4 == 3) continue;
+      ++colour;
+      clipped += t.pixels[i] > 1.0f;
+      largest = std::max(largest, t.pixels[i]);
+    }
+  return {{"clipped_fraction", colour ? double(clipped) / double(colour) : 0.0}, {"largest_value", largest}};
+}
+
 std::filesystem::path writeFlipbook(const std::filesystem::path& directory, const std::string& stem,
                                     const std::vector<io::Image>& frames, const FlipbookLayout& layout,
                                     const ChannelPacking& packing, const nlohmann::json& provenance,
@@ -173,13 +188,16 @@ std::filesystem::path writeFlipbook(const std::filesystem::path& directory, cons
     const std::string base = stem + "_" + packing.textures[t];
     io::writeExr(directory / (base + ".exr"), textures[t], io::ExrPixelType::Half,
                  {{"colorspace", "linear"}, {"sixway", "six-way lightmaps, premultiplied"}});
-    io::writePng(directory / (base + ".png"), textures[t], io::PngEncoding::Linear);
-    io::writeTga(directory / (base + ".tga"), textures[t]);
+    // 8-bit: sRGB-encoded colour (alpha linear), so the dark lightmaps keep their levels; Unity decodes them
+    // (sRGBTexture in the .meta), readFlipbook too (the sidecar's color_space).
+    io::writePng(directory / (base + ".png"), textures[t], io::ByteEncoding::SRGB);
+    io::writeTga(directory / (base + ".tga"), textures[t], io::ByteEncoding::SRGB);
     for (const char* extension : {".exr", ".png", ".tga"}) {
       const std::string file = base + extension;
       // The id is seeded by what the texture is: a re-bake of the same source keeps Unity's references.
       const std::string meta = unityTextureMeta({.guid = unityGuid(provenance.dump() + "/" + file),
                                                  .halfFloat = std::string_view(extension) == ".exr",
+                                                 .srgb = std::string_view(extension) != ".exr",
                                                  .width = textures[t].width,
                                                  .height = textures[t].height,
                                                  .columns = layout.columns,
@@ -204,7 +222,8 @@ std::filesystem::path writeFlipbook(const std::filesystem::path& directory, cons
         {"tile_height", layout.tileHeight}}},
       {"textures", files},
       {"channels", channels},
-      {"color_space", "linear"},
+      {"color_space", "srgb"},  // of the 8-bit files' colour components; EXR and alpha are linear
+      {"eight_bit", eightBitClipping(textures)},
       {"premultiplied", true},
       {"normalisation",
        "radiance toward the camera under a white directional light of irradiance pi, black world "
@@ -231,6 +250,7 @@ Flipbook readFlipbook(const std::filesystem::path& description) {
   r.optional<int>("version", 1, io::inRange(1, 1));
   r.maybe<std::string>("normalisation");
   r.has("provenance");  // free-form: where the flipbook came from
+  r.has("eight_bit");   // informational: what the 8-bit files clip
 
   Flipbook book;
   if (const auto scattering = r.maybe<std::string>("scattering"))

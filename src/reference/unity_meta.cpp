@@ -50,7 +50,7 @@ std::string unityTextureMeta(const UnityTextureImport& t) {
   meta += "  mipmaps:\n";
   meta += "    mipMapMode: 0\n";
   meta += "    enableMipMap: 0\n";
-  meta += "    sRGBTexture: 0\n";
+  meta += std::string("    sRGBTexture: ") + (t.srgb ? "1" : "0") + "\n";
   meta += "    linearTexture: 0\n";
   meta += "  isReadable: 0\n";
   meta += "  textureFormat: 1\n";

@@ -12,6 +12,7 @@ namespace sixway::render {
 struct UnityTextureImport {
   std::string guid;        // 32 hex digits: Unity's asset id (unityGuid)
   bool halfFloat = false;  // EXR: RGBA half (TextureFormat 17); otherwise RGBA 8-bit (TextureFormat 4)
+  bool srgb = false;       // colour stored sRGB-encoded (Unity decodes it when sampling; alpha stays linear)
   int width = 1, height = 1;
   int columns = 1, rows = 1;  // the flipbook grid
 };

@@ -40,7 +40,7 @@ class PngTest : public ::testing::Test {
 
 TEST_F(PngTest, LinearRoundTripIsExactForByteValues) {
   const Image image = gradient(17, 5, {"R", "G", "B", "A"});
-  writePng(file, image, PngEncoding::Linear);
+  writePng(file, image, ByteEncoding::Linear);
   const Image read = readPng(file);
   EXPECT_EQ(read.width, 17);
   EXPECT_EQ(read.height, 5);
@@ -52,7 +52,7 @@ TEST_F(PngTest, LinearRoundTripIsExactForByteValues) {
 TEST_F(PngTest, RowZeroIsTheTopRow) {
   Image image(1, 2, {"Y"});
   image.at(0, 0, 0) = 1.0f;
-  writePng(file, image, PngEncoding::Linear);
+  writePng(file, image, ByteEncoding::Linear);
   const Image read = readPng(file);
   EXPECT_EQ(read.at(0, 0, 0), 1.0f);
   EXPECT_EQ(read.at(0, 1, 0), 0.0f);
@@ -70,14 +70,14 @@ TEST_F(PngTest, ClipsOutOfRangeValuesAndNaN) {
   Image image(4, 1, {"Y"});
   image.pixels = {-1.0f, 2.0f, std::numeric_limits<float>::quiet_NaN(),
                   std::numeric_limits<float>::infinity()};
-  writePng(file, image, PngEncoding::Linear);
+  writePng(file, image, ByteEncoding::Linear);
   EXPECT_THAT(readPng(file).pixels, ElementsAre(0.0f, 1.0f, 0.0f, 1.0f));
 }
 
 TEST_F(PngTest, GreyAndGreyAlphaAndRgb) {
   const std::vector<std::vector<std::string>> layouts = {{"Y"}, {"Y", "A"}, {"R", "G", "B"}};
   for (const auto& channels : layouts) {
-    writePng(file, gradient(3, 2, channels), PngEncoding::Linear);
+    writePng(file, gradient(3, 2, channels), ByteEncoding::Linear);
     EXPECT_EQ(readPng(file).channels, channels);
   }
 }
@@ -94,7 +94,7 @@ TEST_F(PngTest, TextFileNamedPng) {
 }
 
 TEST_F(PngTest, TruncatedFile) {
-  writePng(file, gradient(64, 64, {"R", "G", "B"}), PngEncoding::Linear);
+  writePng(file, gradient(64, 64, {"R", "G", "B"}), ByteEncoding::Linear);
   fs::resize_file(file, fs::file_size(file) / 2);
   EXPECT_THAT(inputErrorMessage([&] { readPng(file); }),
               namesFileAndProblem(file, "corrupt or truncated PNG file"));

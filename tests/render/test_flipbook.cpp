@@ -109,19 +109,29 @@ TEST_F(FlipbookFilesTest, WritesExrPngTgaAndASidecarThatReadsBack) {
                            "flipbook_B.png", "flipbook_B.tga", "flipbook.json"})
     EXPECT_TRUE(std::filesystem::exists(dir / file)) << file;
   EXPECT_EQ(io::readExr(dir / "flipbook_A.exr").attributes.at("colorspace"), "linear");
-  // PNG and TGA hold the same values to 8 bits, linear (no sRGB curve).
+  // PNG and TGA hold the same 8-bit codes: colour sRGB-encoded (IEC 61966-2-1), alpha (here emissive) linear.
+  const auto srgb = [](float v) {
+    return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1 / 2.4f) - 0.055f;
+  };
   const io::Image png = io::readPng(dir / "flipbook_B.png");
-  EXPECT_NEAR(png.at(6, 1, 2), code(1, render::Front, 1, 1), 0.5f / 255);
+  EXPECT_NEAR(png.at(6, 1, 2), srgb(code(1, render::Front, 1, 1)), 0.5f / 255);
+  EXPECT_NEAR(png.at(6, 1, 3), code(1, render::Emissive, 1, 1), 0.5f / 255);
   EXPECT_EQ(io::readTga(dir / "flipbook_B.tga").pixels, png.pixels);
 
   const nlohmann::json json = nlohmann::json::parse(std::ifstream(sidecar));
   EXPECT_EQ(json["channels"]["back"], "A.B");
   EXPECT_EQ(json["channels"]["emissive"], "B.A");
-  EXPECT_EQ(json["color_space"], "linear");
+  EXPECT_EQ(json["color_space"], "srgb");
+  EXPECT_EQ(json["eight_bit"]["clipped_fraction"], 0.0);
   EXPECT_EQ(json["layout"]["columns"], 2);
   const render::Flipbook book = render::readFlipbook(sidecar);
   EXPECT_EQ(book.layout.frames, 3);
   expectFramesNear(book.frames, frames, 2e-4f);  // EXR half
+  // The sidecar naming only the PNGs: they read back through its color_space, within half an sRGB code at 1.
+  nlohmann::json pngOnly = json;
+  pngOnly["textures"] = {{"A", "flipbook_A.png"}, {"B", "flipbook_B.png"}};
+  writeDescription(pngOnly);
+  expectFramesNear(render::readFlipbook(dir / "book.json").frames, frames, 6e-3f);
 }
 
 // The value of `key` in a Unity .meta file: the first line "<indent><key>: <value>" after the line `after`
@@ -154,7 +164,7 @@ TEST_F(FlipbookFilesTest, WritesUnityImportSettingsBesideEachTexture) {
       ASSERT_TRUE(std::filesystem::exists(meta)) << meta;
       EXPECT_EQ(metaValue(meta, "fileFormatVersion"), "2");
       EXPECT_THAT(metaValue(meta, "guid"), ::testing::MatchesRegex("[0-9a-f]{32}"));
-      EXPECT_EQ(metaValue(meta, "sRGBTexture"), "0") << meta;
+      EXPECT_EQ(metaValue(meta, "sRGBTexture"), extension == ".exr" ? "0" : "1") << meta;
       EXPECT_EQ(metaValue(meta, "nPOTScale"), "0");
       EXPECT_EQ(metaValue(meta, "enableMipMap"), "0");
       EXPECT_EQ(metaValue(meta, "alphaUsage"), "1");
@@ -212,8 +222,8 @@ TEST_F(FlipbookFilesTest, DecodesSrgbAndPremultipliesStraightAlpha) {
   io::Image a(1, 1, {"R", "G", "B", "A"}), b(1, 1, {"R", "G", "B", "A"});
   a.pixels = {0.5f, 0.5f, 0.5f, 0.5f};
   b.pixels = {0.5f, 0.5f, 0.5f, 0.0f};
-  io::writePng(dir / "a.png", a, io::PngEncoding::Linear);  // codes as given: read as sRGB below
-  io::writePng(dir / "b.png", b, io::PngEncoding::Linear);
+  io::writePng(dir / "a.png", a, io::ByteEncoding::Linear);  // codes as given: read as sRGB below
+  io::writePng(dir / "b.png", b, io::ByteEncoding::Linear);
   writeDescription({{"layout", {{"columns", 1}, {"rows", 1}, {"tile_width", 1}, {"tile_height", 1}}},
                     {"textures", {{"A", "a.png"}, {"B", "b.png"}}},
                     {"channels",
@@ -236,7 +246,7 @@ TEST_F(FlipbookFilesTest, DecodesSrgbAndPremultipliesStraightAlpha) {
 
 TEST_F(FlipbookFilesTest, BadDescriptionsAreOneLineErrors) {
   io::Image rgba(2, 2, {"R", "G", "B", "A"});
-  io::writePng(dir / "t.png", rgba, io::PngEncoding::Linear);
+  io::writePng(dir / "t.png", rgba, io::ByteEncoding::Linear);
   const nlohmann::json layout = {{"columns", 1}, {"rows", 1}, {"tile_width", 2}, {"tile_height", 2}};
   const nlohmann::json channels = {{"right", "T.R"}, {"left", "T.G"},  {"top", "T.B"},  {"bottom", "T.R"},
                                    {"back", "T.G"},  {"front", "T.B"}, {"alpha", "T.A"}};

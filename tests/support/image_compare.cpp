@@ -102,7 +102,7 @@ std::filesystem::path testArtifactDir() {
       if (image->channelCount() <= 4) io::writePng(dir / (label + "-" + suffix + ".png"), *image);
     }
     io::Image diff = differenceImage(actual, expected, d.maxAbs);
-    if (diff.channelCount() <= 4) io::writePng(dir / (label + "-diff.png"), diff, io::PngEncoding::Linear);
+    if (diff.channelCount() <= 4) io::writePng(dir / (label + "-diff.png"), diff, io::ByteEncoding::Linear);
     message << "\nimages written to " << dir.string() << " (diff scaled by 1/" << d.maxAbs << ")";
   } catch (const std::exception& e) {
     message << "\n(could not write the images: " << e.what() << ")";

@@ -92,7 +92,7 @@ void Demo::loadScene(const fs::path& path) {
 void Demo::screenshot(const fs::path& path) {
   if (fs::exists(path)) throw io::InputError(path.string(), "exists already; screenshots never overwrite");
   if (path.has_parent_path()) fs::create_directories(path.parent_path());
-  io::writePng(path, display_->download(), io::PngEncoding::Linear);  // the display holds sRGB codes
+  io::writePng(path, display_->download(), io::ByteEncoding::Linear);  // the display holds sRGB codes
   say("screenshot " + path.string());
 }
 

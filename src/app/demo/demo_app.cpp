@@ -136,7 +136,7 @@ void Demo::frame() {
   if (recording_) {
     char name[32];
     std::snprintf(name, sizeof(name), "frame_%05d.png", recordedFrames_++);
-    io::writePng(*recording_ / name, display_->download(), io::PngEncoding::Linear);
+    io::writePng(*recording_ / name, display_->download(), io::ByteEncoding::Linear);
   }
   imgui_->beginFrame();
   drawPanel();
@@ -146,7 +146,7 @@ void Demo::frame() {
       presenter_->present(display_->image(), [&](VkCommandBuffer commands) { imgui_->render(commands); });
   if (windowShot_) {
     if (std::optional<io::Image> window = presenter_->takeCapture()) {
-      io::writePng(*windowShot_, *window, io::PngEncoding::Linear);
+      io::writePng(*windowShot_, *window, io::ByteEncoding::Linear);
       say("screenshot of the window " + windowShot_->string());
       windowShot_.reset();
     }
