@@ -2,8 +2,9 @@
 // Flipbooks of six-way lightmaps, the way game engines play them back (docs/conventions.md, "Flipbooks"): the
 // frames as tiles of a columns × rows grid, row-major, frame 0 at the top-left, the eight channels packed
 // into RGBA textures (Unity's packing unless told otherwise), written as EXR (half, linear) and 8-bit PNG and
-// TGA (linear) with a JSON sidecar. Flipbooks from other tools are read through a description in the
-// sidecar's format, which says where each channel lives (docs/reference-rendering.md, "Flipbooks").
+// TGA (colour sRGB-encoded, alpha linear) with a JSON sidecar. Flipbooks from other tools are read through a
+// description in the sidecar's format, which says where each channel lives (docs/reference-rendering.md,
+// "Flipbooks").
 #include <array>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -55,8 +56,8 @@ std::vector<io::Image> packFlipbook(const std::vector<io::Image>& frames, const 
 std::vector<io::Image> unpackFlipbook(const std::vector<io::Image>& textures, const FlipbookLayout& layout,
                                       const ChannelPacking& packing);
 
-// Writes <stem>_<texture>.exr (half), .png and .tga (8-bit, linear) for each texture of `packing`, and the
-// sidecar <stem>.json (layout, files, channels, colour space, normalisation, the scattering the lightmaps
+// Writes <stem>_<texture>.exr (half), .png and .tga (8-bit, colour sRGB-encoded) for each texture of `packing`,
+// a Unity .meta file beside each (reference/unity_meta.h), and the sidecar <stem>.json (layout, files, channels, colour space, normalisation, the scattering the lightmaps
 // hold when known, and `provenance` as given). Returns the sidecar's path.
 std::filesystem::path writeFlipbook(const std::filesystem::path& directory, const std::string& stem,
                                     const std::vector<io::Image>& frames, const FlipbookLayout& layout,
