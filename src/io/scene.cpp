@@ -393,12 +393,19 @@ Ambient parseAmbient(JsonReader& r) {
                "] (got " + show(coefficient) + ")";
     return "";
   });
+  // Unity's light probes hold the cosine-convolved environment over π: L0 as it is, L1 scaled by 2/3 (the
+  // clamped-cosine lobe's band-1 factor, 2π/3, over π). "unity_probe" takes such coefficients as they are.
+  const bool unityProbe =
+      r.choice<bool>("sh_convention", {{"radiance", false}, {"unity_probe", true}}, false);
   r.finish();  // a misspelt key explains the errors below better
   if (color && sh) r.failHere("give exactly one of color and sh, not both");
+  if (color && r.has("sh_convention")) r.fail("sh_convention", "goes with sh, not color");
   if (color) return AmbientColor{.color = *color};
   if (!sh) r.failHere("give exactly one of color and sh");
   AmbientSh out;
   std::ranges::copy(*sh, out.coefficients.begin());
+  if (unityProbe)
+    for (int i = 1; i < 4; ++i) out.coefficients[i] *= 1.5f;
   return out;
 }
 

@@ -460,6 +460,21 @@ TEST(SceneParse, NumbersBeyondWhatAFrameCanHold) {
                "ambient.sh", "every component must be in [-10000, 10000] (got [0, -20000, 0])"));
 }
 
+// Issue #22: Unity's light-probe L1 is 2/3 of the radiance's; "unity_probe" takes it as it is.
+TEST(SceneParse, AmbientShInUnitysProbeConvention) {
+  const json radiance =
+      minimalWith(R"({"ambient": {"sh": [[1, 1, 1], [0.3, 0, 0], [0, 0.6, 0], [0, 0, -0.9]]}})"_json);
+  json unity = radiance;
+  unity["ambient"]["sh_convention"] = "unity_probe";
+  const auto a = std::get<AmbientSh>(*parseScene(radiance, "r.json", ".").ambient).coefficients;
+  const auto b = std::get<AmbientSh>(*parseScene(unity, "u.json", ".").ambient).coefficients;
+  EXPECT_EQ(b[0], a[0]);
+  for (int i = 1; i < 4; ++i) EXPECT_EQ(b[i], 1.5f * a[i]) << i;
+  EXPECT_TRUE(
+      rejected(minimalWith(R"({"ambient": {"color": [1, 1, 1], "sh_convention": "unity_probe"}})"_json),
+               "ambient.sh_convention", "goes with sh, not color"));
+}
+
 TEST(SceneParse, LightmapSizeNotMultipleOf16) {
   EXPECT_TRUE(rejected(minimalWith(R"({"render": {"lightmap_size": 100}})"_json), "render.lightmap_size",
                        "must be a multiple of 16 (got 100)"));
