@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <vector>
 
 namespace sixway::render {
 namespace {
@@ -42,46 +43,49 @@ std::string unityTextureMeta(const UnityTextureImport& t) {
   const int cap = sizeCap(std::max(t.width, t.height));
   // Premultiplied lightmaps: alphaIsTransparency stays off, since its colour dilation would put light into
   // the texels of alpha 0. Mipmaps off: a flipbook's tiles would bleed into each other at the lower levels.
-  std::string meta;
-  meta += "fileFormatVersion: 2\n";
-  meta += "guid: " + t.guid + "\n";
-  meta += "TextureImporter:\n";
-  meta += "  serializedVersion: 12\n";
-  meta += "  mipmaps:\n";
-  meta += "    mipMapMode: 0\n";
-  meta += "    enableMipMap: 0\n";
-  meta += std::string("    sRGBTexture: ") + (t.srgb ? "1" : "0") + "\n";
-  meta += "    linearTexture: 0\n";
-  meta += "  isReadable: 0\n";
-  meta += "  textureFormat: 1\n";
-  meta += "  maxTextureSize: " + std::to_string(cap) + "\n";
-  meta += "  textureSettings:\n";
-  meta += "    serializedVersion: 2\n";
-  meta += "    filterMode: 1\n";
-  meta += "    wrapU: 1\n";
-  meta += "    wrapV: 1\n";
-  meta += "    wrapW: 1\n";
-  meta += "  nPOTScale: 0\n";
-  meta += "  alphaUsage: 1\n";
-  meta += "  alphaIsTransparency: 0\n";
-  meta += "  textureType: 0\n";
-  meta += "  textureShape: 1\n";
-  meta += "  flipbookRows: " + std::to_string(t.rows) + "\n";
-  meta += "  flipbookColumns: " + std::to_string(t.columns) + "\n";
-  meta += "  maxTextureSizeSet: 0\n";
-  meta += "  textureFormatSet: 0\n";
-  meta += "  platformSettings:\n";
-  meta += "  - serializedVersion: 3\n";
-  meta += "    buildTarget: DefaultTexturePlatform\n";
-  meta += "    maxTextureSize: " + std::to_string(cap) + "\n";
-  meta += "    resizeAlgorithm: 0\n";
-  meta += "    textureFormat: " + std::to_string(format) + "\n";
-  meta += "    textureCompression: 0\n";
-  meta += "    overridden: 0\n";
-  meta += "  userData:\n";
-  meta += "  assetBundleName:\n";
-  meta += "  assetBundleVariant:\n";
-  return meta;
+  static constexpr const char* kTemplate = R"(fileFormatVersion: 2
+guid: %s
+TextureImporter:
+  serializedVersion: 12
+  mipmaps:
+    mipMapMode: 0
+    enableMipMap: 0
+    sRGBTexture: %d
+    linearTexture: 0
+  isReadable: 0
+  textureFormat: 1
+  maxTextureSize: %d
+  textureSettings:
+    serializedVersion: 2
+    filterMode: 1
+    wrapU: 1
+    wrapV: 1
+    wrapW: 1
+  nPOTScale: 0
+  alphaUsage: 1
+  alphaIsTransparency: 0
+  textureType: 0
+  textureShape: 1
+  flipbookRows: %d
+  flipbookColumns: %d
+  maxTextureSizeSet: 0
+  textureFormatSet: 0
+  platformSettings:
+  - serializedVersion: 3
+    buildTarget: DefaultTexturePlatform
+    maxTextureSize: %d
+    resizeAlgorithm: 0
+    textureFormat: %d
+    textureCompression: 0
+    overridden: 0
+  userData:
+  assetBundleName:
+  assetBundleVariant:
+)";
+  std::vector<char> text(4096);
+  const int length = std::snprintf(text.data(), text.size(), kTemplate, t.guid.c_str(), t.srgb ? 1 : 0, cap,
+                                   t.rows, t.columns, cap, format);
+  return std::string(text.data(), std::size_t(length));
 }
 
 }  // namespace sixway::render
