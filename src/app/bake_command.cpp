@@ -1,5 +1,7 @@
 #include "app/bake_command.h"
 
+#include <algorithm>
+#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -33,6 +35,7 @@ struct BakeOptions {
   std::vector<fs::path> vdb;
   bool force = false, traceAllOrders = false;
   std::string scattering = "multiple";
+  std::string packing = "unity";
   int first = 0;
   std::optional<int> frames, columns, voxels, samples, orders, downsample;
   std::optional<uint32_t> seed;
@@ -93,6 +96,33 @@ void removeFramesOfAnEarlierBake(const fs::path& frames, int first, int count) {
   static const std::regex name(R"(frame_([0-9]{4,9})\.exr)");
   io::removeNumberedEntries(frames, name, fs::file_type::regular,
                             [&](long index) { return index < first || index >= long(first) + count; });
+}
+
+// The textures of the presets this bake did not use, left by an earlier bake into the directory with another
+// --packing: removed, so the directory never holds two packings' textures.
+void removeTexturesOfOtherPackings(const fs::path& out, const render::ChannelPacking& used) {
+  for (const std::string& preset : render::packingPresetNames())
+    for (const std::string& texture : render::packingPreset(preset).textures) {
+      if (std::ranges::count(used.textures, texture) > 0) continue;
+      for (const char* extension : {".exr", ".png", ".tga", ".exr.meta", ".png.meta", ".tga.meta"}) {
+        std::error_code ignored;
+        fs::remove(out / ("flipbook_" + texture + extension), ignored);
+      }
+    }
+}
+
+// "A = (Right, Top, Back, alpha), B = (Left, Bottom, Front, emissive)"
+std::string describePacking(const render::ChannelPacking& packing) {
+  std::string text;
+  for (int t = 0; t < int(packing.textures.size()); ++t) {
+    std::array<std::string, 4> components{"0", "0", "0", "0"};
+    for (int c = 0; c < render::kSixWayChannels; ++c)
+      if (packing.slots[c].texture == t)
+        components[packing.slots[c].component] = render::sixWayChannelNames()[c];
+    text += (t ? "), " : "") + packing.textures[t] + " = (" + components[0] + ", " + components[1] + ", " +
+            components[2] + ", " + components[3];
+  }
+  return text + ")";
 }
 
 void run(const BakeOptions& o) {
@@ -161,6 +191,7 @@ void run(const BakeOptions& o) {
   job.firstFrame = o.first;
   job.frameCount = frameCount;
   job.columns = o.columns.value_or(0);
+  job.packing = render::packingPreset(o.packing);
   job.camera = chooseCamera(o, scene ? &*scene : nullptr, sequence->bounds());
   job.smoke = smoke;
   job.settings.width = tileWidth;
@@ -182,8 +213,9 @@ void run(const BakeOptions& o) {
   job.multiple.seed = o.seed.value_or(scene ? scene->render.seed : 1u);
   job.provenance = provenance;
 
-  std::printf("sixway bake: %d frames, tiles of %dx%d, %s scattering\n", job.frameCount, tileWidth,
-              tileHeight, render::scatteringName(job.scattering));
+  std::printf("sixway bake: %d frames, tiles of %dx%d, %s scattering, packing %s: %s\n", job.frameCount,
+              tileWidth, tileHeight, render::scatteringName(job.scattering), o.packing.c_str(),
+              describePacking(job.packing).c_str());
   std::fflush(stdout);
   const render::FlipbookBakeResult result = withinDeviceLimits("--tile", "--tile", [&] {
     return render::bakeFlipbook(context, cache, *sequence, job, [](const std::string& line) {
@@ -192,6 +224,7 @@ void run(const BakeOptions& o) {
     });
   });
   removeFramesOfAnEarlierBake(o.out / "frames", job.firstFrame, job.frameCount);
+  removeTexturesOfOtherPackings(o.out, job.packing);
   if (const auto* vdb = dynamic_cast<const render::VdbSequence*>(sequence.get()))
     for (const std::string& note : vdb->notes()) std::fprintf(stderr, "sixway: note: %s\n", note.c_str());
   std::printf("sixway bake: wrote %s\n", result.sidecar.string().c_str());
@@ -215,6 +248,9 @@ void addBakeCommand(CLI::App& app) {
   bake->add_option("--first", o->first, "First frame baked (default 0)")->check(CLI::Range(0, 100000));
   bake->add_option("--frames", o->frames, "Frames baked (default: every VDB file; 16 for a scene)")
       ->check(CLI::Range(1, 100000));
+  bake->add_option("--packing", o->packing,
+                   "Channel packing of the two textures: unity (default) | rlt-bbf | o3de (docs/formats.md)")
+      ->check(CLI::IsMember(render::packingPresetNames()));
   bake->add_option("--columns", o->columns, "Flipbook columns (default: a near-square grid)")
       ->check(CLI::Range(1, render::kMaxFlipbookSide));
   bake->add_option("--tile", o->tile,

@@ -37,14 +37,6 @@ io::Image thumbnail(const io::Image& frame, int width) {
   return small;
 }
 
-io::Image rgbOf(const io::Image& frame) {
-  io::Image rgb(frame.width, frame.height, {"R", "G", "B"});
-  for (int y = 0; y < frame.height; ++y)
-    for (int x = 0; x < frame.width; ++x)
-      for (int c = 0; c < 3; ++c) rgb.at(x, y, c) = frame.at(x, y, c);
-  return rgb;
-}
-
 bool ffmpegInstalled() {
   return std::system("command -v ffmpeg >/dev/null 2>&1") == 0;
 }
@@ -126,7 +118,7 @@ std::string FrameWriter::frameName(int index) {
 
 void FrameWriter::write(int index, const io::Image& frame) {
   const fs::path base = staging_ / frameName(index);
-  const io::Image rgb = rgbOf(frame);
+  const io::Image rgb = toDisplay(frame, options_.display);
   underFinalNames([&] {
     io::writePng(fs::path(base) += ".png", rgb);
     if (options_.exr)

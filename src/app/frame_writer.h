@@ -1,12 +1,13 @@
 #pragma once
-// What `sixway render` leaves in its output directory: frame_NNNN.png (sRGB, for people) and, with --exr,
-// frame_NNNN.exr (linear half floats, for numbers); at the end a contact sheet of the sequence
-// (contact_sheet.png) and, with --video, an H.264 MP4 made by Debian's ffmpeg.
+// What `sixway render` leaves in its output directory: frame_NNNN.png (exposed, tone-mapped, sRGB: for
+// people) and, with --exr, frame_NNNN.exr (linear half floats, for numbers); at the end a contact sheet of
+// the sequence (contact_sheet.png) and, with --video, an H.264 MP4 made by Debian's ffmpeg.
 #include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
 
+#include "app/tone_map.h"
 #include "io/image.h"
 
 namespace sixway::app {
@@ -15,6 +16,7 @@ struct FrameWriterOptions {
   bool exr = false;
   bool video = false;
   int fps = 30;
+  DisplayTransform display;  // of the PNG frames, contact sheet and video (the EXR is linear)
   int thumbnailWidth = 160;  // of each contact-sheet cell, pixels
   // Frames the sequence will have: the contact sheet shows at most kMaxSheetCells of them, evenly spaced, so
   // a run of 10,000 frames keeps 64 thumbnails in memory, not 10,000.

@@ -21,6 +21,7 @@
 #include "app/shipped_weights.h"
 #include "app/timings_log.h"
 #include "eval/frame_pipeline.h"
+#include "eval/image_metrics.h"
 #include "gpu/context.h"
 #include "io/error.h"
 #include "io/report.h"
@@ -42,6 +43,9 @@ struct RenderOptions {
   std::optional<std::string> mode;
   bool force = false, exr = false, video = false, fp16 = false, noShadows = false;
   int fps = 30;
+  std::optional<int> warmup;           // default: the scene's render.warmup_frames
+  std::optional<std::string> toneMap;  // default: the scene's render.tone_map
+  std::optional<float> exposureStops;  // default: the scene's render.exposure
   uint32_t samples = 64;
   int orders = 64;
   render::MultipleScattering multiple;
@@ -99,6 +103,12 @@ class FrameSource {
 
 void run(const RenderOptions& o) {
   io::Scene scene = io::loadScene(o.scene);
+  if (o.warmup) scene.render.warmupFrames = *o.warmup;
+  if (o.toneMap) scene.render.toneMap = *o.toneMap == "aces" ? io::ToneMap::Aces : io::ToneMap::Clamp;
+  if (o.exposureStops) scene.render.exposureStops = *o.exposureStops;
+  // Warm-up frames run the scene's clock (simulation, camera and light paths) without writing; frame_0000 is
+  // the scene's frame `warmup`.
+  const int warmup = scene.render.warmupFrames;
   eval::FramePipelineOptions options;
   options.weights = resolveWeights(o.weights);
   // Without --mode: the network when the shipped weights exist, else the reference lightmaps (said on the
@@ -121,7 +131,7 @@ void run(const RenderOptions& o) {
   if (scene.vdb) {
     const sixway::Device::Impl& d = device.impl();
     playback = withinDeviceLimits(o.scene.string(), "vdb.voxels", [&] {
-      return sources::openSceneVolumes(*d.context, *d.cache, scene, o.frames, o.scene.string());
+      return sources::openSceneVolumes(*d.context, *d.cache, scene, warmup + o.frames, o.scene.string());
     });
   } else {
     withinDeviceLimits(o.scene.string(), gridSetting(scene.grid), [&] {
@@ -135,19 +145,31 @@ void run(const RenderOptions& o) {
   writerOptions.exr = o.exr;
   writerOptions.video = o.video;
   writerOptions.fps = o.fps;
+  writerOptions.display = {scene.render.toneMap, scene.render.exposureStops};
   writerOptions.frames = o.frames;
   FrameWriter writer(o.out, writerOptions);
   std::printf("sixway render: %s, %d frames, mode %s, %dx%d (lightmaps %d²), on %s\n", scene.name.c_str(),
               o.frames, eval::renderModeName(options.mode), scene.render.width, scene.render.height,
               scene.render.lightmapSize, device.name().c_str());
   std::fflush(stdout);
+  if (simulation)
+    for (int w = 0; w < warmup; ++w) {
+      simulation->advance();
+      std::printf("  warm-up %d/%d\n", w + 1, warmup);
+      std::fflush(stdout);
+    }
 
   TimingsLog timings(o.frames);
+  // Per frame: the fraction of pixels the smoke covers (alpha ≥ 0.1); none in the modes without alpha
+  // (guide).
+  std::vector<double> coverage;
+  coverage.reserve(size_t(o.frames));
   const auto started = std::chrono::steady_clock::now();
   for (int i = 0; i < o.frames; ++i) {
     if (simulation) simulation->advance();
-    const eval::RenderedFrame frame = source.render(i);
+    const eval::RenderedFrame frame = source.render(warmup + i);
     writer.write(i, frame.image);
+    if (frame.image.channelCount() == 4) coverage.push_back(eval::alphaCoverage(frame.image));
     for (const std::string& note : frame.notes) std::fprintf(stderr, "sixway: note: %s\n", note.c_str());
 
     std::vector<gpu::StageTime> stages;
@@ -156,7 +178,7 @@ void run(const RenderOptions& o) {
     stages.insert(stages.end(), frame.stages.begin(), frame.stages.end());
     // Memory in use, for long-run checks: flat from the first frames on, or something leaks.
     const sixway::Device::MemoryUse memory = device.memoryUse();
-    const double total = timings.add(i, runtime::SimulatedVolumes::frameSeconds(scene, i), stages,
+    const double total = timings.add(i, runtime::SimulatedVolumes::frameSeconds(scene, warmup + i), stages,
                                      {memory.allocations, memory.bytes}, residentSetBytes());
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     std::printf("  frame %d/%d: %.1f ms GPU, %.1f s elapsed, ETA %.0f s\n", i + 1, o.frames, total, elapsed,
@@ -170,8 +192,15 @@ void run(const RenderOptions& o) {
                            {"device", device.name()},
                            {"size", {scene.render.width, scene.render.height}},
                            {"lightmap_size", scene.render.lightmapSize},
+                           {"warmup_frames", warmup},
                            {"median_stage_ms", timings.medianStageMs()},
                            {"frames", timings.frames()}};
+  // The last 16 frames' least coverage: a run that ends on a developed plume fills the picture there.
+  const auto lastFrames = coverage.end() - std::min<ptrdiff_t>(16, ptrdiff_t(coverage.size()));
+  const double leastCoverage = coverage.empty() ? 0.0 : *std::min_element(lastFrames, coverage.end());
+  if (!coverage.empty())
+    report["coverage"] = {
+        {"alpha_threshold", 0.1}, {"per_frame", coverage}, {"least_of_last_16", leastCoverage}};
   if (options.mode == eval::RenderMode::Neural) report["weights"] = fs::absolute(options.weights).string();
   if (playback) report["source"] = sources::describeSource(*playback);
   io::writeReport(writer.stagedPath("timings.json"), report);
@@ -179,6 +208,9 @@ void run(const RenderOptions& o) {
   std::printf("sixway render: wrote %d frames, timings.json", o.frames);
   for (const std::string& f : extras) std::printf(", %s", f.c_str());
   std::printf(" to %s\n", o.out.string().c_str());
+  if (!coverage.empty())
+    std::printf("sixway render: the smoke covers %.1f%% of the picture at least, over the last %td frames\n",
+                100.0 * leastCoverage, coverage.end() - lastFrames);
   if (device.validationMessages() > 0)
     throw std::runtime_error(std::to_string(device.validationMessages()) + " validation messages");
 }
@@ -217,6 +249,19 @@ void addRenderCommand(CLI::App& app) {
   render->add_flag("--exr", o->exr, "Also write each frame as a linear EXR");
   render->add_flag("--video", o->video, "Also write video.mp4 (needs ffmpeg)");
   render->add_option("--fps", o->fps, "Video frame rate (default 30)")->check(CLI::Range(1, 240));
+  render
+      ->add_option(
+          "--warmup", o->warmup,
+          "Frames simulated before the first one written (default: the scene's render.warmup_frames)")
+      ->check(CLI::Range(0, 100000));
+  render
+      ->add_option("--tone-map", o->toneMap,
+                   "PNG/video display transform: clamp | aces (default: the scene's render.tone_map)")
+      ->check(CLI::IsMember({"clamp", "aces"}));
+  render
+      ->add_option("--exposure", o->exposureStops,
+                   "PNG/video exposure in stops, before the tone map (default: the scene's render.exposure)")
+      ->check(CLI::Range(-20.0, 20.0));
   render->callback([o] { run(*o); });
 }
 

@@ -18,6 +18,14 @@ nlohmann::json number(double v) {
 
 }  // namespace
 
+double alphaCoverage(const io::Image& frame, float threshold) {
+  if (frame.channelCount() != 4) throw std::invalid_argument("alphaCoverage: the frame has no alpha channel");
+  uint64_t covered = 0;
+  for (int y = 0; y < frame.height; ++y)
+    for (int x = 0; x < frame.width; ++x) covered += frame.at(x, y, 3) >= threshold;
+  return double(covered) / double(uint64_t(frame.width) * uint64_t(frame.height));
+}
+
 double psnrDb(double mse) {
   return mse > 0 ? 10.0 * std::log10(1.0 / mse)
                  : (mse == 0 ? std::numeric_limits<double>::infinity()

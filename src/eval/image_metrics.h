@@ -25,6 +25,10 @@ struct ImageError {
 // `predicted` against `truth`, both RGBA of the same size (throws std::invalid_argument otherwise).
 ImageError compareImages(const io::Image& predicted, const io::Image& truth);
 
+// The fraction of `frame`'s pixels (RGBA) whose alpha is at least `threshold`: how much of the picture the
+// smoke (and any opaque obstacle drawn in it) covers.
+double alphaCoverage(const io::Image& frame, float threshold = 0.1f);
+
 // 10·log10(1 / mse): +∞ for 0, NaN for NaN.
 double psnrDb(double mse);
 

@@ -116,11 +116,14 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
   io::requireWritable(s.report, s.force);
   if (!s.out.empty()) io::requireWritable(s.out, s.force);
   const int stripFrame = s.stripFrame.value_or(s.frames - 1);
+  // The scene's warm-up frames (render.warmup_frames) are simulated but not evaluated, as `sixway render`
+  // skips them: evaluated frame i is scene frame warmup + i (its smoke, camera and lights).
+  const int warmup = scene.render.warmupFrames;
 
   gpu::Context context(device);
   gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));
   const std::unique_ptr<render::VolumeSequence> volumes =
-      sources::openSceneVolumes(context, cache, scene, s.frames, s.scene.string());
+      sources::openSceneVolumes(context, cache, scene, warmup + s.frames, s.scene.string());
   const auto* simulated = dynamic_cast<const runtime::SimulatedVolumes*>(volumes.get());
   // What the renderers see: the obstacles only when asked (the path tracer cannot draw them).
   io::Scene renderScene = scene;
@@ -140,14 +143,16 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
   FramePipeline truthPipeline(context, cache, renderScene, options);
   if (!s.out.empty()) fs::create_directories(s.out);
   std::printf(
-      "sixway eval: %s, %d frames, %dx%d (lightmaps %d²), path tracer %u spp, density x%g, obstacles %s, "
-      "on %s\n",
-      scene.name.c_str(), s.frames, scene.render.width, scene.render.height, scene.render.lightmapSize,
-      s.samples, s.densityScale, s.drawObstacles ? (s.shadows ? "drawn, shadows" : "drawn") : "not drawn",
+      "sixway eval: %s, %d frames after %d of warm-up, %dx%d (lightmaps %d²), path tracer %u spp, density "
+      "x%g, "
+      "obstacles %s, on %s\n",
+      scene.name.c_str(), s.frames, warmup, scene.render.width, scene.render.height,
+      scene.render.lightmapSize, s.samples, s.densityScale,
+      s.drawObstacles ? (s.shadows ? "drawn, shadows" : "drawn") : "not drawn",
       context.properties().deviceName);
   std::fflush(stdout);
 
-  const render::Camera firstCamera = render::sceneCamera(scene.camera, 0);
+  const render::Camera firstCamera = render::sceneCamera(scene.camera, warmup);
   LightmapMetrics lightmapTotal, lightmapMsTotal;
   std::map<std::string, ImageError> imageTotal;
   std::map<std::string, std::vector<double>> framePsnrs;
@@ -157,12 +162,14 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
   nlohmann::json frames = nlohmann::json::array(), equalTime, strip;
   const auto started = std::chrono::steady_clock::now();
   for (int i = 0; i < s.frames; ++i) {
-    const render::Volume volume = volumes->volume(i);
-    const double seconds = runtime::SimulatedVolumes::frameSeconds(scene, i);
+    const int index = warmup + i;
+    const render::Volume volume = volumes->volume(index);
+    const double seconds = runtime::SimulatedVolumes::frameSeconds(scene, index);
     // The view's angle away from the first frame's: where the traditional flipbook was baked.
-    const render::Camera camera = render::sceneCamera(scene.camera, i);
+    const render::Camera camera = render::sceneCamera(scene.camera, index);
     const float cosine = std::clamp(glm::dot(camera.forward, firstCamera.forward), -1.0f, 1.0f);
     nlohmann::json frame = {{"frame", i},
+                            {"scene_frame", index},
                             {"seconds", seconds},
                             {"view_angle_deg", glm::degrees(std::acos(cosine))},
                             {"stages_ms", nlohmann::json::object()}};
@@ -177,7 +184,7 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
     }
 
     const auto traced = std::chrono::steady_clock::now();
-    const RenderedFrame truth = truthPipeline.render(i, seconds, volume);
+    const RenderedFrame truth = truthPipeline.render(index, seconds, volume);
     frame["wall_ms"]["pathtrace"] =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - traced).count();
     wallTimes["pathtrace"].push_back(frame["wall_ms"]["pathtrace"].get<double>());
@@ -186,7 +193,7 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
     std::map<std::string, RenderedFrame> rendered;
     for (const std::string& method : kMethods) {
       const auto begun = std::chrono::steady_clock::now();
-      rendered[method] = pipelines[method]->render(i, seconds, volume);
+      rendered[method] = pipelines[method]->render(index, seconds, volume);
       const double wallMs =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begun).count();
       frame["wall_ms"][method] = wallMs;
@@ -222,7 +229,7 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
       equal.budgetMs = median(wallTimes["neural"]);
       equal.samples = s.equalTimeReferenceSamples;
       equal.orders = s.orders;
-      equalTime = equalTimeStudy(context, cache, renderScene, i, volume, equal,
+      equalTime = equalTimeStudy(context, cache, renderScene, index, volume, equal,
                                  s.drawObstacles ? nullptr : &rendered["neural"].image);
       equalTime["frame"] = i;
     }

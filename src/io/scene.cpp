@@ -70,6 +70,7 @@ const Choices<LightPathType> kLightPaths = {{"orbit", LightPathType::Orbit}};
 const Choices<GuideLight> kGuideLights = {{"front", GuideLight::Front},   {"top", GuideLight::Top},
                                           {"bottom", GuideLight::Bottom}, {"left", GuideLight::Left},
                                           {"right", GuideLight::Right},   {"back", GuideLight::Back}};
+const Choices<ToneMap> kToneMaps = {{"clamp", ToneMap::Clamp}, {"aces", ToneMap::Aces}};
 
 // The lattice speed the buoyant plume's speed bound may reach: under the watchdog's stable limit (0.35,
 // sim/watchdog.h) with a margin; the bound is free fall, which drag and mixing keep the real plume below.
@@ -431,6 +432,9 @@ RenderSettings parseRender(JsonReader& r) {
   s.background = r.optional<glm::vec3>("background", s.background, inRange(0, kMaxRadiometric));
   s.shellThreshold = r.optional<float>("shell_threshold", s.shellThreshold, inOpenRange(0, 1));
   s.seed = r.optional<std::uint32_t>("seed", s.seed);
+  s.warmupFrames = r.optional<int>("warmup_frames", s.warmupFrames, inRange(0, 100000));
+  s.toneMap = r.choice("tone_map", kToneMaps, s.toneMap);
+  s.exposureStops = r.optional<float>("exposure", s.exposureStops, inRange(-20, 20));
   return s;
 }
 

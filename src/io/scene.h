@@ -216,6 +216,10 @@ using Ambient = std::variant<AmbientColor, AmbientSh>;
 
 enum class GuideLight { Front, Top, Bottom, Left, Right, Back };
 
+// How `sixway render` turns a linear HDR frame into its 8-bit PNG (the EXR stays linear): Clamp cuts at 1,
+// Aces applies a filmic curve (app/tone_map.h).
+enum class ToneMap { Clamp, Aces };
+
 struct RenderSettings {
   int width = 256;
   int height = 256;
@@ -226,6 +230,11 @@ struct RenderSettings {
   glm::vec3 background{0};
   float shellThreshold = 0.1f;  // alpha at which the smoke shell depth is taken
   std::uint32_t seed = 1;
+  // `sixway render` only: frames simulated (or played back) before the first one written, and the PNG's
+  // display transform.
+  int warmupFrames = 0;
+  ToneMap toneMap = ToneMap::Clamp;
+  float exposureStops = 0;  // the linear frame is scaled by 2^exposureStops before the tone map
 };
 
 // Which way is up in a VDB file's world: "y" (Houdini, EmberGen) or "z" (Blender).

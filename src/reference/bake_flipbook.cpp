@@ -97,7 +97,7 @@ FlipbookBakeResult bakeFlipbook(const gpu::Context& context, const gpu::Pipeline
     progress(line);
   }
   result.layout = layout;
-  result.sidecar = writeFlipbook(job.out, "flipbook", tiles, layout, unityPacking(),
+  result.sidecar = writeFlipbook(job.out, "flipbook", tiles, layout, job.packing,
                                  describe(job, result.billboard, frames), job.scattering);
   return result;
 }

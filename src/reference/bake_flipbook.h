@@ -1,7 +1,7 @@
 #pragma once
-// The traditional six-way workflow: a sequence baked from one fixed view into flipbooks (Unity packing,
-// EXR + PNG + TGA, JSON sidecar) plus one EXR per frame, with multiple scattering (the default, as DCC
-// tools bake) or single scattering (ScatteredLightmaps). The sidecar says which.
+// The traditional six-way workflow: a sequence baked from one fixed view into flipbooks (Unity's packing or a
+// preset, EXR + PNG + TGA, JSON sidecar) plus one EXR per frame, with multiple scattering (the default, as
+// DCC tools bake) or single scattering (ScatteredLightmaps). The sidecar says which.
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -29,7 +29,8 @@ struct FlipbookBake {
   std::filesystem::path out;  // an existing, empty directory
   int firstFrame = 0;         // frames [firstFrame, firstFrame + frameCount) of the sequence
   int frameCount = 1;
-  int columns = 0;        // 0: a near-square grid
+  int columns = 0;  // 0: a near-square grid
+  ChannelPacking packing = unityPacking();
   Camera camera;          // fixed for the whole sequence
   io::Smoke smoke;        // optics
   BakeSettings settings;  // tile size and quadrature

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <fstream>
 #include <span>
+#include <stdexcept>
 
 #include "io/error.h"
 #include "io/exr.h"
@@ -110,18 +111,38 @@ void requireFlipbookFits(const FlipbookLayout& layout, const std::string& source
                     " per side; reduce the frames or the tile size");
 }
 
-ChannelPacking unityPacking() {
+namespace {
+
+// Two RGBA textures named `first` and `second`, holding the eight channels in the order given.
+ChannelPacking twoTextures(const std::string& first, const std::array<SixWayChannel, 4>& firstChannels,
+                           const std::string& second, const std::array<SixWayChannel, 4>& secondChannels) {
   ChannelPacking p;
-  p.textures = {"A", "B"};
-  p.slots[Right] = {0, 0};
-  p.slots[Top] = {0, 1};
-  p.slots[Back] = {0, 2};
-  p.slots[Alpha] = {0, 3};
-  p.slots[Left] = {1, 0};
-  p.slots[Bottom] = {1, 1};
-  p.slots[Front] = {1, 2};
-  p.slots[Emissive] = {1, 3};
+  p.textures = {first, second};
+  for (int c = 0; c < 4; ++c) {
+    p.slots[firstChannels[c]] = {0, c};
+    p.slots[secondChannels[c]] = {1, c};
+  }
   return p;
+}
+
+}  // namespace
+
+ChannelPacking unityPacking() {
+  return twoTextures("A", {Right, Top, Back, Alpha}, "B", {Left, Bottom, Front, Emissive});
+}
+
+const std::vector<std::string>& packingPresetNames() {
+  static const std::vector<std::string> names = {"unity", "rlt-bbf", "o3de"};
+  return names;
+}
+
+ChannelPacking packingPreset(const std::string& name) {
+  if (name == "unity") return unityPacking();
+  if (name == "rlt-bbf")
+    return twoTextures("RLT", {Right, Left, Top, Alpha}, "BBF", {Bottom, Back, Front, Emissive});
+  if (name == "o3de")
+    return twoTextures("LRT", {Left, Right, Top, Alpha}, "FBB", {Front, Back, Bottom, Emissive});
+  throw std::invalid_argument("packingPreset: unknown packing " + name);
 }
 
 std::vector<io::Image> packFlipbook(const std::vector<io::Image>& frames, const FlipbookLayout& layout,

@@ -47,6 +47,12 @@ struct ChannelPacking {
 
 // Unity VFX Graph's six-way packing: A = (Right, Top, Back, alpha), B = (Left, Bottom, Front, emissive).
 ChannelPacking unityPacking();
+// The packings `sixway bake --packing` offers (docs/formats.md, "Packing presets"): "unity" (the above),
+// "rlt-bbf" (RLT = (Right, Left, Top, alpha), BBF = (Bottom, Back, Front, emissive): EmberGen-style, as
+// Unreal materials built on such exports read it) and "o3de" (O3DE's LeftRightTop_FrontBackBottom mode:
+// LRT = (Left, Right, Top, alpha), FBB = (Front, Back, Bottom, emissive)).
+ChannelPacking packingPreset(const std::string& name);
+const std::vector<std::string>& packingPresetNames();
 
 // The textures (RGBA, one per packing texture) holding `frames` (eight-channel tiles in sixWayChannelNames()
 // order, of the layout's tile size); unused tiles are 0.
@@ -56,9 +62,10 @@ std::vector<io::Image> packFlipbook(const std::vector<io::Image>& frames, const 
 std::vector<io::Image> unpackFlipbook(const std::vector<io::Image>& textures, const FlipbookLayout& layout,
                                       const ChannelPacking& packing);
 
-// Writes <stem>_<texture>.exr (half), .png and .tga (8-bit, colour sRGB-encoded) for each texture of `packing`,
-// a Unity .meta file beside each (reference/unity_meta.h), and the sidecar <stem>.json (layout, files, channels, colour space, normalisation, the scattering the lightmaps
-// hold when known, and `provenance` as given). Returns the sidecar's path.
+// Writes <stem>_<texture>.exr (half), .png and .tga (8-bit, colour sRGB-encoded) for each texture of
+// `packing`, a Unity .meta file beside each (reference/unity_meta.h), and the sidecar <stem>.json (layout,
+// files, channels, colour space, normalisation, the scattering the lightmaps hold when known, and
+// `provenance` as given). Returns the sidecar's path.
 std::filesystem::path writeFlipbook(const std::filesystem::path& directory, const std::string& stem,
                                     const std::vector<io::Image>& frames, const FlipbookLayout& layout,
                                     const ChannelPacking& packing, const nlohmann::json& provenance,

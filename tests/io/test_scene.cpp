@@ -119,6 +119,29 @@ TEST(SceneTest, ShippedPlumeLoads) {
   EXPECT_EQ(lbmStepsPerFrame(s), 20);
 }
 
+// Issue #22: the default run's scene starts after a warm-up and shows its frames through the ACES fit.
+TEST(SceneTest, ShowcaseWarmsUpAndToneMaps) {
+  const Scene s = loadScene(fs::path(SIXWAY_ASSETS_DIR) / "scenes" / "showcase.json");
+  EXPECT_EQ(s.render.warmupFrames, 90);
+  EXPECT_EQ(s.render.toneMap, ToneMap::Aces);
+  EXPECT_FLOAT_EQ(s.render.exposureStops, 0.5f);
+  ASSERT_TRUE(s.camera.path);
+  EXPECT_EQ(s.obstacles.size(), 1u);
+  const Scene plain = parseScene(minimalScene(), "minimal.json", ".");
+  EXPECT_EQ(plain.render.warmupFrames, 0);
+  EXPECT_EQ(plain.render.toneMap, ToneMap::Clamp);
+  EXPECT_EQ(plain.render.exposureStops, 0.0f);
+}
+
+TEST(SceneParse, BadDisplaySettings) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"render": {"tone_map": "filmic"}})"_json), "render.tone_map",
+                       "must be one of \"clamp\", \"aces\" (got \"filmic\")"));
+  EXPECT_TRUE(rejected(minimalWith(R"({"render": {"exposure": 40}})"_json), "render.exposure",
+                       "must be in [-20, 20] (got 40)"));
+  EXPECT_TRUE(rejected(minimalWith(R"({"render": {"warmup_frames": -1}})"_json), "render.warmup_frames",
+                       "must be in [0, 100000] (got -1)"));
+}
+
 TEST(SceneTest, MinimalSceneGetsDefaults) {
   const Scene s = parseScene(minimalScene(), "scenes/minimal.json", ".");
   EXPECT_EQ(s.name, "minimal");
@@ -446,7 +469,7 @@ TEST(SceneParse, NumbersBeyondWhatAFrameCanHold) {
                        "lights[0].color", "every component must be in [0, 10000]"));
   EXPECT_TRUE(rejected(
       minimalWith(R"({"lights": [{"type": "point", "position": [0, 0, 0], "intensity": 1e5}]})"_json),
-      "lights[0].intensity", "must be in [0, 10000] (got 1e+05)"));
+      "lights[0].intensity", "must be in [0, 10000] (got 100000)"));
   EXPECT_TRUE(rejected(minimalWith(R"({"smoke": {"extinction": 1e308}})"_json), "smoke.extinction",
                        "is beyond the range of a 32-bit float, ±3.4e38 (got 1e+308)"));
   EXPECT_TRUE(rejected(minimalWith(R"({"smoke": {"extinction": 1e-308}})"_json), "smoke.extinction",
@@ -454,7 +477,7 @@ TEST(SceneParse, NumbersBeyondWhatAFrameCanHold) {
   EXPECT_TRUE(rejected(minimalWith(R"({"camera": {"position": [0, 1e300, 3]}})"_json), "camera.position",
                        "is beyond the range of a 32-bit float"));
   EXPECT_TRUE(rejected(minimalWith(R"({"camera": {"position": [0, 1e20, 3]}})"_json), "camera.position",
-                       "every component must be in [-1e+06, 1e+06] (got [0, 1e+20, 3])"));
+                       "every component must be in [-1000000, 1000000] (got [0, 1e+20, 3])"));
   EXPECT_TRUE(
       rejected(minimalWith(R"({"ambient": {"sh": [[1, 1, 1], [0, 0, 0], [0, -2e4, 0], [0, 0, 0]]}})"_json),
                "ambient.sh", "every component must be in [-10000, 10000] (got [0, -20000, 0])"));

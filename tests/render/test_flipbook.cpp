@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -90,6 +91,33 @@ TEST(FlipbookPackingTest, PlacesFramesAndChannelsAsUnityExpects) {
   EXPECT_EQ(textures[0].at(11, 5, 3), 0.0f) << "the unused sixth tile is transparent";
   expectFramesNear(render::unpackFlipbook(textures, layout, render::unityPacking()), codedFrames(5, 4, 3),
                    0.0f);
+}
+
+// Each preset's two textures hold, component by component, the channels docs/formats.md lists for it.
+TEST(FlipbookPackingTest, PresetsPlaceTheChannelsAsDocumented) {
+  using render::Alpha, render::Back, render::Bottom, render::Emissive, render::Front, render::Left,
+      render::Right, render::Top;
+  struct Expected {
+    std::string preset, first, second;
+    std::array<int, 4> firstChannels, secondChannels;
+  };
+  const std::vector<Expected> presets = {
+      {"unity", "A", "B", {Right, Top, Back, Alpha}, {Left, Bottom, Front, Emissive}},
+      {"rlt-bbf", "RLT", "BBF", {Right, Left, Top, Alpha}, {Bottom, Back, Front, Emissive}},
+      {"o3de", "LRT", "FBB", {Left, Right, Top, Alpha}, {Front, Back, Bottom, Emissive}}};
+  ASSERT_EQ(render::packingPresetNames().size(), presets.size());
+  const FlipbookLayout layout = render::flipbookLayout(2, 4, 3);
+  for (const Expected& e : presets) {
+    const render::ChannelPacking packing = render::packingPreset(e.preset);
+    EXPECT_THAT(packing.textures, ::testing::ElementsAre(e.first, e.second));
+    const auto textures = render::packFlipbook(codedFrames(2, 4, 3), layout, packing);
+    for (int k = 0; k < 4; ++k) {
+      EXPECT_EQ(textures[0].at(4 + 2, 1, k), code(1, e.firstChannels[k], 2, 1)) << e.preset << " " << k;
+      EXPECT_EQ(textures[1].at(4 + 2, 1, k), code(1, e.secondChannels[k], 2, 1)) << e.preset << " " << k;
+    }
+    expectFramesNear(render::unpackFlipbook(textures, layout, packing), codedFrames(2, 4, 3), 0.0f);
+  }
+  EXPECT_THROW(render::packingPreset("unreal5"), std::invalid_argument);
 }
 
 class FlipbookFilesTest : public ::testing::Test {
