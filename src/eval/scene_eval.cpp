@@ -17,6 +17,7 @@
 #include "eval/frame_pipeline.h"
 #include "eval/image_metrics.h"
 #include "eval/lightmap_metrics.h"
+#include "eval/summary_table.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "io/error.h"
@@ -285,13 +286,11 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
       {"strip", strip.is_null() ? nlohmann::json(nullptr) : strip},
       {"per_frame", frames}};
   io::writeReport(s.report, report);
-  std::printf("sixway eval: lightmaps %.2f dB masked; images vs path tracer (masked, pooled):",
-              orNan(summary["lightmap"]["psnr_masked_db"]));
-  for (const std::string& method : kMethods)
-    std::printf(" %s %.2f", method.c_str(), orNan(summary["image"][method]["psnr_masked_db"]));
-  std::printf(" dB; path tracer at the neural frame's %.1f ms: %u spp, %.2f dB; wrote %s\n",
-              equalTime["budget_ms"].get<double>(), equalTime["equal_time_spp"].get<uint32_t>(),
-              orNan(equalTime["equal_time"]["psnr_masked_db"]), s.report.string().c_str());
+  std::printf(
+      "sixway eval: %s, frames %d-%d of the scene against the path tracer (%u spp, %d scattering orders); "
+      "wrote %s\n%s",
+      scene.name.c_str(), warmup, warmup + s.frames - 1, s.samples, s.orders, s.report.string().c_str(),
+      summaryTable(summary, equalTime, kMethods).c_str());
   if (context.validationMessageCount() > 0)
     throw std::runtime_error(std::to_string(context.validationMessageCount()) + " validation messages");
 }

@@ -10,6 +10,12 @@ execute_process(COMMAND ${SIXWAY} eval --scene ${SCENE} --frames 2 --spp 16 --or
 if(NOT code EQUAL 0 OR err MATCHES "validation:")
   message(FATAL_ERROR "sixway eval failed (${code}):\n${out}\n${err}")
 endif()
+# The one-screen summary: a row per method with its PSNRs and times.
+foreach(method neural reference reference-ms traditional traditional-ms guide-lit)
+  if(NOT out MATCHES "\n  ${method} +[0-9]+\\.[0-9][0-9] +[0-9]+\\.[0-9][0-9] +[0-9]+\\.[0-9][0-9] +[0-9]+\\.[0-9] +[0-9]+\\.[0-9]\n")
+    message(FATAL_ERROR "sixway eval printed no summary row for ${method}:\n${out}")
+  endif()
+endforeach()
 if(NOT EXISTS ${OUT}/strip/strip.png)
   message(FATAL_ERROR "no strip.png in ${OUT}/strip")
 endif()
