@@ -12,7 +12,7 @@
 
 layout(binding = 2) uniform sampler2D lightmapA;  // R Right, G Top, B Back, A alpha (linear, premultiplied)
 layout(binding = 3) uniform sampler2D lightmapB;  // R Left, G Bottom, B Front, A emissive
-layout(binding = 4) uniform sampler2D guide;      // B: encoded shell depth (1: no shell); read per texel
+layout(binding = 4) uniform sampler2D guide;      // B: encoded shell depth (1: no shell); see depth.glsl
 layout(binding = 5) uniform sampler2D obstacleDepth;  // the obstacles' depth buffer, the whole frame
 layout(binding = 6) uniform sampler2D shadowAtlas;    // shadow.glsl
 
@@ -26,9 +26,7 @@ void main() {
   vec2 uv = frameUv * params.frameToBillboard.xy + params.frameToBillboard.zw;
 
   // The shaded point: the smoke shell where the pixel has one, else the billboard's plane.
-  ivec2 guideSize = textureSize(guide, 0);
-  float shell = texelFetch(guide, clamp(ivec2(floor(uv * vec2(guideSize))), ivec2(0), guideSize - 1), 0).b;
-  float viewDepth = shell < 1.0 ? decodeShellDepth(shell, params.depths.xy) : params.misc.x;
+  float viewDepth = interpolatedShadedDepth(guide, uv, params.depths.xy, params.misc.x);
   if (push.frame.z != 0) {
     float obstacle = viewDepthFromDepthBuffer(texelFetch(obstacleDepth, ivec2(gl_FragCoord.xy), 0).r,
                                               params.depths.zw);

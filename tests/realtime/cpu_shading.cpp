@@ -122,15 +122,12 @@ PixelPoint pixelPoint(const CpuShadingInputs& in, int width, int height, int x, 
   return p;
 }
 
-// View depth of the shaded point: the shell where the guide has one, else the billboard's depth.
+// View depth of the shaded point: the shell where the guide has one, else the billboard's depth, interpolated
+// over the guide's texels as the shader does.
 double shadedDepth(const CpuShadingInputs& in, glm::dvec2 uv) {
   const double billboardDepth = 0.5 * (double(in.shellRange.near) + in.shellRange.far);
   if (!in.guide) return billboardDepth;
-  const int gx = std::clamp(int(std::floor(uv.x * in.guide->width)), 0, in.guide->width - 1);
-  const int gy = std::clamp(int(std::floor(uv.y * in.guide->height)), 0, in.guide->height - 1);
-  const double encoded = in.guide->at(gx, gy, 2);
-  if (encoded >= 1.0) return billboardDepth;
-  return in.shellRange.near + encoded * (double(in.shellRange.far) - in.shellRange.near);
+  return cpuShadedViewDepth(*in.guide, uv, in.shellRange.near, in.shellRange.far, billboardDepth);
 }
 
 dvec3 worldPoint(const render::Camera& c, glm::dvec2 q, double depth) {
@@ -138,6 +135,21 @@ dvec3 worldPoint(const render::Camera& c, glm::dvec2 q, double depth) {
 }
 
 }  // namespace
+
+double cpuShadedViewDepth(const io::Image& guide, glm::dvec2 uv, double near, double far, double planeDepth) {
+  const glm::dvec2 g = uv * glm::dvec2(guide.width, guide.height) - 0.5;
+  const int x0 = int(std::floor(g.x)), y0 = int(std::floor(g.y));
+  const glm::dvec2 t = g - glm::dvec2(x0, y0);
+  double depth = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const int cx = k & 1, cy = k >> 1;
+    const double encoded =
+        guide.at(std::clamp(x0 + cx, 0, guide.width - 1), std::clamp(y0 + cy, 0, guide.height - 1), 2);
+    const double w = (cx ? t.x : 1.0 - t.x) * (cy ? t.y : 1.0 - t.y);
+    depth += w * (encoded < 1.0 ? near + encoded * (far - near) : planeDepth);
+  }
+  return depth;
+}
 
 glm::dvec3 cpuShadedPoint(const CpuShadingInputs& in, int width, int height, int x, int y) {
   const PixelPoint p = pixelPoint(in, width, height, x, y);

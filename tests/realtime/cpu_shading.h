@@ -45,5 +45,9 @@ double cpuShadowVisibility(const io::Image& atlas, int tileSize, int tile, const
 
 // The world point the shading uses at pixel (x, y): the shell point, else the billboard's plane.
 glm::dvec3 cpuShadedPoint(const CpuShadingInputs& in, int width, int height, int x, int y);
+// The view depth the shading gives the point at `uv` (0..1 across `guide`): bilinear over the four nearest
+// texels, each the shell's depth (channel 2, encoded in [near, far]) or `planeDepth` where it has none
+// (shaders/common/depth.glsl).
+double cpuShadedViewDepth(const io::Image& guide, glm::dvec2 uv, double near, double far, double planeDepth);
 
 }  // namespace sixway::test

@@ -15,6 +15,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "cpu_shading.h"
 #include "eval/frame_pipeline.h"
 #include "io/scene.h"
 #include "io/vdb.h"
@@ -262,14 +263,17 @@ TEST_F(FramePipelineTest, SphereShadowsExactlyTheShellPointsBehindIt) {
                         glm::mix(frame.max.y, frame.min.y, (y + 0.5f) / shadowed.height));
       const glm::vec3 ray = camera.forward + q.x * camera.right + q.y * camera.up;
       if (hitsSphere(camera.position, glm::normalize(ray))) continue;  // the sphere itself is in the image
-      // The guide texel the shading reads for this pixel (nearest), and its shell point.
+      // Pixels on the shell (their nearest guide texel has one) and the point the shading gives them: the
+      // shell depth interpolated over the guide's texels (the billboard's depth where a texel has none).
       const glm::vec2 uv((q.x - billboard.min.x) / (billboard.max.x - billboard.min.x),
                          (billboard.max.y - q.y) / (billboard.max.y - billboard.min.y));
       const int gx = int(std::floor(uv.x * guide.width)), gy = int(std::floor(uv.y * guide.height));
       if (gx < 0 || gy < 0 || gx >= guide.width || gy >= guide.height) continue;
-      const float encoded = guide.at(gx, gy, 2);
-      if (encoded >= 1.0f || unshadowed.at(x, y, 3) < 0.05f) continue;  // no shell, or hardly any smoke
-      const glm::vec3 point = camera.position + glm::mix(shell.near, shell.far, encoded) * ray;
+      if (guide.at(gx, gy, 2) >= 1.0f || unshadowed.at(x, y, 3) < 0.05f)
+        continue;  // no shell, or little smoke
+      const double depth =
+          cpuShadedViewDepth(guide, uv, shell.near, shell.far, 0.5 * (double(shell.near) + shell.far));
+      const glm::vec3 point = camera.position + float(depth) * ray;
       // Distance of the shadow ray (toward +x) from the sphere's centre, against the radius.
       const glm::vec3 oc = point - centre;
       const float along = -oc.x, distance = std::sqrt(oc.y * oc.y + oc.z * oc.z);
