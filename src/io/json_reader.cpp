@@ -217,8 +217,8 @@ std::optional<std::vector<glm::vec3>> JsonDecode<std::vector<glm::vec3>>::from(c
   return decodeList<glm::vec3>(v);
 }
 
-// Whole numbers up to seven digits in full ("100000", not the shortest form "1e+05"); others in their shortest
-// round-tripping form.
+// Whole numbers up to seven digits in full ("100000", not the shortest form "1e+05"); others in their
+// shortest round-tripping form.
 template <class T>
 std::string showNumber(T v) {
   if (std::abs(v) < T(1e7) && v == std::trunc(v)) return std::to_string(static_cast<long>(v));
