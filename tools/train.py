@@ -67,6 +67,9 @@ DEFAULTS = {
         "heldout_every": 100,  # the held-out curve: loss and PSNR on heldout_pairs fixed held-out pairs
         "heldout_pairs": 32,
         "checkpoint_every": 500,
+        # Fine-tuning: a checkpoint.pt (or a training directory holding one), relative to the repository root,
+        # whose model weights start this run; its model config must equal this one. The optimizer starts afresh.
+        "init_from": None,
     },
     "loss": {"mse": 1.0, "ssim": 0.1, "gradient": 0.0, "temporal": 0.1, "temporal_k": 20.0},
 }
@@ -297,6 +300,8 @@ class Trainer:
         self.step, self.seconds_before, self.interval = 0, 0.0, {}
         if checkpoint is not None:
             self._restore(checkpoint)
+        elif self.train["init_from"]:
+            self._initialise_from(self.train["init_from"])
         self.model = self.net
         if self.world > 1:
             ids = [local_rank] if self.device.type == "cuda" else None
@@ -332,6 +337,22 @@ class Trainer:
             torch.cuda.set_rng_state_all(checkpoint["cuda_rng"])
         self.step, self.seconds_before = checkpoint["step"], checkpoint["seconds"]
         self.interval = checkpoint["interval"]
+
+    def _initialise_from(self, source):
+        path = os.path.join(REPO_ROOT, source)
+        if os.path.isdir(path):
+            path = os.path.join(path, "checkpoint.pt")
+        if not os.path.isfile(path):
+            raise ConfigError(f"{path}: train.init_from names no checkpoint")
+        try:
+            start = torch.load(path, map_location="cpu")
+            model_config = start["config"]["model"]
+            weights = start["model"]
+        except Exception as error:  # a corrupt or foreign file: one line naming it
+            raise ConfigError(f"{path}: not a training checkpoint ({type(error).__name__})")
+        if full_config(model_config) != full_config(self.config["model"]):
+            raise ConfigError(f"{path}: train.init_from has another model config than this run's")
+        self.net.load_state_dict(weights)
 
     def _prepare_out(self, resumed):
         os.makedirs(self.out, exist_ok=True)

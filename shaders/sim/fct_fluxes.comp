@@ -27,7 +27,9 @@ layout(std430, binding = 0) readonly buffer Flags { uint flags[]; };
 layout(std430, binding = 1) readonly buffer Macro_ { vec4 macro[]; };  // lattice velocity, cells/step
 layout(std430, binding = 2) readonly buffer Smoke { vec2 smoke[]; };
 layout(std430, binding = 3) writeonly buffer LowOrder { vec2 lowOrder[]; };      // q_td
-layout(std430, binding = 4) writeonly buffer Antidiffusive { vec2 antidiffusive[]; };  // [cell][axis]
+layout(std430, binding = 4) writeonly buffer AntidiffusiveX { vec2 antidiffusiveX[]; };
+layout(std430, binding = 5) writeonly buffer AntidiffusiveY { vec2 antidiffusiveY[]; };
+layout(std430, binding = 6) writeonly buffer AntidiffusiveZ { vec2 antidiffusiveZ[]; };
 
 #include "sim_faces.glsl"
 
@@ -119,7 +121,9 @@ void main() {
     mat2 lowerFace = faceFluxes(s, a);
     mat2 upperFace = faceFluxes(up, a);
     q += lowerFace[0] - upperFace[0];
-    antidiffusive[3u * index + uint(a)] = lowerFace[1];
+    if (a == 0) antidiffusiveX[index] = lowerFace[1];  // sim_fct_fluxes.glsl
+    else if (a == 1) antidiffusiveY[index] = lowerFace[1];
+    else antidiffusiveZ[index] = lowerFace[1];
   }
   lowOrder[index] = q;
 }

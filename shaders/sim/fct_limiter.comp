@@ -19,12 +19,15 @@ layout(constant_id = SIM_SPEC_PERIODIC_Z) const bool PERIODIC_Z = false;
 #include "sim_grid.glsl"
 #include "sim_smoke.glsl"
 #include "sim_fct.glsl"
+#include "sim_fct_fluxes.glsl"
 
 layout(std430, binding = 0) readonly buffer Flags { uint flags[]; };
 layout(std430, binding = 1) readonly buffer Smoke { vec2 smoke[]; };
 layout(std430, binding = 2) readonly buffer LowOrder { vec2 lowOrder[]; };
-layout(std430, binding = 3) readonly buffer Antidiffusive { vec2 antidiffusive[]; };
-layout(std430, binding = 4) writeonly buffer Ratios { vec4 ratios[]; };  // R+ (xy), R− (zw)
+layout(std430, binding = 3) readonly buffer AntidiffusiveX { vec2 antidiffusiveX[]; };
+layout(std430, binding = 4) readonly buffer AntidiffusiveY { vec2 antidiffusiveY[]; };
+layout(std430, binding = 5) readonly buffer AntidiffusiveZ { vec2 antidiffusiveZ[]; };
+layout(std430, binding = 6) writeonly buffer Ratios { vec4 ratios[]; };  // R+ (xy), R− (zw)
 
 void main() {
   uint index = linearInvocationIndex();
@@ -44,7 +47,7 @@ void main() {
         lowest = min(lowest, min(smoke[ni], lowOrder[ni]));
       }
       // The lower face is stored at this cell, the upper one at the neighbour; + along the axis.
-      vec2 flux = antidiffusive[3u * (side == 0 ? index : ni) + uint(a)];
+      vec2 flux = SIXWAY_FCT_FLUX(a, side == 0 ? index : ni);
       vec2 into = side == 0 ? flux : -flux;
       in_ += max(into, 0.0);
       out_ += max(-into, 0.0);

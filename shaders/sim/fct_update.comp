@@ -18,11 +18,14 @@ layout(constant_id = SIM_SPEC_PERIODIC_Z) const bool PERIODIC_Z = false;
 #include "sim_grid.glsl"
 #include "sim_smoke.glsl"
 #include "sim_fct.glsl"
+#include "sim_fct_fluxes.glsl"
 
 layout(std430, binding = 0) readonly buffer LowOrder { vec2 lowOrder[]; };
-layout(std430, binding = 1) readonly buffer Antidiffusive { vec2 antidiffusive[]; };
-layout(std430, binding = 2) readonly buffer Ratios { vec4 ratios[]; };
-layout(std430, binding = 3) writeonly buffer Smoke { vec2 smoke[]; };
+layout(std430, binding = 1) readonly buffer AntidiffusiveX { vec2 antidiffusiveX[]; };
+layout(std430, binding = 2) readonly buffer AntidiffusiveY { vec2 antidiffusiveY[]; };
+layout(std430, binding = 3) readonly buffer AntidiffusiveZ { vec2 antidiffusiveZ[]; };
+layout(std430, binding = 4) readonly buffer Ratios { vec4 ratios[]; };
+layout(std430, binding = 5) writeonly buffer Smoke { vec2 smoke[]; };
 
 // The limited flux through the face between `left` and `right` (flux positive from left to right).
 vec2 limited(vec2 flux, vec4 left, vec4 right) {
@@ -40,10 +43,10 @@ void main() {
     ivec3 lower = s, upper = s;
     lower[a] -= 1;
     upper[a] += 1;
-    if (wrapNeighbour(lower, a)) q += limited(antidiffusive[3u * index + uint(a)], ratios[cellIndex(lower, SMOKE)], r);
+    if (wrapNeighbour(lower, a)) q += limited(SIXWAY_FCT_FLUX(a, index), ratios[cellIndex(lower, SMOKE)], r);
     if (wrapNeighbour(upper, a)) {
       uint ui = cellIndex(upper, SMOKE);
-      q -= limited(antidiffusive[3u * ui + uint(a)], r, ratios[ui]);
+      q -= limited(SIXWAY_FCT_FLUX(a, ui), r, ratios[ui]);
     }
   }
   // The limiter bounds q by the local extrema (≥ 0) up to rounding; the clamp removes the last

@@ -37,10 +37,10 @@ const ivec3 SIZE = ivec3(NX, NY, NZ);
 
 layout(std430, binding = 0) readonly buffer Params { StepParams params[]; };
 layout(std430, binding = 1) readonly buffer Flags { uint flags[]; };
-layout(std430, binding = 2) readonly buffer F0 { float f0[]; };
-layout(std430, binding = 3) readonly buffer F1 { float f1[]; };
-layout(std430, binding = 4) readonly buffer F2 { float f2[]; };
-layout(std430, binding = 5) readonly buffer F3 { float f3[]; };
+layout(std430, binding = 2) readonly buffer F0 { LbmPopulation f0[]; };
+layout(std430, binding = 3) readonly buffer F1 { LbmPopulation f1[]; };
+layout(std430, binding = 4) readonly buffer F2 { LbmPopulation f2[]; };
+layout(std430, binding = 5) readonly buffer F3 { LbmPopulation f3[]; };
 layout(std430, binding = 6) readonly buffer Macro_ { vec4 macro[]; };
 layout(std430, binding = 7) buffer Forces { float forces[]; };  // [slot][obstacle] vec4, zeroed before
 layout(push_constant) uniform Push {

@@ -51,14 +51,14 @@ const uint CELLS = uint(NX * NY * NZ);
 
 layout(std430, binding = 0) readonly buffer Params { StepParams params[]; };
 layout(std430, binding = 1) readonly buffer Flags { uint flags[]; };
-layout(std430, binding = 2) readonly buffer F0 { float f0[]; };
-layout(std430, binding = 3) readonly buffer F1 { float f1[]; };
-layout(std430, binding = 4) readonly buffer F2 { float f2[]; };
-layout(std430, binding = 5) readonly buffer F3 { float f3[]; };
-layout(std430, binding = 6) writeonly buffer G0 { float g0[]; };
-layout(std430, binding = 7) writeonly buffer G1 { float g1[]; };
-layout(std430, binding = 8) writeonly buffer G2 { float g2[]; };
-layout(std430, binding = 9) writeonly buffer G3 { float g3[]; };
+layout(std430, binding = 2) readonly buffer F0 { LbmPopulation f0[]; };
+layout(std430, binding = 3) readonly buffer F1 { LbmPopulation f1[]; };
+layout(std430, binding = 4) readonly buffer F2 { LbmPopulation f2[]; };
+layout(std430, binding = 5) readonly buffer F3 { LbmPopulation f3[]; };
+layout(std430, binding = 6) writeonly buffer G0 { LbmPopulation g0[]; };
+layout(std430, binding = 7) writeonly buffer G1 { LbmPopulation g1[]; };
+layout(std430, binding = 8) writeonly buffer G2 { LbmPopulation g2[]; };
+layout(std430, binding = 9) writeonly buffer G3 { LbmPopulation g3[]; };
 layout(std430, binding = 10) buffer Macro_ { vec4 macro[]; };  // xyz velocity, w density
 layout(std430, binding = 11) readonly buffer Smoke { vec2 smoke[]; };  // density, temperature
 layout(push_constant) uniform Push {
@@ -74,13 +74,7 @@ const ivec3 SIZE = ivec3(NX, NY, NZ);
 
 float loadPost(int i, uint cell) { return SIXWAY_LOAD(i, cell, f0, f1, f2, f3); }
 
-void store(int i, uint cell, float value) {
-  uint word = populationWord(i, cell);
-  if (i < 5) g0[word] = value;
-  else if (i < 10) g1[word] = value;
-  else if (i < 15) g2[word] = value;
-  else g3[word] = value;
-}
+void store(int i, uint cell, float value) { SIXWAY_STORE(i, cell, value, g0, g1, g2, g3) }
 
 vec3 inflowVelocity(ivec3 p, int normalAxis) {
   vec3 u = vec3(WIND_X, WIND_Y, WIND_Z);

@@ -22,14 +22,14 @@ const ivec3 SIZE = ivec3(NX, NY, NZ);
 #include "lbm_lattice.glsl"
 #include "sim_grid.glsl"
 
-layout(std430, binding = 0) readonly buffer F0 { float f0[]; };
-layout(std430, binding = 1) readonly buffer F1 { float f1[]; };
-layout(std430, binding = 2) readonly buffer F2 { float f2[]; };
-layout(std430, binding = 3) readonly buffer F3 { float f3[]; };
-layout(std430, binding = 4) writeonly buffer G0 { float g0[]; };
-layout(std430, binding = 5) writeonly buffer G1 { float g1[]; };
-layout(std430, binding = 6) writeonly buffer G2 { float g2[]; };
-layout(std430, binding = 7) writeonly buffer G3 { float g3[]; };
+layout(std430, binding = 0) readonly buffer F0 { LbmPopulation f0[]; };
+layout(std430, binding = 1) readonly buffer F1 { LbmPopulation f1[]; };
+layout(std430, binding = 2) readonly buffer F2 { LbmPopulation f2[]; };
+layout(std430, binding = 3) readonly buffer F3 { LbmPopulation f3[]; };
+layout(std430, binding = 4) writeonly buffer G0 { LbmPopulation g0[]; };
+layout(std430, binding = 5) writeonly buffer G1 { LbmPopulation g1[]; };
+layout(std430, binding = 6) writeonly buffer G2 { LbmPopulation g2[]; };
+layout(std430, binding = 7) writeonly buffer G3 { LbmPopulation g3[]; };
 
 void main() {
   uint cell = linearInvocationIndex();
@@ -37,11 +37,6 @@ void main() {
   ivec3 p = cellOf(cell, SIZE);
   [[unroll]] for (int i = 0; i < Q; ++i) {
     uint source = PULL ? cellIndex((p - C[i] + SIZE) % SIZE, SIZE) : cell;
-    float value = SIXWAY_LOAD(i, source, f0, f1, f2, f3);
-    uint word = populationWord(i, cell);
-    if (i < 5) g0[word] = value;
-    else if (i < 10) g1[word] = value;
-    else if (i < 15) g2[word] = value;
-    else g3[word] = value;
+    SIXWAY_STORE(i, cell, SIXWAY_LOAD(i, source, f0, f1, f2, f3), g0, g1, g2, g3)
   }
 }

@@ -106,6 +106,9 @@ BenchInputs prepare(BenchOptions& o) {
   if (o.simSteps > 64)
     throw io::InputError("--sim-steps",
                          "at most 64 steps per submission (got " + std::to_string(o.simSteps) + ")");
+  for (const std::string& storage : o.populationStorages)
+    if (storage != "fp32" && storage != "fp16")
+      throw io::InputError("--population-storage", "unknown storage \"" + storage + "\" (known: fp32, fp16)");
   for (uint32_t size : o.sizes) requireLightmapSize("--size", size);
   requireLightmapSize("--frame-lightmaps", o.frameLightmapSize);
   if (!o.report.empty()) io::requireWritable(o.report, o.force);
@@ -224,6 +227,11 @@ void addBenchCommand(CLI::App& app) {
       ->capture_default_str();
   command
       ->add_option("--sim-steps", o->simSteps, "Lattice steps per timed submission of the sim section (1-64)")
+      ->capture_default_str();
+  command
+      ->add_option("--population-storage", o->populationStorages,
+                   "Sim section: the lattice's population storage, fp32 and/or fp16 (each lattice with each)")
+      ->delimiter(',')
       ->capture_default_str();
   command->add_flag("--fp16", o->fp16, "Network section: fp16 feature maps (arithmetic stays fp32)");
   command->callback([o] { run(*o); });

@@ -30,7 +30,8 @@ struct BenchOptions {
   int warmup = 2, repeats = 10;
   int repeatsLarge = 3;  // timed runs of lattices over kLargeLatticeCells
   int simSteps = 4;      // lattice steps per submission (a run) of the sim section
-  bool fp16 = false;     // network section: fp16 feature maps
+  std::vector<std::string> populationStorages = {"fp32"};  // sim section: each lattice with each, in turn
+  bool fp16 = false;                                       // network section: fp16 feature maps
 };
 
 // A lattice larger than this (2 M cells) takes seconds per step on lavapipe: --repeats-large and at most one

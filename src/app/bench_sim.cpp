@@ -22,14 +22,21 @@ std::string latticeName(glm::ivec3 n) {
 }
 
 nlohmann::json benchLattice(const gpu::Context& context, const gpu::PipelineCache& cache,
-                            const BenchOptions& o, glm::ivec3 lattice) {
-  const io::Scene scene = benchScene(o.scene, lattice);
+                            const BenchOptions& o, glm::ivec3 lattice, const std::string& storage) {
+  io::Scene scene = benchScene(o.scene, lattice);
+  scene.fluid.populationStorage =
+      storage == "fp16" ? io::PopulationStorage::Fp16 : io::PopulationStorage::Fp32;
   const uint64_t cells = uint64_t(lattice.x) * lattice.y * lattice.z;
   const bool large = cells > kLargeLatticeCells;
   const int warmup = large ? std::min(o.warmup, 1) : o.warmup;
   const int repeats = large ? o.repeatsLarge : o.repeats;
-  std::printf("simulation %s (%.2f M cells, cell %.4g m): %d warm-up and %d timed runs of %d steps\n",
-              latticeName(lattice).c_str(), cells * 1e-6, scene.grid.cellSize, warmup, repeats, o.simSteps);
+  const uint32_t bytesPerUpdate = sim::bytesPerCellUpdate(scene.fluid.populationStorage);
+  const uint64_t latticeBytes = sim::latticeBytes(cells, scene.fluid.populationStorage);
+  std::printf(
+      "simulation %s (%.2f M cells, cell %.4g m), %s populations (%u bytes per update, lattice %.1f MiB): %d "
+      "warm-up and %d timed runs of %d steps\n",
+      latticeName(lattice).c_str(), cells * 1e-6, scene.grid.cellSize, storage.c_str(), bytesPerUpdate,
+      latticeBytes / 1048576.0, warmup, repeats, o.simSteps);
   std::fflush(stdout);
   std::unique_ptr<sim::Simulation> simulation;
   try {
@@ -67,6 +74,9 @@ nlohmann::json benchLattice(const gpu::Context& context, const gpu::PipelineCach
   nlohmann::json report = step.json();
   report["size"] = {lattice.x, lattice.y, lattice.z};
   report["cells"] = cells;
+  report["population_storage"] = storage;
+  report["bytes_per_cell_update"] = bytesPerUpdate;
+  report["lattice_bytes"] = latticeBytes;
   report["cell_size_m"] = scene.grid.cellSize;
   report["warmup"] = warmup;
   report["steps_per_run"] = o.simSteps;
@@ -82,7 +92,8 @@ nlohmann::json benchSimulation(const gpu::Context& context, const gpu::PipelineC
                                const BenchOptions& options, const BenchInputs& inputs) {
   nlohmann::json lattices = nlohmann::json::array();
   for (glm::ivec3 lattice : inputs.lattices)
-    lattices.push_back(benchLattice(context, cache, options, lattice));
+    for (const std::string& storage : options.populationStorages)
+      lattices.push_back(benchLattice(context, cache, options, lattice, storage));
   return {{"scene", options.scene.string()},
           {"unit",
            "ms per lattice step, averaged over a submission of steps_per_run steps; the watchdog runs "

@@ -119,31 +119,34 @@ void run(const SimOptions& o) {
     // Memory-bound: the fraction of the device's copy bandwidth that the lattice update moves.
     const double bandwidth = gpu::measureCopyBandwidth(context);
     const double mlups = updates / (lbmMs * 1e3);
-    const double lbmBandwidth = mlups * 1e6 * sim::LbmSolver::kBytesPerCellUpdate / 1e9;
+    const double lbmBandwidth = mlups * 1e6 * sim::bytesPerCellUpdate(scene.fluid.populationStorage) / 1e9;
     nlohmann::json obstacles = nlohmann::json::array();
     for (auto& f : forcesPerObstacle) obstacles.push_back({{"force_lattice_per_step", f}});
-    io::writeReport(o.report, {{"scene", scene.name},
-                               {"device", context.properties().deviceName},
-                               {"lattice", {size.x, size.y, size.z}},
-                               {"smoke_upres", scene.grid.smokeUpres},
-                               {"steps", simulation.step()},
-                               {"steps_per_frame", units.stepsPerFrame},
-                               {"step_seconds", units.stepSeconds},
-                               {"tau", units.tau},
-                               {"watchdog", watchdog},
-                               {"mlups", mlups},
-                               {"bytes_per_cell_update", sim::LbmSolver::kBytesPerCellUpdate},
-                               {"lbm_bandwidth_gb_s", lbmBandwidth},
-                               {"copy_bandwidth_gb_s", bandwidth},
-                               {"bandwidth_fraction", lbmBandwidth / bandwidth},
-                               {"lbm_ms", lbmMs},
-                               {"smoke_ms", smokeMs},
-                               {"gpu_ms", totalMs},
-                               {"wall_seconds", wallSeconds},
-                               {"force_units",
-                                "lattice: rho0 = 1, cells/step^2; newtons = value * rho_air * dx^4 / dt^2"},
-                               {"obstacles", obstacles},
-                               {"frames", frames}});
+    io::writeReport(
+        o.report,
+        {{"scene", scene.name},
+         {"device", context.properties().deviceName},
+         {"lattice", {size.x, size.y, size.z}},
+         {"smoke_upres", scene.grid.smokeUpres},
+         {"steps", simulation.step()},
+         {"steps_per_frame", units.stepsPerFrame},
+         {"step_seconds", units.stepSeconds},
+         {"tau", units.tau},
+         {"watchdog", watchdog},
+         {"mlups", mlups},
+         {"population_storage",
+          scene.fluid.populationStorage == io::PopulationStorage::Fp16 ? "fp16" : "fp32"},
+         {"bytes_per_cell_update", sim::bytesPerCellUpdate(scene.fluid.populationStorage)},
+         {"lbm_bandwidth_gb_s", lbmBandwidth},
+         {"copy_bandwidth_gb_s", bandwidth},
+         {"bandwidth_fraction", lbmBandwidth / bandwidth},
+         {"lbm_ms", lbmMs},
+         {"smoke_ms", smokeMs},
+         {"gpu_ms", totalMs},
+         {"wall_seconds", wallSeconds},
+         {"force_units", "lattice: rho0 = 1, cells/step^2; newtons = value * rho_air * dx^4 / dt^2"},
+         {"obstacles", obstacles},
+         {"frames", frames}});
   }
   if (watchdog != "ok") {
     // Nothing written yet: the output directory made for this run goes again (remove() leaves a non-empty

@@ -46,6 +46,8 @@ const Choices<InflowProfile> kInflowProfiles = {{"uniform", InflowProfile::Unifo
                                                 {"parabolic", InflowProfile::Parabolic}};
 const Choices<ObstacleBoundary> kObstacleBoundaries = {{"half_way", ObstacleBoundary::HalfWay},
                                                        {"interpolated", ObstacleBoundary::Interpolated}};
+const Choices<PopulationStorage> kPopulationStorages = {{"fp32", PopulationStorage::Fp32},
+                                                        {"fp16", PopulationStorage::Fp16}};
 constexpr std::array<std::string_view, 6> kFaceNames = {"x-", "x+", "y-", "y+", "z-", "z+"};
 
 enum class InletShape { Disk, Box };
@@ -153,6 +155,7 @@ Fluid parseFluid(JsonReader& r) {
   f.smagorinsky = r.optional<float>("smagorinsky", f.smagorinsky, inRange(0, 0.5));
   f.maxLatticeVelocity = r.optional<float>("max_lattice_velocity", f.maxLatticeVelocity, inRange(0.01, 0.3));
   f.obstacleBoundary = r.choice("obstacle_boundary", kObstacleBoundaries, f.obstacleBoundary);
+  f.populationStorage = r.choice("population_storage", kPopulationStorages, f.populationStorage);
   f.buoyancy = r.object("buoyancy", parseBuoyancy);
   f.gravity = r.optional<glm::vec3>("gravity", f.gravity, nonZero());
   f.bodyForce = r.optional<glm::vec3>("body_force", f.bodyForce);

@@ -51,6 +51,10 @@ struct Buoyancy {
 // where the link crosses the obstacle's analytic surface (interpolated; meshes stay half-way).
 enum class ObstacleBoundary { HalfWay, Interpolated };
 
+// How the lattice stores its populations: 32-bit floats, or 16-bit floats holding (f_i − w_i) · 2¹⁴
+// (lbm_lattice.glsl), half the memory and traffic; the arithmetic stays 32-bit either way.
+enum class PopulationStorage { Fp32, Fp16 };
+
 struct Fluid {
   // Exactly one of viscosity and reynolds is set; kinematicViscosity() resolves them.
   std::optional<float> viscosity;  // m²/s
@@ -59,6 +63,7 @@ struct Fluid {
   float smagorinsky = 0.1f;
   float maxLatticeVelocity = 0.1f;  // lattice speed of the fastest inflow (at most)
   ObstacleBoundary obstacleBoundary = ObstacleBoundary::HalfWay;
+  PopulationStorage populationStorage = PopulationStorage::Fp32;
   Buoyancy buoyancy;
   glm::vec3 gravity{0, -9.81f, 0};  // only its direction is used
   glm::vec3 bodyForce{0};           // m/s², a constant acceleration (e.g. a driving pressure gradient)

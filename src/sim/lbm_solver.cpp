@@ -26,6 +26,11 @@ struct ForcesPush {  // forces.comp
   glm::ivec4 boxMin, boxSize;
 };
 
+// The shader, or its LBM_FP16 variant (shaders/sim/shaders.cmake).
+std::string latticeShader(const std::string& name, io::PopulationStorage storage) {
+  return storage == io::PopulationStorage::Fp16 ? name + ":LBM_FP16" : name;
+}
+
 std::vector<BindingType> storageBuffers(int count) {
   return std::vector<BindingType>(count, BindingType::StorageBuffer);
 }
@@ -41,6 +46,18 @@ gpu::SpecConstants latticeSpec(const LbmSettings& settings) {
 
 }  // namespace
 
+uint32_t populationBytes(io::PopulationStorage storage) {
+  return storage == io::PopulationStorage::Fp16 ? 2 : 4;
+}
+
+uint32_t bytesPerCellUpdate(io::PopulationStorage storage) {
+  return 19 * populationBytes(storage) * 2 + 4 + 16 * 2;
+}
+
+uint64_t latticeBytes(uint64_t cells, io::PopulationStorage storage) {
+  return cells * (2 * 19 * populationBytes(storage) + 16);
+}
+
 LbmSettings lbmSettings(const io::Scene& scene, const LatticeUnits& units) {
   LbmSettings s;
   s.size = scene.grid.size;
@@ -55,6 +72,7 @@ LbmSettings lbmSettings(const io::Scene& scene, const LatticeUnits& units) {
   s.wind = units.toLatticeVelocity(scene.boundaries.wind);
   s.parabolicInflow = scene.boundaries.inflowProfile == io::InflowProfile::Parabolic;
   s.interpolatedBounceBack = scene.fluid.obstacleBoundary == io::ObstacleBoundary::Interpolated;
+  s.storage = scene.fluid.populationStorage;
   return s;
 }
 
@@ -65,25 +83,29 @@ LbmSolver::LbmSolver(const gpu::Context& context, const gpu::PipelineCache& cach
       cells_(uint64_t(settings.size.x) * settings.size.y * settings.size.z) {
   if (cells_ > UINT32_MAX / kPopulationsPerBuffer)
     throw io::InputError("grid.size", "the lattice has too many cells for 32-bit population addressing");
+  if (settings.storage == io::PopulationStorage::Fp16 && !context.capabilities().storage16Bit)
+    throw io::InputError(
+        "fluid.population_storage",
+        "fp16 needs 16-bit storage buffers (storageBuffer16BitAccess), which this device lacks");
   const std::string shape = std::to_string(settings.size.x) + "x" + std::to_string(settings.size.y) + "x" +
                             std::to_string(settings.size.z);
   for (int parity = 0; parity < 2; ++parity)
     for (uint32_t b = 0; b < 4; ++b) {
       const uint32_t populations = b < 3 ? kPopulationsPerBuffer : 19 - 3 * kPopulationsPerBuffer;
       lattices_[parity][b] =
-          gpu::Buffer::storage(context, uint64_t(populations) * cells_ * sizeof(float),
+          gpu::Buffer::storage(context, uint64_t(populations) * cells_ * populationBytes(settings.storage),
                                "the " + shape + " lattice (populations " + std::to_string(b * 5) + "..)");
     }
   macro_ = gpu::Buffer::storage(context, cells_ * 16, "the " + shape + " velocity field");
 
   gpu::ComputePipelineDesc init;
-  init.shader = "sim/lbm_init.comp";
+  init.shader = latticeShader("sim/lbm_init.comp", settings.storage);
   init.bindings = storageBuffers(5);
   init.spec.set(spec::kCells, uint32_t(cells_));
   init_ = std::make_unique<gpu::Pipeline>(context, cache, init);
 
   gpu::ComputePipelineDesc step;
-  step.shader = "sim/lbm_step.comp";
+  step.shader = latticeShader("sim/lbm_step.comp", settings.storage);
   step.bindings = storageBuffers(12);
   step.pushConstantBytes = sizeof(StepPush);
   step.spec = latticeSpec(settings);
@@ -102,7 +124,7 @@ LbmSolver::LbmSolver(const gpu::Context& context, const gpu::PipelineCache& cach
   stepBoundary_ = std::make_unique<gpu::Pipeline>(context, cache, boundary);
 
   gpu::ComputePipelineDesc forces;
-  forces.shader = "sim/forces.comp";
+  forces.shader = latticeShader("sim/forces.comp", settings.storage);
   forces.bindings = storageBuffers(8);
   forces.pushConstantBytes = sizeof(ForcesPush);
   forces.spec = latticeSpec(settings);

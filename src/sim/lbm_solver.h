@@ -1,6 +1,7 @@
 #pragma once
 // The D3Q19 lattice and its kernels (shaders/sim/lbm_*.comp, forces*.comp): two lattices, each
-// in four structure-of-arrays buffers, swapped every step (pull streaming reads one, writes the other).
+// in four structure-of-arrays buffers, swapped every step (pull streaming reads one, writes the other), of
+// 32-bit populations or of 16-bit shifted ones (io::PopulationStorage, lbm_lattice.glsl).
 #include <array>
 #include <glm/glm.hpp>
 #include <memory>
@@ -30,7 +31,16 @@ struct LbmSettings {
   glm::vec3 wind{0};       // lattice velocity on inflow faces
   bool parabolicInflow = false;
   bool interpolatedBounceBack = false;  // obstacles: io::ObstacleBoundary::Interpolated
+  io::PopulationStorage storage = io::PopulationStorage::Fp32;
 };
+
+// Bytes of one stored population.
+uint32_t populationBytes(io::PopulationStorage storage);
+// Bytes read and written per cell update by lbm_step: 19 populations each way, the flags and the macro state
+// (read and written); the smoke and the neighbours' flags are left out.
+uint32_t bytesPerCellUpdate(io::PopulationStorage storage);
+// Device memory of a lattice of `cells` cells: both population sets and the macro state (16 bytes a cell).
+uint64_t latticeBytes(uint64_t cells, io::PopulationStorage storage);
 
 LbmSettings lbmSettings(const io::Scene& scene, const LatticeUnits& units);
 
@@ -58,9 +68,7 @@ class LbmSolver {
   // Read-only view of lattice `parity`'s populations, buffer b of 4 (lbm_lattice.glsl), for tests.
   const gpu::Buffer& lattice(int parity, int buffer) const { return lattices_[parity][buffer]; }
   uint64_t cells() const { return cells_; }
-  // Bytes read and written per cell update by lbm_step: 19 populations each way, the flags and
-  // the macro state (read and written); the smoke and the neighbours' flags are left out.
-  static constexpr uint32_t kBytesPerCellUpdate = 19 * 4 * 2 + 4 + 16 * 2;
+  io::PopulationStorage storage() const { return settings_.storage; }
 
  private:
   const gpu::Context* context_;

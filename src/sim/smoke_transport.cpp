@@ -39,7 +39,9 @@ SmokeTransport::SmokeTransport(const gpu::Context& context, const gpu::PipelineC
   const std::string shape = std::to_string(s.x) + "x" + std::to_string(s.y) + "x" + std::to_string(s.z);
   smoke_ = gpu::Buffer::storage(context, cells_ * 8, "the " + shape + " smoke grid");
   lowOrder_ = gpu::Buffer::storage(context, cells_ * 8, "the " + shape + " smoke grid (low-order update)");
-  antidiffusive_ = gpu::Buffer::storage(context, cells_ * 24, "the " + shape + " smoke grid (fluxes)");
+  for (int a = 0; a < 3; ++a)  // one per axis (sim_fct_fluxes.glsl)
+    antidiffusive_[a] =
+        gpu::Buffer::storage(context, cells_ * 8, "the " + shape + " smoke grid (" + "xyz"[a] + " fluxes)");
   ratios_ = gpu::Buffer::storage(context, cells_ * 16, "the " + shape + " smoke grid (limiters)");
 
   gpu::ComputePipelineDesc sources = smokeDesc("sim/smoke_sources.comp", 3, settings);
@@ -47,15 +49,15 @@ SmokeTransport::SmokeTransport(const gpu::Context& context, const gpu::PipelineC
   sources.pushConstantBytes = sizeof(SourcesPush);
   sources_ = std::make_unique<gpu::Pipeline>(context, cache, sources);
 
-  gpu::ComputePipelineDesc fluxes = smokeDesc("sim/fct_fluxes.comp", 5, settings);
+  gpu::ComputePipelineDesc fluxes = smokeDesc("sim/fct_fluxes.comp", 7, settings);
   for (int f = 0; f < 6; ++f) fluxes.spec.set(spec::kFaces[f], uint32_t(settings.faces[f]));
   fluxes_ = std::make_unique<gpu::Pipeline>(context, cache, fluxes);
 
-  gpu::ComputePipelineDesc limiter = smokeDesc("sim/fct_limiter.comp", 5, settings);
+  gpu::ComputePipelineDesc limiter = smokeDesc("sim/fct_limiter.comp", 7, settings);
   setPeriodicAxes(limiter, settings);
   limiter_ = std::make_unique<gpu::Pipeline>(context, cache, limiter);
 
-  gpu::ComputePipelineDesc update = smokeDesc("sim/fct_update.comp", 4, settings);
+  gpu::ComputePipelineDesc update = smokeDesc("sim/fct_update.comp", 6, settings);
   setPeriodicAxes(update, settings);
   update_ = std::make_unique<gpu::Pipeline>(context, cache, update);
 
@@ -79,18 +81,21 @@ void SmokeTransport::recordTransport(gpu::Sequence& sequence, const gpu::Buffer&
                                      const gpu::Buffer& macro) const {
   const std::span<const std::byte> none;
   for (int substep = 0; substep < settings_.upres; ++substep) {
-    sequence.dispatchLinear(*fluxes_,
-                            {gpu::reads(flags), gpu::reads(macro), gpu::reads(smoke_), gpu::writes(lowOrder_),
-                             gpu::writes(antidiffusive_)},
-                            none, cells_, kGroupSize);
-    sequence.dispatchLinear(*limiter_,
-                            {gpu::reads(flags), gpu::reads(smoke_), gpu::reads(lowOrder_),
-                             gpu::reads(antidiffusive_), gpu::writes(ratios_)},
-                            none, cells_, kGroupSize);
+    sequence.dispatchLinear(
+        *fluxes_,
+        {gpu::reads(flags), gpu::reads(macro), gpu::reads(smoke_), gpu::writes(lowOrder_),
+         gpu::writes(antidiffusive_[0]), gpu::writes(antidiffusive_[1]), gpu::writes(antidiffusive_[2])},
+        none, cells_, kGroupSize);
+    sequence.dispatchLinear(
+        *limiter_,
+        {gpu::reads(flags), gpu::reads(smoke_), gpu::reads(lowOrder_), gpu::reads(antidiffusive_[0]),
+         gpu::reads(antidiffusive_[1]), gpu::reads(antidiffusive_[2]), gpu::writes(ratios_)},
+        none, cells_, kGroupSize);
     sequence.dispatchLinear(
         *update_,
-        {gpu::reads(lowOrder_), gpu::reads(antidiffusive_), gpu::reads(ratios_), gpu::writes(smoke_)}, none,
-        cells_, kGroupSize);
+        {gpu::reads(lowOrder_), gpu::reads(antidiffusive_[0]), gpu::reads(antidiffusive_[1]),
+         gpu::reads(antidiffusive_[2]), gpu::reads(ratios_), gpu::writes(smoke_)},
+        none, cells_, kGroupSize);
   }
 }
 

@@ -48,7 +48,8 @@ class SmokeTransport {
  private:
   SmokeSettings settings_;
   uint64_t cells_;
-  gpu::Buffer smoke_, lowOrder_, antidiffusive_, ratios_;
+  gpu::Buffer smoke_, lowOrder_, ratios_;
+  std::array<gpu::Buffer, 3> antidiffusive_;  // per axis (sim_fct_fluxes.glsl)
   std::unique_ptr<gpu::Pipeline> sources_, fluxes_, limiter_, update_, export_;
 };
 

@@ -8,6 +8,7 @@ file(MAKE_DIRECTORY ${OUT})
 set(repeats 2)
 execute_process(COMMAND ${SIXWAY} bench --sections sim,lightmaps,frame,network --grid 16x32x16 --size 16 32
                         --frame-lightmaps 16 --weights ${WEIGHTS} --warmup 1 --repeats ${repeats} --validate --force
+                        --population-storage fp32,fp16
                         --report ${report}
                 RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT code EQUAL 0 OR err MATCHES "validation:")
@@ -55,9 +56,20 @@ function(expect_stages expected)
   expect_timing(${ARGN} total)
 endfunction()
 
-expect_stages("obstacles;forces;lbm;smoke" sim lattices 0)
-expect_positive(sim lattices 0 mlups median)
-expect_timing(sim lattices 0 watchdog)
+# The lattice with each population storage, in the order given: fp16 halves the populations' bytes.
+set(indices 0 1)
+set(storages fp32 fp16)
+set(bytes_per_update 188 112)
+foreach(index storage bytes IN ZIP_LISTS indices storages bytes_per_update)
+  expect_stages("obstacles;forces;lbm;smoke" sim lattices ${index})
+  expect_positive(sim lattices ${index} mlups median)
+  expect_timing(sim lattices ${index} watchdog)
+  string(JSON got GET "${json}" sim lattices ${index} population_storage)
+  string(JSON got_bytes GET "${json}" sim lattices ${index} bytes_per_cell_update)
+  if(NOT got STREQUAL storage OR NOT got_bytes EQUAL bytes)
+    message(FATAL_ERROR "sim lattice ${index}: ${got}, ${got_bytes} bytes per update; expected ${storage}, ${bytes}")
+  endif()
+endforeach()
 set(render_stages "shadow maps;obstacles;guide;network fp32;shade;neural lightmaps: guide + network fp32;\
 exact baker (single scattering)")
 string(JSON fp16 GET "${json}" lightmaps fp16)

@@ -255,6 +255,15 @@ TEST(SceneTest, ObstacleBoundaryIsRead) {
   EXPECT_EQ(boundary("interpolated"), ObstacleBoundary::Interpolated);
 }
 
+TEST(SceneTest, PopulationStorageIsRead) {
+  const auto storage = [](const nlohmann::json& fluid) {
+    return parseScene(minimalWith({{"fluid", fluid}}), "s.json", ".").fluid.populationStorage;
+  };
+  EXPECT_EQ(storage(nlohmann::json::object()), PopulationStorage::Fp32);  // the default
+  EXPECT_EQ(storage({{"population_storage", "fp32"}}), PopulationStorage::Fp32);
+  EXPECT_EQ(storage({{"population_storage", "fp16"}}), PopulationStorage::Fp16);
+}
+
 TEST(SceneTest, MeshPathIsResolvedAgainstTheSceneFile) {
   TempDir dir;
   writeFile(dir / "meshes" / "rock.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
@@ -447,6 +456,11 @@ TEST(SceneParse, UnknownObstacleBoundary) {
   EXPECT_TRUE(rejected(minimalWith(R"({"fluid": {"obstacle_boundary": "bouzidi"}})"_json),
                        "fluid.obstacle_boundary",
                        "must be one of \"half_way\", \"interpolated\" (got \"bouzidi\")"));
+}
+
+TEST(SceneParse, UnknownPopulationStorage) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"fluid": {"population_storage": "bf16"}})"_json),
+                       "fluid.population_storage", "must be one of \"fp32\", \"fp16\" (got \"bf16\")"));
 }
 
 TEST(SceneParse, NegativeRadius) {

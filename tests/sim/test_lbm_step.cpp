@@ -66,7 +66,8 @@ class LbmStepTest : public GpuTest {
   // Runs `steps` steps of `scene` on the GPU and the CPU and compares the velocity and density; the CPU
   // result of `withoutFeature` (the scene with the tested feature turned off) must differ clearly (by 10 ×
   // the tolerance).
-  void expectMatchesCpu(const json& sceneJson, int steps, const json& withoutFeature) {
+  void expectMatchesCpu(const json& sceneJson, int steps, const json& withoutFeature,
+                        double tolerance = kTolerance) {
     const io::Scene scene = parseLatticeScene(sceneJson);
     const CpuSimulation probe(scene);
     for (int s = 0; s <= steps; ++s)
@@ -83,12 +84,15 @@ class LbmStepTest : public GpuTest {
     }
     const std::vector<glm::vec4> gpuMacro = gpu.lbm().macro().download<glm::vec4>();
     const std::vector<glm::dvec4> expected = cpuMacro(scene, steps);
+    const uint64_t populationBytes = scene.fluid.populationStorage == io::PopulationStorage::Fp16 ? 2 : 4;
+    EXPECT_EQ(gpu.lbm().lattice(0, 0).size(), gpu.lbm().cells() * 5 * populationBytes)
+        << "population storage";
 
     const FieldError u = velocityError(gpuMacro, expected), rho = densityError(gpuMacro, expected);
-    EXPECT_LE(u.max, kTolerance) << "velocity" << describe(u, scene, gpuMacro, expected);
-    EXPECT_LE(rho.max, kTolerance) << "density" << describe(rho, scene, gpuMacro, expected);
+    EXPECT_LE(u.max, tolerance) << "velocity" << describe(u, scene, gpuMacro, expected);
+    EXPECT_LE(rho.max, tolerance) << "density" << describe(rho, scene, gpuMacro, expected);
     const FieldError effect = maxDifference(expected, cpuMacro(parseLatticeScene(withoutFeature), steps));
-    EXPECT_GT(effect.max, 10 * kTolerance) << "the feature under test hardly changes the flow";
+    EXPECT_GT(effect.max, 10 * tolerance) << "the feature under test hardly changes the flow";
     std::cout << "[ measured ] max |Δu| " << u.max << ", max |Δρ| " << rho.max << "; feature effect "
               << effect.max << "\n";
   }
@@ -235,6 +239,48 @@ TEST_F(LbmStepTest, InterpolatedBounceBackAcrossAPeriodicFace) {
   const json sphere = {{"obstacles", {{{"type", "sphere"}, {"center", {0.7, 6.3, 5.15}}, {"radius", 2.6}}}}};
   const json halfWay = latticeScene(kSize, kViscosity, sphere);
   expectMatchesCpu(interpolated(halfWay), 3, halfWay);
+}
+
+// 16-bit population storage (fluid.population_storage "fp16", lbm_lattice.glsl) against the same double
+// oracle: each stored population is rounded to 11 significant bits of f_i − w_i (|f_i − w_i| ≲ 0.03 here, a
+// rounding ≲ 1.5e-5 per population per step); measured ≤ 3.5e-5 after 5 steps, so the tolerance is 1e-4.
+// Every boundary rule reads the populations through the same load, so a periodic box, walls with inflow and
+// outflow, a moving sphere and interpolated bounce-back cover the fp16 variants of lbm_step (interior and
+// boundary) and lbm_init; the fp32 result of the same scene is the "feature off" that must differ.
+constexpr double kFp16Tolerance = 1e-4;
+
+json fp16(json scene) {
+  return withPatch(std::move(scene), {{"fluid", {{"population_storage", "fp16"}}}});
+}
+
+TEST_F(LbmStepTest, Fp16StorageInAPeriodicBox) {
+  const json scene = latticeScene(kSize, kViscosity);
+  expectMatchesCpu(fp16(scene), 5, withPatch(scene, {{"fluid", {{"viscosity", 1.0}}}}), kFp16Tolerance);
+}
+
+TEST_F(LbmStepTest, Fp16StorageWithWallsInflowAndOutflow) {
+  const json channel = {{"boundaries",
+                         {{"x-", "inflow"},
+                          {"x+", "outflow"},
+                          {"y-", "no_slip"},
+                          {"y+", "free_slip"},
+                          {"z-", "no_slip"},
+                          {"z+", "no_slip"},
+                          {"wind", {0.04, 0.0, 0.01}}}}};
+  const json scene = latticeScene(kSize, kViscosity, channel);
+  expectMatchesCpu(fp16(scene), 5, latticeScene(kSize, kViscosity), kFp16Tolerance);
+}
+
+TEST_F(LbmStepTest, Fp16StorageAroundAMovingSphereWithInterpolatedBounceBack) {
+  const json moving = {{"obstacles",
+                        {{{"type", "sphere"},
+                          {"radius", 3.1},
+                          {"motion",
+                           {{"keyframes",
+                             {{{"time", -10.0}, {"position", {6.6, 7.0, 4.65}}},
+                              {{"time", 100.0}, {"position", {19.8, -0.7, 10.15}}}}}}}}}}};
+  const json scene = interpolated(latticeScene(kSize, kViscosity, moving));
+  expectMatchesCpu(fp16(scene), 5, latticeScene(kSize, kViscosity), kFp16Tolerance);
 }
 
 TEST_F(LbmStepTest, InterpolatedBounceBackInOneCellGaps) {

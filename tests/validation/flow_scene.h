@@ -25,4 +25,9 @@ inline io::Scene latticeScene(int nx, int ny, int nz, double viscosity, const st
   return io::parseScene(j, "validation scene", ".");
 }
 
+// The fluid.population_storage patch of the fp16 runs (lbm_lattice.glsl), for `extra`.
+inline nlohmann::json populationStorage(const std::string& storage) {
+  return {{"fluid", {{"population_storage", storage}}}};
+}
+
 }  // namespace sixway::test

@@ -34,7 +34,7 @@ struct Drag {
 // `maxLatticeVelocity`: the inflow's peak in cells/step (its Mach number / √3).
 Drag drag(const gpu::Context& context, const gpu::PipelineCache& cache, int cellsPerDiameter,
           double flowThroughs, const std::string& obstacleBoundary = "half_way",
-          double maxLatticeVelocity = 0.1) {
+          double maxLatticeVelocity = 0.1, const std::string& populationStorage = "fp32") {
   const double dx = 0.1 / cellsPerDiameter;
   const nlohmann::json j = {
       {"grid", {{"size", {22 * cellsPerDiameter, int(std::lround(0.41 / dx)), 1}}, {"cell_size", dx}}},
@@ -43,7 +43,8 @@ Drag drag(const gpu::Context& context, const gpu::PipelineCache& cache, int cell
        {{"viscosity", 1e-3},
         {"smagorinsky", 0.0},
         {"max_lattice_velocity", maxLatticeVelocity},
-        {"obstacle_boundary", obstacleBoundary}}},
+        {"obstacle_boundary", obstacleBoundary},
+        {"population_storage", populationStorage}}},
       {"boundaries",
        {{"x-", "inflow"},
         {"x+", "outflow"},
@@ -113,6 +114,14 @@ TEST_F(GpuTest, SchaeferTurek2D1DragAtTenCellsPerDiameter) {
 TEST_F(GpuTest, SchaeferTurek2D1InterpolatedDragAtTenCellsPerDiameter) {
   const Drag d = drag(context(), pipelineCache(), 10, 2, "interpolated");
   record(d, "interpolated, D = 10 cells");
+  EXPECT_GT(d.coefficient, 5.57) << "c_D at D = 10 cells";
+  EXPECT_LT(d.coefficient, 1.05 * 5.59) << "c_D at D = 10 cells";
+}
+
+// The same with 16-bit population storage (lbm_lattice.glsl): the same bounds.
+TEST_F(GpuTest, SchaeferTurek2D1InterpolatedDragAtTenCellsPerDiameterWithFp16Populations) {
+  const Drag d = drag(context(), pipelineCache(), 10, 2, "interpolated", 0.1, "fp16");
+  record(d, "interpolated, fp16 populations, D = 10 cells");
   EXPECT_GT(d.coefficient, 5.57) << "c_D at D = 10 cells";
   EXPECT_LT(d.coefficient, 1.05 * 5.59) << "c_D at D = 10 cells";
 }

@@ -1,6 +1,7 @@
 // Moving obstacles: a sphere started impulsively through still fluid and a fixed sphere met by an
 // impulsively started uniform stream are the same flow seen from two frames (Galilean invariance),
-// so their drag must agree (moving-wall bounce-back, refilled cells and the refilling force term). And cells swept by a moving obstacle neither create nor lose smoke.
+// so their drag must agree (moving-wall bounce-back, refilled cells and the refilling force term). And cells
+// swept by a moving obstacle neither create nor lose smoke.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -33,35 +34,45 @@ double meanDrag(sim::Simulation& simulation) {
   return drag / (kSteps - kAverageFrom);
 }
 
-class MovingSphere : public GpuTest {};
+class MovingSphere : public GpuTest, public ::testing::WithParamInterface<std::string> {};
 
-TEST_F(MovingSphere, DragMatchesAFixedSphereInAStream) {
+// Parameter: fluid.population_storage.
+TEST_P(MovingSphere, DragMatchesAFixedSphereInAStream) {
   // A periodic box, so that the two runs are exactly one flow in two frames: the fluid at U past a
   // fixed sphere, and the sphere at −U through fluid at rest (in both the drag slowly takes momentum
   // out of the flow the same way).
   const double nu = kSpeed * 2 * kRadius / kReynolds;
-  io::Scene fixedScene = latticeScene(kLength, kWidth, kWidth, nu, "periodic", {{"obstacles", {sphere(20)}}});
+  nlohmann::json fixedExtra = populationStorage(GetParam());
+  fixedExtra["obstacles"] = {sphere(20)};
+  io::Scene fixedScene = latticeScene(kLength, kWidth, kWidth, nu, "periodic", fixedExtra);
   sim::Simulation fixed(context(), pipelineCache(), fixedScene);
   const size_t cells = size_t(kLength) * kWidth * kWidth;
   fixed.setFlow(std::vector<glm::vec3>(cells, glm::vec3(kSpeed, 0, 0)), std::vector<float>(cells, 1.0f));
   const double fixedDrag = meanDrag(fixed);
 
   const nlohmann::json motion = {
-      {"keyframes", {{{"time", 0.0}, {"position", {52.0, kWidth / 2.0, kWidth / 2.0}}},
-                     {{"time", double(kSteps)}, {"position", {52.0 - kSpeed * kSteps, kWidth / 2.0, kWidth / 2.0}}}}}};
+      {"keyframes",
+       {{{"time", 0.0}, {"position", {52.0, kWidth / 2.0, kWidth / 2.0}}},
+        {{"time", double(kSteps)}, {"position", {52.0 - kSpeed * kSteps, kWidth / 2.0, kWidth / 2.0}}}}}};
   nlohmann::json movingSphere = sphere(52, motion);
   movingSphere.erase("center");  // the keyframes place it
-  io::Scene movingScene = latticeScene(kLength, kWidth, kWidth, nu, "periodic", {{"obstacles", {movingSphere}}});
+  nlohmann::json movingExtra = populationStorage(GetParam());
+  movingExtra["obstacles"] = {movingSphere};
+  io::Scene movingScene = latticeScene(kLength, kWidth, kWidth, nu, "periodic", movingExtra);
   sim::Simulation moving(context(), pipelineCache(), movingScene);
   const double movingDrag = meanDrag(moving);
 
   RecordProperty("fixed_drag", std::to_string(fixedDrag));
   RecordProperty("moving_drag", std::to_string(movingDrag));
   EXPECT_GT(fixedDrag, 0);
+  std::printf("%s: fixed drag %.6g, moving drag %.6g, ratio %.4f\n", GetParam().c_str(), fixedDrag,
+              movingDrag, movingDrag / fixedDrag);
   EXPECT_NEAR(movingDrag / fixedDrag, 1.0, 0.05) << "fixed " << fixedDrag << ", moving " << movingDrag;
 }
 
-TEST_F(MovingSphere, SweptCellsKeepTheSmokeMass) {
+INSTANTIATE_TEST_SUITE_P(PopulationStorage, MovingSphere, ::testing::Values("fp32", "fp16"));
+
+TEST_F(GpuTest, SweptCellsKeepTheSmokeMass) {
   // A closed box full of smoke; the sphere crosses it, covering and uncovering cells every step.
   const nlohmann::json motion = {{"keyframes",
                                   {{{"time", 0.0}, {"position", {8.0, 10.0, 10.0}}},

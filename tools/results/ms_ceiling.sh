@@ -6,14 +6,17 @@
 # traditional-ms: a flipbook baked with multiple scattering).
 # About 10-15 minutes on the 2-core lavapipe machine. FRAMES=N (default 8) SPP=N (truth, default 128)
 # LIGHTMAP=N (lightmap size, default 64: half the frame's; 128 separates the lightmaps' resolution from the
-# six-way model); reports go to out/ms_ceiling/lightmap_N/.
+# six-way model) WEIGHTS=ms|ss|PATH (the network, default ms); reports go to out/ms_ceiling/lightmap_N/, or
+# out/ms_ceiling/lightmap_N_ss or out/ms_ceiling/lightmap_N_<name> with WEIGHTS=PATH (the file's directory).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 frames="${FRAMES:-8}"
 spp="${SPP:-128}"
 lightmap="${LIGHTMAP:-64}"
 python=/usr/bin/python3
+weights="${WEIGHTS:-ms}"
 out="$root/out/ms_ceiling/lightmap_$lightmap"
+case "$weights" in ms) ;; ss) out="${out}_ss" ;; *) out="${out}_$(basename "$(dirname "$weights")")" ;; esac
 sixway="${SIXWAY:-$root/build/src/app/sixway}"
 [ -x "$sixway" ] || source "$root/tools/build.sh"
 mkdir -p "$out"
@@ -32,8 +35,8 @@ for obstacle in scene.get("obstacles", []):
 json.dump(scene, open(sys.argv[2], "w"), indent=1)
 PY
   echo "ms_ceiling.sh: $name" >&2
-  "$sixway" eval --scene "$small" --frames "$frames" --spp "$spp" --orders 64 --report "$out/$name.report.json" \
-    --force >&2
+  "$sixway" eval --scene "$small" --frames "$frames" --spp "$spp" --orders 64 --weights "$weights" \
+    --report "$out/$name.report.json" --force >&2
 done
 "$python" - "$out" <<'PY'
 import glob, json, os, sys

@@ -98,6 +98,32 @@ class TrainTest(unittest.TestCase):
         with open(os.path.join(self.straight, "loss.png"), "rb") as f:
             self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
 
+    def test_init_from_starts_at_the_given_weights(self):
+        # Fine-tuning at a zero rate keeps the weights it started from: the straight run's, not a fresh seed's.
+        with open(CONFIG) as f:
+            tune = json.load(f)
+        tune["train"].update(init_from=self.straight, lr=0.0, min_lr=0.0, steps=2, seed=11)
+        config = os.path.join(WORK, "tune.json")
+        with open(config, "w") as f:
+            json.dump(tune, f)
+        out = os.path.join(WORK, "tuned")
+        run = subprocess.run([sys.executable, TRAIN, "--config", config, "--data", os.path.join(WORK, "data"),
+                              "--out", out, "--force"], capture_output=True, text=True)
+        self.assertEqual(run.returncode, 0, run.stderr)
+        start, _ = read_safetensors(os.path.join(self.straight, "sixway-unet.safetensors"))
+        tuned, _ = read_safetensors(os.path.join(out, "sixway-unet.safetensors"))
+        for name in start:
+            self.assertTrue(np.array_equal(start[name], tuned[name]), name)
+        # Another architecture cannot start from it: one line naming the checkpoint.
+        tune["model"]["widths"] = [4, 4]
+        with open(config, "w") as f:
+            json.dump(tune, f)
+        run = subprocess.run([sys.executable, TRAIN, "--config", config, "--data", os.path.join(WORK, "data"),
+                              "--out", out, "--force"], capture_output=True, text=True)
+        self.assertNotEqual(run.returncode, 0)
+        self.assertEqual(run.stderr.strip().count("\n"), 0, run.stderr)
+        self.assertIn("checkpoint.pt: train.init_from has another model config", run.stderr)
+
     def test_bad_input_is_one_line(self):
         run = train(os.path.join(WORK, "straight"))  # exists, no --resume or --force
         self.assertNotEqual(run.returncode, 0)
