@@ -88,7 +88,8 @@ void Simulation::setInletStrength(float strength) {
 gpu::Sequence& Simulation::sequenceFor(uint32_t steps, int parity) {
   auto& slot = sequences_[{steps, parity}];
   if (slot) return *slot;
-  slot = std::make_unique<gpu::Sequence>(*context_, 4 * steps + 1);
+  // Stages per step: obstacles, forces, lbm, the smoke sources and three FCT passes per substep.
+  slot = std::make_unique<gpu::Sequence>(*context_, (4 + 3 * uint32_t(smoke_->upres())) * steps + 1);
   gpu::Sequence& sequence = *slot;
   const uint32_t obstacleCount = uint32_t(obstacles_->obstacleCount());
   if (obstacleCount > 0) sequence.fill(forces_, 0);
@@ -106,10 +107,8 @@ gpu::Sequence& Simulation::sequenceFor(uint32_t steps, int parity) {
     lbm_->recordStep(sequence, params_, obstacles_->flags(), smoke_->smoke(), s, from,
                      obstacles_->sweptBox());
     sequence.endStage();
-    sequence.beginStage("smoke");
-    smoke_->recordSources(sequence, params_, obstacles_->flags(), s);
+    smoke_->recordSources(sequence, params_, obstacles_->flags(), s);  // stages "smoke sources", "smoke …"
     smoke_->recordTransport(sequence, obstacles_->flags(), lbm_->macro());
-    sequence.endStage();
   }
   sequence.beginStage("watchdog");
   speedStats_->record(sequence, lbm_->macro(), uint32_t(lbm_->cells()));
@@ -134,14 +133,19 @@ void Simulation::summarize(uint64_t firstStep, uint32_t steps, const std::vector
                            const glm::vec4* forces, const gpu::Stats& speed, const gpu::Stats& density) {
   AdvanceReport report;
   report.firstStep = firstStep;
+  SmokePassTimes& smoke = report.times.smokePasses;
   for (const gpu::StageTime& t : times) {
-    double* total = t.name == "obstacles" ? &report.times.obstacles
-                    : t.name == "forces"  ? &report.times.forces
-                    : t.name == "lbm"     ? &report.times.lbm
-                    : t.name == "smoke"   ? &report.times.smoke
-                                          : &report.times.watchdog;
+    double* total = t.name == "obstacles"                     ? &report.times.obstacles
+                    : t.name == "forces"                      ? &report.times.forces
+                    : t.name == "lbm"                         ? &report.times.lbm
+                    : t.name == SmokeTransport::kSourcesStage ? &smoke.sources
+                    : t.name == SmokeTransport::kFluxesStage  ? &smoke.fluxes
+                    : t.name == SmokeTransport::kLimiterStage ? &smoke.limiter
+                    : t.name == SmokeTransport::kUpdateStage  ? &smoke.update
+                                                              : &report.times.watchdog;
     *total += t.milliseconds;
   }
+  report.times.smoke = smoke.sources + smoke.fluxes + smoke.limiter + smoke.update;
   const size_t obstacleCount = obstacles_->obstacleCount();
   if (forces)
     for (uint32_t s = 0; s < steps; ++s) {

@@ -22,8 +22,15 @@
 
 namespace sixway::sim {
 
+// The smoke step's passes, timed one by one (SmokeTransport): sources, then per substep the FCT fluxes,
+// limiter and update. `smoke` is their sum.
+struct SmokePassTimes {
+  double sources = 0, fluxes = 0, limiter = 0, update = 0;  // ms, GPU timestamps
+};
+
 struct StepTimes {
   double obstacles = 0, forces = 0, lbm = 0, smoke = 0, watchdog = 0;  // ms, GPU timestamps
+  SmokePassTimes smokePasses;
   double total() const { return obstacles + forces + lbm + smoke + watchdog; }
 };
 

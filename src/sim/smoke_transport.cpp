@@ -73,29 +73,37 @@ void SmokeTransport::upload(const std::vector<glm::vec2>& values) {
 
 void SmokeTransport::recordSources(gpu::Sequence& sequence, const gpu::Buffer& params,
                                    const gpu::Buffer& flags, uint32_t slot) const {
+  sequence.beginStage(kSourcesStage);
   sequence.dispatchLinear(*sources_, {gpu::reads(params), gpu::reads(flags), gpu::readsWrites(smoke_)},
                           SourcesPush{slot}, cells_, kGroupSize);
+  sequence.endStage();
 }
 
 void SmokeTransport::recordTransport(gpu::Sequence& sequence, const gpu::Buffer& flags,
                                      const gpu::Buffer& macro) const {
   const std::span<const std::byte> none;
   for (int substep = 0; substep < settings_.upres; ++substep) {
+    sequence.beginStage(kFluxesStage);
     sequence.dispatchLinear(
         *fluxes_,
         {gpu::reads(flags), gpu::reads(macro), gpu::reads(smoke_), gpu::writes(lowOrder_),
          gpu::writes(antidiffusive_[0]), gpu::writes(antidiffusive_[1]), gpu::writes(antidiffusive_[2])},
         none, cells_, kGroupSize);
+    sequence.endStage();
+    sequence.beginStage(kLimiterStage);
     sequence.dispatchLinear(
         *limiter_,
         {gpu::reads(flags), gpu::reads(smoke_), gpu::reads(lowOrder_), gpu::reads(antidiffusive_[0]),
          gpu::reads(antidiffusive_[1]), gpu::reads(antidiffusive_[2]), gpu::writes(ratios_)},
         none, cells_, kGroupSize);
+    sequence.endStage();
+    sequence.beginStage(kUpdateStage);
     sequence.dispatchLinear(
         *update_,
         {gpu::reads(lowOrder_), gpu::reads(antidiffusive_[0]), gpu::reads(antidiffusive_[1]),
          gpu::reads(antidiffusive_[2]), gpu::reads(ratios_), gpu::writes(smoke_)},
         none, cells_, kGroupSize);
+    sequence.endStage();
   }
 }
 

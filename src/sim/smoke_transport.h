@@ -28,6 +28,12 @@ class SmokeTransport {
  public:
   SmokeTransport(const gpu::Context& context, const gpu::PipelineCache& cache, const SmokeSettings& settings);
 
+  // The GPU-timed stages these record, one per pass (Simulation sums them per name).
+  static constexpr const char* kSourcesStage = "smoke sources";
+  static constexpr const char* kFluxesStage = "smoke fluxes";
+  static constexpr const char* kLimiterStage = "smoke limiter";
+  static constexpr const char* kUpdateStage = "smoke update";
+
   // Inlet cells take the inlet's values; elsewhere the smoke decays.
   void recordSources(gpu::Sequence& sequence, const gpu::Buffer& params, const gpu::Buffer& flags,
                      uint32_t slot) const;
@@ -43,6 +49,7 @@ class SmokeTransport {
   void recordExport(gpu::Sequence& sequence, const gpu::Buffer& density,
                     const gpu::Buffer& temperature) const;
   glm::ivec3 size() const { return settings_.lattice * settings_.upres; }
+  int upres() const { return settings_.upres; }
   uint64_t cells() const { return cells_; }
 
  private:

@@ -94,7 +94,7 @@ class SmokeTransportTest : public GpuTest {
     std::vector<glm::vec4> macroValues;
     for (const glm::vec3& u : c.velocity) macroValues.emplace_back(u, 1.0f);
     macro.upload(macroValues);
-    gpu::Sequence sequence(context());
+    gpu::Sequence sequence(context(), uint32_t(3 * steps * c.upres));  // three timed FCT passes per substep
     for (int s = 0; s < steps; ++s) transport.recordTransport(sequence, flags, macro);
     sequence.submit();
     return transport.download();
