@@ -1,5 +1,5 @@
 # The smoke simulation (src/sim): lattice Boltzmann flow, obstacles, smoke transport. The shaders that touch the
-# populations also come as an LBM_FP16 variant (16-bit population storage, lbm_lattice.glsl).
+# populations in the simulation also come as an LBM_FP16 variant (16-bit population storage, lbm_lattice.glsl).
 list(APPEND SIXWAY_SHADERS
   sim/obstacles.comp
   sim/voxelize_mesh.comp
@@ -15,5 +15,4 @@ list(APPEND SIXWAY_SHADERS
   sim/lbm_init.comp:LBM_FP16
   sim/lbm_step.comp:LBM_FP16
   sim/forces.comp:LBM_FP16
-  sim/stream_bound.comp:LBM_FP16
 )
