@@ -36,6 +36,7 @@ struct BakeOptions {
   bool force = false, traceAllOrders = false;
   std::string scattering = "multiple";
   std::string packing = "unity";
+  std::string emissive = "mask";
   int first = 0;
   std::optional<int> frames, columns, voxels, samples, orders, downsample;
   std::optional<uint32_t> seed;
@@ -125,6 +126,21 @@ std::string describePacking(const render::ChannelPacking& packing) {
   return text + ")";
 }
 
+// Unity's emission settings for the flipbook: Single Channel with the sidecar's gradient and multiplier, or
+// none.
+void printEmissiveSettings(const std::optional<render::EmissiveMask>& mask, bool maskRequested) {
+  if (!mask) {
+    std::printf("sixway bake: Unity: Emissive Mode None (%s)\n",
+                maskRequested ? "the smoke does not emit" : "--emissive premultiplied: not Unity's mask");
+    return;
+  }
+  std::printf("sixway bake: Unity: Emissive Mode Single Channel, Emissive Multiplier %.6g, Emissive Gradient",
+              mask->multiplier);
+  for (const render::GradientKey& k : mask->gradient)
+    std::printf(" %.4g:(%.4g, %.4g, %.4g)", k.position, k.color.r, k.color.g, k.color.b);
+  std::printf(" (position:(linear RGB); also in the sidecar's \"emissive\")\n");
+}
+
 void run(const BakeOptions& o) {
   if (o.scene.empty() && o.vdb.empty()) throw io::InputError("bake", "give --scene S or --vdb F...");
   if (o.cameraPosition.empty() != o.cameraTarget.empty())
@@ -192,6 +208,7 @@ void run(const BakeOptions& o) {
   job.frameCount = frameCount;
   job.columns = o.columns.value_or(0);
   job.packing = render::packingPreset(o.packing);
+  job.emissiveMask = o.emissive == "mask";
   job.camera = chooseCamera(o, scene ? &*scene : nullptr, sequence->bounds());
   job.smoke = smoke;
   job.settings.width = tileWidth;
@@ -231,6 +248,7 @@ void run(const BakeOptions& o) {
   // What a Unity VFX Graph output needs besides the textures (their .meta files hold the import settings).
   std::printf("sixway bake: Unity: Flip Book Size %d x %d, %d frames; textures linear, RGBA half (EXR)\n",
               result.layout.columns, result.layout.rows, result.layout.frames);
+  printEmissiveSettings(result.emissiveMask, job.emissiveMask);
   if (context.validationMessageCount() > 0)
     throw std::runtime_error(std::to_string(context.validationMessageCount()) + " validation messages");
 }
@@ -251,6 +269,10 @@ void addBakeCommand(CLI::App& app) {
   bake->add_option("--packing", o->packing,
                    "Channel packing of the two textures: unity (default) | rlt-bbf | o3de (docs/formats.md)")
       ->check(CLI::IsMember(render::packingPresetNames()));
+  bake->add_option("--emissive", o->emissive,
+                   "Emissive component: mask (default: Unity's Single Channel emission, settings in the "
+                   "sidecar) | premultiplied (sixway's luminance × alpha)")
+      ->check(CLI::IsMember({"mask", "premultiplied"}));
   bake->add_option("--columns", o->columns, "Flipbook columns (default: a near-square grid)")
       ->check(CLI::Range(1, render::kMaxFlipbookSide));
   bake->add_option("--tile", o->tile,

@@ -97,8 +97,10 @@ FlipbookBakeResult bakeFlipbook(const gpu::Context& context, const gpu::Pipeline
     progress(line);
   }
   result.layout = layout;
-  result.sidecar = writeFlipbook(job.out, "flipbook", tiles, layout, job.packing,
-                                 describe(job, result.billboard, frames), job.scattering);
+  if (job.emissiveMask) result.emissiveMask = unityEmissiveMask(job.smoke);
+  result.sidecar =
+      writeFlipbook(job.out, "flipbook", tiles, layout, job.packing, describe(job, result.billboard, frames),
+                    job.scattering, result.emissiveMask);
   return result;
 }
 

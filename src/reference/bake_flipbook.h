@@ -37,13 +37,17 @@ struct FlipbookBake {
   Scattering scattering = Scattering::Multiple;
   MultipleScattering multiple;  // with Scattering::Multiple; the same seed every frame (coherent noise)
   nlohmann::json provenance;    // added to the sidecar (where the volumes came from, the command)
+  // The emissive component as Unity's Single Channel mask (unityEmissiveMask; the default) or as sixway's
+  // premultiplied luminance.
+  bool emissiveMask = true;
 };
 
 struct FlipbookBakeResult {
   std::filesystem::path sidecar;
   FlipbookLayout layout;
   ImagePlane billboard;
-  std::vector<double> frameMilliseconds;  // GPU time per baked frame
+  std::vector<double> frameMilliseconds;     // GPU time per baked frame
+  std::optional<EmissiveMask> emissiveMask;  // as written (none: premultiplied, or no emission)
 };
 
 // Bakes the frames one after the other; `progress` gets one line per frame. Throws io::InputError for a frame

@@ -127,6 +127,24 @@ ChannelPacking twoTextures(const std::string& first, const std::array<SixWayChan
 
 }  // namespace
 
+std::optional<EmissiveMask> unityEmissiveMask(const io::Smoke& smoke) {
+  const std::optional<float> straight = emissiveStraightScale(smoke);
+  const std::vector<GradientKey> keys = emissiveGradientFromRamp(smoke.emission);
+  if (!straight || keys.empty()) return std::nullopt;
+  // The ramp gradient's keys sit at their own luminance, so the straight value e / (alpha · straight) is at
+  // most the top key's: that is the mask's 1. The colours are scaled to at most 1 and the multiplier takes
+  // the scale back, so multiplier · gradient(mask) = straight · ramp gradient(mask · top), SixWayShading's
+  // emission.
+  const float top = keys.back().position;
+  float brightest = 0.0f;
+  for (const GradientKey& k : keys) brightest = std::max({brightest, k.color.r, k.color.g, k.color.b});
+  EmissiveMask mask{.luminanceScale = *straight * top, .gradient = {}, .multiplier = *straight * brightest};
+  // Unity's gradient is constant before its first key; sixway's rises from black at 0.
+  mask.gradient.push_back({0.0f, glm::vec3(0.0f)});
+  for (const GradientKey& k : keys) mask.gradient.push_back({k.position / top, k.color / brightest});
+  return mask;
+}
+
 ChannelPacking unityPacking() {
   return twoTextures("A", {Right, Top, Back, Alpha}, "B", {Left, Bottom, Front, Emissive});
 }
@@ -184,6 +202,32 @@ std::vector<io::Image> unpackFlipbook(const std::vector<io::Image>& textures, co
   return frames;
 }
 
+// The frames with their emissive channel e replaced by the mask e / (alpha · luminanceScale), clamped to [0,
+// 1].
+std::vector<io::Image> withEmissiveMask(std::vector<io::Image> frames, const EmissiveMask& mask) {
+  for (io::Image& frame : frames)
+    for (int y = 0; y < frame.height; ++y)
+      for (int x = 0; x < frame.width; ++x) {
+        const float alpha = frame.at(x, y, Alpha);
+        float& emissive = frame.at(x, y, Emissive);
+        emissive = alpha > 0.0f ? std::clamp(emissive / (alpha * mask.luminanceScale), 0.0f, 1.0f) : 0.0f;
+      }
+  return frames;
+}
+
+nlohmann::json describeEmissive(const std::optional<EmissiveMask>& mask) {
+  if (!mask) return {{"encoding", "premultiplied"}};
+  nlohmann::json gradient = nlohmann::json::array();
+  for (const GradientKey& k : mask->gradient)
+    gradient.push_back({{"position", k.position}, {"color", {k.color.r, k.color.g, k.color.b}}});
+  return {{"encoding", "mask"},
+          {"luminance_scale", mask->luminanceScale},
+          {"unity",
+           {{"emissive_mode", "Single Channel"},
+            {"emissive_multiplier", mask->multiplier},
+            {"emissive_gradient", gradient}}}};
+}
+
 // What the 8-bit files lose: texels of the colour channels above 1 are clipped there (emission, bright rims);
 // the EXR keeps them.
 nlohmann::json eightBitClipping(const std::vector<io::Image>& textures) {
@@ -202,8 +246,10 @@ nlohmann::json eightBitClipping(const std::vector<io::Image>& textures) {
 std::filesystem::path writeFlipbook(const std::filesystem::path& directory, const std::string& stem,
                                     const std::vector<io::Image>& frames, const FlipbookLayout& layout,
                                     const ChannelPacking& packing, const nlohmann::json& provenance,
-                                    std::optional<Scattering> scattering) {
-  const std::vector<io::Image> textures = packFlipbook(frames, layout, packing);
+                                    std::optional<Scattering> scattering,
+                                    const std::optional<EmissiveMask>& emissiveMask) {
+  const std::vector<io::Image> textures =
+      packFlipbook(emissiveMask ? withEmissiveMask(frames, *emissiveMask) : frames, layout, packing);
   nlohmann::json files = nlohmann::json::object();
   for (std::size_t t = 0; t < textures.size(); ++t) {
     const std::string base = stem + "_" + packing.textures[t];
@@ -246,6 +292,7 @@ std::filesystem::path writeFlipbook(const std::filesystem::path& directory, cons
       {"color_space", "srgb"},  // of the 8-bit files' colour components; EXR and alpha are linear
       {"eight_bit", eightBitClipping(textures)},
       {"premultiplied", true},
+      {"emissive", describeEmissive(emissiveMask)},
       {"normalisation",
        "radiance toward the camera under a white directional light of irradiance pi, black world "
        "(1 = a white Lambertian surface facing the light); alpha = 1 - view transmittance"},
@@ -290,6 +337,14 @@ Flipbook readFlipbook(const std::filesystem::path& description) {
     return s == "linear" || s == "srgb" ? "" : "must be \"linear\" or \"srgb\" (got \"" + s + "\")";
   }) == "srgb";
   const bool premultiplied = r.optional<bool>("premultiplied", true);
+  // A mask's luminance scale; none: the emissive component is premultiplied like the others (or, with
+  // "premultiplied": false, straight like them).
+  const std::optional<float> maskScale =
+      r.optionalObject("emissive", [](io::JsonReader& o) {
+         o.has("unity");  // informational: the settings for Unity's output
+         const bool mask = o.choice<bool>("encoding", {{"mask", true}, {"premultiplied", false}});
+         return mask ? std::optional(o.required<float>("luminance_scale", io::positive())) : std::nullopt;
+       }).value_or(std::nullopt);
 
   if (!r.has("textures")) r.fail("textures", "required key missing");
   const nlohmann::json& texturesJson = json["textures"];
@@ -328,13 +383,18 @@ Flipbook readFlipbook(const std::filesystem::path& description) {
   r.finish();
 
   book.frames = unpackFlipbook(textures, l, packing);
-  if (!premultiplied) {
-    for (io::Image& frame : book.frames)
-      for (int y = 0; y < frame.height; ++y)
-        for (int x = 0; x < frame.width; ++x)
-          for (int c = 0; c < kSixWayChannels; ++c)
-            if (c != Alpha) frame.at(x, y, c) *= frame.at(x, y, Alpha);
-  }
+  for (io::Image& frame : book.frames)
+    for (int y = 0; y < frame.height; ++y)
+      for (int x = 0; x < frame.width; ++x) {
+        const float alpha = frame.at(x, y, Alpha);
+        for (int c = 0; c < kSixWayChannels; ++c) {
+          if (c == Alpha) continue;
+          if (c == Emissive && maskScale)
+            frame.at(x, y, c) *= alpha * *maskScale;
+          else if (!premultiplied)
+            frame.at(x, y, c) *= alpha;
+        }
+      }
   return book;
 }
 

@@ -13,8 +13,10 @@
 #include <vector>
 
 #include "io/image.h"
+#include "io/scene.h"
 #include "reference/scattering.h"
 #include "render/sixway.h"
+#include "render/sixway_shading.h"
 
 namespace sixway::render {
 
@@ -62,18 +64,32 @@ std::vector<io::Image> packFlipbook(const std::vector<io::Image>& frames, const 
 std::vector<io::Image> unpackFlipbook(const std::vector<io::Image>& textures, const FlipbookLayout& layout,
                                       const ChannelPacking& packing);
 
+// Unity's Single Channel emission (VFX Graph's Six-way Smoke Lit output; VFXLit.hlsl in URP and HDRP) shades
+// multiplier · gradient(mask) · opacity, so the emissive component it reads is a straight mask, not sixway's
+// premultiplied luminance e (docs/formats.md, "Emission"). With mask = e / (alpha · luminanceScale) the three
+// numbers below make Unity's formula give what SixWayShading gives for e with the smoke's straight scale.
+struct EmissiveMask {
+  float luminanceScale = 1.0f;        // e = alpha · luminanceScale · mask
+  std::vector<GradientKey> gradient;  // Unity's Emissive Gradient: black at 0, positions ≤ 1, colours ≤ 1
+  float multiplier = 1.0f;            // Unity's Emissive Multiplier
+};
+// The mask for `smoke`'s emission; none when it does not emit.
+std::optional<EmissiveMask> unityEmissiveMask(const io::Smoke& smoke);
+
 // Writes <stem>_<texture>.exr (half), .png and .tga (8-bit, colour sRGB-encoded) for each texture of
 // `packing`, a Unity .meta file beside each (reference/unity_meta.h), and the sidecar <stem>.json (layout,
 // files, channels, colour space, normalisation, the scattering the lightmaps hold when known, and
-// `provenance` as given). Returns the sidecar's path.
+// `provenance` as given). Returns the sidecar's path. With `emissiveMask` the emissive component holds that
+// mask (clamped to [0, 1]) and the sidecar its Unity settings; without, the premultiplied luminance.
 std::filesystem::path writeFlipbook(const std::filesystem::path& directory, const std::string& stem,
                                     const std::vector<io::Image>& frames, const FlipbookLayout& layout,
                                     const ChannelPacking& packing, const nlohmann::json& provenance,
-                                    std::optional<Scattering> scattering = std::nullopt);
+                                    std::optional<Scattering> scattering = std::nullopt,
+                                    const std::optional<EmissiveMask>& emissiveMask = std::nullopt);
 
 struct Flipbook {
   FlipbookLayout layout;
-  std::vector<io::Image> frames;         // eight channels each, premultiplied, linear
+  std::vector<io::Image> frames;         // eight channels each, premultiplied (emission too), linear
   std::optional<Scattering> scattering;  // as the sidecar says (other tools' descriptions may not)
 };
 

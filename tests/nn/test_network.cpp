@@ -94,7 +94,7 @@ TEST_P(NetworkParity, MatchesPyTorch) {
 INSTANTIATE_TEST_SUITE_P(Vectors, NetworkParity,
                          ::testing::Values(ParityCase{"default"}, ParityCase{"tiny"},
                                            ParityCase{"tiny", Precision::Fp32, false},
-                                           ParityCase{"fine_alpha"}),
+                                           ParityCase{"fine_alpha"}, ParityCase{"half_stem"}),
                          [](const ::testing::TestParamInfo<ParityCase>& info) {
                            return caseName(info.param);
                          });

@@ -3,6 +3,7 @@
 // EXRs agree, and the baked frame matches the CPU oracle on the resampled grid.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <fstream>
 
 #include "cpu_reference.h"
 #include "image_stats.h"
@@ -87,6 +88,60 @@ TEST_F(BakeFlipbookTest, FrameMatchesTheCpuOracleOnTheResampledGrid) {
     EXPECT_GT(errors[c].maxRef, 0.01) << expected.channels[c];
     EXPECT_LT(errors[c].maxAbs, 0.02 * errors[c].maxRef) << expected.channels[c];
   }
+}
+
+// Issue #22: the flipbook's emissive component is Unity's Single Channel mask. Unity's formula (VFXLit.hlsl:
+// multiplier · gradient(mask) · opacity, its gradient constant outside its keys) with the sidecar's settings
+// gives the emission sixway shades from the premultiplied luminance of the per-frame EXR (SixWayShading's
+// straight value: alpha · s · ramp gradient(e / (alpha · s)), black at 0 and proportional beyond the last
+// key).
+TEST_F(BakeFlipbookTest, UnitysEmissionOnTheMaskIsSixwaysEmission) {
+  render::VdbSequence sequence(context(), {kVdb / "densityAndHeat.vdb"}, 24, true);
+  render::FlipbookBake j = job(sequence, 1);
+  j.smoke.emission.intensity = 3.0f;
+  j.smoke.emission.ramp = {{0.0f, {0, 0, 0}}, {0.5f, {0.8f, 0.2f, 0.05f}}, {1.0f, {1.6f, 1.2f, 0.7f}}};
+  const render::FlipbookBakeResult result = bake(sequence, j);
+  ASSERT_TRUE(result.emissiveMask);
+  const nlohmann::json unity = nlohmann::json::parse(std::ifstream(result.sidecar))["emissive"]["unity"];
+  const float multiplier = unity["emissive_multiplier"];
+  std::vector<render::GradientKey> unityKeys;
+  for (const nlohmann::json& key : unity["emissive_gradient"])
+    unityKeys.push_back({key["position"], glm::vec3(key["color"][0], key["color"][1], key["color"][2])});
+  const auto unityGradient = [&](float x) {
+    if (x <= unityKeys.front().position) return unityKeys.front().color;
+    for (std::size_t k = 1; k < unityKeys.size(); ++k)
+      if (x <= unityKeys[k].position)
+        return glm::mix(
+            unityKeys[k - 1].color, unityKeys[k].color,
+            (x - unityKeys[k - 1].position) / (unityKeys[k].position - unityKeys[k - 1].position));
+    return unityKeys.back().color;
+  };
+  const std::vector<render::GradientKey> ramp = render::emissiveGradientFromRamp(j.smoke.emission);
+  const auto sixwayGradient = [&](float x) {
+    if (x <= ramp.front().position) return ramp.front().color * (x / ramp.front().position);
+    for (std::size_t k = 1; k < ramp.size(); ++k)
+      if (x <= ramp[k].position)
+        return glm::mix(ramp[k - 1].color, ramp[k].color,
+                        (x - ramp[k - 1].position) / (ramp[k].position - ramp[k - 1].position));
+    return ramp.back().color * (x / ramp.back().position);
+  };
+  const float s = *render::emissiveStraightScale(j.smoke);
+  const io::Image frame = io::readExr(j.out / "frames" / "frame_0000.exr").image;
+  const io::Image a = io::readExr(j.out / "flipbook_A.exr").image,
+                  b = io::readExr(j.out / "flipbook_B.exr").image;
+  float brightest = 0.0f, worst = 0.0f;
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      const float alpha = frame.at(x, y, *frame.channelIndex("alpha"));
+      const float e = frame.at(x, y, *frame.channelIndex("emissive"));
+      const glm::vec3 sixway = alpha > 0.0f ? alpha * s * sixwayGradient(e / (alpha * s)) : glm::vec3(0.0f);
+      const float opacity = a.at(x, y, *a.channelIndex("A")), mask = b.at(x, y, *b.channelIndex("A"));
+      const glm::vec3 inUnity = multiplier * unityGradient(mask) * opacity;
+      brightest = std::max(brightest, sixway.r);
+      worst = std::max(worst, glm::length(inUnity - sixway));
+    }
+  EXPECT_GT(brightest, 0.1f) << "the smoke emits";
+  EXPECT_LT(worst, 4e-3f * brightest) << "half-precision textures";
 }
 
 // All four third-party files as one sequence: Blender's first frame (every grid empty) is a transparent tile,

@@ -162,6 +162,44 @@ TEST_F(FlipbookFilesTest, WritesExrPngTgaAndASidecarThatReadsBack) {
   expectFramesNear(render::readFlipbook(dir / "book.json").frames, frames, 6e-3f);
 }
 
+// Issue #22: by default the emissive component is Unity's Single Channel mask e / (alpha · luminance scale),
+// which Unity multiplies by opacity; the sidecar holds the scale and Unity's settings, and readFlipbook turns
+// the mask back into the premultiplied luminance.
+TEST_F(FlipbookFilesTest, AnEmissiveMaskReadsBackAsPremultipliedLuminance) {
+  const FlipbookLayout layout = render::flipbookLayout(3, 5, 4);
+  auto frames = codedFrames(3, 5, 4);
+  frames[2].at(1, 1, render::Emissive) = 1.5f;  // over the mask's 1: clamped
+  frames[1].at(2, 3, render::Alpha) = 0.0f;     // no opacity: no emission
+  const render::EmissiveMask mask{.luminanceScale = 2.0f,
+                                  .gradient = {{0.0f, glm::vec3(0.0f)}, {1.0f, glm::vec3(1.0f, 0.5f, 0.25f)}},
+                                  .multiplier = 3.0f};
+  const auto sidecar = render::writeFlipbook(dir.path(), "flipbook", frames, layout, render::unityPacking(),
+                                             {{"note", "test"}}, std::nullopt, mask);
+  const nlohmann::json json = nlohmann::json::parse(std::ifstream(sidecar));
+  EXPECT_EQ(json["emissive"]["encoding"], "mask");
+  EXPECT_EQ(json["emissive"]["luminance_scale"], 2.0);
+  EXPECT_EQ(json["emissive"]["unity"]["emissive_mode"], "Single Channel");
+  EXPECT_EQ(json["emissive"]["unity"]["emissive_multiplier"], 3.0);
+  EXPECT_EQ(json["emissive"]["unity"]["emissive_gradient"].size(), 2u);
+  const io::Image b = io::readExr(dir / "flipbook_B.exr").image;
+  const render::Flipbook book = render::readFlipbook(sidecar);
+  for (int f = 0; f < 3; ++f)
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 5; ++x) {
+        const float alpha = frames[f].at(x, y, render::Alpha), e = frames[f].at(x, y, render::Emissive);
+        const float expected = alpha > 0.0f ? std::min(e / (alpha * 2.0f), 1.0f) : 0.0f;
+        const int tx = (f % layout.columns) * 5 + x, ty = (f / layout.columns) * 4 + y;
+        EXPECT_NEAR(b.at(tx, ty, *b.channelIndex("A")), expected, 1e-3f) << f << " " << x << " " << y;
+        EXPECT_NEAR(book.frames[f].at(x, y, render::Emissive), alpha * 2.0f * expected, 1e-3f);
+      }
+  EXPECT_NEAR(book.frames[0].at(3, 2, render::Emissive), frames[0].at(3, 2, render::Emissive), 1e-3f);
+  // Without a mask the component holds e itself, and says so.
+  render::writeFlipbook(dir.path(), "plain", frames, layout, render::unityPacking(), {{"note", "test"}});
+  EXPECT_EQ(nlohmann::json::parse(std::ifstream(dir / "plain.json"))["emissive"]["encoding"],
+            "premultiplied");
+  expectFramesNear(render::readFlipbook(dir / "plain.json").frames, frames, 2e-3f);
+}
+
 // The value of `key` in a Unity .meta file: the first line "<indent><key>: <value>" after the line `after`
 // (so that the platform settings' textureFormat is told from the importer's own).
 std::string metaValue(const std::filesystem::path& file, const std::string& key,
@@ -307,6 +345,12 @@ TEST_F(FlipbookFilesTest, BadDescriptionsAreOneLineErrors) {
   d = good;
   d["layout"]["frames"] = 2;
   EXPECT_THAT(problem(d), namesFileAndProblem(file, "layout.frames: must be in [1, 1]"));
+  d = good;
+  d["emissive"] = {{"encoding", "straight"}};
+  EXPECT_THAT(problem(d),
+              namesFileAndProblem(file, "emissive.encoding: must be one of \"mask\", \"premultiplied\""));
+  d["emissive"] = {{"encoding", "mask"}};
+  EXPECT_THAT(problem(d), namesFileAndProblem(file, "emissive.luminance_scale: required key missing"));
   d = good;
   d["scattering"] = "double";
   EXPECT_THAT(problem(d), namesFileAndProblem(file, "scattering: must be one of \"single\", \"multiple\""));

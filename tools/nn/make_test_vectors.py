@@ -9,6 +9,8 @@
   fine_alpha.safetensors       a small network whose guide has the fine alpha as a 4th channel, passed through
                                as its alpha
   fine_alpha_vectors.safetensors  a 20x36 guide of 4 channels
+  half_stem.safetensors        the UNet and adapters at half resolution behind a stride-2 stem, transposed heads
+  half_stem_vectors.safetensors   a 27x41 guide of 4 channels (padded to the size multiple 8, then cropped)
 
 A vectors file holds "input" (3 or 4 x H x W), "raw" (the 8 output channels in the network's encoding), "lightmap_a"
 and "lightmap_b" (decoded and packed, 4 x H x W each) and "node.<name>" intermediates (at the padded size).
@@ -48,6 +50,16 @@ FINE_ALPHA_CONFIG = {
     "adapters": {"enabled": True, "width": 4, "blocks": 1},
 }
 
+HALF_STEM_CONFIG = {
+    "guide_channels": 4,
+    "guide_alpha_step_voxels": 1,
+    "alpha": "guide",
+    "stem": "half",
+    "widths": [6, 8, 12],
+    "depth": 2,
+    "adapters": {"enabled": True, "width": 5, "blocks": 1},
+}
+
 # name: (config, weights seed, guide seed, guide height, guide width, intermediates)
 CASES = {
     "default": (None, 6, 60, 32, 48, ["enc.0.1", "down.0", "mid.1", "up.0", "dec.0.1", "adapters.0.blocks.0",
@@ -55,6 +67,8 @@ CASES = {
     "tiny": (TINY_CONFIG, 7, 70, 29, 45, ["enc.0.1", "mid.1", "up.1", "dec.0.1", "adapters.1.proj",
                                           "adapters.1.blocks.0", "adapters.2.head"]),
     "fine_alpha": (FINE_ALPHA_CONFIG, 8, 80, 20, 36, ["enc.0.0", "adapters.3.head", "alpha_from_guide"]),
+    "half_stem": (HALF_STEM_CONFIG, 9, 90, 27, 41, ["stem", "enc.0.1", "mid.1", "dec.0.1", "adapters.0.blocks.0",
+                                                    "adapters.2.head", "alpha_from_guide"]),
 }
 
 

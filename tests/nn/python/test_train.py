@@ -25,7 +25,8 @@ sys.path.insert(0, here)
 sys.path.insert(0, os.path.join(root, "tools", "nn"))
 import synthetic_shards  # noqa: E402
 from safetensors_io import read_safetensors  # noqa: E402
-from sixway_net import load_safetensors  # noqa: E402
+from bench_torch import node_flops  # noqa: E402
+from sixway_net import SixwayNet, load_safetensors  # noqa: E402
 
 TRAIN = os.path.join(root, "tools", "train.py")
 CONFIG = os.path.join(root, "tools", "train_configs", "tiny.json")
@@ -37,6 +38,22 @@ def train(out, *extra):
     result = subprocess.run([sys.executable, TRAIN, "--config", CONFIG, "--data", data, "--out", out, *extra],
                             capture_output=True, text=True)
     return result
+
+
+class HalfStemTest(unittest.TestCase):
+    """model.stem "half": the UNet and adapters at half resolution; the output stays at the guide's size."""
+
+    def test_half_stem_keeps_the_size_and_quarters_the_flops(self):
+        config = {"widths": [16, 32, 64]}
+        full, half = SixwayNet(config), SixwayNet({**config, "stem": "half"})
+        self.assertEqual(half.size_multiple(), 2 * full.size_multiple())
+        with torch.no_grad():
+            self.assertEqual(tuple(half(torch.rand(1, 4, 16, 24)).shape), (1, 8, 16, 24))
+        flops = [sum(node_flops(node, 256, 256) for node in net.nodes) for net in (full, half)]
+        self.assertLess(flops[1], 0.3 * flops[0])
+        self.assertGreater(flops[1], 0.2 * flops[0])
+        with self.assertRaisesRegex(ValueError, "stem must be full or half"):
+            SixwayNet({"stem": "quarter"})
 
 
 class TrainTest(unittest.TestCase):
