@@ -9,7 +9,9 @@
 # frames), ground truth 64 spp. Override with FRAMES=N SPP=N ORBIT_STEP=DEG; SIXWAY=path/to/sixway uses that
 # binary (no build); BENCH_ARGS="..." are
 # passed to `sixway bench` (its defaults otherwise), SKIP_BENCH=1 leaves it out; ABLATIONS=1 first runs
-# tools/ablations.sh (the retrained networks, 1.5-2 hours), whose table docs/results.md includes.
+# tools/ablations.sh (the retrained networks, 1.5-2 hours), whose table docs/results.md includes. The page opens
+# with tools/results/gallery.sh's strips of every shipped scene at 256x256 (about 30 minutes more; SKIP_GALLERY=1
+# leaves it out).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 frames="${FRAMES:-16}"
@@ -51,6 +53,7 @@ run_eval density_0.5 --frames "$frames" --orders 1 --density-scale 0.5
 run_eval density_2 --frames "$frames" --orders 1 --density-scale 2
 run_eval shadows_on --frames "$frames" --orders 1 --draw-obstacles
 run_eval shadows_off --frames "$frames" --orders 1 --draw-obstacles --no-shadows
+[ -z "${SKIP_GALLERY:-}" ] && SIXWAY="$sixway" bash "$root/tools/results/gallery.sh"
 
 bench_tables=""
 if [ -z "${SKIP_BENCH:-}" ] && [ -f "$root/tools/results/bench_tables.py" ]; then

@@ -252,6 +252,9 @@ void addEvalCommand(CLI::App& app) {
   eval->add_option("--equal-time-reference-spp", s.equalTimeReferenceSamples,
                    "Scene: samples per pixel of the equal-time study's reference (default 256)")
       ->check(CLI::Range(4, 1 << 20));
+  eval->add_flag(
+      "--no-equal-time", [&s](int64_t) { s.equalTime = false; },
+      "Scene: no equal-time study (it path-traces the strip frame up to the reference's samples)");
   eval->add_option("--weights", s.weights, kWeightsHelp);
   eval->add_option("--report", s.report, "JSON report")->required();
   eval->add_flag("--force", s.force, "Overwrite an existing report (and --out directory)");

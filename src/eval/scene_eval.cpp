@@ -219,13 +219,15 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
     lightmapMsTotal.add(predicted.pixels, referenceMs.pixels);
     frame["lightmap_ms"] = lightmapFrame(lightmapsMs);
 
-    if (i == stripFrame) {
-      if (!s.out.empty()) {
-        const std::vector<std::string> panels = writeEvalStrip(
-            s.out / "strip.png", truth.image,
-            {{"neural", &rendered["neural"].image}, {"traditional", &rendered["traditional"].image}});
-        strip = {{"file", (s.out / "strip.png").string()}, {"frame", i}, {"panels", panels}};
-      }
+    if (i == stripFrame && !s.out.empty()) {
+      const std::vector<std::string> panels =
+          writeEvalStrip(s.out / "strip.png", truth.image,
+                         {{"neural", &rendered["neural"].image},
+                          {"reference", &rendered["reference"].image},
+                          {"traditional-ms", &rendered["traditional-ms"].image}});
+      strip = {{"file", (s.out / "strip.png").string()}, {"frame", i}, {"panels", panels}};
+    }
+    if (i == stripFrame && s.equalTime) {
       EqualTimeSettings equal;
       equal.budgetMs = median(wallTimes["neural"]);
       equal.samples = s.equalTimeReferenceSamples;
@@ -265,6 +267,7 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
       {"driver", std::string(context.driver().driverInfo)},
       {"weights", fs::absolute(s.weights).string()},
       {"frames", s.frames},
+      {"warmup_frames", warmup},
       {"size", {scene.render.width, scene.render.height}},
       {"lightmap_size", scene.render.lightmapSize},
       {"pathtrace_spp", s.samples},

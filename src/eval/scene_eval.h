@@ -29,6 +29,7 @@ struct SceneEvalSettings {
   std::optional<float> cameraOrbitDeg;  // replaces the scene's camera path by an orbit (degrees per frame)
   std::optional<int> stripFrame;        // default: the last frame
   uint32_t equalTimeReferenceSamples = 256;
+  bool equalTime = true;  // false: no equal-time study (the report's equal_time is null)
   bool force = false;
 };
 

@@ -22,9 +22,13 @@ foreach(mode neural reference reference-ms traditional traditional-ms guide guid
   endif()
 endforeach()
 
-run(eval --scene ${SCENE} --frames 4 --spp 16 --ms-spp 8 --weights ${WEIGHTS} --equal-time-reference-spp 32
+run(eval --scene ${SCENE} --frames 4 --spp 16 --ms-spp 8 --weights ${WEIGHTS} --no-equal-time
     --report ${OUT}/eval.json)
 file(READ ${OUT}/eval.json report)
+string(JSON equal TYPE "${report}" equal_time)
+if(NOT equal STREQUAL "NULL")
+  message(FATAL_ERROR "eval.json: --no-equal-time, yet equal_time is ${equal}")
+endif()
 string(JSON files LENGTH "${report}" source vdb)
 if(NOT files EQUAL 3)
   message(FATAL_ERROR "eval.json: source.vdb lists ${files} files, expected 3")
