@@ -49,26 +49,34 @@ void depthwise(int group, int x0, int y0, out vec4 acc[PY][PX]) {
   }
 }
 
+// Gated group g over the invocation's block: stored, and its sum over the subgroup kept for the attention.
+void gateGroup(int g, int x0, int y0, bool inside) {
+  vec4 sum = vec4(0.0);
+  if (inside) {
+    vec4 first[PY][PX], second[PY][PX];
+    depthwise(g, x0, y0, first);
+    depthwise(g + GROUPS, x0, y0, second);
+    [[unroll]] for (int r = 0; r < PY; ++r)
+      [[unroll]] for (int p = 0; p < PX; ++p)
+        if (x0 + p < WIDTH && y0 + r < HEIGHT) {
+          const vec4 gated = first[r][p] * second[r][p];
+          outputMap[nnIndex(x0 + p, y0 + r, g, WIDTH, HEIGHT)] = NN_TEXEL(gated);
+          sum += gated;
+        }
+  }
+  sum = subgroupAdd(sum);
+  if (subgroupElect()) subgroupSums[gl_SubgroupID][g] = sum;
+}
+
 void main() {
   const int x0 = int(gl_GlobalInvocationID.x) * PX;
   const int y0 = int(gl_GlobalInvocationID.y) * PY;
   const bool inside = x0 < WIDTH && y0 < HEIGHT;  // no early return: every invocation reaches the barrier
-  [[unroll]] for (int g = 0; g < GROUPS; ++g) {
-    vec4 sum = vec4(0.0);
-    if (inside) {
-      vec4 first[PY][PX], second[PY][PX];
-      depthwise(g, x0, y0, first);
-      depthwise(g + GROUPS, x0, y0, second);
-      [[unroll]] for (int r = 0; r < PY; ++r)
-        [[unroll]] for (int p = 0; p < PX; ++p)
-          if (x0 + p < WIDTH && y0 + r < HEIGHT) {
-            const vec4 gated = first[r][p] * second[r][p];
-            outputMap[nnIndex(x0 + p, y0 + r, g, WIDTH, HEIGHT)] = NN_TEXEL(gated);
-            sum += gated;
-          }
-    }
-    sum = subgroupAdd(sum);
-    if (subgroupElect()) subgroupSums[gl_SubgroupID][g] = sum;
+  // Small blocks unroll the loop over groups, wide ones loop (nn_tensor.glsl, NN_UNROLLED_GROUPS).
+  if (GROUPS <= NN_UNROLLED_GROUPS) {
+    [[unroll]] for (int g = 0; g < GROUPS; ++g) gateGroup(g, x0, y0, inside);
+  } else {
+    [[dont_unroll]] for (int g = 0; g < GROUPS; ++g) gateGroup(g, x0, y0, inside);
   }
   barrier();
   const uint local = gl_LocalInvocationIndex;

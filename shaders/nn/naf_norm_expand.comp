@@ -33,27 +33,36 @@ layout(binding = 0) uniform Weights { vec4 weights[2 * GROUPS + OUT_GROUPS * OUT
 NN_INPUT_MAP(1, inputMap);
 NN_OUTPUT_MAP(2, outputMap);
 
+vec4 normed[PX][GROUPS];  // LayerNorm2d of the input, scaled and shifted
+
+// Output group o of conv1 over the PX pixels at (x0, y).
+void expandGroup(int o, int x0, int y) {
+  const int base = 2 * GROUPS + o * OUT_VEC4S;
+  vec4 acc[PX];
+  [[unroll]] for (int p = 0; p < PX; ++p) acc[p] = weights[base + OUT_VEC4S - 1];
+  [[unroll]] for (int g = 0; g < GROUPS; ++g)
+    [[unroll]] for (int c = 0; c < 4; ++c) {
+      const vec4 w = weights[base + g * 4 + c];
+      [[unroll]] for (int p = 0; p < PX; ++p) acc[p] += normed[p][g][c] * w;
+    }
+  [[unroll]] for (int p = 0; p < PX; ++p)
+    if (x0 + p < WIDTH) outputMap[nnIndex(x0 + p, y, o, WIDTH, HEIGHT)] = NN_TEXEL(acc[p]);
+}
+
 void main() {
   const int x0 = int(gl_GlobalInvocationID.x) * PX;
   const int y = int(gl_GlobalInvocationID.y);
   if (x0 >= WIDTH || y >= HEIGHT) return;
-  vec4 normed[PX][GROUPS];
   [[unroll]] for (int p = 0; p < PX; ++p) {
     vec4 x[GROUPS];
     [[unroll]] for (int g = 0; g < GROUPS; ++g) x[g] = imageLoad(inputMap, nnIndex(x0 + p, y, g, WIDTH, HEIGHT));
     nnLayerNorm(x, EPS);
     [[unroll]] for (int g = 0; g < GROUPS; ++g) normed[p][g] = x[g] * weights[g] + weights[GROUPS + g];
   }
-  [[unroll]] for (int o = 0; o < OUT_GROUPS; ++o) {
-    const int base = 2 * GROUPS + o * OUT_VEC4S;
-    vec4 acc[PX];
-    [[unroll]] for (int p = 0; p < PX; ++p) acc[p] = weights[base + OUT_VEC4S - 1];
-    [[unroll]] for (int g = 0; g < GROUPS; ++g)
-      [[unroll]] for (int c = 0; c < 4; ++c) {
-        const vec4 w = weights[base + g * 4 + c];
-        [[unroll]] for (int p = 0; p < PX; ++p) acc[p] += normed[p][g][c] * w;
-      }
-    [[unroll]] for (int p = 0; p < PX; ++p)
-      if (x0 + p < WIDTH) outputMap[nnIndex(x0 + p, y, o, WIDTH, HEIGHT)] = NN_TEXEL(acc[p]);
+  // Small blocks unroll the loop over output groups, wide ones loop (nn_tensor.glsl, NN_UNROLLED_GROUPS).
+  if (OUT_GROUPS <= 2 * NN_UNROLLED_GROUPS) {
+    [[unroll]] for (int o = 0; o < OUT_GROUPS; ++o) expandGroup(o, x0, y);
+  } else {
+    [[dont_unroll]] for (int o = 0; o < OUT_GROUPS; ++o) expandGroup(o, x0, y);
   }
 }

@@ -53,23 +53,54 @@ NN_INPUT_MAP(2, gatedMap);  // naf_dw_gate.comp's output
 NN_INPUT_MAP(3, inputMap);  // the block's input
 NN_OUTPUT_MAP(4, outputMap);
 
+vec4 residual[PX][GROUPS];  // y = input + beta * conv3(gated)
+vec4 normed[PX][GROUPS];    // LayerNorm2d(y)
+vec4 out5[PX][GROUPS];      // conv5(SimpleGate(conv4(normed)))
+
+// Adds gated group g's part of conv3 to pixel p's `residual`.
+void addConv3Group(int p, int g, int x0, int y) {
+  const vec4 gated = imageLoad(gatedMap, nnIndex(x0 + p, y, g, WIDTH, HEIGHT));
+  [[unroll]] for (int c = 0; c < 4; ++c)
+    [[unroll]] for (int o = 0; o < GROUPS; ++o) residual[p][o] += gated[c] * conv3[o * GATED_GROUPS * 4 + g * 4 + c];
+}
+
+// FFN group f: its 4 channels of conv4's two halves, SimpleGate, and their part of conv5, added to `out5`.
+void addFfnGroup(int f) {
+  const int first = CONV4 + f * CONV4_VEC4S, second = CONV4 + (f + FFN_GROUPS) * CONV4_VEC4S;
+  vec4 a[PX], b[PX];
+  [[unroll]] for (int p = 0; p < PX; ++p) {
+    a[p] = weights[first + CONV4_VEC4S - 1];
+    b[p] = weights[second + CONV4_VEC4S - 1];
+  }
+  [[unroll]] for (int i = 0; i < GROUPS * 4; ++i)
+    [[unroll]] for (int p = 0; p < PX; ++p) {
+      a[p] += normed[p][i / 4][i % 4] * weights[first + i];
+      b[p] += normed[p][i / 4][i % 4] * weights[second + i];
+    }
+  [[unroll]] for (int p = 0; p < PX; ++p) {
+    const vec4 gate = a[p] * b[p];  // SimpleGate
+    [[unroll]] for (int c = 0; c < 4; ++c)
+      [[unroll]] for (int o = 0; o < GROUPS; ++o) out5[p][o] += gate[c] * weights[CONV5 + o * CONV5_VEC4S + f * 4 + c];
+  }
+}
+
 void main() {
   const int x0 = int(gl_GlobalInvocationID.x) * PX;
   const int y = int(gl_GlobalInvocationID.y);
   if (x0 >= WIDTH || y >= HEIGHT) return;
 
-  vec4 residual[PX][GROUPS];  // y = input + beta * conv3(gated)
   [[unroll]] for (int p = 0; p < PX; ++p) {
-    vec4 gated[GATED_GROUPS];
-    [[unroll]] for (int g = 0; g < GATED_GROUPS; ++g) gated[g] = imageLoad(gatedMap, nnIndex(x0 + p, y, g, WIDTH, HEIGHT));
     [[unroll]] for (int o = 0; o < GROUPS; ++o) residual[p][o] = weights[CONV3_BIAS + o];
-    [[unroll]] for (int i = 0; i < GATED_GROUPS * 4; ++i)
-      [[unroll]] for (int o = 0; o < GROUPS; ++o) residual[p][o] += gated[i / 4][i % 4] * conv3[o * GATED_GROUPS * 4 + i];
+    // Small blocks unroll the loops over groups, wide ones loop (nn_tensor.glsl, NN_UNROLLED_GROUPS).
+    if (GATED_GROUPS <= NN_UNROLLED_GROUPS) {
+      [[unroll]] for (int g = 0; g < GATED_GROUPS; ++g) addConv3Group(p, g, x0, y);
+    } else {
+      [[dont_unroll]] for (int g = 0; g < GATED_GROUPS; ++g) addConv3Group(p, g, x0, y);
+    }
     [[unroll]] for (int o = 0; o < GROUPS; ++o)
       residual[p][o] = imageLoad(inputMap, nnIndex(x0 + p, y, o, WIDTH, HEIGHT)) + weights[BETA + o] * residual[p][o];
   }
 
-  vec4 normed[PX][GROUPS];
   [[unroll]] for (int p = 0; p < PX; ++p) {
     vec4 x[GROUPS];
     [[unroll]] for (int g = 0; g < GROUPS; ++g) x[g] = residual[p][g];
@@ -77,26 +108,12 @@ void main() {
     [[unroll]] for (int g = 0; g < GROUPS; ++g) normed[p][g] = x[g] * weights[NORM2_WEIGHT + g] + weights[NORM2_BIAS + g];
   }
 
-  vec4 out5[PX][GROUPS];
   [[unroll]] for (int p = 0; p < PX; ++p)
     [[unroll]] for (int o = 0; o < GROUPS; ++o) out5[p][o] = weights[CONV5 + o * CONV5_VEC4S + CONV5_VEC4S - 1];
-  [[unroll]] for (int f = 0; f < FFN_GROUPS; ++f) {
-    const int first = CONV4 + f * CONV4_VEC4S, second = CONV4 + (f + FFN_GROUPS) * CONV4_VEC4S;
-    vec4 a[PX], b[PX];
-    [[unroll]] for (int p = 0; p < PX; ++p) {
-      a[p] = weights[first + CONV4_VEC4S - 1];
-      b[p] = weights[second + CONV4_VEC4S - 1];
-    }
-    [[unroll]] for (int i = 0; i < GROUPS * 4; ++i)
-      [[unroll]] for (int p = 0; p < PX; ++p) {
-        a[p] += normed[p][i / 4][i % 4] * weights[first + i];
-        b[p] += normed[p][i / 4][i % 4] * weights[second + i];
-      }
-    [[unroll]] for (int p = 0; p < PX; ++p) {
-      const vec4 gate = a[p] * b[p];  // SimpleGate
-      [[unroll]] for (int c = 0; c < 4; ++c)
-        [[unroll]] for (int o = 0; o < GROUPS; ++o) out5[p][o] += gate[c] * weights[CONV5 + o * CONV5_VEC4S + f * 4 + c];
-    }
+  if (FFN_GROUPS <= NN_UNROLLED_GROUPS) {
+    [[unroll]] for (int f = 0; f < FFN_GROUPS; ++f) addFfnGroup(f);
+  } else {
+    [[dont_unroll]] for (int f = 0; f < FFN_GROUPS; ++f) addFfnGroup(f);
   }
   [[unroll]] for (int p = 0; p < PX; ++p) {
     if (x0 + p >= WIDTH) break;

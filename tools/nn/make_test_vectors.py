@@ -11,6 +11,9 @@
   fine_alpha_vectors.safetensors  a 20x36 guide of 4 channels
   half_stem.safetensors        the UNet and adapters at half resolution behind a stride-2 stem, transposed heads
   half_stem_vectors.safetensors   a 27x41 guide of 4 channels (padded to the size multiple 8, then cropped)
+  naf_wide.safetensors         NAFBlocks of 24 and 20 channels: wider than NN_UNROLLED_GROUPS, so the kernels loop
+                               over their channel groups
+  naf_wide_vectors.safetensors    a 18x22 guide
 
 A vectors file holds "input" (3 or 4 x H x W), "raw" (the 8 output channels in the network's encoding), "lightmap_a"
 and "lightmap_b" (decoded and packed, 4 x H x W each) and "node.<name>" intermediates (at the padded size).
@@ -60,6 +63,13 @@ HALF_STEM_CONFIG = {
     "adapters": {"enabled": True, "width": 5, "blocks": 1},
 }
 
+NAF_WIDE_CONFIG = {
+    "widths": [24],
+    "depth": 2,
+    "block": "naf",
+    "adapters": {"enabled": True, "width": 20, "blocks": 1},
+}
+
 # name: (config, weights seed, guide seed, guide height, guide width, intermediates)
 CASES = {
     "default": (None, 6, 60, 32, 48, ["enc.0.1", "down.0", "mid.1", "up.0", "dec.0.1", "adapters.0.blocks.0",
@@ -69,6 +79,7 @@ CASES = {
     "fine_alpha": (FINE_ALPHA_CONFIG, 8, 80, 20, 36, ["enc.0.0", "adapters.3.head", "alpha_from_guide"]),
     "half_stem": (HALF_STEM_CONFIG, 9, 90, 27, 41, ["stem", "enc.0.1", "mid.1", "dec.0.1", "adapters.0.blocks.0",
                                                     "adapters.2.head", "alpha_from_guide"]),
+    "naf_wide": (NAF_WIDE_CONFIG, 10, 100, 18, 22, ["mid.1", "adapters.0.proj", "adapters.1.blocks.0"]),
 }
 
 
