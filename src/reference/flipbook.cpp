@@ -159,7 +159,7 @@ ChannelPacking packingPreset(const std::string& name) {
   if (name == "rlt-bbf")
     return twoTextures("RLT", {Right, Left, Top, Alpha}, "BBF", {Bottom, Back, Front, Emissive});
   if (name == "o3de")
-    return twoTextures("LRT", {Left, Right, Top, Alpha}, "FBB", {Front, Back, Bottom, Emissive});
+    return twoTextures("TLRB", {Top, Left, Right, Bottom}, "FB", {Front, Back, Emissive, Alpha});
   throw std::invalid_argument("packingPreset: unknown packing " + name);
 }
 

@@ -50,9 +50,9 @@ struct ChannelPacking {
 // Unity VFX Graph's six-way packing: A = (Right, Top, Back, alpha), B = (Left, Bottom, Front, emissive).
 ChannelPacking unityPacking();
 // The packings `sixway bake --packing` offers (docs/formats.md, "Packing presets"): "unity" (the above),
-// "rlt-bbf" (RLT = (Right, Left, Top, alpha), BBF = (Bottom, Back, Front, emissive): EmberGen-style, as
-// Unreal materials built on such exports read it) and "o3de" (O3DE's LeftRightTop_FrontBackBottom mode:
-// LRT = (Left, Right, Top, alpha), FBB = (Front, Back, Bottom, emissive)).
+// "rlt-bbf" (RLT = (Right, Left, Top, alpha), BBF = (Bottom, Back, Front, emissive): O3DE's RtLftTp_BtBckFr
+// mode, the layout of EmberGen-style exports) and "o3de" (O3DE's default TpLftRtBt_FrBck mode: TLRB = (Top,
+// Left, Right, Bottom), FB = (Front, Back, emissive, alpha), alpha where O3DE's packed opacity reads it).
 ChannelPacking packingPreset(const std::string& name);
 const std::vector<std::string>& packingPresetNames();
 

@@ -104,7 +104,7 @@ TEST(FlipbookPackingTest, PresetsPlaceTheChannelsAsDocumented) {
   const std::vector<Expected> presets = {
       {"unity", "A", "B", {Right, Top, Back, Alpha}, {Left, Bottom, Front, Emissive}},
       {"rlt-bbf", "RLT", "BBF", {Right, Left, Top, Alpha}, {Bottom, Back, Front, Emissive}},
-      {"o3de", "LRT", "FBB", {Left, Right, Top, Alpha}, {Front, Back, Bottom, Emissive}}};
+      {"o3de", "TLRB", "FB", {Top, Left, Right, Bottom}, {Front, Back, Emissive, Alpha}}};
   ASSERT_EQ(render::packingPresetNames().size(), presets.size());
   const FlipbookLayout layout = render::flipbookLayout(2, 4, 3);
   for (const Expected& e : presets) {
