@@ -26,18 +26,8 @@ for scene in "$root"/assets/scenes/*.json; do
   [ "$name" = bench ] && continue
   [ -n "${SCENES:-}" ] && [[ " $SCENES " != *" $name "* ]] && continue
   mkdir -p "$out/$name"
-  "$python" - "$scene" "$out/$name/scene.json" "$size" "$warmup" <<'PY'
-import json, os, sys
-scene = json.load(open(sys.argv[1]))
-size, warmup = int(sys.argv[3]), int(sys.argv[4])
-scene["render"].update({"width": size, "height": size, "lightmap_size": 64})
-scene["render"].setdefault("warmup_frames", warmup)
-# Mesh paths are relative to the scene's folder: make them absolute for the copy.
-for obstacle in scene.get("obstacles", []):
-    if "file" in obstacle:
-        obstacle["file"] = os.path.join(os.path.dirname(os.path.abspath(sys.argv[1])), obstacle["file"])
-json.dump(scene, open(sys.argv[2], "w"), indent=1)
-PY
+  "$python" "$root/tools/results/resized_scene.py" "$scene" "$out/$name/scene.json" --size "$size" --lightmap 64 \
+    --warmup "$warmup"
   echo "gallery.sh: $name"
   "$sixway" eval --scene "$out/$name/scene.json" --frames 3 --camera-orbit 45 --spp "$spp" --orders 64 --no-equal-time \
     --out "$out/$name" --report "$out/$name/report.json" --force >"$out/$name/eval.log" 2>&1

@@ -24,16 +24,7 @@ for scene in "$root"/assets/scenes/*.json; do
   name=$(basename "$scene" .json)
   [ "$name" = bench ] && continue
   small="$out/$name.json"
-  "$python" - "$scene" "$small" "$lightmap" <<'PY'
-import json, os, sys
-scene = json.load(open(sys.argv[1]))
-scene["render"].update({"width": 128, "height": 128, "lightmap_size": int(sys.argv[3])})
-# Mesh paths are relative to the scene's folder: make them absolute for the copy.
-for obstacle in scene.get("obstacles", []):
-    if "file" in obstacle:
-        obstacle["file"] = os.path.join(os.path.dirname(os.path.abspath(sys.argv[1])), obstacle["file"])
-json.dump(scene, open(sys.argv[2], "w"), indent=1)
-PY
+  "$python" "$root/tools/results/resized_scene.py" "$scene" "$small" --size 128 --lightmap "$lightmap"
   echo "ms_ceiling.sh: $name" >&2
   "$sixway" eval --scene "$small" --frames "$frames" --spp "$spp" --orders 64 --weights "$weights" \
     --report "$out/$name.report.json" --force >&2
