@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The model study's table (docs/network-study.md) from what tools/results/model_study.sh wrote into DIR:
 <variant>_eval.json (sixway eval --dataset), <variant>_bench.json (sixway bench --sections network) and the
-weights' own metadata (config, parameters, training time, PyTorch held-out metrics).
+weights' own metadata (config, parameters).
 
 Usage: /usr/bin/python3 tools/results/model_study_table.py out/model_study
 """
@@ -54,7 +54,6 @@ def row(directory, variant):
         "camera": splits["heldout_camera"]["psnr_masked_db"],
         "lights": min(v for k, v in splits["heldout_sequence"]["pairs_psnr_masked_db"].items()
                       if k != "alpha_emissive"),
-        "train_s": training.get("wall_seconds"),
     }
 
 
@@ -63,12 +62,11 @@ def main():
     variants = sorted(os.path.basename(p)[:-len("_eval.json")] for p in glob.glob(os.path.join(directory, "*_eval.json")))
     rows = sorted((row(directory, v) for v in variants), key=lambda r: r["gflop_256"])
     print("| variant | model | parameters | GFLOP at 256² | GLSL ms 128² | GLSL ms 256² | unseen sequences (dB) "
-          "| unseen cameras (dB) | weakest light pair, sequences (dB) | training (s) |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+          "| unseen cameras (dB) | weakest light pair, sequences (dB) |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for r in rows:
-        train = f"{r['train_s']:.0f}" if r["train_s"] else "–"
         print(f"| {r['variant']} | {r['model']} | {r['parameters']:,} | {r['gflop_256']:.2f} | {r['ms_128']:.1f} | "
-              f"{r['ms_256']:.1f} | {r['sequence']:.2f} | {r['camera']:.2f} | {r['lights']:.2f} | {train} |")
+              f"{r['ms_256']:.1f} | {r['sequence']:.2f} | {r['camera']:.2f} | {r['lights']:.2f} |")
 
 
 if __name__ == "__main__":
