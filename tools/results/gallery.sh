@@ -8,14 +8,14 @@
 # view, as games ship it), then the three errors. Writes out/results/gallery/<scene>/{report.json,strip.png} and
 # docs/results/gallery_<scene>.png.
 #
-# Scenes that start empty are warmed up WARMUP frames (default 45: 1.5 s of scene time, the smoke past the
+# Scenes that start empty are warmed up WARMUP frames (default 90: 3 s of scene time, as the showcase, the smoke past the
 # obstacles); a scene with its own warmup_frames (the showcase) keeps it. About 3-6 minutes a scene on the
 # 2-core lavapipe machine (the warm-up's simulation and the 256x256 truths dominate).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 size="${SIZE:-256}"
 spp="${GALLERY_SPP:-64}"
-warmup="${WARMUP:-45}"
+warmup="${WARMUP:-90}"
 python=/usr/bin/python3
 sixway="${SIXWAY:-$root/build/src/app/sixway}"
 out="$root/out/results/gallery"
