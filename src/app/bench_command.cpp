@@ -109,6 +109,8 @@ BenchInputs prepare(BenchOptions& o) {
   for (const std::string& storage : o.populationStorages)
     if (storage != "fp32" && storage != "fp16")
       throw io::InputError("--population-storage", "unknown storage \"" + storage + "\" (known: fp32, fp16)");
+  if (o.tiling != "device" && o.tiling != "blocks" && o.tiling != "pixels")
+    throw io::InputError("--tiling", "unknown tiling \"" + o.tiling + "\" (known: device, blocks, pixels)");
   for (uint32_t size : o.sizes) requireLightmapSize("--size", size);
   requireLightmapSize("--frame-lightmaps", o.frameLightmapSize);
   if (!o.report.empty()) io::requireWritable(o.report, o.force);
@@ -234,6 +236,11 @@ void addBenchCommand(CLI::App& app) {
       ->delimiter(',')
       ->capture_default_str();
   command->add_flag("--fp16", o->fp16, "Network section: fp16 feature maps (arithmetic stays fp32)");
+  command
+      ->add_option(
+          "--tiling", o->tiling,
+          "Network section: work per invocation, blocks (lavapipe's best), pixels (a GPU's) or device")
+      ->capture_default_str();
   command->callback([o] { run(*o); });
 }
 

@@ -47,8 +47,11 @@ gpu::Image benchGuide(const gpu::Context& context, uint32_t size) {
 
 nlohmann::json benchNetworkSize(const gpu::Context& context, const gpu::PipelineCache& cache,
                                 const io::SafetensorsFile& weights, const BenchOptions& o, uint32_t size) {
+  const nn::Tiling tiling = o.tiling == "blocks"   ? nn::Tiling::Blocks
+                            : o.tiling == "pixels" ? nn::Tiling::Pixels
+                                                   : nn::Tiling::Device;
   nn::Network network(context, cache, weights, size, size,
-                      {o.fp16 ? nn::Precision::Fp16 : nn::Precision::Fp32});
+                      {o.fp16 ? nn::Precision::Fp16 : nn::Precision::Fp32, true, tiling});
   const gpu::Image guide = benchGuide(context, size);
   const gpu::ImageDesc lightmap{size,
                                 size,
@@ -118,11 +121,13 @@ nlohmann::json benchNetworkSize(const gpu::Context& context, const gpu::Pipeline
   const double cpu = summarize(cpuMs).median;
   const Timing wholeTime = summarize(wholeMs);
   std::printf(
-      "\n%ux%u, %s maps: layers add up to %.2f ms (median of %d; min %.2f, max %.2f), %.2f GFLOP, %.1f "
+      "\n%ux%u, %s maps, %s tiling: layers add up to %.2f ms (median of %d; min %.2f, max %.2f), %.2f GFLOP, "
+      "%.1f "
       "GFLOP/s; "
       "process CPU time %.2f ms; as one stage %.2f ms (min %.2f, max %.2f)\n",
-      size, size, o.fp16 ? "fp16" : "fp32", total.median, o.repeats, total.min, total.max, flops * 1e-9,
-      flops / total.median * 1e-6, cpu, wholeTime.median, wholeTime.min, wholeTime.max);
+      size, size, o.fp16 ? "fp16" : "fp32", nn::tilingName(network.tiling()), total.median, o.repeats,
+      total.min, total.max, flops * 1e-9, flops / total.median * 1e-6, cpu, wholeTime.median, wholeTime.min,
+      wholeTime.max);
   std::printf("  %-24s %-20s %9s %9s\n", "layer", "kind", "ms", "GFLOP/s");
   for (const auto& l : layerReport)
     std::printf("  %-24s %-20s %9.3f %9.1f\n", l["name"].get<std::string>().c_str(),
@@ -136,6 +141,7 @@ nlohmann::json benchNetworkSize(const gpu::Context& context, const gpu::Pipeline
   }
   std::fflush(stdout);
   return {{"size", size},
+          {"tiling", nn::tilingName(network.tiling())},
           {"total_ms", total.median},
           {"total", timingJson(totals)},
           {"whole", timingJson(wholeMs)},

@@ -21,13 +21,38 @@ struct Push {
   int32_t firstGroup;  // the output group of the chunk's first
 };
 
-// Output rows per conv2d invocation: 8 (fastest on lavapipe), fewer while an output group would not fill one
-// workgroup, so that small maps still spread over the device's threads.
-int rowsPerInvocation(const MapShape& out) {
-  int rows = 8;
-  while (rows > 1 && groupsFor(out.width, kConvPixels) * groupsFor(out.height, rows) < kTile * kTile)
-    rows /= 2;
-  return rows;
+struct Block {
+  int pixels, rows;  // output pixels along x and rows per invocation
+};
+
+// The conv2d block. Blocks: 4 x 8 (fastest on lavapipe), fewer rows while an output group would not fill one
+// workgroup, so that small maps still spread over the device's threads. Pixels: rows, then pixels, halve
+// until the dispatch has kGpuInvocations invocations (or one pixel each).
+Block convBlock(const MapShape& out, int outGroups, Tiling tiling) {
+  Block b{kConvPixels, 8};
+  const auto blocks = [&] {
+    return uint64_t(groupsFor(out.width, b.pixels)) * groupsFor(out.height, b.rows);
+  };
+  if (tiling == Tiling::Blocks) {
+    while (b.rows > 1 && blocks() < kTile * kTile) b.rows /= 2;
+    return b;
+  }
+  while ((b.rows > 1 || b.pixels > 1) && blocks() * outGroups < kGpuInvocations) {
+    if (b.rows > 1)
+      b.rows /= 2;
+    else
+      b.pixels /= 2;
+  }
+  return b;
+}
+
+// Input pixels along x per conv_transpose2x2 invocation: 8, halved under Pixels tiling as conv2d's blocks.
+int transposedPixels(const ConvShape& shape, int outGroups, Tiling tiling) {
+  int pixels = kTransposedPixels;
+  while (tiling == Tiling::Pixels && pixels > 1 &&
+         uint64_t(groupsFor(shape.inWidth, pixels)) * shape.inHeight * outGroups < kGpuInvocations)
+    pixels /= 2;
+  return pixels;
 }
 
 }  // namespace
@@ -73,7 +98,11 @@ ConvKernel::ConvKernel(const KernelSetup& setup, const ConvShape& shape, const s
         uniformBuffer(*setup.context, chunk, name + " weights " + std::to_string(chunks_.size())));
   }
 
-  const int pixels = shape.transposed ? kTransposedPixels : kConvPixels;
+  const MapShape o = shape.output();
+  Block block = convBlock(o, outGroups_, setup.tiling);
+  if (shape.rows) block.rows = shape.rows;
+  if (shape.pixels) block.pixels = shape.pixels;
+  const int pixels = shape.transposed ? transposedPixels(shape, outGroups_, setup.tiling) : block.pixels;
   gpu::ComputePipelineDesc desc;
   desc.shader = shaderName(shape.transposed ? "conv_transpose2x2" : "conv2d", setup.precision);
   desc.pushConstantBytes = sizeof(Push);
@@ -89,8 +118,7 @@ ConvKernel::ConvKernel(const KernelSetup& setup, const ConvShape& shape, const s
     gridX_ = groupsFor(groupsFor(shape.inWidth, pixels), kTile);
     gridY_ = groupsFor(shape.inHeight, kTile);
   } else {
-    const MapShape o = shape.output();
-    const int rows = shape.rows ? shape.rows : rowsPerInvocation(o);
+    const int rows = block.rows;
     const int groupsA = concatLayout({shape.inputChannels[0]}).groups();
     desc.bindings = {gpu::BindingType::StorageTexelBuffer, gpu::BindingType::StorageTexelBuffer,
                      gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer};

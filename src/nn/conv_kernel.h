@@ -27,7 +27,8 @@ struct ConvShape {
   bool transposed = false;  // ConvTranspose2d: kernel 2, stride 2
   Activation activation = Activation::None;
   float negativeSlope = 0.0f;
-  int rows = 0;  // conv2d: output rows per invocation (1, 2, 4 or 8); 0 chooses from the map size
+  int rows = 0;    // conv2d: output rows per invocation (1, 2, 4 or 8); 0 chooses from the map size
+  int pixels = 0;  // conv2d: output pixels along x per invocation (1, 2 or 4); 0 chooses likewise
 
   int inChannels() const;
   MapShape output() const;

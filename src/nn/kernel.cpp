@@ -40,6 +40,23 @@ gpu::Buffer uniformBuffer(const gpu::Context& context, const std::vector<float>&
   return buffer;
 }
 
+Tiling resolveTiling(Tiling requested, const gpu::Context& context) {
+  if (requested != Tiling::Device) return requested;
+  return context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? Tiling::Blocks : Tiling::Pixels;
+}
+
+const char* tilingName(Tiling tiling) {
+  switch (tiling) {
+    case Tiling::Device:
+      return "device";
+    case Tiling::Blocks:
+      return "blocks";
+    case Tiling::Pixels:
+      return "pixels";
+  }
+  return "?";
+}
+
 uint32_t maxUniformBytes(const gpu::Context& context) {
   return std::min<uint32_t>(context.limits().maxUniformBufferRange, 65536);
 }

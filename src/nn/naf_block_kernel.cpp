@@ -10,10 +10,16 @@
 namespace sixway::nn {
 namespace {
 
-// Pixels per invocation, measured fastest on lavapipe: each uniform weight read serves a row of pixels.
-constexpr int kExpandPixels = 8;           // along x, naf_norm_expand
-constexpr int kDwPixels = 4, kDwRows = 4;  // naf_dw_gate
-constexpr int kTailPixels = 8;             // along x, naf_tail
+// Pixels per invocation of the three image kernels. Blocks: measured fastest on lavapipe, each uniform weight
+// read serves a row of pixels. Pixels: one each, for a GPU's threads (nn/kernel.h).
+struct NafBlocks {
+  int expand;            // along x, naf_norm_expand
+  int dwPixels, dwRows;  // naf_dw_gate
+  int tail;              // along x, naf_tail
+};
+NafBlocks nafBlocks(Tiling tiling) {
+  return tiling == Tiling::Blocks ? NafBlocks{8, 4, 4, 8} : NafBlocks{1, 1, 1, 1};
+}
 constexpr uint32_t kAttentionThreads = 64;
 
 const std::vector<float>& parameter(const ParameterMap& parameters, const std::string& key,
@@ -90,11 +96,12 @@ NafBlockKernel::NafBlockKernel(const KernelSetup& setup, const NafShape& shape, 
                                  plainLayout(shape.projection), channels));
   tailWeights_ = checkedUniform(context, tail, name + " norm2+conv4+conv5");
 
-  expandGrid_[0] = groupsFor(groupsFor(shape.width, kExpandPixels), kTile);
+  const NafBlocks blocks = nafBlocks(setup.tiling);
+  expandGrid_[0] = groupsFor(groupsFor(shape.width, blocks.expand), kTile);
   expandGrid_[1] = groupsFor(shape.height, kTile);
-  dwGrid_[0] = groupsFor(groupsFor(shape.width, kDwPixels), kTile);
-  dwGrid_[1] = groupsFor(groupsFor(shape.height, kDwRows), kTile);
-  tailGrid_[0] = groupsFor(groupsFor(shape.width, kTailPixels), kTile);
+  dwGrid_[0] = groupsFor(groupsFor(shape.width, blocks.dwPixels), kTile);
+  dwGrid_[1] = groupsFor(groupsFor(shape.height, blocks.dwRows), kTile);
+  tailGrid_[0] = groupsFor(groupsFor(shape.width, blocks.tail), kTile);
   tailGrid_[1] = groupsFor(shape.height, kTile);
   const uint32_t partialCount = dwGrid_[0] * dwGrid_[1];
   partials_ =
@@ -113,14 +120,14 @@ NafBlockKernel::NafBlockKernel(const KernelSetup& setup, const NafShape& shape, 
   desc.bindings = {uniform, texels, storage};
   desc.spec = mapSpec(shape);
   desc.spec.set(spec::kChannels, shape.channels).set(spec::kGatedChannels, shape.gated());
-  desc.spec.set(spec::kPx, kExpandPixels).set(spec::kEps, shape.eps);
+  desc.spec.set(spec::kPx, blocks.expand).set(spec::kEps, shape.eps);
   normExpand_ = &setup.pipelines->get(desc);
 
   desc = {};
   desc.shader = shaderName("naf_dw_gate", setup.precision);
   desc.bindings = {uniform, texels, storage, storage};
   desc.spec = mapSpec(shape);
-  desc.spec.set(spec::kGroups, gated.groups()).set(spec::kPx, kDwPixels).set(spec::kPy, kDwRows);
+  desc.spec.set(spec::kGroups, gated.groups()).set(spec::kPx, blocks.dwPixels).set(spec::kPy, blocks.dwRows);
   dwGate_ = &setup.pipelines->get(desc);
 
   desc = {};
@@ -138,7 +145,7 @@ NafBlockKernel::NafBlockKernel(const KernelSetup& setup, const NafShape& shape, 
   desc.spec = mapSpec(shape);
   desc.spec.set(spec::kChannels, shape.channels).set(spec::kGatedChannels, shape.gated());
   desc.spec.set(spec::kFfnChannels, shape.ffn()).set(spec::kProjectionChannels, shape.projection);
-  desc.spec.set(spec::kPx, kTailPixels).set(spec::kEps, shape.eps);
+  desc.spec.set(spec::kPx, blocks.tail).set(spec::kEps, shape.eps);
   tail_ = &setup.pipelines->get(desc);
 }
 

@@ -67,7 +67,8 @@ Network::Network(const gpu::Context& context, const gpu::PipelineCache& cache,
   mapWidth_ = roundUp(guideWidth, uint32_t(graph_.sizeMultiple));
   mapHeight_ = roundUp(guideHeight, uint32_t(graph_.sizeMultiple));
   pipelines_ = std::make_unique<PipelinePool>(context, cache);
-  const KernelSetup setup{&context, pipelines_.get(), options.precision};
+  tiling_ = resolveTiling(options.tiling, context);
+  const KernelSetup setup{&context, pipelines_.get(), options.precision, tiling_};
 
   const std::vector<int> fused =
       options.fuseProjections ? fusedProjections(graph_) : std::vector<int>(graph_.nodes.size(), -1);

@@ -25,6 +25,7 @@ struct NetworkOptions {
   // A 1x1 conv (no activation) that is the only consumer of a NAFBlock runs inside the block's last kernel
   // (an adapter's head): the block's own output is then never stored, and has no feature map.
   bool fuseProjections = true;
+  Tiling tiling = Tiling::Device;  // work per invocation (nn/kernel.h)
 };
 
 // A layer as the benchmark sees it: one timed stage, or one per kernel (`parts`, in stage order).
@@ -52,6 +53,7 @@ class Network {
   // The feature maps' size: the guide's, rounded up to the graph's size multiple.
   uint32_t mapWidth() const { return mapWidth_; }
   uint32_t mapHeight() const { return mapHeight_; }
+  Tiling tiling() const { return tiling_; }  // resolved: Blocks or Pixels
 
   // The guide (RGBA16F/32F, the guide's size) in, lightmaps A and B (any float RGBA storage format, the
   // guide's size) out. With `timeLayers`, every node is a timed stage named after it, and a NAFBlock is
@@ -70,6 +72,7 @@ class Network {
   struct Layer;
   Graph graph_;
   uint32_t guideWidth_, guideHeight_, mapWidth_, mapHeight_;
+  Tiling tiling_;
   std::unique_ptr<PipelinePool> pipelines_;  // outlives the layers that use its pipelines
   std::vector<Layer> layers_;                // one per node
   std::vector<int> mapOf_;                   // per node: the layer whose feature map holds its values, or -1

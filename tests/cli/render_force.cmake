@@ -35,6 +35,16 @@ if(NOT staging)
   message(FATAL_ERROR "the killed render left no staging directory: was it killed before it wrote anything?")
 endif()
 
+# A killed process can take a while to go (NVIDIA's driver releases the GPU first) and until then its staging
+# directory is a live render's: wait for it, up to 30 s.
+string(REGEX REPLACE ".*\\.render\\.([0-9]+)\\.partial$" "\\1" killed_pid "${staging}")
+foreach(attempt RANGE 150)
+  if(NOT EXISTS /proc/${killed_pid})
+    break()
+  endif()
+  execute_process(COMMAND sleep 0.2)
+endforeach()
+
 # Finished: one frame replaces three; the user's files stay; the killed run's staging directory is removed.
 execute_process(COMMAND ${SIXWAY} render --scene ${SCENE} --frames 1 --out ${OUT} --mode guide --force
                 RESULT_VARIABLE code OUTPUT_QUIET ERROR_VARIABLE err)

@@ -1,7 +1,11 @@
 // One end-to-end frame per mode of `sixway render` (tests/data/scenes/small_plume.json, frame 3: simulation,
 // obstacles, shadows, guiding map, network or baker or path tracer, shading) against tests/golden/<mode>.exr.
-// Lavapipe renders the same bits every run; the tolerance (max-abs 2e-3, about one half-float step at 1) only
-// absorbs rounding differences between driver builds. Any change of an algorithm shows far beyond it.
+// The images come from lavapipe, which renders the same bits every run; there the tolerance (max-abs 2e-3, about
+// one half-float step at 1) only absorbs rounding differences between driver builds. Any change of an algorithm
+// shows far beyond it. Another driver rounds differently (FMA contraction, exp precision) and four frames of
+// simulation carry that on: NVIDIA's H200 measured max |diff| 2.1e-3 (73.8 dB) on the deterministic modes and,
+// for the path tracer whose random walks then diverge, 0.065 (61.7 dB). Off lavapipe the test asks for 50 dB
+// PSNR: the same picture, not the same bits.
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -49,7 +53,9 @@ TEST_P(GoldenFrame, MatchesTheCommittedImage) {
     for (int y = 0; y < frame.height; ++y)
       for (int x = 0; x < frame.width; ++x) actual.at(x, y, c) = frame.at(x, y, from);
   }
-  EXPECT_TRUE(imagesMatch(actual, expected, {.maxAbs = 2e-3}, eval::renderModeName(mode)));
+  const bool goldenDriver = context().driver().driverID == VK_DRIVER_ID_MESA_LLVMPIPE;
+  const ImageTolerance tolerance = goldenDriver ? ImageTolerance{.maxAbs = 2e-3} : ImageTolerance{.minPsnr = 50};
+  EXPECT_TRUE(imagesMatch(actual, expected, tolerance, eval::renderModeName(mode)));
 }
 
 INSTANTIATE_TEST_SUITE_P(Modes, GoldenFrame,

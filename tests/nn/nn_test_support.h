@@ -29,9 +29,10 @@ constexpr double kFp16Tolerance = 1e-2;
 
 class NnTest : public GpuTest {
  protected:
-  nn::KernelSetup setup(nn::Precision precision = nn::Precision::Fp32) {
+  nn::KernelSetup setup(nn::Precision precision = nn::Precision::Fp32,
+                        nn::Tiling tiling = nn::Tiling::Blocks) {
     static nn::PipelinePool pool(context(), pipelineCache());  // destroyed before the context
-    return {&context(), &pool, precision};
+    return {&context(), &pool, precision, tiling};
   }
   nn::FeatureMap upload(const CpuMap& map, nn::Precision precision = nn::Precision::Fp32,
                         const char* name = "in") {

@@ -21,7 +21,9 @@ struct ConvCase {
   Activation activation = Activation::None;
   bool transposed = false;
   Precision precision = Precision::Fp32;
-  int rows = 0;  // output rows per invocation; 0: the kernel's choice
+  int rows = 0;    // output rows per invocation; 0: the kernel's choice
+  int pixels = 0;  // output pixels along x per invocation; 0: the kernel's choice
+  nn::Tiling tiling = nn::Tiling::Blocks;
 };
 
 void PrintTo(const ConvCase& c, std::ostream* os) {
@@ -48,9 +50,9 @@ TEST_P(ConvTest, MatchesCpuReference) {
                                  : conv2d(all, weight, bias, c.outChannels, c.kernel, c.stride);
   expected = activate(expected, c.activation, slope);
 
-  nn::ConvShape shape{uint32_t(c.width), uint32_t(c.height), c.inputs,     c.outChannels, c.kernel,
-                      c.stride,          c.transposed,       c.activation, slope,         c.rows};
-  nn::ConvKernel kernel(setup(c.precision), shape, weight, bias, c.name);
+  nn::ConvShape shape{uint32_t(c.width), uint32_t(c.height), c.inputs, c.outChannels, c.kernel, c.stride,
+                      c.transposed,      c.activation,       slope,    c.rows,        c.pixels};
+  nn::ConvKernel kernel(setup(c.precision, c.tiling), shape, weight, bias, c.name);
   std::vector<nn::FeatureMap> maps;
   for (const CpuMap& input : inputs) maps.push_back(upload(input, c.precision));
   std::vector<const nn::FeatureMap*> pointers;
@@ -67,8 +69,10 @@ TEST_P(ConvTest, MatchesCpuReference) {
 
 // Output rows per invocation are forced on some small maps (the kernel would choose fewer) so that blocks
 // overhang the map; 40 and 36 input channels need a loop of unrolled slices plus a remainder, and 40 -> 48
-// needs two weight chunks.
+// needs two weight chunks. Pixels tiling shrinks every block of these small maps to one pixel (nn/kernel.h);
+// 2 x 2 blocks are forced once.
 using C = ConvCase;
+const nn::Tiling kPixels = nn::Tiling::Pixels;
 const Activation kRelu = Activation::Relu, kLeaky = Activation::LeakyRelu, kGelu = Activation::Gelu,
                  kSilu = Activation::Silu, kNone = Activation::None;
 INSTANTIATE_TEST_SUITE_P(Layers, ConvTest,
@@ -219,7 +223,46 @@ INSTANTIATE_TEST_SUITE_P(Layers, ConvTest,
                                              .width = 5,
                                              .activation = kNone,
                                              .transposed = true,
-                                             .precision = Precision::Fp16}),
+                                             .precision = Precision::Fp16},
+                                           C{.name = "pixels_concat_40_3to10",
+                                             .inputs = {40, 3},
+                                             .outChannels = 10,
+                                             .kernel = 3,
+                                             .stride = 1,
+                                             .height = 9,
+                                             .width = 7,
+                                             .activation = kRelu,
+                                             .tiling = kPixels},
+                                           C{.name = "pixels_stride2",
+                                             .inputs = {5},
+                                             .outChannels = 6,
+                                             .kernel = 3,
+                                             .stride = 2,
+                                             .height = 11,
+                                             .width = 9,
+                                             .activation = kLeaky,
+                                             .tiling = kPixels},
+                                           C{.name = "blocks_2x2_overhanging",
+                                             .inputs = {6},
+                                             .outChannels = 5,
+                                             .kernel = 3,
+                                             .stride = 1,
+                                             .height = 9,
+                                             .width = 7,
+                                             .activation = kRelu,
+                                             .rows = 2,
+                                             .pixels = 2},
+                                           C{.name = "pixels_transposed_fp16",
+                                             .inputs = {12},
+                                             .outChannels = 10,
+                                             .kernel = 2,
+                                             .stride = 2,
+                                             .height = 5,
+                                             .width = 7,
+                                             .activation = kRelu,
+                                             .transposed = true,
+                                             .precision = Precision::Fp16,
+                                             .tiling = kPixels}),
                          [](const ::testing::TestParamInfo<ConvCase>& info) {
                            return std::string(info.param.name);
                          });

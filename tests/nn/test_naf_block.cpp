@@ -17,6 +17,7 @@ struct NafCase {
   int channels, dwExpand, ffnExpand, height, width;
   Precision precision = Precision::Fp32;
   int projection = 0;  // a fused 1x1 conv after the block (an adapter's head)
+  nn::Tiling tiling = nn::Tiling::Blocks;
 };
 
 void PrintTo(const NafCase& c, std::ostream* os) {
@@ -73,7 +74,7 @@ TEST_P(NafBlockTest, MatchesCpuReference) {
 
   const nn::NafShape shape{uint32_t(c.width), uint32_t(c.height), c.channels, c.dwExpand, c.ffnExpand, eps,
                            c.projection};
-  nn::NafBlockKernel kernel(setup(c.precision), shape, parameters, c.name);
+  nn::NafBlockKernel kernel(setup(c.precision, c.tiling), shape, parameters, c.name);
   const nn::FeatureMap in = upload(input, c.precision);
   nn::FeatureMap out = empty(shape.output(), c.precision);
   gpu::Sequence sequence(context());
@@ -89,7 +90,9 @@ INSTANTIATE_TEST_SUITE_P(
                       NafCase{"c7_ffn4", 7, 2, 4, 10, 11}, NafCase{"c16_many_workgroups", 16, 2, 2, 37, 40},
                       NafCase{"c8_fp16", 8, 2, 2, 12, 9, Precision::Fp16},
                       NafCase{"c7_head2", 7, 2, 2, 13, 10, Precision::Fp32, 2},
-                      NafCase{"c16_head5", 16, 2, 2, 9, 11, Precision::Fp32, 5}),
+                      NafCase{"c16_head5", 16, 2, 2, 9, 11, Precision::Fp32, 5},
+                      NafCase{"c7_head2_pixels", 7, 2, 2, 13, 10, Precision::Fp32, 2, nn::Tiling::Pixels},
+                      NafCase{"c24_pixels_fp16", 24, 2, 2, 9, 11, Precision::Fp16, 0, nn::Tiling::Pixels}),
     [](const ::testing::TestParamInfo<NafCase>& info) { return std::string(info.param.name); });
 
 }  // namespace

@@ -22,11 +22,12 @@ struct ParityCase {
   const char* network;
   Precision precision = Precision::Fp32;
   bool fuseProjections = true;
+  nn::Tiling tiling = nn::Tiling::Device;
 };
 
 std::string caseName(const ParityCase& c) {
   return std::string(c.network) + (c.precision == Precision::Fp16 ? "_fp16" : "_fp32") +
-         (c.fuseProjections ? "" : "_unfused");
+         (c.fuseProjections ? "" : "_unfused") + (c.tiling == nn::Tiling::Pixels ? "_pixels" : "");
 }
 
 void PrintTo(const ParityCase& c, std::ostream* os) {
@@ -72,7 +73,8 @@ TEST_P(NetworkParity, MatchesPyTorch) {
   gpu::Image a(context(), {width, height, 1, VK_FORMAT_R32G32B32A32_SFLOAT, usage, "lightmap A"});
   gpu::Image b(context(), {width, height, 1, VK_FORMAT_R32G32B32A32_SFLOAT, usage, "lightmap B"});
 
-  nn::Network network(context(), pipelineCache(), weights, width, height, {c.precision, c.fuseProjections});
+  nn::Network network(context(), pipelineCache(), weights, width, height,
+                      {c.precision, c.fuseProjections, c.tiling});
   gpu::Sequence sequence(context(), network.stageCount());
   network.record(sequence, guide, a, b, true);
   sequence.submit();
@@ -94,7 +96,9 @@ TEST_P(NetworkParity, MatchesPyTorch) {
 INSTANTIATE_TEST_SUITE_P(
     Vectors, NetworkParity,
     ::testing::Values(ParityCase{"default"}, ParityCase{"tiny"}, ParityCase{"tiny", Precision::Fp32, false},
-                      ParityCase{"fine_alpha"}, ParityCase{"half_stem"}, ParityCase{"naf_wide"}),
+                      ParityCase{"fine_alpha"}, ParityCase{"half_stem"}, ParityCase{"naf_wide"},
+                      ParityCase{"default", Precision::Fp32, true, nn::Tiling::Pixels},
+                      ParityCase{"naf_wide", Precision::Fp32, true, nn::Tiling::Pixels}),
     [](const ::testing::TestParamInfo<ParityCase>& info) { return caseName(info.param); });
 // Label "long" (tests/nn/CMakeLists.txt): about a minute of pipeline compilation on a cold shader cache.
 INSTANTIATE_TEST_SUITE_P(LONG_Vectors, NetworkParity,

@@ -1,0 +1,95 @@
+#!/bin/bash
+# Issue #24 on a lent NVIDIA machine (docs/gpu.md), in one call: the suite under validation on NVIDIA's
+# Vulkan driver, `sixway bench` at the default and the paper's sizes, and the model study's larger networks
+# trained with PyTorch on the GPU from a dataset made there by `sixway dataset` (same config and seed as
+# data/inputs here). Needs .gl/ (Debian's Vulkan loader and libglvnd as .debs) and .dev/bundle.tar.xz
+# (tools/gpu/bundle.sh). Every step has a deadline so that the results come back inside the call.
+#
+# Usage: tools/gpu/nvidia_check.sh [seconds]   (default 520; results in $OUT or out/gpu)
+set -u
+root="$(cd "$(dirname "$0")/../.." && pwd)"
+cd "$root"
+budget=${1:-520}
+start=$(date +%s)
+left() { echo $((start + budget - $(date +%s))); }
+step() { echo "== $(($(date +%s) - start)) s: $*"; }
+out=${OUT:-$root/out/gpu}
+work="$root/.dev/results"
+mkdir -p "$out" "$work"
+exec > >(tee "$out/log.txt") 2>&1
+
+step "set-up"
+for f in .gl/*.deb; do dpkg -x "$f" /; done
+ldconfig
+tar -xJf .dev/bundle.tar.xz -C .dev
+rm -rf build && mv .dev/build build
+# The build's test lists and compiled-in paths name /work/main.
+if [[ $root != /work/main ]]; then
+  [[ -e /work/main ]] && { echo "/work/main exists already; the build's paths would not resolve"; exit 1; }
+  mkdir -p /work && ln -s "$root" /work/main
+fi
+for tool in cmake ctest; do [[ -x /usr/bin/$tool ]] || ln -s "$(command -v $tool)" /usr/bin/$tool; done
+icd=$(ls /usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json /usr/share/vulkan/icd.d/nvidia_icd.json \
+  /etc/vulkan/icd.d/nvidia_icd.json 2>/dev/null | head -1)
+[[ -n $icd ]] || icd=$(find / -xdev -name 'nvidia_icd*.json' 2>/dev/null | head -1)
+echo "ICD manifest: $icd"
+# Our executables get the bundled libraries; PyTorch keeps the machine's own.
+vk=(env LD_LIBRARY_PATH="$root/.dev/lib" VK_LAYER_PATH="$root/.dev/layers" VK_DRIVER_FILES="$icd"
+  VK_ICD_FILENAMES="$icd")
+sixway=build/src/app/sixway
+nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm,clocks.max.mem --format=csv
+"${vk[@]}" $sixway info
+
+step "bench: every section, default sizes, both population storages (GPU otherwise idle)"
+"${vk[@]}" timeout 180 $sixway bench --population-storage fp32 fp16 --warmup 3 --repeats 20 --repeats-large 10 \
+  --report "$work/bench.json"
+step "bench: network, fp16 feature maps"
+"${vk[@]}" timeout 60 $sixway bench --sections network --size 128 256 512 --fp16 --warmup 5 --repeats 20 \
+  --report "$work/bench_fp16.json"
+for weights in .dev/study/*.safetensors; do
+  name=$(basename "$weights" .safetensors)
+  step "bench: network $name"
+  "${vk[@]}" timeout 30 $sixway bench --sections network --size 256 --warmup 5 --repeats 20 --weights "$weights" \
+    --report "$work/bench_$name.json"
+  "${vk[@]}" timeout 30 $sixway bench --sections network --size 256 --warmup 5 --repeats 20 --weights "$weights" \
+    --fp16 --report "$work/bench_${name}_fp16.json"
+done
+
+step "dataset (4 workers) beside the test suite"
+for i in 0 1 2 3; do
+  "${vk[@]}" timeout 180 $sixway dataset --config tools/datasets/studies/inputs.json --out data/inputs \
+    --shard $i/4 >"$work/dataset_$i.log" 2>&1 &
+  workers+=($!)
+done
+(cd build && "${vk[@]}" SIXWAY_VALIDATE=1 timeout 300 ctest -j12 --timeout 240 -LE long -E '^nn\.python_' \
+  --output-junit "$work/ctest.xml" >"$work/ctest.log" 2>&1; echo "ctest exit $?" >>"$work/ctest.log") &
+suite=$!
+wait "${workers[@]}"
+step "dataset done: $(ls data/inputs/shard_*.safetensors 2>/dev/null | wc -l) shards"
+tail -n 2 "$work"/dataset_*.log
+
+trainers=()
+if [[ $(ls data/inputs/shard_*.safetensors 2>/dev/null | wc -l) == 16 ]]; then
+  for cfg in base wide wider levels4; do
+    python3 tools/train.py --config tools/train_configs/gpu/${cfg}_long_ms.json --out data/gpu_$cfg --force \
+      >"$work/train_$cfg.log" 2>&1 &
+    trainers+=($!)
+  done
+fi
+wait $suite
+step "suite done"
+tail -n 25 "$work/ctest.log"
+while (($(left) > 30)) && [[ -n $(jobs -pr) ]]; do sleep 5; done
+step "trainings: $(jobs -pr | wc -l) still running (stopped now)"
+kill "${trainers[@]}" 2>/dev/null
+sleep 2
+for cfg in base wide wider levels4; do
+  dir=data/gpu_$cfg
+  [[ -d $dir ]] || continue
+  mkdir -p "$work/$cfg"
+  cp "$dir"/{config.json,log.jsonl,metrics.json,sixway-unet.safetensors} "$work/$cfg/" 2>/dev/null
+  [[ -f $dir/sixway-unet.safetensors ]] || cp "$dir/checkpoint.pt" "$work/$cfg/" 2>/dev/null
+  tail -n 3 "$work/train_$cfg.log"
+done
+tar -C .dev -czf "$out/results.tar.gz" results
+step "done"
