@@ -210,21 +210,16 @@ void Sequence::pushBindings(VkCommandBuffer commands, const Pipeline& pipeline,
                                  static_cast<uint32_t>(writes.size()), writes.data());
 }
 
-void Sequence::dispatch(const Pipeline& pipeline, const std::vector<Binding>& bindings,
-                        std::span<const std::byte> pushConstants, uint32_t groupsX, uint32_t groupsY,
-                        uint32_t groupsZ) {
-  requireRecording("dispatch");
+// What every compute dispatch checks and records before its vkCmdDispatch*: the push constants' size, the
+// barrier its bindings need, then per slot the pipeline, bindings and push constants.
+void Sequence::beginDispatch(const Pipeline& pipeline, const std::vector<Binding>& bindings,
+                             std::span<const std::byte> pushConstants) {
   if (pipeline.bindPoint() != VK_PIPELINE_BIND_POINT_COMPUTE)
     throw GpuError(pipeline.name() + ": dispatch needs a compute pipeline");
   if (pushConstants.size() != pipeline.pushConstantBytes())
     throw GpuError(pipeline.name() + ": " + std::to_string(pushConstants.size()) +
                    " bytes of push constants given, the pipeline takes " +
                    std::to_string(pipeline.pushConstantBytes()));
-  const auto& maxGroups = context_->limits().maxComputeWorkGroupCount;
-  if (groupsX > maxGroups[0] || groupsY > maxGroups[1] || groupsZ > maxGroups[2])
-    throw GpuError(pipeline.name() + ": dispatch of " + std::to_string(groupsX) + "x" +
-                   std::to_string(groupsY) + "x" + std::to_string(groupsZ) +
-                   " groups exceeds the device's limit; reduce the grid");
   Touch touch;
   for (const Binding& b : bindings) {
     addTouch(touch, b);
@@ -237,21 +232,51 @@ void Sequence::dispatch(const Pipeline& pipeline, const std::vector<Binding>& bi
     if (!pushConstants.empty())
       vkCmdPushConstants(slot.commands, pipeline.layout(), pipeline.stages(), 0,
                          static_cast<uint32_t>(pushConstants.size()), pushConstants.data());
-    if (groupsX && groupsY && groupsZ) vkCmdDispatch(slot.commands, groupsX, groupsY, groupsZ);
   }
+}
+
+void Sequence::dispatch(const Pipeline& pipeline, const std::vector<Binding>& bindings,
+                        std::span<const std::byte> pushConstants, uint32_t groupsX, uint32_t groupsY,
+                        uint32_t groupsZ) {
+  requireRecording("dispatch");
+  const auto& maxGroups = context_->limits().maxComputeWorkGroupCount;
+  if (groupsX > maxGroups[0] || groupsY > maxGroups[1] || groupsZ > maxGroups[2])
+    throw GpuError(pipeline.name() + ": dispatch of " + std::to_string(groupsX) + "x" +
+                   std::to_string(groupsY) + "x" + std::to_string(groupsZ) +
+                   " groups exceeds the device's limit; reduce the grid");
+  beginDispatch(pipeline, bindings, pushConstants);
+  if (groupsX && groupsY && groupsZ)
+    for (const Slot& slot : slots_) vkCmdDispatch(slot.commands, groupsX, groupsY, groupsZ);
+}
+
+VkDispatchIndirectCommand linearGroups(const Context& context, uint64_t invocations, uint32_t groupSize,
+                                       const std::string& what) {
+  const uint64_t groups = (invocations + groupSize - 1) / groupSize;
+  const uint64_t maxX = context.limits().maxComputeWorkGroupCount[0];
+  const uint64_t x = std::min(groups, maxX), y = (groups + x - 1) / std::max<uint64_t>(x, 1);
+  if (y > context.limits().maxComputeWorkGroupCount[1])
+    throw GpuError(what + ": " + std::to_string(invocations) +
+                   " invocations exceed the device's dispatch limit; reduce the grid");
+  return {uint32_t(std::max<uint64_t>(x, 1)), uint32_t(std::max<uint64_t>(y, 1)), 1};
 }
 
 void Sequence::dispatchLinear(const Pipeline& pipeline, const std::vector<Binding>& bindings,
                               std::span<const std::byte> pushConstants, uint64_t invocations,
                               uint32_t groupSize) {
-  const uint64_t groups = (invocations + groupSize - 1) / groupSize;
-  const uint64_t maxX = context_->limits().maxComputeWorkGroupCount[0];
-  const uint64_t x = std::min(groups, maxX), y = (groups + x - 1) / std::max<uint64_t>(x, 1);
-  if (y > context_->limits().maxComputeWorkGroupCount[1])
-    throw GpuError(pipeline.name() + ": " + std::to_string(invocations) +
-                   " invocations exceed the device's dispatch limit; reduce the grid");
-  dispatch(pipeline, bindings, pushConstants, uint32_t(std::max<uint64_t>(x, 1)),
-           uint32_t(std::max<uint64_t>(y, 1)));
+  const VkDispatchIndirectCommand groups = linearGroups(*context_, invocations, groupSize, pipeline.name());
+  dispatch(pipeline, bindings, pushConstants, groups.x, groups.y);
+}
+
+void Sequence::dispatchIndirect(const Pipeline& pipeline, const std::vector<Binding>& bindings,
+                                std::span<const std::byte> pushConstants, const Buffer& args,
+                                uint64_t offset) {
+  requireRecording("dispatchIndirect");
+  if (offset % 4 != 0 || offset + sizeof(VkDispatchIndirectCommand) > args.size())
+    throw GpuError(pipeline.name() + ": indirect arguments at byte " + std::to_string(offset) + " of " +
+                   args.name() + " (" + std::to_string(args.size()) + " bytes)");
+  noteFrameParameters(reads(args));
+  beginDispatch(pipeline, bindings, pushConstants);
+  for (const Slot& slot : slots_) vkCmdDispatchIndirect(slot.commands, args.handle(), offset);
 }
 
 void Sequence::render(const RenderTargets& targets, std::span<const Draw> draws) {

@@ -130,6 +130,16 @@ class Sequence {
                       uint64_t invocations, uint32_t groupSize) {
     dispatchLinear(pipeline, bindings, std::as_bytes(std::span(&push, 1)), invocations, groupSize);
   }
+  // A dispatch whose group counts the GPU reads from `args` at `offset` (VkDispatchIndirectCommand) when it
+  // runs; zero groups dispatch nothing. `args` is written by the host between executions (a FrameParameters
+  // buffer with VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT), so no barrier orders it against the recorded work.
+  void dispatchIndirect(const Pipeline& pipeline, const std::vector<Binding>& bindings,
+                        std::span<const std::byte> pushConstants, const Buffer& args, uint64_t offset);
+  template <typename Push>
+  void dispatchIndirect(const Pipeline& pipeline, const std::vector<Binding>& bindings, const Push& push,
+                        const Buffer& args, uint64_t offset) {
+    dispatchIndirect(pipeline, bindings, std::as_bytes(std::span(&push, 1)), args, offset);
+  }
   // One dynamic-rendering pass: the barriers for all draws are placed before it begins.
   void render(const RenderTargets& targets, std::span<const Draw> draws);
   void fill(const Buffer& buffer, uint32_t word);
@@ -172,6 +182,8 @@ class Sequence {
   void collectTimes(const Slot& slot, bool wait);
   void recordInto(VkCommandBuffer commands, uint64_t frame, bool withReadbacks);
   void noteFrameParameters(const Binding& binding);
+  void beginDispatch(const Pipeline& pipeline, const std::vector<Binding>& bindings,
+                     std::span<const std::byte> pushConstants);
 
   const Context* context_;
   VkCommandPool pool_ = VK_NULL_HANDLE;
@@ -202,5 +214,10 @@ class Sequence {
   std::vector<StageTime> times_;
   uint32_t barriers_ = 0;
 };
+
+// The workgroups of dispatchLinear(): x up to the device's limit, wrapping into y; throws GpuError naming
+// `what` beyond the y limit.
+VkDispatchIndirectCommand linearGroups(const Context& context, uint64_t invocations, uint32_t groupSize,
+                                       const std::string& what);
 
 }  // namespace sixway::gpu

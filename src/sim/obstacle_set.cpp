@@ -16,6 +16,8 @@
 namespace sixway::sim {
 namespace {
 
+constexpr uint32_t kFlagsGroupSize = 64;  // obstacles.comp's local_size_x
+
 template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
@@ -45,6 +47,7 @@ ObstacleSet::ObstacleSet(const gpu::Context& context, const gpu::PipelineCache& 
   desc.pushConstantBytes = sizeof(uint32_t);
   for (int a = 0; a < 3; ++a) desc.spec.set(spec::kSize[a], scene.grid.size[a]);
   flagsPipeline_ = std::make_unique<gpu::Pipeline>(context, cache, desc);
+  flagsGroups_ = gpu::linearGroups(context, cells, kFlagsGroupSize, "cell flags");
   if (scene.obstacles.size() > kMaxObstacles)
     throw io::InputError(scene.name, "obstacles: at most " + std::to_string(kMaxObstacles) +
                                          " are supported, got " + std::to_string(scene.obstacles.size()));
@@ -168,10 +171,11 @@ void ObstacleSet::voxelizeMeshes(const gpu::Context& context, const gpu::Pipelin
   sequence.submit();
 }
 
-void ObstacleSet::recordFlags(gpu::Sequence& sequence, const gpu::Buffer& params, uint32_t slot) const {
-  sequence.dispatchLinear(*flagsPipeline_,
-                          {gpu::reads(params), gpu::reads(occupancy_), gpu::readsWrites(flags_)}, slot,
-                          cells_, 64);
+void ObstacleSet::recordFlags(gpu::Sequence& sequence, const gpu::Buffer& params,
+                              const gpu::Buffer& dispatchArgs, uint32_t slot) const {
+  sequence.dispatchIndirect(*flagsPipeline_,
+                            {gpu::reads(params), gpu::reads(occupancy_), gpu::readsWrites(flags_)}, slot,
+                            dispatchArgs, slot * kFlagsDispatchStride);
 }
 
 void ObstacleSet::setMotion(size_t obstacle, std::optional<io::Motion> motion) {

@@ -39,8 +39,13 @@ class ObstacleSet {
   glm::vec3 positionAt(size_t obstacle, double seconds) const;
   // Scales every inlet's velocity (not its smoke) from the next step on; 1 is the scene's.
   void setInletStrength(float strength) { inletStrength_ = strength; }
-  // Marks each lattice cell with the obstacle and the inlet covering it at step params[slot].
-  void recordFlags(gpu::Sequence& sequence, const gpu::Buffer& params, uint32_t slot) const;
+  // Marks each lattice cell with the obstacle and the inlet covering it at step params[slot], in as many
+  // workgroups as dispatchArgs[slot] says (a VkDispatchIndirectCommand every kFlagsDispatchStride bytes):
+  // flagsGroups(), or none where FlagsSchedule skips the step.
+  void recordFlags(gpu::Sequence& sequence, const gpu::Buffer& params, const gpu::Buffer& dispatchArgs,
+                   uint32_t slot) const;
+  VkDispatchIndirectCommand flagsGroups() const { return flagsGroups_; }
+  static constexpr uint64_t kFlagsDispatchStride = 16;
 
   // Per lattice cell: obstacle and inlet (shaders/common/sim_grid.glsl, FLAG_*).
   const gpu::Buffer& flags() const { return flags_; }
@@ -66,6 +71,7 @@ class ObstacleSet {
   uint64_t cells_;  // of the lattice
   gpu::Buffer flags_;
   std::unique_ptr<gpu::Pipeline> flagsPipeline_;
+  VkDispatchIndirectCommand flagsGroups_;
   std::vector<Placed> obstacles_;
   std::vector<TimedInlet> inlets_;
   float inletStrength_ = 1.0f;

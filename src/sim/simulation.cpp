@@ -39,6 +39,9 @@ Simulation::Simulation(const gpu::Context& context, const gpu::PipelineCache& ca
   params_ = gpu::Buffer(context, uint64_t(capacity_) * sizeof(StepParams), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                         gpu::MemoryKind::FrameParameters, "step parameters");
   forces_ = gpu::Buffer::storage(context, uint64_t(capacity_) * kMaxObstacles * 16, "obstacle forces");
+  flagsDispatch_ =
+      gpu::Buffer(context, uint64_t(capacity_) * ObstacleSet::kFlagsDispatchStride,
+                  VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, gpu::MemoryKind::FrameParameters, "flags dispatch");
   smoke_->upload(std::vector<glm::vec2>(smoke_->cells(), glm::vec2(0)));
   lbm_->initialize(std::vector<glm::vec4>(lbm_->cells(), glm::vec4(0, 0, 0, 1)), 0);
 }
@@ -96,7 +99,7 @@ gpu::Sequence& Simulation::sequenceFor(uint32_t steps, int parity) {
   for (uint32_t s = 0; s < steps; ++s) {
     const int from = (parity + int(s)) % 2;
     sequence.beginStage("obstacles");
-    obstacles_->recordFlags(sequence, params_, s);
+    obstacles_->recordFlags(sequence, params_, flagsDispatch_, s);
     sequence.endStage();
     if (obstacleCount > 0) {
       sequence.beginStage("forces");
@@ -123,9 +126,13 @@ gpu::Sequence& Simulation::sequenceFor(uint32_t steps, int parity) {
 
 void Simulation::fillStepParameters(uint32_t steps) {
   auto* params = static_cast<StepParams*>(params_.mapped());
+  auto* dispatch = static_cast<std::byte*>(flagsDispatch_.mapped());
   for (uint32_t s = 0; s < steps; ++s) {
     std::memset(&params[s], 0, sizeof(StepParams));
     obstacles_->fill(params[s], step_ + s);
+    const VkDispatchIndirectCommand groups =
+        flagsSchedule_.needsPass(params[s]) ? obstacles_->flagsGroups() : VkDispatchIndirectCommand{0, 0, 0};
+    std::memcpy(dispatch + s * ObstacleSet::kFlagsDispatchStride, &groups, sizeof(groups));
   }
 }
 

@@ -15,6 +15,7 @@
 #include "gpu/sequence.h"
 #include "io/dense_grid.h"
 #include "io/scene.h"
+#include "sim/flags_schedule.h"
 #include "sim/lattice_units.h"
 #include "sim/lbm_solver.h"
 #include "sim/obstacle_set.h"
@@ -79,6 +80,8 @@ class Simulation {
   // The last submission's measurements (forces of every step in it).
   const AdvanceReport& report() const { return report_; }
   uint64_t step() const { return step_; }
+  // Steps whose cell flags were computed (the others kept the last: FlagsSchedule).
+  uint64_t flagPasses() const { return flagsSchedule_.passes(); }
   double seconds() const { return double(step_) * units_.stepSeconds; }
   const LatticeUnits& units() const { return units_; }
   const io::Scene& scene() const { return scene_; }
@@ -106,6 +109,8 @@ class Simulation {
   std::unique_ptr<gpu::ReduceStats> speedStats_, densityStats_;
   uint32_t capacity_;  // steps per submission
   gpu::Buffer params_, forces_;
+  gpu::Buffer flagsDispatch_;  // per step slot: the flags pass's workgroups (ObstacleSet::recordFlags)
+  FlagsSchedule flagsSchedule_;
   std::map<std::pair<uint32_t, int>, std::unique_ptr<gpu::Sequence>> sequences_;
   // record(): what each recent frame ran (its results come back framesInFlight frames later), and the
   // sequences a steered obstacle replaced, kept until no frame in flight can use them.

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <numeric>
 
 #include "cpu_shapes.h"
 #include "cpu_simulation.h"
@@ -22,7 +23,9 @@
 #include "gpu_state.h"
 #include "io/obj.h"
 #include "scene_fixtures.h"
+#include "sim/flags_schedule.h"
 #include "sim/obstacle_set.h"
+#include "sim/simulation.h"
 #include "support/gpu_fixture.h"
 #include "support/temp_dir.h"
 
@@ -46,12 +49,16 @@ class ObstacleFlagsTest : public GpuTest {
     const sim::ObstacleSet set(context(), pipelineCache(), scene, sim::latticeUnits(scene));
     gpu::Buffer params(context(), sizeof(sim::StepParams), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                        gpu::MemoryKind::HostUpload, "step parameters");
+    gpu::Buffer dispatch(context(), sim::ObstacleSet::kFlagsDispatchStride,
+                         VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, gpu::MemoryKind::HostUpload, "flags dispatch");
+    const VkDispatchIndirectCommand groups = set.flagsGroups();
+    std::memcpy(dispatch.mapped(), &groups, sizeof(groups));
     for (uint64_t step : steps) {
       auto* p = static_cast<sim::StepParams*>(params.mapped());
       std::memset(p, 0, sizeof(sim::StepParams));
       set.fill(*p, step);
       gpu::Sequence sequence(context());
-      set.recordFlags(sequence, params, 0);
+      set.recordFlags(sequence, params, dispatch, 0);
       sequence.submit();
     }
     return set.flags().download<uint32_t>();
@@ -136,6 +143,58 @@ TEST_F(ObstacleFlagsTest, MovingSphereRemembersTheCellsItLeft) {
       sceneWith(
           {{"obstacles", {{{"type", "sphere"}, {"radius", 4.2}, {"motion", {{"keyframes", keyframes}}}}}}}),
       {0, 7});
+}
+
+// The simulation computes the flags only when the geometry changed in the last two steps (FlagsSchedule):
+// with a static sphere and an inlet that starts at 3 s (step 3), steps 0, 1, 3 and 4; after ten steps its
+// flags are the ones a pass at every step gives.
+TEST_F(ObstacleFlagsTest, SteadyGeometryIsMarkedOnlyAfterAChange) {
+  const io::Scene scene = parseLatticeScene(
+      sceneWith({{"obstacles", {{{"type", "sphere"}, {"center", {9.3, 7.7, 5.9}}, {"radius", 4.23}}}},
+                 {"inlets",
+                  {{{"shape", "disk"},
+                    {"center", {19.0, 2.2, 6.0}},
+                    {"radius", 2.3},
+                    {"normal", {0.0, 1.0, 0.0}},
+                    {"velocity", 0.05},
+                    {"start", 3.0}}}}}));
+  sim::Simulation simulation(context(), pipelineCache(), scene);
+  simulation.advance(10);
+  EXPECT_EQ(simulation.flagPasses(), 4u);
+  std::vector<uint64_t> every(10);
+  std::iota(every.begin(), every.end(), 0);
+  EXPECT_EQ(simulation.obstacles().flags().download<uint32_t>(), gpuFlags(scene, every));
+}
+
+TEST_F(ObstacleFlagsTest, AMovingObstacleIsMarkedEveryStep) {
+  const json keyframes = {{{"time", 0.0}, {"position", {5.3, 8.7, 4.9}}},
+                          {{"time", 90.0}, {"position", {15.3, 6.7, 7.9}}}};
+  const io::Scene scene = parseLatticeScene(sceneWith(
+      {{"obstacles", {{{"type", "sphere"}, {"radius", 4.2}, {"motion", {{"keyframes", keyframes}}}}}}}));
+  sim::Simulation simulation(context(), pipelineCache(), scene);
+  simulation.advance(6);
+  EXPECT_EQ(simulation.flagPasses(), 6u);
+}
+
+// The schedule itself: velocities and the inlets' smoke do not count as a change, a placement does.
+TEST(FlagsScheduleTest, PassesFollowTheGeometry) {
+  sim::FlagsSchedule schedule;
+  sim::StepParams params{};
+  params.counts = glm::uvec4(1, 1, 0, 0);
+  params.obstacles[0].centre = glm::vec4(4, 5, 6, 0);
+  params.inlets[0].smoke = glm::vec4(1, 0.5f, 1, 0);
+  std::vector<bool> passes;
+  for (int step = 0; step < 8; ++step) {
+    params.counts.z = step;
+    params.obstacles[0].velocity.x = 0.01f * step;
+    params.inlets[0].velocity.y = 0.02f * step;
+    params.inlets[0].smoke.x = 1.0f + step;
+    if (step == 5) params.obstacles[0].centre.x += 0.5f;
+    passes.push_back(schedule.needsPass(params));
+  }
+  EXPECT_EQ(passes, (std::vector<bool>{true, true, false, false, false, true, true, false}));
+  EXPECT_EQ(schedule.passes(), 4u);
+  EXPECT_EQ(schedule.steps(), 8u);
 }
 
 void writeText(const std::filesystem::path& path, const std::string& text) {
