@@ -36,9 +36,10 @@ class PipelinePool {
 
 // How much of a map one invocation computes. Blocks: several output pixels (and every channel in the NAF
 // kernels), so that each weight or texel load serves many outputs; fastest on lavapipe, whose few threads are
-// filled anyway. Pixels: blocks shrink until a dispatch has kGpuInvocations invocations, down to one pixel,
-// since a GPU's tens of thousands of threads idle otherwise (NVIDIA's H200 ran the 64x64 middle of the UNet
-// at the same speed at 256² and 512² maps: too few invocations). Device: Blocks on a CPU device, else Pixels.
+// filled anyway. Pixels: conv blocks shrink until a dispatch has kGpuInvocations invocations (down to one
+// pixel) and the NAF kernels take one pixel each, since a GPU's tens of thousands of threads idle otherwise
+// (NVIDIA's H200 ran the 64x64 middle of the UNet at the same speed at 256² and 512² maps: too few
+// invocations). Device: Blocks on a CPU device, else Pixels.
 enum class Tiling { Device, Blocks, Pixels };
 Tiling resolveTiling(Tiling requested, const gpu::Context& context);
 const char* tilingName(Tiling tiling);
