@@ -2,7 +2,8 @@
 # Issue #20's model study (docs/network-study.md, "The model study"): for the base network and each variant
 # trained by tools/train_configs/studies/model_<variant>_ms.json into data/study_model_<variant>_ms, the held-out
 # PSNR in GLSL (`sixway eval --dataset data/inputs --target multiple`) and the network's time on this device
-# (`sixway bench --sections network`), then the table (tools/results/model_study_table.py).
+# (`sixway bench --sections network`), then the table (tools/results/model_study_table.py); a variant also trained
+# against the single-scattering targets (data/study_model_<variant>_ss) is evaluated against those too.
 #
 # The base is the plume-only MS network shipped before commit cd51124 (inputs_4ch_guide_alpha_ms.json: the same
 # data, steps and seed as the variants); it is taken from git history.
@@ -38,5 +39,11 @@ for v in "${variants[@]}"; do
     --force >"$out/${v}_eval.log" 2>&1
   "$sixway" bench --sections network --size 128 256 --repeats 7 --weights "$weights" \
     --report "$out/${v}_bench.json" --force >"$out/${v}_bench.log" 2>&1
+  # The same variant trained against the single-scattering targets, where it was (model_<variant>_ss.json).
+  ss="data/study_model_${v}_ss/sixway-unet.safetensors"
+  if [[ -f $ss ]]; then
+    "$sixway" eval --dataset data/inputs --target single --weights "$ss" --report "$out/${v}_ss_eval.json" \
+      --force >"$out/${v}_ss_eval.log" 2>&1
+  fi
 done
 /usr/bin/python3 "$root/tools/results/model_study_table.py" "$out"

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """The model study's table (docs/network-study.md) from what tools/results/model_study.sh wrote into DIR:
 <variant>_eval.json (sixway eval --dataset), <variant>_bench.json (sixway bench --sections network) and the
-weights' own metadata (config, parameters).
+weights' own metadata (config, parameters); where the variant was also trained against the single-scattering
+targets, <variant>_ss_eval.json (sixway eval --dataset --target single of data/study_model_<variant>_ss).
 
 Usage: /usr/bin/python3 tools/results/model_study_table.py out/model_study
 """
@@ -43,6 +44,8 @@ def row(directory, variant):
     parameters = sum(t.size for t in tensors.values())
     sizes = {s["size"]: s for s in bench["sizes"]}
     splits = evaluation["splits"]
+    ss_path = os.path.join(directory, f"{variant}_ss_eval.json")
+    ss = json.load(open(ss_path))["splits"] if os.path.exists(ss_path) else None
     return {
         "variant": variant,
         "model": describe(training["config"]["model"]),
@@ -54,19 +57,22 @@ def row(directory, variant):
         "camera": splits["heldout_camera"]["psnr_masked_db"],
         "lights": min(v for k, v in splits["heldout_sequence"]["pairs_psnr_masked_db"].items()
                       if k != "alpha_emissive"),
+        "ss": f"{ss['heldout_sequence']['psnr_masked_db']:.2f} / {ss['heldout_camera']['psnr_masked_db']:.2f}"
+              if ss else "–",
     }
 
 
 def main():
     directory = sys.argv[1]
-    variants = sorted(os.path.basename(p)[:-len("_eval.json")] for p in glob.glob(os.path.join(directory, "*_eval.json")))
+    variants = sorted(os.path.basename(p)[:-len("_eval.json")] for p in glob.glob(os.path.join(directory, "*_eval.json"))
+                      if not p.endswith("_ss_eval.json"))
     rows = sorted((row(directory, v) for v in variants), key=lambda r: r["gflop_256"])
     print("| variant | model | parameters | GFLOP at 256² | GLSL ms 128² | GLSL ms 256² | unseen sequences (dB) "
-          "| unseen cameras (dB) | weakest light pair, sequences (dB) |")
-    print("|---|---|---|---|---|---|---|---|---|")
+          "| unseen cameras (dB) | weakest light pair, sequences (dB) | SS-trained vs SS targets: sequences / cameras (dB) |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         print(f"| {r['variant']} | {r['model']} | {r['parameters']:,} | {r['gflop_256']:.2f} | {r['ms_128']:.1f} | "
-              f"{r['ms_256']:.1f} | {r['sequence']:.2f} | {r['camera']:.2f} | {r['lights']:.2f} |")
+              f"{r['ms_256']:.1f} | {r['sequence']:.2f} | {r['camera']:.2f} | {r['lights']:.2f} | {r['ss']} |")
 
 
 if __name__ == "__main__":
