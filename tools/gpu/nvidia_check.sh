@@ -91,7 +91,8 @@ for cfg in base wide wider levels4; do
   [[ -d $dir ]] || continue
   mkdir -p "$work/$cfg"
   cp "$dir"/{config.json,log.jsonl,metrics.json,sixway-unet.safetensors} "$work/$cfg/" 2>/dev/null
-  [[ -f $dir/sixway-unet.safetensors ]] || cp "$dir/checkpoint.pt" "$work/$cfg/" 2>/dev/null
+  # An unfinished training's checkpoint comes back on its own (a file may be 16 MiB at most).
+  [[ -f $dir/sixway-unet.safetensors ]] || cp "$dir/checkpoint.pt" "$out/checkpoint_$cfg.pt" 2>/dev/null
   tail -n 3 "$work/train_$cfg.log"
 done
 tar -C .dev -czf "$out/results.tar.gz" results
