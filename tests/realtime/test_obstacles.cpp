@@ -200,7 +200,7 @@ TEST_F(ObstaclesTest, BoxDepthMatchesRayIntersection) {
       if (!t) continue;
       const double expected = *t * glm::dot(ray.direction, dvec3(f.camera.forward));
       const double actual = viewDepthFromDepthBuffer(f.depthAt(x, y), f.range.near, f.range.far);
-      EXPECT_NEAR(actual, expected, 3e-4) << x << "," << y;
+      EXPECT_NEAR(actual, expected, 1e-4) << x << "," << y;
       worst = std::max(worst, std::abs(actual - expected));
       ++compared;
     }
@@ -504,8 +504,8 @@ TEST_F(ObstaclesTest, MovingSphereIsDrawnAtItsKeyframedPosition) {
 
 // (5) The Stanford bunny placed as a scene places it (scale, three rotations, translation): coverage equals a
 // ray–triangle test of the same OBJ triangles away from the silhouette, and the view depth agrees within
-// 3e-4 m (the same flat triangles: depth-buffer precision only, which Vulkan leaves to the rasterizer; lavapipe
-// stays under 1e-4 m, NVIDIA's H200 measured 1.45e-4 m at 2.6 m).
+// 1e-4 m on lavapipe (the same flat triangles: depth-buffer precision only, which Vulkan leaves to the
+// rasterizer), 3e-4 m elsewhere (NVIDIA's H200 measured 1.45e-4 m at 2.6 m).
 TEST_F(ObstaclesTest, MeshCoverageAndDepthMatchRayTriangleTest) {
   io::Obstacle bunny;
   bunny.shape = io::MeshObstacle{std::filesystem::path(SIXWAY_ASSETS_DIR) / "meshes/stanford-bunny.obj", 6.0f,
@@ -518,6 +518,7 @@ TEST_F(ObstaclesTest, MeshCoverageAndDepthMatchRayTriangleTest) {
   const auto covered = [&](double px, double py) { return cpu.hitPixel(px, py).has_value(); };
   int inside = 0, outside = 0;
   double worst = 0;
+  const double depthBound = context().driver().driverID == VK_DRIVER_ID_MESA_LLVMPIPE ? 1e-4 : 3e-4;
   for (int y = 0; y < kSize; ++y)
     for (int x = 0; x < kSize; ++x) {
       if (nearSilhouette(covered, x, y)) continue;
@@ -531,7 +532,7 @@ TEST_F(ObstaclesTest, MeshCoverageAndDepthMatchRayTriangleTest) {
       const Ray ray = pixelRay(f.camera, f.plane, x + 0.5, y + 0.5, kSize, kSize);
       const double expected = *t * glm::dot(ray.direction, dvec3(f.camera.forward));
       const double actual = viewDepthFromDepthBuffer(f.depthAt(x, y), f.range.near, f.range.far);
-      EXPECT_NEAR(actual, expected, 3e-4) << x << "," << y;
+      EXPECT_NEAR(actual, expected, depthBound) << x << "," << y;
       worst = std::max(worst, std::abs(actual - expected));
       ++inside;
     }

@@ -81,8 +81,9 @@ TEST_F(BakerTest, LightGridDepthsMatchTheCpuColumnIntegral) {
       worst = std::max(worst, std::fabs(gpu[i] - cpu[i]) / (1e-3 + cpu[i]));
     }
     EXPECT_GT(largest, 2.0) << render::sixWayChannelNames()[light];
-    // fp32 sums along the column; NVIDIA's H200 (FMA contraction) measured 1.09e-5.
-    EXPECT_LT(worst, 3e-5) << render::sixWayChannelNames()[light] << ": relative error of the optical depth";
+    // fp32 sums along the column: 1e-5 on lavapipe; NVIDIA's H200 (FMA contraction) measured 1.09e-5.
+    const double bound = context().driver().driverID == VK_DRIVER_ID_MESA_LLVMPIPE ? 1e-5 : 3e-5;
+    EXPECT_LT(worst, bound) << render::sixWayChannelNames()[light] << ": relative error of the optical depth";
   }
 }
 
