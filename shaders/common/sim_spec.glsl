@@ -36,5 +36,7 @@
 #define SIM_SPEC_DECAY 29  // smoke_sources.comp
 #define SIM_SPEC_CELLS 30  // lbm_init.comp
 #define SIM_SPEC_PULL 31   // stream_bound.comp
+#define SIM_SPEC_SPARSE 32  // the FCT passes: skip inactive bricks (sim_bricks.glsl)
+#define SIM_SPEC_SPARSE_THRESHOLD 33  // smoke_activity.comp
 
 #endif

@@ -7,11 +7,12 @@
 #extension GL_EXT_control_flow_attributes : require
 #include "sim_spec.glsl"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = 16, local_size_y = 2, local_size_z = 2) in;  // one brick (sim_bricks.glsl)
 layout(constant_id = SIM_SPEC_NX) const int NX = 1;
 layout(constant_id = SIM_SPEC_NY) const int NY = 1;
 layout(constant_id = SIM_SPEC_NZ) const int NZ = 1;
 layout(constant_id = SIM_SPEC_SMOKE_UPRES) const int SMOKE_UPRES = 1;
+layout(constant_id = SIM_SPEC_SPARSE) const bool SPARSE = false;
 layout(constant_id = SIM_SPEC_FACE_XM) const uint FACE_XM = 0u;  // boundary type per face (sim_grid.glsl)
 layout(constant_id = SIM_SPEC_FACE_XP) const uint FACE_XP = 0u;
 layout(constant_id = SIM_SPEC_FACE_YM) const uint FACE_YM = 0u;
@@ -19,9 +20,9 @@ layout(constant_id = SIM_SPEC_FACE_YP) const uint FACE_YP = 0u;
 layout(constant_id = SIM_SPEC_FACE_ZM) const uint FACE_ZM = 0u;
 layout(constant_id = SIM_SPEC_FACE_ZP) const uint FACE_ZP = 0u;
 
-#include "linear_index.glsl"
 #include "sim_grid.glsl"
 #include "sim_smoke.glsl"
+#include "sim_bricks.glsl"
 
 layout(std430, binding = 0) readonly buffer Flags { uint flags[]; };
 layout(std430, binding = 1) readonly buffer Macro_ { vec4 macro[]; };  // lattice velocity, cells/step
@@ -30,6 +31,10 @@ layout(std430, binding = 3) writeonly buffer LowOrder { vec2 lowOrder[]; };     
 layout(std430, binding = 4) writeonly buffer AntidiffusiveX { vec2 antidiffusiveX[]; };
 layout(std430, binding = 5) writeonly buffer AntidiffusiveY { vec2 antidiffusiveY[]; };
 layout(std430, binding = 6) writeonly buffer AntidiffusiveZ { vec2 antidiffusiveZ[]; };
+layout(std430, binding = 7) readonly buffer Header { uint header[]; };         // sim_bricks.glsl
+layout(std430, binding = 8) readonly buffer ActiveList { uint activeList[]; };
+
+#include "sim_fct_cell.glsl"
 
 #include "sim_faces.glsl"
 
@@ -111,9 +116,9 @@ mat2 faceFluxes(ivec3 s, int a) {
 }
 
 void main() {
-  uint index = linearInvocationIndex();
-  if (index >= SMOKE_CELLS) return;
-  ivec3 s = cellOf(index, SMOKE);
+  ivec3 s;
+  if (!fctCell(s)) return;
+  uint index = cellIndex(s, SMOKE);
   vec2 q = smoke[index];
   [[unroll]] for (int a = 0; a < 3; ++a) {
     ivec3 up = s;

@@ -6,18 +6,19 @@
 #extension GL_EXT_control_flow_attributes : require
 #include "sim_spec.glsl"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = 16, local_size_y = 2, local_size_z = 2) in;  // one brick (sim_bricks.glsl)
 layout(constant_id = SIM_SPEC_NX) const int NX = 1;
 layout(constant_id = SIM_SPEC_NY) const int NY = 1;
 layout(constant_id = SIM_SPEC_NZ) const int NZ = 1;
 layout(constant_id = SIM_SPEC_SMOKE_UPRES) const int SMOKE_UPRES = 1;
+layout(constant_id = SIM_SPEC_SPARSE) const bool SPARSE = false;
 layout(constant_id = SIM_SPEC_PERIODIC_X) const bool PERIODIC_X = false;
 layout(constant_id = SIM_SPEC_PERIODIC_Y) const bool PERIODIC_Y = false;
 layout(constant_id = SIM_SPEC_PERIODIC_Z) const bool PERIODIC_Z = false;
 
-#include "linear_index.glsl"
 #include "sim_grid.glsl"
 #include "sim_smoke.glsl"
+#include "sim_bricks.glsl"
 #include "sim_fct.glsl"
 #include "sim_fct_fluxes.glsl"
 
@@ -28,11 +29,15 @@ layout(std430, binding = 3) readonly buffer AntidiffusiveX { vec2 antidiffusiveX
 layout(std430, binding = 4) readonly buffer AntidiffusiveY { vec2 antidiffusiveY[]; };
 layout(std430, binding = 5) readonly buffer AntidiffusiveZ { vec2 antidiffusiveZ[]; };
 layout(std430, binding = 6) writeonly buffer Ratios { vec4 ratios[]; };  // R+ (xy), R− (zw)
+layout(std430, binding = 7) readonly buffer Header { uint header[]; };         // sim_bricks.glsl
+layout(std430, binding = 8) readonly buffer ActiveList { uint activeList[]; };
+
+#include "sim_fct_cell.glsl"
 
 void main() {
-  uint index = linearInvocationIndex();
-  if (index >= SMOKE_CELLS) return;
-  ivec3 s = cellOf(index, SMOKE);
+  ivec3 s;
+  if (!fctCell(s)) return;
+  uint index = cellIndex(s, SMOKE);
   vec2 qtd = lowOrder[index];
   vec2 highest = max(smoke[index], qtd), lowest = min(smoke[index], qtd);
   vec2 in_ = vec2(0.0), out_ = vec2(0.0);  // antidiffusive fluxes into and out of the cell

@@ -7,6 +7,8 @@ list(APPEND SIXWAY_SHADERS
   sim/lbm_step.comp
   sim/forces.comp
   sim/smoke_sources.comp
+  sim/smoke_activity.comp
+  sim/smoke_clear.comp
   sim/fct_fluxes.comp
   sim/fct_limiter.comp
   sim/fct_update.comp

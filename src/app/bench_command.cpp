@@ -109,6 +109,10 @@ BenchInputs prepare(BenchOptions& o) {
   for (const std::string& storage : o.populationStorages)
     if (storage != "fp32" && storage != "fp16")
       throw io::InputError("--population-storage", "unknown storage \"" + storage + "\" (known: fp32, fp16)");
+  for (const std::string& transport : o.smokeTransports)
+    if (transport != "sparse" && transport != "dense")
+      throw io::InputError("--smoke-transport",
+                           "unknown transport \"" + transport + "\" (known: sparse, dense)");
   if (o.tiling != "device" && o.tiling != "blocks" && o.tiling != "pixels")
     throw io::InputError("--tiling", "unknown tiling \"" + o.tiling + "\" (known: device, blocks, pixels)");
   for (uint32_t size : o.sizes) requireLightmapSize("--size", size);
@@ -233,6 +237,12 @@ void addBenchCommand(CLI::App& app) {
   command
       ->add_option("--population-storage", o->populationStorages,
                    "Sim section: the lattice's population storage, fp32 and/or fp16 (each lattice with each)")
+      ->delimiter(',')
+      ->capture_default_str();
+  command
+      ->add_option(
+          "--smoke-transport", o->smokeTransports,
+          "Sim section: the smoke transport, sparse (the scene's threshold) and/or dense (each with each)")
       ->delimiter(',')
       ->capture_default_str();
   command->add_flag("--fp16", o->fp16, "Network section: fp16 feature maps (arithmetic stays fp32)");

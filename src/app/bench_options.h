@@ -31,6 +31,7 @@ struct BenchOptions {
   int repeatsLarge = 3;  // timed runs of lattices over kLargeLatticeCells
   int simSteps = 4;      // lattice steps per submission (a run) of the sim section
   std::vector<std::string> populationStorages = {"fp32"};  // sim section: each lattice with each, in turn
+  std::vector<std::string> smokeTransports = {"sparse"};   // sim section: "sparse", "dense"; each with each
   bool fp16 = false;                                       // network section: fp16 feature maps
   std::string tiling =
       "device";  // network section: work per invocation (nn/kernel.h): device, blocks, pixels

@@ -22,10 +22,12 @@ std::string latticeName(glm::ivec3 n) {
 }
 
 nlohmann::json benchLattice(const gpu::Context& context, const gpu::PipelineCache& cache,
-                            const BenchOptions& o, glm::ivec3 lattice, const std::string& storage) {
+                            const BenchOptions& o, glm::ivec3 lattice, const std::string& storage,
+                            const std::string& transport) {
   io::Scene scene = benchScene(o.scene, lattice);
   scene.fluid.populationStorage =
       storage == "fp16" ? io::PopulationStorage::Fp16 : io::PopulationStorage::Fp32;
+  scene.smoke.sparse = transport == "sparse";
   const uint64_t cells = uint64_t(lattice.x) * lattice.y * lattice.z;
   const bool large = cells > kLargeLatticeCells;
   const int warmup = large ? std::min(o.warmup, 1) : o.warmup;
@@ -33,10 +35,10 @@ nlohmann::json benchLattice(const gpu::Context& context, const gpu::PipelineCach
   const uint32_t bytesPerUpdate = sim::bytesPerCellUpdate(scene.fluid.populationStorage);
   const uint64_t latticeBytes = sim::latticeBytes(cells, scene.fluid.populationStorage);
   std::printf(
-      "simulation %s (%.2f M cells, cell %.4g m), %s populations (%u bytes per update, lattice %.1f MiB): %d "
-      "warm-up and %d timed runs of %d steps\n",
+      "simulation %s (%.2f M cells, cell %.4g m), %s populations (%u bytes per update, lattice %.1f MiB), %s "
+      "smoke transport: %d warm-up and %d timed runs of %d steps\n",
       latticeName(lattice).c_str(), cells * 1e-6, scene.grid.cellSize, storage.c_str(), bytesPerUpdate,
-      latticeBytes / 1048576.0, warmup, repeats, o.simSteps);
+      latticeBytes / 1048576.0, transport.c_str(), warmup, repeats, o.simSteps);
   std::fflush(stdout);
   std::unique_ptr<sim::Simulation> simulation;
   try {
@@ -49,7 +51,9 @@ nlohmann::json benchLattice(const gpu::Context& context, const gpu::PipelineCach
   const uint32_t steps = uint32_t(o.simSteps);
   for (int i = 0; i < warmup; ++i) simulation->advance(steps);
   StageTimes step;
-  std::vector<double> watchdog, sources, fluxes, limiter, update;  // the smoke's passes, ms per step
+  std::vector<double> watchdog, sources, activity, fluxes, limiter,
+      update;                        // the smoke's passes, ms per step
+  std::vector<double> activeBricks;  // fraction, after each run
   for (int r = 0; r < repeats; ++r) {
     simulation->advance(steps);
     const sim::StepTimes& t = simulation->report().times;
@@ -60,6 +64,8 @@ nlohmann::json benchLattice(const gpu::Context& context, const gpu::PipelineCach
     step.add("smoke", t.smoke / steps);
     watchdog.push_back(t.watchdog);
     sources.push_back(t.smokePasses.sources / steps);
+    activity.push_back(t.smokePasses.activity / steps);
+    activeBricks.push_back(double(simulation->smoke().activeBricks()) / double(simulation->smoke().bricks()));
     fluxes.push_back(t.smokePasses.fluxes / steps);
     limiter.push_back(t.smokePasses.limiter / steps);
     update.push_back(t.smokePasses.update / steps);
@@ -71,9 +77,11 @@ nlohmann::json benchLattice(const gpu::Context& context, const gpu::PipelineCach
   const auto mlups = [cells](double ms) { return double(cells) / (ms * 1e3); };
   const Timing dog = summarize(watchdog);
   std::printf(
-      "  smoke passes (median ms per step): sources %.3f, FCT fluxes %.3f, limiter %.3f, update %.3f\n",
-      summarize(sources).median, summarize(fluxes).median, summarize(limiter).median,
-      summarize(update).median);
+      "  smoke passes (median ms per step): sources %.3f, activity %.3f, FCT fluxes %.3f, limiter %.3f, "
+      "update "
+      "%.3f; active bricks %.1f%% (median of the runs' last substeps)\n",
+      summarize(sources).median, summarize(activity).median, summarize(fluxes).median,
+      summarize(limiter).median, summarize(update).median, 100 * summarize(activeBricks).median);
   std::printf(
       "  %.3f MLUPs (min %.3f, max %.3f); LBM pass alone %.3f MLUPs; watchdog %.3f ms per submission\n",
       mlups(total.median), mlups(total.max), mlups(total.min), mlups(lbm.median), dog.median);
@@ -83,6 +91,9 @@ nlohmann::json benchLattice(const gpu::Context& context, const gpu::PipelineCach
   report["size"] = {lattice.x, lattice.y, lattice.z};
   report["cells"] = cells;
   report["population_storage"] = storage;
+  report["smoke_transport"] = transport;
+  report["sparse_threshold"] = scene.smoke.sparseThreshold;
+  report["active_bricks"] = timingJson(activeBricks);
   report["bytes_per_cell_update"] = bytesPerUpdate;
   report["lattice_bytes"] = latticeBytes;
   report["cell_size_m"] = scene.grid.cellSize;
@@ -93,6 +104,7 @@ nlohmann::json benchLattice(const gpu::Context& context, const gpu::PipelineCach
   report["watchdog"] = timingJson(watchdog);
   // Parts of the "smoke" stage above, not stages of their own (the totals count "smoke" once).
   report["smoke_passes"] = {{"sources", timingJson(sources)},
+                            {"activity", timingJson(activity)},
                             {"fluxes", timingJson(fluxes)},
                             {"limiter", timingJson(limiter)},
                             {"update", timingJson(update)}};
@@ -106,7 +118,8 @@ nlohmann::json benchSimulation(const gpu::Context& context, const gpu::PipelineC
   nlohmann::json lattices = nlohmann::json::array();
   for (glm::ivec3 lattice : inputs.lattices)
     for (const std::string& storage : options.populationStorages)
-      lattices.push_back(benchLattice(context, cache, options, lattice, storage));
+      for (const std::string& transport : options.smokeTransports)
+        lattices.push_back(benchLattice(context, cache, options, lattice, storage, transport));
   return {{"scene", options.scene.string()},
           {"unit",
            "ms per lattice step, averaged over a submission of steps_per_run steps; the watchdog runs "

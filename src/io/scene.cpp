@@ -324,6 +324,12 @@ Smoke parseSmoke(JsonReader& r, bool playback) {
   s.albedo = r.optional<float>("albedo", s.albedo, inRange(0, 1));
   s.phaseG = r.optional<float>("phase_g", s.phaseG, inRange(-0.99, 0.99));
   s.dissipation = r.optional<float>("dissipation", s.dissipation, atLeast(0));
+  if (playback) {
+    r.forbid("sparse", kPlaybackOnly);
+    r.forbid("sparse_threshold", kPlaybackOnly);
+  }
+  s.sparse = r.optional<bool>("sparse", s.sparse);
+  s.sparseThreshold = r.optional<float>("sparse_threshold", s.sparseThreshold, atLeast(0));
   s.emission = r.object("emission", parseEmission);
   return s;
 }

@@ -163,6 +163,10 @@ struct Smoke {
   float albedo = 0.9f;
   float phaseG = 0.2f;    // Henyey–Greenstein
   float dissipation = 0;  // 1/s
+  // The simulation's sparse transport (sim::SmokeSettings): skip regions whose values are all ≤ the
+  // threshold.
+  bool sparse = true;
+  float sparseThreshold = 1e-6f;
   Emission emission;
 };
 

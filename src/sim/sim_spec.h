@@ -25,9 +25,11 @@ inline constexpr SpecId kBody[3] = {{21, "BODY_X"}, {22, "BODY_Y"}, {23, "BODY_Z
 inline constexpr SpecId kWind[3] = {{24, "WIND_X"}, {25, "WIND_Y"}, {26, "WIND_Z"}};
 inline constexpr SpecId kParabolicInflow{27, "PARABOLIC_INFLOW"};
 inline constexpr SpecId kBoundaryCells{28, "BOUNDARY_CELLS"};
-inline constexpr SpecId kDecay{29, "DECAY"};  // smoke_sources.comp
-inline constexpr SpecId kCells{30, "CELLS"};  // lbm_init.comp
-inline constexpr SpecId kPull{31, "PULL"};    // stream_bound.comp
+inline constexpr SpecId kDecay{29, "DECAY"};    // smoke_sources.comp
+inline constexpr SpecId kCells{30, "CELLS"};    // lbm_init.comp
+inline constexpr SpecId kPull{31, "PULL"};      // stream_bound.comp
+inline constexpr SpecId kSparse{32, "SPARSE"};  // the FCT passes: skip inactive bricks (sim_bricks.glsl)
+inline constexpr SpecId kSparseThreshold{33, "SPARSE_THRESHOLD"};  // smoke_activity.comp
 
 // Every constant above.
 // clang-format off
@@ -38,7 +40,7 @@ inline constexpr SpecId kAll[] = {
     kTau0, kSmagorinsky, kBuoyancyTemperature, kBuoyancyDensity,
     kUp[0], kUp[1], kUp[2], kBody[0], kBody[1], kBody[2], kWind[0], kWind[1], kWind[2],
     kParabolicInflow, kBoundaryCells,
-    kDecay, kCells, kPull};
+    kDecay, kCells, kPull, kSparse, kSparseThreshold};
 // clang-format on
 
 }  // namespace sixway::sim::spec

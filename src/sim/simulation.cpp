@@ -30,6 +30,8 @@ Simulation::Simulation(const gpu::Context& context, const gpu::PipelineCache& ca
   smoke.upres = scene.grid.smokeUpres;
   smoke.faces = scene.boundaries.faces;
   smoke.decayPerStep = std::exp(-scene.smoke.dissipation * units_.stepSeconds);
+  smoke.sparse = scene.smoke.sparse;
+  smoke.sparseThreshold = scene.smoke.sparseThreshold;
   smoke_ = std::make_unique<SmokeTransport>(context, cache, smoke);
   speedStats_ = std::make_unique<gpu::ReduceStats>(context, cache, lbm_->cells(), gpu::ReduceInput{4, 3});
   densityStats_ = std::make_unique<gpu::ReduceStats>(context, cache, smoke_->cells(), gpu::ReduceInput{2, 1});
@@ -91,8 +93,8 @@ void Simulation::setInletStrength(float strength) {
 gpu::Sequence& Simulation::sequenceFor(uint32_t steps, int parity) {
   auto& slot = sequences_[{steps, parity}];
   if (slot) return *slot;
-  // Stages per step: obstacles, forces, lbm, the smoke sources and three FCT passes per substep.
-  slot = std::make_unique<gpu::Sequence>(*context_, (4 + 3 * uint32_t(smoke_->upres())) * steps + 1);
+  // Stages per step: obstacles, forces, lbm, and the smoke's.
+  slot = std::make_unique<gpu::Sequence>(*context_, (3 + smoke_->stagesPerStep()) * steps + 1);
   gpu::Sequence& sequence = *slot;
   const uint32_t obstacleCount = uint32_t(obstacles_->obstacleCount());
   if (obstacleCount > 0) sequence.fill(forces_, 0);
@@ -142,17 +144,18 @@ void Simulation::summarize(uint64_t firstStep, uint32_t steps, const std::vector
   report.firstStep = firstStep;
   SmokePassTimes& smoke = report.times.smokePasses;
   for (const gpu::StageTime& t : times) {
-    double* total = t.name == "obstacles"                     ? &report.times.obstacles
-                    : t.name == "forces"                      ? &report.times.forces
-                    : t.name == "lbm"                         ? &report.times.lbm
-                    : t.name == SmokeTransport::kSourcesStage ? &smoke.sources
-                    : t.name == SmokeTransport::kFluxesStage  ? &smoke.fluxes
-                    : t.name == SmokeTransport::kLimiterStage ? &smoke.limiter
-                    : t.name == SmokeTransport::kUpdateStage  ? &smoke.update
-                                                              : &report.times.watchdog;
+    double* total = t.name == "obstacles"                      ? &report.times.obstacles
+                    : t.name == "forces"                       ? &report.times.forces
+                    : t.name == "lbm"                          ? &report.times.lbm
+                    : t.name == SmokeTransport::kSourcesStage  ? &smoke.sources
+                    : t.name == SmokeTransport::kActivityStage ? &smoke.activity
+                    : t.name == SmokeTransport::kFluxesStage   ? &smoke.fluxes
+                    : t.name == SmokeTransport::kLimiterStage  ? &smoke.limiter
+                    : t.name == SmokeTransport::kUpdateStage   ? &smoke.update
+                                                               : &report.times.watchdog;
     *total += t.milliseconds;
   }
-  report.times.smoke = smoke.sources + smoke.fluxes + smoke.limiter + smoke.update;
+  report.times.smoke = smoke.sources + smoke.activity + smoke.fluxes + smoke.limiter + smoke.update;
   const size_t obstacleCount = obstacles_->obstacleCount();
   if (forces)
     for (uint32_t s = 0; s < steps; ++s) {

@@ -26,7 +26,7 @@ namespace sixway::sim {
 // The smoke step's passes, timed one by one (SmokeTransport): sources, then per substep the FCT fluxes,
 // limiter and update. `smoke` is their sum.
 struct SmokePassTimes {
-  double sources = 0, fluxes = 0, limiter = 0, update = 0;  // ms, GPU timestamps
+  double sources = 0, activity = 0, fluxes = 0, limiter = 0, update = 0;  // ms, GPU timestamps
 };
 
 struct StepTimes {

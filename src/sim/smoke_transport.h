@@ -22,6 +22,10 @@ struct SmokeSettings {
   int upres = 1;
   std::array<io::BoundaryType, 6> faces{};
   float decayPerStep = 1;  // exp(−dissipation · dt)
+  // Skip the bricks of 16×2×2 cells whose values and neighbours' are all ≤ sparseThreshold, dropping those
+  // values (shaders/common/sim_bricks.glsl); false: every cell every substep.
+  bool sparse = true;
+  float sparseThreshold = 1e-6f;
 };
 
 class SmokeTransport {
@@ -30,6 +34,7 @@ class SmokeTransport {
 
   // The GPU-timed stages these record, one per pass (Simulation sums them per name).
   static constexpr const char* kSourcesStage = "smoke sources";
+  static constexpr const char* kActivityStage = "smoke activity";  // sparse transport only
   static constexpr const char* kFluxesStage = "smoke fluxes";
   static constexpr const char* kLimiterStage = "smoke limiter";
   static constexpr const char* kUpdateStage = "smoke update";
@@ -38,7 +43,8 @@ class SmokeTransport {
   void recordSources(gpu::Sequence& sequence, const gpu::Buffer& params, const gpu::Buffer& flags,
                      uint32_t slot) const;
   // Moves the smoke for one lattice step with the velocity in `macro` (cells/step, xyz of vec4),
-  // in `upres` substeps so that the Courant number stays that of the lattice.
+  // in `upres` substeps so that the Courant number stays that of the lattice. Stages per substep: the
+  // activity (the sparse transport's brick lists) and the three FCT passes.
   void recordTransport(gpu::Sequence& sequence, const gpu::Buffer& flags, const gpu::Buffer& macro) const;
 
   // (density, temperature) per smoke cell, x fastest.
@@ -51,13 +57,19 @@ class SmokeTransport {
   glm::ivec3 size() const { return settings_.lattice * settings_.upres; }
   int upres() const { return settings_.upres; }
   uint64_t cells() const { return cells_; }
+  uint32_t stagesPerStep() const { return uint32_t(settings_.upres) * (settings_.sparse ? 4 : 3) + 1; }
+  // The bricks active in the last substep (sim_bricks.glsl), and all of them; every brick when dense.
+  uint64_t activeBricks() const;
+  uint64_t bricks() const { return bricks_; }
 
  private:
   SmokeSettings settings_;
-  uint64_t cells_;
+  uint64_t cells_, bricks_;
+  glm::ivec3 brickGroups_;
   gpu::Buffer smoke_, lowOrder_, ratios_;
-  std::array<gpu::Buffer, 3> antidiffusive_;  // per axis (sim_fct_fluxes.glsl)
-  std::unique_ptr<gpu::Pipeline> sources_, fluxes_, limiter_, update_, export_;
+  gpu::Buffer activity_, brickHeader_, activeList_, clearList_;  // the sparse transport's (sim_bricks.glsl)
+  std::array<gpu::Buffer, 3> antidiffusive_;                     // per axis (sim_fct_fluxes.glsl)
+  std::unique_ptr<gpu::Pipeline> sources_, activityPass_, clear_, fluxes_, limiter_, update_, export_;
 };
 
 }  // namespace sixway::sim

@@ -142,6 +142,16 @@ TEST(SceneParse, BadDisplaySettings) {
                        "must be in [0, 100000] (got -1)"));
 }
 
+TEST(SceneParse, SparseSmokeSettings) {
+  const Scene s = parseScene(minimalWith(R"({"smoke": {"sparse": false, "sparse_threshold": 0}})"_json),
+                             "minimal.json", ".");
+  EXPECT_FALSE(s.smoke.sparse);
+  EXPECT_EQ(s.smoke.sparseThreshold, 0.0f);
+  EXPECT_TRUE(rejected(minimalWith(R"({"smoke": {"sparse_threshold": -1e-6}})"_json), "smoke.sparse_threshold",
+                       "must be"));
+  EXPECT_TRUE(rejected(minimalWith(R"({"smoke": {"sparse": "yes"}})"_json), "smoke.sparse", ""));
+}
+
 TEST(SceneTest, MinimalSceneGetsDefaults) {
   const Scene s = parseScene(minimalScene(), "scenes/minimal.json", ".");
   EXPECT_EQ(s.name, "minimal");
@@ -171,6 +181,8 @@ TEST(SceneTest, MinimalSceneGetsDefaults) {
   EXPECT_FLOAT_EQ(s.smoke.albedo, 0.9f);
   EXPECT_FLOAT_EQ(s.smoke.phaseG, 0.2f);
   EXPECT_EQ(s.smoke.dissipation, 0);
+  EXPECT_TRUE(s.smoke.sparse);
+  EXPECT_FLOAT_EQ(s.smoke.sparseThreshold, 1e-6f);
   EXPECT_EQ(s.smoke.emission.intensity, 0);
   EXPECT_TRUE(s.smoke.emission.ramp.empty());
 
@@ -340,6 +352,9 @@ TEST(SceneParse, VdbSceneRefusesWhatOnlySimulationUses) {
   j = base;
   j["smoke"] = {{"dissipation", 0.1}};
   EXPECT_TRUE(rejected(j, "smoke.dissipation", "plays back vdb files", dir.path()));
+  j = base;
+  j["smoke"] = {{"sparse_threshold", 0.0}};
+  EXPECT_TRUE(rejected(j, "smoke.sparse_threshold", "plays back vdb files", dir.path()));
   j = base;
   j["smoke"] = {
       {"emission",

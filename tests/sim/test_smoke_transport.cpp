@@ -74,6 +74,9 @@ struct SmokeCase {
   int upres = 1;
   std::vector<glm::vec3> velocity;  // per lattice cell, cells per step
   std::vector<bool> solid;          // per lattice cell; empty: none
+  glm::ivec3 lattice = kLattice;
+  bool sparse = true;  // sim::SmokeSettings
+  float sparseThreshold = 1e-6f;
 };
 
 class SmokeTransportTest : public GpuTest {
@@ -81,28 +84,33 @@ class SmokeTransportTest : public GpuTest {
   // `steps` lattice steps of transport on the GPU.
   std::vector<glm::vec2> gpuTransport(const SmokeCase& c, const std::vector<glm::vec2>& smoke, int steps) {
     sim::SmokeSettings settings;
-    settings.lattice = kLattice;
+    settings.lattice = c.lattice;
     settings.upres = c.upres;
     settings.faces = c.faces;
+    settings.sparse = c.sparse;
+    settings.sparseThreshold = c.sparseThreshold;
     sim::SmokeTransport transport(context(), pipelineCache(), settings);
     transport.upload(smoke);
-    gpu::Buffer flags = gpu::Buffer::storage(context(), cellCount(kLattice) * 4, "flags");
-    std::vector<uint32_t> flagWords(cellCount(kLattice), 0u);
+    gpu::Buffer flags = gpu::Buffer::storage(context(), cellCount(c.lattice) * 4, "flags");
+    std::vector<uint32_t> flagWords(cellCount(c.lattice), 0u);
     for (size_t i = 0; i < c.solid.size(); ++i) flagWords[i] = c.solid[i] ? 1u : 0u;  // obstacle 0
     flags.upload(flagWords);
-    gpu::Buffer macro = gpu::Buffer::storage(context(), cellCount(kLattice) * 16, "velocity");
+    gpu::Buffer macro = gpu::Buffer::storage(context(), cellCount(c.lattice) * 16, "velocity");
     std::vector<glm::vec4> macroValues;
     for (const glm::vec3& u : c.velocity) macroValues.emplace_back(u, 1.0f);
     macro.upload(macroValues);
-    gpu::Sequence sequence(context(), uint32_t(3 * steps * c.upres));  // three timed FCT passes per substep
+    gpu::Sequence sequence(context(), transport.stagesPerStep() * uint32_t(steps));
     for (int s = 0; s < steps; ++s) transport.recordTransport(sequence, flags, macro);
     sequence.submit();
+    activeBricks_ = transport.activeBricks();
+    bricks_ = transport.bricks();
     return transport.download();
   }
 
   std::vector<glm::dvec2> cpuTransport(const SmokeCase& c, const std::vector<glm::vec2>& smoke, int steps) {
-    const CpuSmokeSettings settings{kLattice, c.upres, c.faces};
-    const std::vector<bool> solid = c.solid.empty() ? std::vector<bool>(cellCount(kLattice), false) : c.solid;
+    const CpuSmokeSettings settings{c.lattice, c.upres, c.faces};
+    const std::vector<bool> solid =
+        c.solid.empty() ? std::vector<bool>(cellCount(c.lattice), false) : c.solid;
     std::vector<glm::dvec2> out = toDouble(smoke);
     for (int s = 0; s < steps; ++s) transportSmoke(settings, solid, toDouble(c.velocity), out);
     return out;
@@ -110,11 +118,15 @@ class SmokeTransportTest : public GpuTest {
 
   // Compares GPU and CPU after `steps`; returns the GPU result for further checks.
   std::vector<glm::vec2> expectMatchesCpu(const SmokeCase& c, int steps) {
-    const glm::ivec3 n = kLattice * c.upres;
-    const std::vector<glm::vec2> initial = randomSmoke(n, 5);
+    return expectMatchesCpu(c, randomSmoke(c.lattice * c.upres, 5), glm::dvec2(2.0, 1.0), steps);
+  }
+
+  // The same from `initial`, whose values span `range` per component; `tolerance` relative to that.
+  std::vector<glm::vec2> expectMatchesCpu(const SmokeCase& c, const std::vector<glm::vec2>& initial,
+                                          glm::dvec2 range, int steps, double tolerance = kTolerance) {
+    const glm::ivec3 n = c.lattice * c.upres;
     const std::vector<glm::vec2> got = gpuTransport(c, initial, steps);
     const std::vector<glm::dvec2> expected = cpuTransport(c, initial, steps);
-    const glm::dvec2 range(2.0, 1.0);  // of the random values
     for (int component = 0; component < 2; ++component) {
       double worst = 0, moved = 0;
       int where = 0;
@@ -126,16 +138,81 @@ class SmokeTransportTest : public GpuTest {
           where = int(i);
         }
       }
-      EXPECT_LE(worst, kTolerance * range[component])
+      EXPECT_LE(worst, tolerance * range[component])
           << "component " << component << " differs most at smoke " << FieldError{0, where}.where(n)
           << ": GPU " << got[where][component] << ", CPU " << expected[where][component];
-      EXPECT_GT(moved, 100 * kTolerance * range[component]) << "the smoke hardly moved";
+      EXPECT_GT(moved, 100 * tolerance * range[component]) << "the smoke hardly moved";
       std::cout << "[ measured ] component " << component << ": max |Δ| / range " << worst / range[component]
                 << " (largest change " << moved / range[component] << " of the range)\n";
     }
     return got;
   }
+
+  uint64_t activeBricks_ = 0, bricks_ = 0;  // of the last gpuTransport()
 };
+
+// The sparse transport's cases: a lattice of 6×5×4 bricks at upres 1, so that most of it is far from the
+// smoke.
+constexpr glm::ivec3 kSparseLattice{24, 20, 16};
+
+// Two blobs of smoke in clean air, one of them across the x seam (periodic in the periodic cases), each
+// (1.5, 0.8) · (1 − r²/R²) inside its radius R of 3 lattice cells and exactly 0 outside; plus, where `faint`
+// > 0, a brick-aligned 8×4×4-lattice-cell patch of that value far from both.
+std::vector<glm::vec2> blobSmoke(glm::ivec3 lattice, int upres, float faint) {
+  const glm::ivec3 n = lattice * upres;
+  std::vector<glm::vec2> out(cellCount(n), glm::vec2(0));
+  for (int i = 0; i < int(out.size()); ++i) {
+    const glm::vec3 p = (glm::vec3(cellOf(i, n)) + 0.5f) / float(upres);  // lattice units
+    for (const glm::vec3 centre : {glm::vec3(7, 6, 5), glm::vec3(0.5f, 14, 11)}) {
+      glm::vec3 d = p - centre;
+      d.x -= float(lattice.x) * std::round(d.x / float(lattice.x));  // the nearer image across the seam
+      const float r2 = glm::dot(d, d) / 9.0f;
+      if (r2 < 1) out[i] += glm::vec2(1.5f, 0.8f) * (1 - r2);
+    }
+    if (faint > 0 && p.x >= 12 && p.x < 20 && p.y >= 0 && p.y < 4 && p.z >= 8 && p.z < 12)
+      out[i] = glm::vec2(faint);
+  }
+  return out;
+}
+
+// With a threshold of 0 the sparse transport skips only bricks whose values and neighbours' are all 0, whose
+// new values are then 0 too: it must give the dense transport's values exactly (and both the CPU oracle's).
+TEST_F(SmokeTransportTest, SparseTransportEqualsTheDenseOne) {
+  for (const auto& [faces, upres] : {std::pair{kPeriodic, 1}, std::pair{kOpen, 2}}) {
+    SCOPED_TRACE("upres " + std::to_string(upres));
+    const std::vector<glm::vec2> initial = blobSmoke(kSparseLattice, upres, 0);
+    SmokeCase dense{faces, upres, divergentVelocity(kSparseLattice), {}, kSparseLattice, false, 0};
+    const std::vector<glm::vec2> expected = expectMatchesCpu(dense, initial, glm::dvec2(1.5, 0.8), 3);
+    EXPECT_EQ(activeBricks_, bricks_) << "the dense transport computes every brick";
+    SmokeCase sparse = dense;
+    sparse.sparse = true;
+    const std::vector<glm::vec2> got = expectMatchesCpu(sparse, initial, glm::dvec2(1.5, 0.8), 3);
+    EXPECT_LT(activeBricks_, bricks_ * 3 / 4) << "the sparse transport skipped too little to be tested";
+    size_t different = 0;
+    for (size_t i = 0; i < got.size(); ++i) different += got[i] != expected[i];
+    EXPECT_EQ(different, 0u) << "values of the sparse transport that differ from the dense one's";
+    std::cout << "[ measured ] upres " << upres << ": " << activeBricks_ << " of " << bricks_
+              << " bricks active in the last substep\n";
+  }
+}
+
+// With a threshold the smoke at or below it in bricks far from the rest is dropped: the faint patch (half the
+// threshold) is gone, and no value differs from the dense CPU oracle's by more than the threshold.
+TEST_F(SmokeTransportTest, SparseThresholdDropsOnlyFaintSmokeFarFromTheRest) {
+  constexpr float kThreshold = 1e-3f;
+  const std::vector<glm::vec2> initial = blobSmoke(kSparseLattice, 1, 0.5f * kThreshold);
+  SmokeCase c{kPeriodic, 1, divergentVelocity(kSparseLattice), {}, kSparseLattice, true, kThreshold};
+  const std::vector<glm::vec2> got =
+      expectMatchesCpu(c, initial, glm::dvec2(1.5, 0.8), 3, kThreshold / 0.8);  // ≤ the threshold
+  size_t faintLeft = 0, faintBefore = 0;
+  for (size_t i = 0; i < got.size(); ++i) {
+    if (initial[i].x != 0.5f * kThreshold) continue;
+    ++faintBefore;
+    faintLeft += got[i] != glm::vec2(0);
+  }
+  EXPECT_EQ(faintBefore, 8u * 4u * 4u);
+  EXPECT_EQ(faintLeft, 0u) << "cells of the faint patch with smoke left";
+}
 
 TEST_F(SmokeTransportTest, PeriodicDivergenceFreeFlow) {
   expectMatchesCpu({kPeriodic, 1, divergenceFreeVelocity(kLattice), {}}, 4);

@@ -45,7 +45,7 @@ TEST_F(SmokeAdvection, RigidRotationReturnsTheScalarToItsStart) {
   gpu::Buffer macro = gpu::Buffer::storage(context(), velocity.size() * 16, "velocity");
   macro.upload(velocity);
   transport.upload(start);
-  gpu::Sequence sequence(context(), 3 * 100);  // each transport records three timed FCT passes
+  gpu::Sequence sequence(context(), transport.stagesPerStep() * 100);
   for (int s = 0; s < 100; ++s) transport.recordTransport(sequence, flags, macro);
   sequence.finish();
   for (int k = 0; k < steps / 100; ++k) sequence.submit();
