@@ -38,5 +38,7 @@
 #define SIM_SPEC_PULL 31   // stream_bound.comp
 #define SIM_SPEC_SPARSE 32  // the FCT passes: skip inactive bricks (sim_bricks.glsl)
 #define SIM_SPEC_SPARSE_THRESHOLD 33  // smoke_activity.comp
+#define SIM_SPEC_BOUNDARY_FACES 34      // lbm_step.comp's boundary pipelines
+#define SIM_SPEC_BOUNDARY_OBSTACLES 35
 
 #endif

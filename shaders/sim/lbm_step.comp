@@ -2,10 +2,13 @@
 // One lattice Boltzmann step per fluid cell: pull streaming from lattice F with the boundary
 // conditions, regularized collision with Smagorinsky and Guo forcing (lbm_d3q19.glsl), result
 // into lattice G, and the cell's velocity and density into `macro` for the smoke and the watchdog.
-// Two pipelines of this shader share the cells (BOUNDARY_CELLS): the interior, which pulls every population
+// Pipelines of this shader share the cells (BOUNDARY_CELLS): the interior, which pulls every population
 // from a fixed offset, and the cells next to a face or an obstacle, which need the boundary conditions.
 // llvmpipe runs the code of a branch in every SIMD group whether or not a lane takes it, so keeping the
 // boundary code out of the interior dispatch makes the LBM pass 1.5–2.2× faster there (docs/benchmarks.md).
+// For the same reason the boundary cells come in two pipelines when the obstacles' box stays off the domain's
+// faces (BOUNDARY_FACES: the face slabs, without bounce-back code; BOUNDARY_OBSTACLES: the box, without the
+// face conditions), and in one with both codes when it reaches a face.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
 #include "sim_spec.glsl"
@@ -41,6 +44,8 @@ layout(constant_id = SIM_SPEC_PARABOLIC_INFLOW) const bool PARABOLIC_INFLOW = fa
 layout(constant_id = SIM_SPEC_INTERPOLATED_BOUNCE_BACK) const bool INTERPOLATED_BOUNCE_BACK = false;
 // This pipeline's cells (cellVisited).
 layout(constant_id = SIM_SPEC_BOUNDARY_CELLS) const bool BOUNDARY_CELLS = false;
+layout(constant_id = SIM_SPEC_BOUNDARY_FACES) const bool BOUNDARY_FACES = true;          // boundary pipelines:
+layout(constant_id = SIM_SPEC_BOUNDARY_OBSTACLES) const bool BOUNDARY_OBSTACLES = true;  // which cells and code
 
 const uint CELLS = uint(NX * NY * NZ);
 
@@ -161,8 +166,9 @@ uint slabCells(int axis) {
 }
 
 // The cell that invocation `index` updates, or −1 for none. Interior pipeline: the interior box less the
-// cells next to an obstacle (nearSolid, inside the swept box). Boundary pipeline: the face slabs across x,
-// y, z (a cell on two faces counted by the first), then the swept box's cells next to an obstacle this step.
+// cells next to an obstacle (nearSolid, inside the swept box). Boundary pipelines: the face slabs across x,
+// y, z (a cell on two faces counted by the first; BOUNDARY_FACES), then the swept box's cells off the faces
+// next to an obstacle this step (BOUNDARY_OBSTACLES).
 int cellVisited(uint index) {
   if (!BOUNDARY_CELLS) {
     ivec3 inner = innerSize();
@@ -171,7 +177,7 @@ int cellVisited(uint index) {
     return nearSolid(params[push.step], p) && inSweptBox(p) ? -1 : int(cellIndex(p, SIZE));
   }
   [[unroll]] for (int a = 0; a < 3; ++a) {
-    uint cells = slabCells(a);
+    uint cells = BOUNDARY_FACES ? slabCells(a) : 0u;
     if (index < cells) {
       int u = a == 0 ? 1 : 0, v = a == 2 ? 1 : 2;  // the slab's two axes
       uint perSide = CELLS / uint(SIZE[a]);
@@ -186,7 +192,7 @@ int cellVisited(uint index) {
     }
     index -= cells;
   }
-  if (index >= uint(push.boxSize.x * push.boxSize.y * push.boxSize.z)) return -1;
+  if (!BOUNDARY_OBSTACLES || index >= uint(push.boxSize.x * push.boxSize.y * push.boxSize.z)) return -1;
   ivec3 p = push.boxMin.xyz + cellOf(index, push.boxSize.xyz);
   return !onShell(p) && nearSolid(params[push.step], p) ? int(cellIndex(p, SIZE)) : -1;
 }
@@ -209,19 +215,19 @@ void main() {
       ivec3 c = mix(C[i], ivec3(0), oneCellPeriodic());
       f[i] = loadPost(i, uint(int(cell) - (c.x + NX * (c.y + NY * c.z))));
     }
-  } else if (previousObstacleOf(flag) != 0u) {
+  } else if (BOUNDARY_OBSTACLES && previousObstacleOf(flag) != 0u) {
     // Uncovered by a moving obstacle: start from equilibrium at the wall's velocity.
     [[unroll]] for (int i = 0; i < Q; ++i) f[i] = equilibrium(i, 1.0, previous.xyz);
   } else {
     [[unroll]] for (int i = 0; i < Q; ++i) {
       ivec3 source = wrapPeriodic(p - C[i]);
-      if (any(lessThan(source, ivec3(0))) || any(greaterThanEqual(source, SIZE))) {
+      if (BOUNDARY_FACES && (any(lessThan(source, ivec3(0))) || any(greaterThanEqual(source, SIZE)))) {
         f[i] = fromOutside(i, p, source, cell, previous);
         continue;
       }
       uint sourceCell = cellIndex(source, SIZE);
       // Outside the obstacles' box no cell is or was solid: no flags to read (the box holds wrapped cells).
-      uint sourceFlags = nearSolid(params[push.step], source) ? flags[sourceCell] : 0u;
+      uint sourceFlags = BOUNDARY_OBSTACLES && nearSolid(params[push.step], source) ? flags[sourceCell] : 0u;
       uint wallIndex = wallOf(sourceFlags);
       if (wallIndex != 0u) {
         Obstacle wall = params[push.step].obstacles[wallIndex - 1u];

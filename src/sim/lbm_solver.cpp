@@ -122,6 +122,12 @@ LbmSolver::LbmSolver(const gpu::Context& context, const gpu::PipelineCache& cach
   gpu::ComputePipelineDesc boundary = step;
   boundary.spec.set(spec::kBoundaryCells, true);
   stepBoundary_ = std::make_unique<gpu::Pipeline>(context, cache, boundary);
+  gpu::ComputePipelineDesc faces = boundary;
+  faces.spec.set(spec::kBoundaryObstacles, false);
+  stepFaces_ = std::make_unique<gpu::Pipeline>(context, cache, faces);
+  gpu::ComputePipelineDesc obstacles = boundary;
+  obstacles.spec.set(spec::kBoundaryFaces, false);
+  stepObstacles_ = std::make_unique<gpu::Pipeline>(context, cache, obstacles);
 
   gpu::ComputePipelineDesc forces;
   forces.shader = latticeShader("sim/forces.comp", settings.storage);
@@ -156,18 +162,27 @@ void LbmSolver::recordStep(gpu::Sequence& sequence, const gpu::Buffer& params, c
                                            gpu::writes(to[3]),  gpu::readsWrites(macro_), gpu::reads(smoke)};
   const glm::ivec3 boxSize = box.second - box.first;
   const StepPush push{slot, {}, glm::ivec4(box.first, 0), glm::ivec4(boxSize, 0)};
-  // The cells lbm_step.comp's two pipelines visit (cellVisited there): the interior box, and the face slabs
-  // across each axis followed by the obstacles' swept box.
+  // The cells lbm_step.comp's pipelines visit (cellVisited there): the interior box, the face slabs across
+  // each axis and the obstacles' swept box.
   const glm::ivec3 size = settings_.size;
-  uint64_t interior = 1, boundary = uint64_t(boxSize.x) * uint64_t(boxSize.y) * uint64_t(boxSize.z);
+  const uint64_t boxCells = uint64_t(boxSize.x) * uint64_t(boxSize.y) * uint64_t(boxSize.z);
+  uint64_t interior = 1, slabs = 0;
+  bool boxOnFace = false;  // a cell of the box on a face slab: a slab cell may border an obstacle
   for (int a = 0; a < 3; ++a) {
     const bool oneCellPeriodic = size[a] == 1 && settings_.faces[2 * a] == io::BoundaryType::Periodic;
     interior *= uint64_t(std::max(size[a] - (oneCellPeriodic ? 0 : 2), 0));
-    if (!oneCellPeriodic) boundary += cells_ / uint64_t(size[a]) * (size[a] > 1 ? 2 : 1);
+    if (!oneCellPeriodic) slabs += cells_ / uint64_t(size[a]) * (size[a] > 1 ? 2 : 1);
+    if (!oneCellPeriodic && boxCells > 0)
+      boxOnFace = boxOnFace || box.first[a] < 1 || box.second[a] > size[a] - 1;
   }
   // A lattice at most two cells deep along a walled axis has no interior, a periodic 1×1×1 one no face slabs.
   if (interior > 0) sequence.dispatchLinear(*step_, bindings, push, interior, kGroupSize);
-  if (boundary > 0) sequence.dispatchLinear(*stepBoundary_, bindings, push, boundary, kGroupSize);
+  if (boxOnFace) {
+    sequence.dispatchLinear(*stepBoundary_, bindings, push, slabs + boxCells, kGroupSize);
+    return;
+  }
+  if (slabs > 0) sequence.dispatchLinear(*stepFaces_, bindings, push, slabs, kGroupSize);
+  if (boxCells > 0) sequence.dispatchLinear(*stepObstacles_, bindings, push, boxCells, kGroupSize);
 }
 
 void LbmSolver::recordForces(gpu::Sequence& sequence, const gpu::Buffer& params, const gpu::Buffer& flags,

@@ -76,7 +76,9 @@ class LbmSolver {
   uint64_t cells_;
   std::array<std::array<gpu::Buffer, 4>, 2> lattices_;
   gpu::Buffer macro_;
-  std::unique_ptr<gpu::Pipeline> init_, step_, stepBoundary_, forces_;
+  // The step's pipelines (lbm_step.comp): the interior; the face slabs and the obstacles' box in one (when
+  // the box reaches a face) or each on its own.
+  std::unique_ptr<gpu::Pipeline> init_, step_, stepBoundary_, stepFaces_, stepObstacles_, forces_;
 };
 
 }  // namespace sixway::sim

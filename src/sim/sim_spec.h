@@ -30,6 +30,10 @@ inline constexpr SpecId kCells{30, "CELLS"};    // lbm_init.comp
 inline constexpr SpecId kPull{31, "PULL"};      // stream_bound.comp
 inline constexpr SpecId kSparse{32, "SPARSE"};  // the FCT passes: skip inactive bricks (sim_bricks.glsl)
 inline constexpr SpecId kSparseThreshold{33, "SPARSE_THRESHOLD"};  // smoke_activity.comp
+// lbm_step.comp's boundary pipelines: which cells and which boundary code (the face slabs, the obstacles'
+// box).
+inline constexpr SpecId kBoundaryFaces{34, "BOUNDARY_FACES"};
+inline constexpr SpecId kBoundaryObstacles{35, "BOUNDARY_OBSTACLES"};
 
 // Every constant above.
 // clang-format off
@@ -40,7 +44,7 @@ inline constexpr SpecId kAll[] = {
     kTau0, kSmagorinsky, kBuoyancyTemperature, kBuoyancyDensity,
     kUp[0], kUp[1], kUp[2], kBody[0], kBody[1], kBody[2], kWind[0], kWind[1], kWind[2],
     kParabolicInflow, kBoundaryCells,
-    kDecay, kCells, kPull, kSparse, kSparseThreshold};
+    kDecay, kCells, kPull, kSparse, kSparseThreshold, kBoundaryFaces, kBoundaryObstacles};
 // clang-format on
 
 }  // namespace sixway::sim::spec
