@@ -215,6 +215,17 @@ json interpolated(const json& scene) {
   return withPatch(scene, {{"fluid", {{"obstacle_boundary", "interpolated"}}}});
 }
 
+// A sphere whose swept box stays off every face: the boundary cells then run as two pipelines, the face slabs
+// without the bounce-back code and the box without the face conditions (LbmSolver::recordStep); the spheres
+// above reach a face and take the one pipeline with both. Half-way and interpolated bounce-back.
+TEST_F(LbmStepTest, SphereAwayFromTheFaces) {
+  const glm::ivec3 size{20, 18, 16};
+  const json sphere = {{"obstacles", {{{"type", "sphere"}, {"center", {10.2, 8.7, 7.9}}, {"radius", 3.1}}}}};
+  for (const json& scene :
+       {latticeScene(size, kViscosity, sphere), interpolated(latticeScene(size, kViscosity, sphere))})
+    expectMatchesCpu(scene, 3, latticeScene(size, kViscosity));
+}
+
 TEST_F(LbmStepTest, InterpolatedBounceBackOnASphere) {
   const json sphere = {{"obstacles", {{{"type", "sphere"}, {"center", {7.8, 6.3, 5.15}}, {"radius", 3.1}}}}};
   const json halfWay = latticeScene(kSize, kViscosity, sphere);
