@@ -9,6 +9,7 @@ list(APPEND SIXWAY_SHADERS
   sim/smoke_sources.comp
   sim/smoke_activity.comp
   sim/smoke_clear.comp
+  sim/smoke_decay.comp
   sim/fct_fluxes.comp
   sim/fct_limiter.comp
   sim/fct_update.comp

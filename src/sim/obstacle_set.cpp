@@ -215,6 +215,24 @@ std::pair<glm::ivec3, glm::ivec3> ObstacleSet::sweptBox() const {
   return {first, last};
 }
 
+std::pair<glm::ivec3, glm::ivec3> ObstacleSet::inletBox() const {
+  if (inlets_.empty()) return {glm::ivec3(0), glm::ivec3(0)};
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+  for (const TimedInlet& t : inlets_) {
+    const GpuInlet& g = t.inlet;
+    // A disk lies within its radius of the centre and half a cell of its plane; a box between its corners.
+    const glm::vec3 a = g.centre.w == 0 ? glm::vec3(g.centre) - (g.normal.w + 1) : glm::vec3(g.centre);
+    const glm::vec3 b = g.centre.w == 0 ? glm::vec3(g.centre) + (g.normal.w + 1) : glm::vec3(g.normal);
+    lo = glm::min(lo, a);
+    hi = glm::max(hi, b);
+  }
+  // Cell i's centre is at i + 0.5: a centre in [lo, hi] has i in [floor(lo − 0.5), ceil(hi − 0.5)]; one more
+  // each way.
+  const glm::ivec3 first = glm::max(glm::ivec3(glm::floor(lo - 0.5f)) - 1, glm::ivec3(0));
+  const glm::ivec3 last = glm::min(glm::ivec3(glm::ceil(hi - 0.5f)) + 2, size_);
+  return {first, glm::max(last, first)};
+}
+
 void ObstacleSet::fill(StepParams& params, uint64_t step) const {
   const double seconds = double(step) * units_.stepSeconds;
   // The cells any obstacle covers now or covered a step ago, grown by two cells for the neighbours.

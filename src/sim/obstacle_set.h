@@ -31,6 +31,9 @@ class ObstacleSet {
   // like StepParams' solid box: outside it no bounce-back link exists, ever. Empty (min = max) without
   // obstacles.
   std::pair<glm::ivec3, glm::ivec3> sweptBox() const;
+  // The lattice cells [min, max) that hold every inlet cell (insideInlet in sim_grid.glsl tests cell
+  // centres), clamped to the lattice. Empty without inlets.
+  std::pair<glm::ivec3, glm::ivec3> inletBox() const;
   // Replaces the motion of `obstacle` (none: at rest where its shape says), e.g. while a user drags it.
   // sweptBox() follows the new motion: sequences recorded with the old box must be recorded again.
   void setMotion(size_t obstacle, std::optional<io::Motion> motion);

@@ -112,7 +112,7 @@ gpu::Sequence& Simulation::sequenceFor(uint32_t steps, int parity) {
     lbm_->recordStep(sequence, params_, obstacles_->flags(), smoke_->smoke(), s, from,
                      obstacles_->sweptBox());
     sequence.endStage();
-    smoke_->recordSources(sequence, params_, obstacles_->flags(), s);  // stages "smoke sources", "smoke …"
+    smoke_->recordSources(sequence, params_, obstacles_->flags(), s, obstacles_->inletBox());
     smoke_->recordTransport(sequence, obstacles_->flags(), lbm_->macro());
   }
   sequence.beginStage("watchdog");

@@ -1,5 +1,6 @@
 #include "sim/smoke_transport.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -16,9 +17,12 @@ constexpr uint32_t kBrickActive = 1;
 constexpr uint64_t kActiveDispatchOffset = 0, kClearDispatchOffset = 12;
 constexpr size_t kActiveCountWord = 6, kHeaderWords = 8;
 
-struct SourcesPush {
+struct SourcesPush {  // smoke_sources.comp
   uint32_t slot;
+  uint32_t unused[3];
+  glm::ivec4 boxMin, boxSize;  // the sparse transport's inlet box, smoke cells
 };
+constexpr uint32_t kBrickListRow = 32768;  // sim_bricks.glsl
 
 gpu::ComputePipelineDesc smokeDesc(const char* shader, int bindings, const SmokeSettings& s) {
   gpu::ComputePipelineDesc d;
@@ -67,9 +71,14 @@ SmokeTransport::SmokeTransport(const gpu::Context& context, const gpu::PipelineC
   clearList_ = gpu::Buffer::storage(context, bricks_ * 4, grid(" (cleared bricks)"));
 
   gpu::ComputePipelineDesc sources = smokeDesc("sim/smoke_sources.comp", 3, settings);
-  sources.spec.set(spec::kDecay, settings.decayPerStep);
+  sources.spec.set(spec::kDecay, settings.decayPerStep).set(spec::kSparse, settings.sparse);
   sources.pushConstantBytes = sizeof(SourcesPush);
   sources_ = std::make_unique<gpu::Pipeline>(context, cache, sources);
+  if (settings.sparse && settings.decayPerStep != 1) {
+    gpu::ComputePipelineDesc decay = smokeDesc("sim/smoke_decay.comp", 3, settings);
+    decay.spec.set(spec::kDecay, settings.decayPerStep);
+    decay_ = std::make_unique<gpu::Pipeline>(context, cache, decay);
+  }
 
   if (settings.sparse) {
     gpu::ComputePipelineDesc activity = smokeDesc("sim/smoke_activity.comp", 5, settings);
@@ -99,9 +108,16 @@ void SmokeTransport::upload(const std::vector<glm::vec2>& values) {
     throw std::invalid_argument("SmokeTransport::upload: " + std::to_string(values.size()) +
                                 " values for a grid of " + std::to_string(cells_));
   smoke_.upload(values);
-  // Every brick counts as active in the last substep, so that the next activity pass drops the values of the
-  // bricks it finds inactive.
+  // Every brick counts as active in the last substep: the next step's dissipation reaches all of them, and
+  // its activity pass drops the values of the bricks it finds inactive.
   activity_.upload(std::vector<uint32_t>(bricks_, kBrickActive));
+  std::vector<uint32_t> all(bricks_);
+  for (uint32_t b = 0; b < bricks_; ++b) all[b] = b;
+  activeList_.upload(all);
+  const uint32_t count = uint32_t(bricks_);
+  const std::vector<uint32_t> header{
+      std::min(count, kBrickListRow), (count + kBrickListRow - 1) / kBrickListRow, 1, 0, 0, 0, count, 0};
+  brickHeader_.upload(header);
 }
 
 uint64_t SmokeTransport::activeBricks() const {
@@ -110,10 +126,27 @@ uint64_t SmokeTransport::activeBricks() const {
 }
 
 void SmokeTransport::recordSources(gpu::Sequence& sequence, const gpu::Buffer& params,
-                                   const gpu::Buffer& flags, uint32_t slot) const {
+                                   const gpu::Buffer& flags, uint32_t slot,
+                                   const std::pair<glm::ivec3, glm::ivec3>& inlets) const {
+  const std::vector<gpu::Binding> bindings{gpu::reads(params), gpu::reads(flags), gpu::readsWrites(smoke_)};
   sequence.beginStage(kSourcesStage);
-  sequence.dispatchLinear(*sources_, {gpu::reads(params), gpu::reads(flags), gpu::readsWrites(smoke_)},
-                          SourcesPush{slot}, cells_, kGroupSize);
+  if (!settings_.sparse) {
+    sequence.dispatchLinear(*sources_, bindings, SourcesPush{slot}, cells_, kGroupSize);
+    sequence.endStage();
+    return;
+  }
+  if (decay_)
+    sequence.dispatchIndirect(*decay_,
+                              {gpu::reads(brickHeader_), gpu::reads(activeList_), gpu::readsWrites(smoke_)},
+                              std::span<const std::byte>(), brickHeader_, kActiveDispatchOffset);
+  const glm::ivec3 first = glm::max(inlets.first, glm::ivec3(0)) * settings_.upres;
+  const glm::ivec3 size =
+      glm::max(glm::min(inlets.second, settings_.lattice) * settings_.upres - first, glm::ivec3(0));
+  const uint64_t boxCells = uint64_t(size.x) * uint64_t(size.y) * uint64_t(size.z);
+  if (boxCells > 0)
+    sequence.dispatchLinear(*sources_, bindings,
+                            SourcesPush{slot, {}, glm::ivec4(first, 0), glm::ivec4(size, 0)}, boxCells,
+                            kGroupSize);
   sequence.endStage();
 }
 

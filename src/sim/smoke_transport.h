@@ -5,6 +5,7 @@
 #include <array>
 #include <glm/glm.hpp>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "gpu/buffer.h"
@@ -39,9 +40,10 @@ class SmokeTransport {
   static constexpr const char* kLimiterStage = "smoke limiter";
   static constexpr const char* kUpdateStage = "smoke update";
 
-  // Inlet cells take the inlet's values; elsewhere the smoke decays.
+  // Inlet cells take the inlet's values; elsewhere the smoke decays. `inlets`: lattice cells [min, max) that
+  // hold every inlet cell (ObstacleSet::inletBox; the sparse transport looks for inlet cells only there).
   void recordSources(gpu::Sequence& sequence, const gpu::Buffer& params, const gpu::Buffer& flags,
-                     uint32_t slot) const;
+                     uint32_t slot, const std::pair<glm::ivec3, glm::ivec3>& inlets) const;
   // Moves the smoke for one lattice step with the velocity in `macro` (cells/step, xyz of vec4),
   // in `upres` substeps so that the Courant number stays that of the lattice. Stages per substep: the
   // activity (the sparse transport's brick lists) and the three FCT passes.
@@ -69,7 +71,7 @@ class SmokeTransport {
   gpu::Buffer smoke_, lowOrder_, ratios_;
   gpu::Buffer activity_, brickHeader_, activeList_, clearList_;  // the sparse transport's (sim_bricks.glsl)
   std::array<gpu::Buffer, 3> antidiffusive_;                     // per axis (sim_fct_fluxes.glsl)
-  std::unique_ptr<gpu::Pipeline> sources_, activityPass_, clear_, fluxes_, limiter_, update_, export_;
+  std::unique_ptr<gpu::Pipeline> sources_, decay_, activityPass_, clear_, fluxes_, limiter_, update_, export_;
 };
 
 }  // namespace sixway::sim

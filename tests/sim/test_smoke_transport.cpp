@@ -148,6 +148,9 @@ class SmokeTransportTest : public GpuTest {
     return got;
   }
 
+  // SourcesSetInletCellsAndDecayTheRest with the sparse or the dense transport.
+  void expectSourcesMatchCpu(bool sparse);
+
   uint64_t activeBricks_ = 0, bricks_ = 0;  // of the last gpuTransport()
 };
 
@@ -270,10 +273,20 @@ TEST_F(SmokeTransportTest, ClosedBoxConservesAndStaysPositive) {
   }
 }
 
+// Dense: one pass over every cell. Sparse: the decay over the active bricks (all of them after an upload),
+// then the inlets set over their box, here the lattice cells [(3, 1, 0), (10, 7, 8)) that hold both inlets.
 TEST_F(SmokeTransportTest, SourcesSetInletCellsAndDecayTheRest) {
+  for (const bool sparse : {false, true}) {
+    SCOPED_TRACE(sparse ? "sparse" : "dense");
+    expectSourcesMatchCpu(sparse);
+  }
+}
+
+void SmokeTransportTest::expectSourcesMatchCpu(bool sparse) {
   const int upres = 2;
   const double decay = 0.9;
   sim::SmokeSettings settings{kLattice, upres, kPeriodic, float(decay)};
+  settings.sparse = sparse;
   sim::SmokeTransport transport(context(), pipelineCache(), settings);
   const std::vector<glm::vec2> initial = randomSmoke(kLattice * upres, 6);
   transport.upload(initial);
@@ -297,7 +310,7 @@ TEST_F(SmokeTransportTest, SourcesSetInletCellsAndDecayTheRest) {
   p->counts = glm::uvec4(0, inletSmoke.size(), 0, 0);
 
   gpu::Sequence sequence(context());
-  transport.recordSources(sequence, params, flags, 0);
+  transport.recordSources(sequence, params, flags, 0, {glm::ivec3(3, 1, 0), glm::ivec3(10, 7, kLattice.z)});
   sequence.submit();
   const std::vector<glm::vec2> got = transport.download();
   std::vector<glm::dvec2> expected = toDouble(initial);
