@@ -1,6 +1,7 @@
 #include "sim/smoke_transport.h"
 
 #include <algorithm>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -16,13 +17,13 @@ constexpr uint32_t kBrickActive = 1;
 // The brick header's words (sim_bricks.glsl): the two lists' indirect dispatches, then their lengths.
 constexpr uint64_t kActiveDispatchOffset = 0, kClearDispatchOffset = 12;
 constexpr size_t kActiveCountWord = 6, kHeaderWords = 8;
+constexpr uint32_t kBrickListRow = 32768;  // workgroups per row of a list's dispatch
 
 struct SourcesPush {  // smoke_sources.comp
   uint32_t slot;
   uint32_t unused[3];
   glm::ivec4 boxMin, boxSize;  // the sparse transport's inlet box, smoke cells
 };
-constexpr uint32_t kBrickListRow = 32768;  // sim_bricks.glsl
 
 gpu::ComputePipelineDesc smokeDesc(const char* shader, int bindings, const SmokeSettings& s) {
   gpu::ComputePipelineDesc d;
@@ -112,7 +113,7 @@ void SmokeTransport::upload(const std::vector<glm::vec2>& values) {
   // its activity pass drops the values of the bricks it finds inactive.
   activity_.upload(std::vector<uint32_t>(bricks_, kBrickActive));
   std::vector<uint32_t> all(bricks_);
-  for (uint32_t b = 0; b < bricks_; ++b) all[b] = b;
+  std::iota(all.begin(), all.end(), 0u);
   activeList_.upload(all);
   const uint32_t count = uint32_t(bricks_);
   const std::vector<uint32_t> header{
