@@ -68,12 +68,16 @@ DEFAULTS = {
         "heldout_pairs": 32,
         "checkpoint_every": 500,
         # Fine-tuning: a checkpoint.pt (or a training directory holding one), relative to the repository root,
-        # whose model weights start this run; its model config must equal this one. The optimizer starts afresh.
+        # whose model weights start this run; its model config must equal this one, or differ only in fewer
+        # guide_channels and input_channels (the new input channels start with zero weights, see
+        # widened_weights). The optimizer starts afresh.
         "init_from": None,
     },
     "loss": {"mse": 1.0, "ssim": 0.1, "gradient": 0.0, "temporal": 0.1, "temporal_k": 20.0},
 }
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+# The model config keys in which train.init_from's checkpoint may have fewer channels than the run.
+WIDENED_KEYS = ("guide_channels", "input_channels")
 EXPORT_NAME = "sixway-unet.safetensors"
 
 
@@ -190,6 +194,35 @@ def save_checkpoint(path, net, optimizer, step, seconds, config, interval):
         state["cuda_rng"] = torch.cuda.get_rng_state_all()
     with atomic_path(path) as temporary:
         torch.save(state, temporary)
+
+
+def widens_input(old, new):
+    """Whether model config `new` is `old` with as many or more guide and input channels, and otherwise equal."""
+    old, new = full_config(old), full_config(new)
+    if any(new[key] < old[key] for key in WIDENED_KEYS):
+        return False
+    return dict(old, **{key: new[key] for key in WIDENED_KEYS}) == new
+
+
+def more_input_channels(old, new):
+    """Whether tensor shape `new` is `old` with more channels in dimension 1 (a conv's input channels)."""
+    return len(old) >= 2 and len(new) == len(old) and new[1] > old[1] and new[:1] + new[2:] == old[:1] + old[2:]
+
+
+def widened_weights(weights, current):
+    """A checkpoint's `weights` (a state dict) for a network of state dict `current`: a tensor with more input
+    channels here (the first conv, alpha_from_guide) gets the old ones first and zeros after them. The new channels
+    are appended in both, so the widened network computes the old function until training moves the new weights.
+    Any other difference is left to load_state_dict to report. Returns the state dict and the widened tensors'
+    names."""
+    state, widened = {}, []
+    for key, old in weights.items():
+        new = current.get(key, old)
+        if more_input_channels(old.shape, new.shape):
+            old = torch.cat([old, old.new_zeros(new.shape[0], new.shape[1] - old.shape[1], *new.shape[2:])], dim=1)
+            widened.append(key.removeprefix("blocks.").replace("/", "."))
+        state[key] = old
+    return state, widened
 
 
 def first_difference(a, b, prefix=""):
@@ -350,9 +383,13 @@ class Trainer:
             weights = start["model"]
         except Exception as error:  # a corrupt or foreign file: one line naming it
             raise ConfigError(f"{path}: not a training checkpoint ({type(error).__name__})")
-        if full_config(model_config) != full_config(self.config["model"]):
+        if not widens_input(model_config, self.config["model"]):
             raise ConfigError(f"{path}: train.init_from has another model config than this run's")
-        self.net.load_state_dict(weights)
+        state, widened = widened_weights(weights, self.net.state_dict())
+        if widened and self.lead:
+            print(f"train.init_from: {', '.join(widened)} widened to this run's input channels (the new ones "
+                  f"start at zero)", flush=True)
+        self.net.load_state_dict(state)
 
     def _prepare_out(self, resumed):
         os.makedirs(self.out, exist_ok=True)

@@ -24,10 +24,14 @@ class LightmapNetwork {
   // 0: the guide's 4th channel is unused; > 0: the network reads there the fine alpha of this step (voxels;
   // the guiding map's render.guide_alpha_step_voxels), as it was trained.
   float fineAlphaStepVoxels() const;
+  // Whether the network's guide has a 5th channel: the direct emission of the fine march (the guiding map's
+  // emission image, docs/real-time-rendering.md).
+  bool readsEmission() const;
   // `guide`: size² RGBA pixels, row 0 at the top (guide light, alpha, shell depth, fine alpha or unused; the
-  // guiding map of docs/real-time-rendering.md). Returns size² pixels of eight channels: right, left, top,
-  // bottom, back, front, alpha, emissive (docs/conventions.md). Waits for the GPU.
-  std::vector<float> run(std::span<const float> guide);
+  // guiding map of docs/real-time-rendering.md); `emission`: size² values when readsEmission(), else empty.
+  // Returns size² pixels of eight channels: right, left, top, bottom, back, front, alpha, emissive
+  // (docs/conventions.md). Waits for the GPU. Throws std::invalid_argument for inputs of another size.
+  std::vector<float> run(std::span<const float> guide, std::span<const float> emission = {});
 
  private:
   struct Impl;

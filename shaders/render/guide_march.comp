@@ -14,11 +14,15 @@
 // Output (RGBA16F): R = the sum over the guide lights, G = alpha = 1 − T, B = the encoded view depth where
 // alpha first reaches the shell threshold (exact within the slab; 1 where it never does), A = 0, or with
 // kFineAlpha the alpha of a second, fine march (step march.z, midpoints, not jittered: the baker's alpha
-// quadrature), an input the network need not guess (issue #20).
+// quadrature), an input the network need not guess (issue #20). With kEmission the same fine march also
+// integrates the direct emission toward the camera into a second image, as the exact baker's emissive channel
+// does (sixway_march.comp): E += T·(1 − e^{−σ_t Δ})·(intensity / extinction)·luminance(ramp(temperature)); the
+// network learns the scattered glow from it (docs/network-study.md, "Emission in the guide").
 // Samples in empty bricks (majorant.comp) are skipped without moving the sample lattice: same sums.
 #extension GL_GOOGLE_include_directive : require
 #include "bake_params.glsl"
 #include "depth.glsl"
+#include "emission.glsl"
 #include "phase.glsl"
 #include "random.glsl"
 
@@ -30,6 +34,7 @@ layout(constant_id = 1) const bool kFrontLight = true;  // whether the front lig
 // every grid choice below is resolved at compile time.
 layout(constant_id = 2) const int kLightGrids = 0;
 layout(constant_id = 3) const bool kFineAlpha = false;
+layout(constant_id = 4) const bool kEmission = false;  // only with kFineAlpha
 
 // Per-frame values besides BakeParams (whose lights[] hold the light grids, at most one per axis, march.x the
 // step and march.y the transmittance below which a ray stops once its shell depth is known).
@@ -44,6 +49,8 @@ layout(std430, binding = 4) readonly buffer Depth0 { float depth0[]; };
 layout(std430, binding = 5) readonly buffer Depth1 { float depth1[]; };
 layout(std430, binding = 6) readonly buffer Depth2 { float depth2[]; };
 layout(binding = 7, rgba16f) uniform writeonly image2D guide;
+layout(std430, binding = 8) readonly buffer Temperature { float temperature[]; };
+layout(binding = 9, r32f) uniform writeonly image2D emission;  // written with kEmission
 
 // 1 − e^{−x} without the cancellation of small x.
 float oneMinusExp(float x) {
@@ -86,10 +93,18 @@ vec3 towardLight(int k) {
   return atFarEnd(k) ? -d : d;
 }
 
-// 1 − T along the ray through [span.x, span.y] by midpoint steps of length h (the last one shortened), empty
-// bricks skipped; stops once T < 1e-4.
-float fineAlpha(vec3 origin, vec3 dir, vec3 invDir, vec3 boxMin, float brickSize, vec2 span, float h) {
-  float tau = 0.0;
+// The emitted luminance per unit optical depth at interpolation l: intensity · ramp / extinction, so that a
+// slab absorbing a of the light passing through emits a times it (params.image.w: a temperature grid).
+float emittedPerDepth(Lerp8 l) {
+  if (params.image.z == 0) return 0.0;  // no ramp: the smoke does not emit
+  float t = params.image.w != 0 ? LERP8(temperature, l) : 0.0;
+  return (params.optics.w / params.optics.x) * luminance(rampColor(params.ramp, params.image.z, t));
+}
+
+// Along the ray through [span.x, span.y] by midpoint steps of length h (the last one shortened), empty bricks
+// skipped, until T < 1e-4: x = 1 − T, y = the direct emission reaching the camera (with kEmission).
+vec2 fineMarch(vec3 origin, vec3 dir, vec3 invDir, vec3 boxMin, float brickSize, vec2 span, float h) {
+  float tau = 0.0, emitted = 0.0;
   for (float t0 = span.x; t0 < span.y && tau < 9.2; t0 += h) {
     float dt = min(h, span.y - t0);
     vec3 p = origin + (t0 + 0.5 * dt) * dir;
@@ -103,9 +118,11 @@ float fineAlpha(vec3 origin, vec3 dir, vec3 invDir, vec3 boxMin, float brickSize
       continue;
     }
     Lerp8 l = lerp8(params.volume.size.xyz, volumeSampleCoord(params.volume, p));
-    tau += params.optics.x * max(0.0, LERP8(density, l)) * dt;
+    float slab = params.optics.x * max(0.0, LERP8(density, l)) * dt;
+    if (kEmission && slab > 0.0) emitted += exp(-tau) * oneMinusExp(slab) * emittedPerDepth(l);
+    tau += slab;
   }
-  return oneMinusExp(tau);
+  return vec2(oneMinusExp(tau), emitted);
 }
 
 void main() {
@@ -162,7 +179,9 @@ void main() {
     }
   }
   float depth = shell < 0.0 ? 1.0 : encodeShellDepth(shell, frame.shell.yz);
-  float fine =
-      kFineAlpha && span.x < span.y ? fineAlpha(origin, dir, invDir, boxMin, brickSize, span, params.march.z) : 0.0;
-  imageStore(guide, pixel, vec4(radiance, 1.0 - transmittance, depth, fine));
+  vec2 fine = kFineAlpha && span.x < span.y
+                  ? fineMarch(origin, dir, invDir, boxMin, brickSize, span, params.march.z)
+                  : vec2(0.0);
+  imageStore(guide, pixel, vec4(radiance, 1.0 - transmittance, depth, fine.x));
+  if (kEmission) imageStore(emission, pixel, vec4(fine.y));
 }

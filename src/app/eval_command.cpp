@@ -82,12 +82,26 @@ std::vector<float> interleaved(const std::vector<float>& nchw, int64_t n, int ch
   return out;
 }
 
-// The guide channels of a shard (3, or 4 with the fine alpha: version 3), checked against what the network
-// reads: a network that reads the fine alpha needs it, of the step it was trained on.
+// Whether a shard's scene emits (smoke.emission.intensity > 0): its guide's emission is not zero.
+bool sceneEmits(const nlohmann::json& description) {
+  const nlohmann::json intensity =
+      description.value(nlohmann::json::json_pointer("/scene/smoke/emission/intensity"), nlohmann::json(0.0));
+  return intensity.is_number() && intensity.get<double>() > 0.0;
+}
+
+// The guide channels of a shard (3, 4 with the fine alpha: version 3, 5 with the emission: version 4),
+// checked against what the network reads: a network that reads the fine alpha needs it, of the step it was
+// trained on; one that reads the emission needs it unless the scene emits nothing (then it is zero).
 int guideChannels(const fs::path& shard, const nlohmann::json& description, const nn::Graph& graph) {
   const int channels = description.contains("guide_channels") ? int(description["guide_channels"].size()) : 3;
-  if (channels != 3 && channels != 4)
-    throw io::InputError(shard.string(), "guide_channels must name 3 or 4 channels");
+  if (channels < 3 || channels > nn::kMaxGuideChannels)
+    throw io::InputError(shard.string(), "guide_channels must name 3 to 5 channels");
+  if (graph.nodes.front().guideChannels > nn::kGuideImageChannels && channels <= nn::kGuideImageChannels &&
+      sceneEmits(description))
+    throw io::InputError(shard.string(),
+                         "the network reads the guide's emission, which this shard of an "
+                         "emissive scene lacks (the dataset config's \"guide\": "
+                         "{\"emission\": true})");
   const float wanted = graph.nodes.front().guideAlphaStepVoxels;
   if (wanted == 0.0f) return channels;
   // Absent (or under a scene that is not an object): no fine alpha.
@@ -95,7 +109,7 @@ int guideChannels(const fs::path& shard, const nlohmann::json& description, cons
       nlohmann::json::json_pointer("/scene/render/guide_alpha_step_voxels"), nlohmann::json(0.0));
   if (!step.is_number())
     throw io::InputError(shard.string(), "scene.render.guide_alpha_step_voxels is not a number");
-  const float held = channels == 4 ? step.get<float>() : 0.0f;
+  const float held = channels >= 4 ? step.get<float>() : 0.0f;
   if (held != wanted)
     throw io::InputError(shard.string(), "the network reads a fine alpha of step " + io::show(wanted) +
                                              " voxels; the shard's guide has " +
@@ -115,7 +129,7 @@ void evaluateDataset(const EvalOptions& o) {
   gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));
   std::unique_ptr<nn::Network> network;
   std::unique_ptr<render::LightmapImages> lightmaps;
-  std::unique_ptr<gpu::Image> guide;
+  std::unique_ptr<gpu::Image> guide, emission;
   std::unique_ptr<gpu::Sequence> sequence;
   int size = 0;
   std::map<std::string, eval::LightmapMetrics> metrics;
@@ -137,9 +151,14 @@ void evaluateDataset(const EvalOptions& o) {
       guide = std::make_unique<gpu::Image>(
           context, gpu::ImageDesc{uint32_t(size), uint32_t(size), 1, VK_FORMAT_R32G32B32A32_SFLOAT,
                                   VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "guide"});
+      if (network->graph().nodes.front().guideChannels > nn::kGuideImageChannels)
+        emission = std::make_unique<gpu::Image>(
+            context,
+            gpu::ImageDesc{uint32_t(size), uint32_t(size), 1, VK_FORMAT_R32_SFLOAT,
+                           VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "guide emission"});
       sequence = std::make_unique<gpu::Sequence>(context);
       sequence->beginStage("network");
-      network->record(*sequence, *guide, lightmaps->a, lightmaps->b);
+      network->record(*sequence, {*guide, emission.get()}, lightmaps->a, lightmaps->b);
       sequence->endStage();
       sequence->finish();
     } else if (shardSize != size) {
@@ -164,10 +183,14 @@ void evaluateDataset(const EvalOptions& o) {
       const std::string split = samples[size_t(n)].value("split", "");
       if (!splits.count(split)) continue;
       const std::vector<float> g = interleaved(guides, n, channels, pixels);
-      std::vector<float> rgba(size_t(pixels) * 4, 0.0f);
-      for (int64_t p = 0; p < pixels; ++p)
-        for (int c = 0; c < channels; ++c) rgba[size_t(p) * 4 + c] = g[size_t(p) * channels + c];
+      std::vector<float> rgba(size_t(pixels) * 4, 0.0f), emitted(size_t(pixels), 0.0f);
+      for (int64_t p = 0; p < pixels; ++p) {
+        for (int c = 0; c < std::min(channels, nn::kGuideImageChannels); ++c)
+          rgba[size_t(p) * 4 + c] = g[size_t(p) * channels + c];
+        if (channels > nn::kGuideImageChannels) emitted[size_t(p)] = g[size_t(p) * channels + 4];
+      }
       guide->upload(std::as_bytes(std::span(rgba)));
+      if (emission) emission->upload(std::as_bytes(std::span(emitted)));
       sequence->submit();
       inferenceMs.push_back(sequence->stageTimes().front().milliseconds);
       metrics[split].add(lightmaps->download().pixels, interleaved(targets, n, 8, pixels));

@@ -415,8 +415,13 @@ DatasetConfig parseDatasetConfig(const nlohmann::json& j, const fs::path& file) 
   c.lightmapSize = r.optional<int>("lightmap_size", base.render.lightmapSize,
                                    io::both(io::inRange(16, 4096), io::multipleOf(16)));
   c.targets = parseTargets(r);
-  c.guideAlphaStepVoxels = r.object("guide", [&](io::JsonReader& g) {
-    return g.optional<float>("alpha_step_voxels", base.render.guideAlphaStepVoxels, io::inRange(0, 64));
+  r.object("guide", [&](io::JsonReader& g) {
+    c.guideAlphaStepVoxels =
+        g.optional<float>("alpha_step_voxels", base.render.guideAlphaStepVoxels, io::inRange(0, 64));
+    c.guideEmission = g.optional<bool>("emission", false);
+    if (c.guideEmission && c.guideAlphaStepVoxels <= 0)
+      g.fail("emission", "comes from the fine march: needs alpha_step_voxels > 0");
+    return 0;
   });
   const double shardBytes = double(c.frames.count) * c.cameraCount() *
                             shardChannels(c.guideChannels(), c.targets) * 2.0 * c.lightmapSize *

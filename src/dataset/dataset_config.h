@@ -89,6 +89,9 @@ struct DatasetConfig {
   // "guide": {"alpha_step_voxels"}: > 0 adds the fine alpha as the guide's 4th channel (every sequence's
   // render.guide_alpha_step_voxels); default: the base scene's.
   float guideAlphaStepVoxels = 0;
+  // "guide": {"emission"}: the fine march's direct emission as the guide's 5th channel (needs the fine
+  // alpha).
+  bool guideEmission = false;
   std::vector<int> heldoutSequences, heldoutCameras;
   DatasetVariations variations;
   std::optional<DatasetObstacles> obstacles;  // none: the base scene's obstacles
@@ -100,7 +103,8 @@ struct DatasetConfig {
 
   int cameraCount() const { return int(cameras.azimuthsDeg.size() * cameras.elevationsDeg.size()); }
   int sequenceCount() const { return sequences + int(vdbScenes.size()); }
-  int guideChannels() const { return guideAlphaStepVoxels > 0 ? 4 : 3; }  // guide, alpha, depth[, alpha_fine]
+  // guide, alpha, depth[, alpha_fine[, emission]]
+  int guideChannels() const { return guideEmission ? 5 : guideAlphaStepVoxels > 0 ? 4 : 3; }
 };
 
 // `file` names the config in errors and anchors its relative paths. Reads and checks the base scene too.

@@ -1,7 +1,9 @@
 #include "dataset/dataset_sequence.h"
 
+#include <algorithm>
 #include <cstring>
 #include <glm/gtc/packing.hpp>
+#include <optional>
 
 #include "dataset/motion_field.h"
 #include "gpu/context.h"
@@ -66,6 +68,16 @@ std::vector<float> downloadHalfTexels(const gpu::Image& image) {
   return values;
 }
 
+// The guide's pixels with the emission as a 5th channel (interleaved).
+std::vector<float> appendChannel(const std::vector<float>& rgba, const std::vector<float>& channel) {
+  std::vector<float> out(channel.size() * 5);
+  for (size_t i = 0; i < channel.size(); ++i) {
+    std::copy_n(&rgba[i * 4], 4, &out[i * 5]);
+    out[i * 5 + 4] = channel[i];
+  }
+  return out;
+}
+
 nlohmann::json vec(glm::vec3 v) {
   return {v.x, v.y, v.z};
 }
@@ -87,8 +99,13 @@ DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCa
   const int samplesPerCamera = int(plan.frames.size());
   const int samples = int(cameras.size()) * samplesPerCamera;
 
-  render::GuidingMap guiding(context, cache, render::GuideSettings::fromScene(scene));
+  render::GuideSettings guideSettings = render::GuideSettings::fromScene(scene);
+  guideSettings.emission = config.guideEmission;
+  render::GuidingMap guiding(context, cache, guideSettings);
   const gpu::Image guide(context, guiding.imageDesc());
+  std::optional<gpu::Image> emission;
+  if (config.guideEmission) emission.emplace(context, guiding.emissionDesc());
+  const gpu::Image* emissionImage = emission ? &*emission : nullptr;
   dataset::MotionField motion(context, cache, uint32_t(size));
   render::ScatteredLightmaps baker(context, cache);
   render::BakeSettings bake;
@@ -112,7 +129,7 @@ DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCa
     const render::Volume volume = volumes->volume(frame);
     if (frame == plan.frames[next]) {
       if (!recorded) {  // the volume's buffers stay the same from frame to frame
-        guiding.record(realtime, volume, guide);
+        guiding.record(realtime, volume, guide, emissionImage);
         if (simulated) motion.record(realtime, guide, simulated->simulation().lbm().macro(), velocityGrid);
         realtime.finish();
         recorded = true;
@@ -124,7 +141,10 @@ DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCa
         if (simulated) motion.update(c.camera, billboard, shellRange, metresPerVelocityUnit);
         realtime.submit();
         const int sample = c.index * samplesPerCamera + int(next);
-        guides.set(sample, downloadHalfTexels(guide), 4);
+        if (emission)
+          guides.set(sample, appendChannel(downloadHalfTexels(guide), emission->download<float>()), 5);
+        else
+          guides.set(sample, downloadHalfTexels(guide), 4);
         if (config.targets.multiple) {
           render::MultipleScattering ms = config.targets.multipleScattering;
           ms.seed = sampleSeed(scene.render.seed, plan.sequence, frame, c.index);
@@ -180,12 +200,14 @@ DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCa
   }
   shard.tensors.push_back(motions.take(samples));
   // Version 2: the targets are named (a reader of version 1 expects `target` alone, so it refuses these);
-  // version 3: so are the guide's channels, one more than before (a reader of 2 expects 3).
+  // version 3: so are the guide's channels, one more than before (a reader of 2 expects 3); version 4: a
+  // 5th guide channel, the emission (a reader of 3 expects at most 4).
   const bool singleOnly = config.targets.single && !config.targets.multiple;
-  const bool fineAlpha = config.guideChannels() == 4;
-  shard.metadata = {{"version", fineAlpha    ? 3
-                                : singleOnly ? 1
-                                             : 2},
+  const bool fineAlpha = config.guideChannels() >= 4;
+  shard.metadata = {{"version", config.guideEmission ? 4
+                                : fineAlpha          ? 3
+                                : singleOnly         ? 1
+                                                     : 2},
                     {"targets", targetNames},
                     {"sequence", plan.sequence},
                     {"attempt", plan.attempt},
@@ -199,6 +221,7 @@ DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCa
                     {"samples", sampleJson}};
   if (!simulated) shard.metadata["motion"] = false;  // absent: the shard has a motion field
   if (fineAlpha) shard.metadata["guide_channels"] = {"guide", "alpha", "depth", "alpha_fine"};
+  if (config.guideEmission) shard.metadata["guide_channels"].push_back("emission");
   return shard;
 }
 

@@ -146,7 +146,8 @@ struct FramePipeline::Passes {
       frame.record(s, volume, stages, [&](gpu::Sequence& s) {
         if (network) {
           s.beginStage("network");
-          network->record(s, frame.guide(), frame.lightmaps().a, frame.lightmaps().b);
+          network->record(s, {frame.guide(), frame.guideEmission()}, frame.lightmaps().a,
+                          frame.lightmaps().b);
           s.endStage();
         }
         if (guideLit) guideLit->record(s, frame.guide(), frame.lightmaps());

@@ -79,13 +79,15 @@ Node readNode(io::JsonReader& r) {
   n.scale = r.required<int>("scale", io::positive());
   n.outChannels = r.optional<int>("out_channels", 0, io::positive());
   if (n.op == Op::Input) {
-    n.outChannels = r.required<int>("out_channels", io::inRange(1, 4));
-    n.guideChannels = r.required<int>("guide_channels", io::inRange(1, n.outChannels));
-    // The guide's 4th channel is the fine alpha, which the runtime's guide computes only when asked.
+    n.outChannels = r.required<int>("out_channels", io::inRange(1, 8));
+    n.guideChannels =
+        r.required<int>("guide_channels", io::inRange(1, std::min(n.outChannels, kMaxGuideChannels)));
+    // The guide's 4th channel is the fine alpha, its 5th the emission of the same fine march, which the
+    // runtime's guide computes only when asked.
     n.guideAlphaStepVoxels = r.optional<float>("guide_alpha_step_voxels", 0.0f, io::inRange(0, 64));
-    if ((n.guideChannels == 4) != (n.guideAlphaStepVoxels > 0.0f))
+    if ((n.guideChannels >= 4) != (n.guideAlphaStepVoxels > 0.0f))
       r.fail("guide_channels",
-             "a 4th guide channel is the fine alpha: guide_channels 4 goes with "
+             "a 4th guide channel is the fine alpha: guide_channels 4 or 5 go with "
              "guide_alpha_step_voxels > 0");
     return n;
   }

@@ -33,7 +33,7 @@ struct Node {
   int dwExpand = 2, ffnExpand = 2;
   float eps = 1e-6f;
   // input
-  int guideChannels = 3;
+  int guideChannels = 3;              // 4: with the fine alpha; 5: and the emission (kGuideImageChannels)
   float guideAlphaStepVoxels = 0.0f;  // > 0: channel 4 is the guide's fine alpha of this step
   // output: the eight channels (names, encodings) and the lightmaps' components as indices into them
   std::vector<std::string> channels;
@@ -43,6 +43,10 @@ struct Node {
   int gatedChannels() const { return inChannels * dwExpand / 2; }  // NAFBlock: after the first SimpleGate
   int ffnChannels() const { return inChannels * ffnExpand / 2; }   // NAFBlock: after the second
 };
+
+// The guiding map image holds the guide's first 4 channels; a 5th, the direct emission, is a second image.
+inline constexpr int kGuideImageChannels = 4;
+inline constexpr int kMaxGuideChannels = 5;
 
 struct Graph {
   int version = 1;

@@ -1,5 +1,7 @@
 #include "nn/io_kernels.h"
 
+#include <algorithm>
+
 #include "gpu/check.h"
 #include "gpu/pipeline.h"
 #include "gpu/sequence.h"
@@ -9,19 +11,32 @@ namespace sixway::nn {
 
 InputKernel::InputKernel(const KernelSetup& setup, MapShape map, uint32_t guideWidth, uint32_t guideHeight,
                          int guideChannels)
-    : map_(map), sampler_(std::make_unique<gpu::Sampler>(*setup.context, VK_FILTER_NEAREST)) {
+    : map_(map),
+      guideChannels_(guideChannels),
+      sampler_(std::make_unique<gpu::Sampler>(*setup.context, VK_FILTER_NEAREST)) {
+  if (map.channels > 8 || guideChannels > int(std::min<uint32_t>(map.channels, kMaxGuideChannels)))
+    throw gpu::GpuError("network input: " + std::to_string(guideChannels) + " guide channels into a map of " +
+                        std::to_string(map.channels));
   gpu::ComputePipelineDesc desc;
   desc.shader = shaderName("input", setup.precision);
-  desc.bindings = {gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer};
+  desc.bindings = {gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
+                   gpu::BindingType::SampledImage};
   desc.spec.set(spec::kLocalSizeX, kTile).set(spec::kLocalSizeY, kTile);
   desc.spec.set(spec::kWidth, int(map.width)).set(spec::kHeight, int(map.height));
+  desc.spec.set(spec::kChannels, int(map.channels));
   desc.spec.set(spec::kGuideWidth, int(guideWidth)).set(spec::kGuideHeight, int(guideHeight));
   desc.spec.set(spec::kGuideChannels, guideChannels);
   pipeline_ = &setup.pipelines->get(desc);
 }
 
-void InputKernel::record(gpu::Sequence& sequence, const gpu::Image& guide, const FeatureMap& output) const {
-  sequence.dispatch(*pipeline_, {gpu::samples(guide, *sampler_), gpu::writes(output.buffer())},
+void InputKernel::record(gpu::Sequence& sequence, const gpu::Image& guide, const gpu::Image* emission,
+                         const FeatureMap& output) const {
+  if (guideChannels_ > kGuideImageChannels && !emission)
+    throw gpu::GpuError("network input: the guide's 5th channel needs an emission image");
+  // Without an emission channel the guide stands in for the unread second image.
+  sequence.dispatch(*pipeline_,
+                    {gpu::samples(guide, *sampler_), gpu::writes(output.buffer()),
+                     gpu::samples(emission ? *emission : guide, *sampler_)},
                     std::span<const std::byte>(), groupsFor(map_.width, kTile),
                     groupsFor(map_.height, kTile));
 }

@@ -1,5 +1,6 @@
 #pragma once
-// The network's ends: the guiding map into the first feature map (shaders/nn/input.comp), and the head maps
+// The network's ends: the guiding map (and its emission) into the first feature map (shaders/nn/input.comp),
+// and the head maps
 // out into the two RGBA lightmaps, decoded and packed (shaders/nn/output.comp).
 #include <array>
 #include <memory>
@@ -19,13 +20,17 @@ namespace sixway::nn {
 
 class InputKernel {
  public:
-  // `map`: the first feature map (the guide's size rounded up); the guide is `guideWidth` x `guideHeight`.
+  // `map`: the first feature map (the guide's size rounded up, 4 or 8 channels); the guide is `guideWidth` x
+  // `guideHeight`, of `guideChannels` channels: the guide image's first ones, the 5th the emission image's R.
   InputKernel(const KernelSetup& setup, MapShape map, uint32_t guideWidth, uint32_t guideHeight,
               int guideChannels);
-  void record(gpu::Sequence& sequence, const gpu::Image& guide, const FeatureMap& output) const;
+  // `emission`: required with 5 guide channels, unread otherwise.
+  void record(gpu::Sequence& sequence, const gpu::Image& guide, const gpu::Image* emission,
+              const FeatureMap& output) const;
 
  private:
   MapShape map_;
+  int guideChannels_;
   std::unique_ptr<gpu::Sampler> sampler_;
   const gpu::Pipeline* pipeline_;
 };

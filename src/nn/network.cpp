@@ -148,10 +148,13 @@ Network::Network(const gpu::Context& context, const gpu::PipelineCache& cache,
 
 Network::~Network() = default;
 
-void Network::record(gpu::Sequence& sequence, const gpu::Image& guide, const gpu::Image& lightmapA,
+void Network::record(gpu::Sequence& sequence, const GuideImages& guide, const gpu::Image& lightmapA,
                      const gpu::Image& lightmapB, bool timeLayers) const {
-  for (const gpu::Image* image : {&guide, &lightmapA, &lightmapB})
-    if (image->desc().width != guideWidth_ || image->desc().height != guideHeight_)
+  if (graph_.nodes.front().guideChannels > kGuideImageChannels && !guide.emission)
+    throw gpu::GpuError("network: its guide has " + std::to_string(graph_.nodes.front().guideChannels) +
+                        " channels; the 5th, the emission, needs an emission image");
+  for (const gpu::Image* image : {&guide.guide, guide.emission, &lightmapA, &lightmapB})
+    if (image && (image->desc().width != guideWidth_ || image->desc().height != guideHeight_))
       throw gpu::GpuError("network: " + image->desc().name + " is " + std::to_string(image->desc().width) +
                           "x" + std::to_string(image->desc().height) + ", the network was built for " +
                           std::to_string(guideWidth_) + "x" + std::to_string(guideHeight_));
@@ -167,7 +170,7 @@ void Network::record(gpu::Sequence& sequence, const gpu::Image& guide, const gpu
           if constexpr (std::is_same_v<Kernel, std::monostate>)
             return;
           else if constexpr (std::is_same_v<Kernel, InputKernel>)
-            kernel.record(sequence, guide, *layer.output);
+            kernel.record(sequence, guide.guide, guide.emission, *layer.output);
           else if constexpr (std::is_same_v<Kernel, OutputKernel>)
             kernel.record(sequence, inputs, lightmapA, lightmapB);
           else if constexpr (std::is_same_v<Kernel, ConvKernel>)

@@ -40,6 +40,15 @@ struct LayerInfo {
   std::vector<Part> parts;
 };
 
+// The network's input images: the guiding map (RGBA16F/32F) and, for a graph whose guide has 5 channels,
+// its direct emission (any float format; channel R), both of the guide's size.
+struct GuideImages {
+  GuideImages(const gpu::Image& guide, const gpu::Image* emission = nullptr)
+      : guide(guide), emission(emission) {}
+  const gpu::Image& guide;
+  const gpu::Image* emission;
+};
+
 class Network {
  public:
   // Throws io::InputError naming the file when the graph or a tensor is wrong.
@@ -55,10 +64,11 @@ class Network {
   uint32_t mapHeight() const { return mapHeight_; }
   Tiling tiling() const { return tiling_; }  // resolved: Blocks or Pixels
 
-  // The guide (RGBA16F/32F, the guide's size) in, lightmaps A and B (any float RGBA storage format, the
-  // guide's size) out. With `timeLayers`, every node is a timed stage named after it, and a NAFBlock is
-  // four stages "<node>/<kernel>".
-  void record(gpu::Sequence& sequence, const gpu::Image& guide, const gpu::Image& lightmapA,
+  // The guide in, lightmaps A and B (any float RGBA storage format, the guide's size) out. With
+  // `timeLayers`, every node is a timed stage named after it, and a NAFBlock is four stages
+  // "<node>/<kernel>". Throws gpu::GpuError for an image of another size, or without the emission image
+  // that a 5-channel guide needs.
+  void record(gpu::Sequence& sequence, const GuideImages& guide, const gpu::Image& lightmapA,
               const gpu::Image& lightmapB, bool timeLayers = false) const;
   // Stages that record(..., true) adds.
   uint32_t stageCount() const;

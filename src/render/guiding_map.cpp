@@ -50,6 +50,8 @@ void checkSettings(const GuideSettings& s) {
     fail("the shell threshold must be in (0, 1) (got " + text(s.shellThreshold) + ")");
   if (!(s.alphaStepCells >= 0.0f && std::isfinite(s.alphaStepCells)))
     fail("the fine alpha step must be >= 0 cells (got " + text(s.alphaStepCells) + ")");
+  if (s.emission && s.alphaStepCells <= 0.0f)
+    fail("the emission needs the fine march (a fine alpha step > 0)");
 }
 
 // The axis of the six-way frame a light lies on: opposite lights share a light grid.
@@ -109,7 +111,8 @@ GuidingMap::GuidingMap(const gpu::Context& context, const gpu::PipelineCache& ca
       params_(context, sizeof(layout::BakeParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
               gpu::MemoryKind::FrameParameters, "guide parameters"),
       frame_(context, sizeof(GuideFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-             gpu::MemoryKind::FrameParameters, "guide frame") {
+             gpu::MemoryKind::FrameParameters, "guide frame"),
+      noEmission_(context, {1, 1, 1, VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT, "no guide emission"}) {
   checkSettings(settings_);
   // One light grid per axis of the six-way frame that a guide light other than front lies on; the shader's
   // kLightGrids holds, per such light k, its grid (bits 3k, 3k + 1) and whether it is the grid's opposite.
@@ -125,14 +128,17 @@ GuidingMap::GuidingMap(const gpu::Context& context, const gpu::PipelineCache& ca
   using gpu::BindingType;
   majorantPass_ = std::make_unique<BrickMajorantPass>(context, cache);
   depthPass_ = lightDepthPipeline(context, cache);
-  std::vector<BindingType> march(4 + kMaxGrids + 1, BindingType::StorageBuffer);
+  // guide_march.comp's bindings: parameters, frame, density, bricks, the light grids, the guide, temperature,
+  // the emission.
+  std::vector<BindingType> march(4 + kMaxGrids + 3, BindingType::StorageBuffer);
   march[0] = march[1] = BindingType::UniformBuffer;
-  march.back() = BindingType::StorageImage;
+  march[4 + kMaxGrids] = march.back() = BindingType::StorageImage;
   gpu::SpecConstants constants;
   constants.set(spec::kShadowedLights, shadowed);
   constants.set(spec::kFrontLight, size_t(shadowed) < settings_.lights.size());
   constants.set(spec::kLightGrids, lightGrids);
   constants.set(spec::kFineAlpha, settings_.alphaStepCells > 0.0f);
+  constants.set(spec::kEmission, settings_.emission);
   marchPass_ = std::make_unique<gpu::Pipeline>(
       context, cache, gpu::ComputePipelineDesc{"render/guide_march.comp", march, 0, constants});
 }
@@ -148,16 +154,35 @@ gpu::ImageDesc GuidingMap::imageDesc() const {
           "guiding map"};
 }
 
-void GuidingMap::record(gpu::Sequence& sequence, const Volume& volume, const gpu::Image& guide) {
+gpu::ImageDesc GuidingMap::emissionDesc() const {
+  return {settings_.size,
+          settings_.size,
+          1,
+          VK_FORMAT_R32_SFLOAT,
+          VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+          "guide emission"};
+}
+
+void GuidingMap::record(gpu::Sequence& sequence, const Volume& volume, const gpu::Image& guide,
+                        const gpu::Image* emission) {
   requireConsistent(volume);
   const gpu::ImageDesc& d = guide.desc();
   if (d.width != settings_.size || d.height != settings_.size || d.depth != 1 ||
       d.format != VK_FORMAT_R16G16B16A16_SFLOAT)
     throw std::invalid_argument("guiding map: the image must be RGBA16F, " + std::to_string(settings_.size) +
                                 " pixels square");
+  if (settings_.emission != (emission != nullptr))
+    throw std::invalid_argument(settings_.emission
+                                    ? "guiding map: the settings ask for an emission image"
+                                    : "guiding map: an emission image without settings.emission");
+  if (emission && (emission->desc().width != settings_.size || emission->desc().height != settings_.size ||
+                   emission->desc().depth != 1 || emission->desc().format != VK_FORMAT_R32_SFLOAT))
+    throw std::invalid_argument("guiding map: the emission image must be R32F, " +
+                                std::to_string(settings_.size) + " pixels square");
   // Every light grid of this lattice, whatever the camera, spans at most the box's diagonal (plus one node
   // of alignment on each side): a fixed capacity, so that the dispatches do not depend on the camera.
   grid_ = volume.grid;
+  temperature_ = volume.temperature != nullptr;
   const float diagonal = glm::length(grid_.bounds().size());
   spacing_ = settings_.shadowSpacingCells * grid_.cellSize;
   const auto nodesFor = [&](float spacing) { return int(std::ceil(diagonal / spacing)) + 2; };
@@ -188,6 +213,8 @@ void GuidingMap::record(gpu::Sequence& sequence, const Volume& volume, const gpu
   for (int i = 0; i < kMaxGrids; ++i)
     bindings.push_back(gpu::reads(depths_[std::min<size_t>(i, depths_.size() - 1)]));
   bindings.push_back(gpu::writes(guide));
+  bindings.push_back(gpu::reads(volume.temperature ? *volume.temperature : density));  // unread without one
+  bindings.push_back(gpu::writes(emission ? *emission : noEmission_));
   sequence.dispatch(*marchPass_, bindings, std::span<const std::byte>(), groups(int(settings_.size), 8),
                     groups(int(settings_.size), 8));
   sequence.endStage();
@@ -211,10 +238,11 @@ void GuidingMap::update(const Camera& camera, const ImagePlane& billboard, const
   layout::BakeParams p{};
   p.volume = layout::volumeGrid(grid_);
   p.camera = layout::cameraRays(camera, billboard);
-  p.optics = glm::vec4(smoke.extinction, smoke.albedo, smoke.phaseG, 0.0f);
+  p.optics = glm::vec4(smoke.extinction, smoke.albedo, smoke.phaseG, smoke.emission.intensity);
   p.march = glm::vec4(settings_.stepCells * grid_.cellSize, kStopTransmittance,
                       settings_.alphaStepCells * grid_.cellSize, 0.0f);
-  p.image = glm::ivec4(int(settings_.size), int(settings_.size), 0, 0);
+  const int rampKeys = settings_.emission ? layout::emissionRamp(smoke.emission, p.ramp) : 0;
+  p.image = glm::ivec4(int(settings_.size), int(settings_.size), rampKeys, temperature_ ? 1 : 0);
   p.bricks = glm::ivec4((grid_.size + kBrickCells - 1) / kBrickCells, kBrickCells);
   for (size_t i = 0; i < grids_.size(); ++i) p.lights[i] = layout::lightGrid(grids_[i]);
   params_.upload(std::as_bytes(std::span(&p, 1)));

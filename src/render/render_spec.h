@@ -14,10 +14,11 @@ inline constexpr SpecId kShadowedLights{0, "kShadowedLights"};
 inline constexpr SpecId kFrontLight{1, "kFrontLight"};
 inline constexpr SpecId kLightGrids{2, "kLightGrids"};
 inline constexpr SpecId kFineAlpha{3, "kFineAlpha"};
+inline constexpr SpecId kEmission{4, "kEmission"};
 inline constexpr SpecId kSixWay{0, "SIXWAY"};  // path_trace.comp
 
 // Every constant above.
-inline constexpr SpecId kAll[] = {kGuideLights, kShadowedLights, kFrontLight,
-                                  kLightGrids,  kFineAlpha,      kSixWay};
+inline constexpr SpecId kAll[] = {kGuideLights, kShadowedLights, kFrontLight, kLightGrids,
+                                  kFineAlpha,   kEmission,       kSixWay};
 
 }  // namespace sixway::render::spec

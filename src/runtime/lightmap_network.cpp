@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <glm/gtc/packing.hpp>
+#include <optional>
 #include <stdexcept>
 
 #include "gpu/image.h"
@@ -27,11 +28,17 @@ struct LightmapNetwork::Impl {
     options.precision = fp16 ? nn::Precision::Fp16 : nn::Precision::Fp32;
     network = std::make_unique<nn::Network>(*device.context, *device.cache, io::readSafetensors(weights),
                                             size, size, options);
-    network->record(sequence, guide, lightmaps.a, lightmaps.b);
+    if (network->graph().nodes.front().guideChannels > nn::kGuideImageChannels)
+      emission.emplace(
+          *device.context,
+          gpu::ImageDesc{size, size, 1, VK_FORMAT_R32_SFLOAT,
+                         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "guide emission"});
+    network->record(sequence, {guide, emission ? &*emission : nullptr}, lightmaps.a, lightmaps.b);
     sequence.finish();
   }
   uint32_t size;
   gpu::Image guide;
+  std::optional<gpu::Image> emission;  // for a guide of 5 channels
   render::LightmapImages lightmaps;
   gpu::Sequence sequence;
   std::unique_ptr<nn::Network> network;
@@ -54,10 +61,18 @@ float LightmapNetwork::fineAlphaStepVoxels() const {
   return impl_->network->graph().nodes.front().guideAlphaStepVoxels;
 }
 
-std::vector<float> LightmapNetwork::run(std::span<const float> guide) {
+bool LightmapNetwork::readsEmission() const {
+  return impl_->emission.has_value();
+}
+
+std::vector<float> LightmapNetwork::run(std::span<const float> guide, std::span<const float> emission) {
   const size_t pixels = size_t(impl_->size) * impl_->size;
   if (guide.size() != pixels * 4)
     throw std::invalid_argument("LightmapNetwork::run: the guide needs size² RGBA pixels");
+  if (emission.size() != (readsEmission() ? pixels : 0))
+    throw std::invalid_argument(readsEmission() ? "LightmapNetwork::run: the emission needs size² values"
+                                                : "LightmapNetwork::run: this network reads no emission");
+  if (impl_->emission) impl_->emission->upload(std::as_bytes(emission));
   std::vector<uint16_t> halves(guide.size());
   for (size_t i = 0; i < guide.size(); ++i) halves[i] = glm::packHalf1x16(guide[i]);
   impl_->guide.upload(std::as_bytes(std::span(halves)));

@@ -19,6 +19,7 @@ render::GuideSettings networkGuide(const io::Scene& scene, const nn::Graph& grap
   render::GuideSettings guide = render::GuideSettings::fromScene(scene);
   const nn::Node& input = graph.nodes.front();
   if (input.guideAlphaStepVoxels > 0.0f) guide.alphaStepCells = input.guideAlphaStepVoxels;
+  guide.emission = input.guideChannels > nn::kGuideImageChannels;
   return guide;
 }
 
@@ -48,6 +49,7 @@ RealtimeFrame::RealtimeFrame(const gpu::Context& context, const gpu::PipelineCac
                  VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "frame depth");
     obstacles_ = std::make_unique<render::ObstaclePass>(context, cache, scene.render.background);
   }
+  if (guide.emission) guideEmission_.emplace(context, guiding_.emissionDesc());
   controls_.emissiveGradient = render::emissiveGradientFromRamp(scene.smoke.emission);
   controls_.emissiveStraightScale = render::emissiveStraightScale(scene.smoke);
 }
@@ -57,7 +59,7 @@ void RealtimeFrame::record(gpu::Sequence& s, const render::Volume& volume, Frame
   shadowMaps_.record(s, meshes_);
   if (obstacles_) obstacles_->record(s, meshes_, shadowMaps_, color(), depth());
   if (stages == FrameStages::ObstaclesOnly) return;
-  if (stages != FrameStages::AllButGuide) guiding_.record(s, volume, guide_);
+  if (stages != FrameStages::AllButGuide) guiding_.record(s, volume, guide_, guideEmission());
   if (stages == FrameStages::UpToGuide) return;
   if (lightmapStage) lightmapStage(s);
   shading_.record(s, lightmaps_.a, lightmaps_.b, &guide_, &depth(),

@@ -43,7 +43,7 @@ enum class FrameStages { All, UpToGuide, ObstaclesOnly, AllButGuide };
 
 // The guiding map a network reads: the scene's, with the fine alpha (channel A) when the network's input
 // takes it (the graph's guide_alpha_step_voxels wins over the scene's render.guide_alpha_step_voxels: the
-// network was trained on that step).
+// network was trained on that step), and the emission image when its guide has a 5th channel.
 render::GuideSettings networkGuide(const io::Scene& scene, const nn::Graph& graph);
 
 class RealtimeFrame {
@@ -73,6 +73,8 @@ class RealtimeFrame {
   const gpu::Image& depth() const { return engineDepth_ ? *engineDepth_ : depth_; }
   gpu::Image& guide() { return guide_; }
   const gpu::Image& guide() const { return guide_; }
+  // The guide's emission (GuideSettings::emission), or nullptr.
+  const gpu::Image* guideEmission() const { return guideEmission_ ? &*guideEmission_ : nullptr; }
   render::LightmapImages& lightmaps() { return lightmaps_; }
   const render::LightmapImages& lightmaps() const { return lightmaps_; }
   render::ObstacleMeshes& meshes() { return meshes_; }
@@ -89,6 +91,7 @@ class RealtimeFrame {
   uint32_t width_, height_, lightmapSize_;
   std::optional<gpu::Image> engineColor_, engineDepth_;
   gpu::Image color_, depth_, guide_;
+  std::optional<gpu::Image> guideEmission_;
   render::LightmapImages lightmaps_;
   render::ObstacleMeshes meshes_;
   render::ShadowMaps shadowMaps_;

@@ -66,7 +66,8 @@ gpu::Sequence& SmokeRenderer::Impl::prepare() {
       sequence.get({render::handleKey(volume.density->handle()), simulation.starts}, [&](gpu::Sequence& s) {
         frame.record(s, volume, runtime::FrameStages::All, [&](gpu::Sequence& s) {
           s.beginStage("network");
-          network->record(s, frame.guide(), frame.lightmaps().a, frame.lightmaps().b);
+          network->record(s, {frame.guide(), frame.guideEmission()}, frame.lightmaps().a,
+                          frame.lightmaps().b);
           s.endStage();
         });
       });

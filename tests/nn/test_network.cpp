@@ -63,20 +63,27 @@ TEST_P(NetworkParity, MatchesPyTorch) {
   const uint32_t height = uint32_t(input.shape[1]), width = uint32_t(input.shape[2]);
   const size_t pixels = size_t(width) * height;
 
-  std::vector<float> rgba(pixels * 4, 0.0f);
+  // The guide's first 4 channels into an RGBA image, a 5th (the emission) into an R32F one.
+  std::vector<float> rgba(pixels * 4, 0.0f), emitted(pixels, 0.0f);
   const std::vector<float> guideValues = input.toFloat();
-  for (size_t p = 0; p < pixels; ++p)
-    for (size_t ch = 0; ch < size_t(input.shape[0]); ++ch) rgba[p * 4 + ch] = guideValues[ch * pixels + p];
+  const size_t channels = size_t(input.shape[0]);
+  for (size_t p = 0; p < pixels; ++p) {
+    for (size_t ch = 0; ch < std::min<size_t>(channels, 4); ++ch)
+      rgba[p * 4 + ch] = guideValues[ch * pixels + p];
+    if (channels > 4) emitted[p] = guideValues[4 * pixels + p];
+  }
   const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
   gpu::Image guide(context(), {width, height, 1, VK_FORMAT_R32G32B32A32_SFLOAT, usage, "guide"});
   guide.upload(std::as_bytes(std::span(rgba)));
+  gpu::Image emission(context(), {width, height, 1, VK_FORMAT_R32_SFLOAT, usage, "guide emission"});
+  emission.upload(std::as_bytes(std::span(emitted)));
   gpu::Image a(context(), {width, height, 1, VK_FORMAT_R32G32B32A32_SFLOAT, usage, "lightmap A"});
   gpu::Image b(context(), {width, height, 1, VK_FORMAT_R32G32B32A32_SFLOAT, usage, "lightmap B"});
 
   nn::Network network(context(), pipelineCache(), weights, width, height,
                       {c.precision, c.fuseProjections, c.tiling});
   gpu::Sequence sequence(context(), network.stageCount());
-  network.record(sequence, guide, a, b, true);
+  network.record(sequence, {guide, channels > 4 ? &emission : nullptr}, a, b, true);
   sequence.submit();
   const std::vector<float> first = a.download<float>();
   sequence.submit();  // replayed: the same result
@@ -93,13 +100,16 @@ TEST_P(NetworkParity, MatchesPyTorch) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Vectors, NetworkParity,
-    ::testing::Values(ParityCase{"default"}, ParityCase{"tiny"}, ParityCase{"tiny", Precision::Fp32, false},
-                      ParityCase{"fine_alpha"}, ParityCase{"half_stem"}, ParityCase{"naf_wide"},
-                      ParityCase{"default", Precision::Fp32, true, nn::Tiling::Pixels},
-                      ParityCase{"naf_wide", Precision::Fp32, true, nn::Tiling::Pixels}),
-    [](const ::testing::TestParamInfo<ParityCase>& info) { return caseName(info.param); });
+INSTANTIATE_TEST_SUITE_P(Vectors, NetworkParity,
+                         ::testing::Values(ParityCase{"default"}, ParityCase{"tiny"},
+                                           ParityCase{"tiny", Precision::Fp32, false},
+                                           ParityCase{"fine_alpha"}, ParityCase{"emission_guide"},
+                                           ParityCase{"half_stem"}, ParityCase{"naf_wide"},
+                                           ParityCase{"default", Precision::Fp32, true, nn::Tiling::Pixels},
+                                           ParityCase{"naf_wide", Precision::Fp32, true, nn::Tiling::Pixels}),
+                         [](const ::testing::TestParamInfo<ParityCase>& info) {
+                           return caseName(info.param);
+                         });
 // Label "long" (tests/nn/CMakeLists.txt): about a minute of pipeline compilation on a cold shader cache.
 INSTANTIATE_TEST_SUITE_P(LONG_Vectors, NetworkParity,
                          ::testing::Values(ParityCase{"default", Precision::Fp16},

@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 
+#include "gpu/check.h"
 #include "gpu/image.h"
 #include "gpu/sequence.h"
 #include "io/safetensors.h"
@@ -51,26 +52,48 @@ TEST_P(ResampleIoTest, UpsampleBilinearMatchesCpu) {
   }
 }
 
+// 3 guide channels into a map of 4; 5 into a map of 8, the 5th from the emission image's R channel.
 TEST_P(ResampleIoTest, InputCopiesTheGuideChannelsAndZeroPads) {
   const uint32_t guideWidth = 13, guideHeight = 9, mapWidth = 16, mapHeight = 12;
+  const size_t pixels = size_t(guideWidth) * guideHeight;
   std::mt19937 rng(4);
-  for (VkFormat format : {VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT}) {
-    std::vector<float> rgba = randomValues(size_t(guideWidth) * guideHeight * 4, rng, 0.0f, 1.0f);
-    gpu::Image guide(context(), {guideWidth, guideHeight, 1, format,
-                                 VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT, "guide"});
-    guide.upload(texelBytes(rgba, format));
-    rgba = texelFloats(guide);  // as stored (rounded to half for RGBA16F)
-    nn::InputKernel kernel(setup(GetParam()), {mapWidth, mapHeight, 4}, guideWidth, guideHeight, 3);
-    nn::FeatureMap map = empty({mapWidth, mapHeight, 4}, GetParam());
-    gpu::Sequence sequence(context());
-    kernel.record(sequence, guide, map);
-    sequence.submit();
-    CpuMap expected(4, mapHeight, mapWidth);
-    for (uint32_t y = 0; y < guideHeight; ++y)
-      for (uint32_t x = 0; x < guideWidth; ++x)
-        for (int c = 0; c < 3; ++c) expected.at(c, y, x) = rgba[(y * guideWidth + x) * 4 + c];
-    EXPECT_TRUE(allClose(map.download(), expected.values, tolerance(), tolerance())) << "format " << format;
-  }
+  for (VkFormat format : {VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT})
+    for (int guideChannels : {3, 5}) {
+      const VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT;
+      std::vector<float> rgba = randomValues(pixels * 4, rng, 0.0f, 1.0f);
+      gpu::Image guide(context(), {guideWidth, guideHeight, 1, format, usage, "guide"});
+      guide.upload(texelBytes(rgba, format));
+      rgba = texelFloats(guide);  // as stored (rounded to half for RGBA16F)
+      const std::vector<float> emitted = randomValues(pixels, rng, 0.0f, 2.0f);
+      gpu::Image emission(context(), {guideWidth, guideHeight, 1, VK_FORMAT_R32_SFLOAT, usage, "emission"});
+      emission.upload(std::as_bytes(std::span(emitted)));
+      const uint32_t mapChannels = guideChannels > 4 ? 8 : 4;
+      nn::InputKernel kernel(setup(GetParam()), {mapWidth, mapHeight, mapChannels}, guideWidth, guideHeight,
+                             guideChannels);
+      nn::FeatureMap map = empty({mapWidth, mapHeight, mapChannels}, GetParam());
+      gpu::Sequence sequence(context());
+      kernel.record(sequence, guide, guideChannels > 4 ? &emission : nullptr, map);
+      sequence.submit();
+      CpuMap expected(int(mapChannels), mapHeight, mapWidth);
+      for (uint32_t y = 0; y < guideHeight; ++y)
+        for (uint32_t x = 0; x < guideWidth; ++x) {
+          for (int c = 0; c < std::min(guideChannels, 4); ++c)
+            expected.at(c, y, x) = rgba[(y * guideWidth + x) * 4 + c];
+          if (guideChannels > 4) expected.at(4, y, x) = emitted[y * guideWidth + x];
+        }
+      EXPECT_TRUE(allClose(map.download(), expected.values, tolerance(), tolerance()))
+          << "format " << format << ", " << guideChannels << " channels";
+    }
+}
+
+// A 5-channel guide needs its emission image: a clear error, not an unbound descriptor.
+TEST_P(ResampleIoTest, InputOfFiveChannelsRefusesAMissingEmission) {
+  nn::InputKernel kernel(setup(GetParam()), {16, 16, 8}, 16, 16, 5);
+  gpu::Image guide(context(),
+                   {16, 16, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT, "guide"});
+  nn::FeatureMap map = empty({16, 16, 8}, GetParam());
+  gpu::Sequence sequence(context());
+  EXPECT_THROW(kernel.record(sequence, guide, nullptr, map), gpu::GpuError);
 }
 
 TEST_P(ResampleIoTest, OutputDecodesPacksAndCrops) {

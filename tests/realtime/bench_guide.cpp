@@ -42,8 +42,10 @@ Result run(const gpu::Context& context, const gpu::PipelineCache& cache,
            const render::Camera& camera, const std::vector<float>& exact, const std::vector<float>& alpha) {
   render::GuidingMap map(context, cache, settings);
   gpu::Image image(context, map.imageDesc());
+  std::optional<gpu::Image> emission;
+  if (settings.emission) emission.emplace(context, map.emissionDesc());
   gpu::Sequence sequence(context);
-  map.record(sequence, volume, image);
+  map.record(sequence, volume, image, emission ? &*emission : nullptr);
   sequence.finish();
   const render::Box box = volume.grid.bounds();
   std::vector<double> times;
@@ -165,10 +167,25 @@ int main(int argc, char** argv) {
     std::printf("%-30s %9.2f %10.4f / %-10.4f %10.4f / %-10.4f\n", v.name, r.ms, r.oneRms, r.oneMax,
                 r.meanRms, r.meanMax);
   }
-  // The fine alpha in channel A (GuideSettings::alphaStepCells, issue #20) at the sizes the network runs at.
-  std::printf("\n%-30s %9s %9s %9s\n", "default guide, GPU ms", "no A", "A step 1", "A step 0.5");
+  // The fine alpha in channel A (GuideSettings::alphaStepCells, issue #20) at the sizes the network runs at,
+  // and with it the direct emission (GuideSettings::emission), which reads the file's temperature grid (its
+  // "heat", or temperature 0 without one) under a two-key ramp.
+  const io::VdbFile info = io::readVdbInfo(file);
+  const bool hasHeat = std::any_of(info.grids.begin(), info.grids.end(),
+                                   [](const io::VdbGridInfo& g) { return g.name == "heat"; });
+  const io::DenseGrid heat =
+      hasHeat ? io::readVdbDense(
+                    file, "heat",
+                    io::ExplicitBounds{density.origin, density.origin + glm::vec3(density.size) * density.dx,
+                                       density.size})
+              : io::DenseGrid{};
+  const render::DeviceVolume heated = render::uploadVolume(context, density, hasHeat ? &heat : nullptr);
+  io::Smoke glowing = smoke;
+  glowing.emission = {{{0.0f, glm::vec3(0.0f)}, {1.0f, glm::vec3(1.0f, 0.5f, 0.1f)}}, 1.0f};
+  std::printf("\n%-30s %9s %9s %9s %17s\n", "default guide, GPU ms", "no A", "A step 1", "A step 0.5",
+              "A + emission, 1");
   for (uint32_t size : {128u, 256u, 512u}) {
-    double ms[3];
+    double ms[4];
     int k = 0;
     for (float alphaStep : {0.0f, 1.0f, 0.5f}) {
       render::GuideSettings s = defaults;
@@ -176,8 +193,13 @@ int main(int argc, char** argv) {
       s.alphaStepCells = alphaStep;
       ms[k++] = run(context, cache, s, volume.view(), smoke, camera, {}, {}).ms;
     }
-    std::printf("%-30s %9.2f %9.2f %9.2f\n", (std::to_string(size) + "x" + std::to_string(size)).c_str(),
-                ms[0], ms[1], ms[2]);
+    render::GuideSettings s = defaults;
+    s.size = size;
+    s.alphaStepCells = 1.0f;
+    s.emission = true;
+    ms[k] = run(context, cache, s, heated.view(), glowing, camera, {}, {}).ms;
+    std::printf("%-30s %9.2f %9.2f %9.2f %17.2f\n",
+                (std::to_string(size) + "x" + std::to_string(size)).c_str(), ms[0], ms[1], ms[2], ms[3]);
   }
   return 0;
 }

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <glm/gtc/packing.hpp>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -382,6 +383,29 @@ TEST(Runtime, TheNetworkAloneGivesEightChannels) {
   const std::vector<float> lightmaps = network.run(guide);
   ASSERT_EQ(lightmaps.size(), size_t(16 * 16 * 8));
   for (float v : lightmaps) ASSERT_TRUE(std::isfinite(v));
+  EXPECT_EQ(device.validationMessages(), 0u);
+}
+
+// A network whose guide has the emission as a 5th channel reads it from run()'s second argument, and refuses
+// to run without it; one without refuses an emission it would not read.
+TEST(Runtime, TheNetworkAloneTakesTheEmissionItReads) {
+  Device device({.validate = true});
+  LightmapNetwork emitting(device,
+                           std::filesystem::path(SIXWAY_TEST_DATA_DIR) / "nn/emission_guide.safetensors", 16);
+  LightmapNetwork plain(device, kWeights, 16);
+  EXPECT_TRUE(emitting.readsEmission());
+  EXPECT_FALSE(plain.readsEmission());
+  std::vector<float> guide(16 * 16 * 4, 0.0f), dark(16 * 16, 0.0f), glowing(16 * 16, 0.0f);
+  for (size_t i = 0; i < 16 * 16; ++i) {
+    guide[i * 4 + 0] = guide[i * 4 + 1] = guide[i * 4 + 3] = 0.5f;
+    glowing[i] = 0.05f * float(i % 16);
+  }
+  EXPECT_THROW(emitting.run(guide), std::invalid_argument);
+  EXPECT_THROW(plain.run(guide, glowing), std::invalid_argument);
+  const std::vector<float> withoutGlow = emitting.run(guide, dark), withGlow = emitting.run(guide, glowing);
+  ASSERT_EQ(withGlow.size(), size_t(16 * 16 * 8));
+  for (float v : withGlow) ASSERT_TRUE(std::isfinite(v));
+  EXPECT_GT(maxDifference(withGlow, withoutGlow), 1e-4) << "the emission is read";
   EXPECT_EQ(device.validationMessages(), 0u);
 }
 

@@ -1,15 +1,15 @@
 """The training shards written by `sixway dataset` (docs/dataset-format.md), read with numpy alone.
 
 A directory holds one `shard_SSSSS.safetensors` per simulated sequence: F16 tensors `guide` [N,3,H,W] (guide,
-alpha, depth; version 3: [N,4,H,W] with the fine alpha, as the metadata's `guide_channels` says), the
-targets [N,8,H,W] (the baker's channels: Right, Left, Top, Bottom, Back, Front, alpha, emissive): `target`
-(single scattering) and/or `target_ms` (multiple scattering), as the metadata's `targets` says (versions 2 and
-3; version 1 shards hold `target` alone), and `motion` [N,2,H,W] (lightmap pixels, x right, y down: the smoke at
-p now was at p - motion(p) one frame before), and the metadata `sixway.dataset` that names each sample's
-camera, frame and split.
+alpha, depth; versions 3 and 4: [N,4,H,W] with the fine alpha; version 4 also [N,5,H,W] with the fine alpha and
+the direct emission; as the metadata's `guide_channels` says), the targets [N,8,H,W] (the baker's channels: Right,
+Left, Top, Bottom, Back, Front, alpha, emissive): `target` (single scattering) and/or `target_ms` (multiple
+scattering), as the metadata's `targets` says (versions 2 to 4; version 1 shards hold `target` alone), and
+`motion` [N,2,H,W] (lightmap pixels, x right, y down: the smoke at p now was at p - motion(p) one frame before),
+and the metadata `sixway.dataset` that names each sample's camera, frame and split.
 
     data = ShardDataset("/work/data/cpu_small")    # target="multiple": train on target_ms; guide_channels=4:
-                                                   # with the fine alpha
+                                                   # with the fine alpha, 5: and the emission
     pairs = data.pairs("train")                    # samples that have the previous frame of their camera
     current, previous = data.pair_batch(pairs[:8], crop=64, rng=np.random.default_rng(0))
 
@@ -28,8 +28,10 @@ from safetensors_io import read_safetensors
 
 SPLITS = ("train", "heldout_sequence", "heldout_camera")
 SHARD_NAME = re.compile(r"shard_(\d{5})\.safetensors$")
-# The guide's channels by name; version 3 shards add the fine alpha (the dataset config's "guide" block).
-GUIDE_NAMES = ["guide", "alpha", "depth", "alpha_fine"]
+# The guide's channels by name; version 3 shards add the fine alpha, version 4 ones may also add the direct emission
+# (the dataset config's "guide" block).
+GUIDE_NAMES = ["guide", "alpha", "depth", "alpha_fine", "emission"]
+EMISSION = GUIDE_NAMES.index("emission")
 # Network channel i is baker channel TARGET_TO_NETWORK[i] (baker: Right, Left, Top, Bottom, Back, Front, ...).
 TARGET_TO_NETWORK = [1, 0, 2, 3, 5, 4, 6, 7]
 # Mirroring the image left-right swaps the Left and Right lightmaps (network channels 0 and 1).
@@ -58,9 +60,9 @@ def read_shard(path):
     if "sixway.dataset" not in metadata:
         raise ValueError(f"{path}: metadata has no 'sixway.dataset'")
     info = json.loads(metadata["sixway.dataset"])
-    if info.get("version") not in (1, 2, 3):
-        raise ValueError(f"{path}: sixway.dataset.version is {info.get('version')}, this reader knows 1 to 3")
-    guide_names = info.get("guide_channels", GUIDE_NAMES[:3]) if info["version"] == 3 else GUIDE_NAMES[:3]
+    if info.get("version") not in (1, 2, 3, 4):
+        raise ValueError(f"{path}: sixway.dataset.version is {info.get('version')}, this reader knows 1 to 4")
+    guide_names = info.get("guide_channels", GUIDE_NAMES[:3]) if info["version"] >= 3 else GUIDE_NAMES[:3]
     if guide_names != GUIDE_NAMES[:len(guide_names)] or len(guide_names) < 3:
         raise ValueError(f"{path}: sixway.dataset.guide_channels is {guide_names!r}")
     targets = shard_targets(info)
@@ -80,22 +82,43 @@ def read_shard(path):
     return tensors, info
 
 
+def scene_emits(info):
+    """Whether the shard's scene has emissive smoke (an emission intensity > 0; absent, it is 0)."""
+    return info["scene"].get("smoke", {}).get("emission", {}).get("intensity", 0) > 0
+
+
+def shard_guide(path, tensors, info, channels):
+    """The first `channels` channels of the shard's guide. A guide without the emission channel stands for one
+    whose emission is zero, which it is exactly when the scene emits nothing."""
+    guide = tensors["guide"]
+    held = guide.shape[1]
+    if held == EMISSION and channels > held:
+        if scene_emits(info):
+            raise ValueError(f"{path}: the network reads the guide's emission, which this shard of an emissive scene "
+                             f"lacks (regenerate it with the dataset config's \"guide\": {{\"emission\": true}})")
+        return np.concatenate([guide, np.zeros_like(guide[:, :1])], axis=1)
+    if held < channels:
+        raise ValueError(f"{path}: its guide has no {GUIDE_NAMES[held]} channel (the dataset config's \"guide\": "
+                         f"{{\"alpha_step_voxels\"}})")
+    return guide[:, :channels]
+
+
 def guide_channel_count(directory):
-    """How many guide channels the directory's first shard holds: 3, or 4 with the fine alpha."""
+    """How many guide channels the directory's first shard holds: 3, 4 with the fine alpha, 5 with the emission."""
     tensors, _ = read_shard(shard_paths(directory)[0])
     return tensors["guide"].shape[1]
 
 
 class ShardDataset:
     """Every sample of every shard of a directory, or of several (one per scene family, say), in memory as F16
-    (a CPU dataset is a few hundred MB), with the first `guide_channels` channels of the guide (3, or 4 for the
-    fine alpha)."""
+    (a CPU dataset is a few hundred MB), with the first `guide_channels` channels of the guide (3, 4 for the
+    fine alpha, 5 for the emission)."""
 
     def __init__(self, directories, target="single", guide_channels=3):
         if target not in TARGET_TENSORS:
             raise ValueError(f"target is {target!r}: single or multiple")
-        if guide_channels not in (3, 4):
-            raise ValueError(f"guide_channels is {guide_channels!r}: 3 or 4")
+        if guide_channels not in (3, 4, 5):
+            raise ValueError(f"guide_channels is {guide_channels!r}: 3, 4 or 5")
         self.directories = [directories] if isinstance(directories, str) else list(directories)
         if not self.directories:
             raise ValueError("no shard directory given")
@@ -115,11 +138,8 @@ class ShardDataset:
             if target not in shard_targets(info):
                 raise ValueError(f"{path}: holds {', '.join(shard_targets(info))} scattering targets, not {target} "
                                  f"(the dataset config's \"targets\")")
-            if tensors["guide"].shape[1] < guide_channels:
-                raise ValueError(f"{path}: its guide has no {GUIDE_NAMES[guide_channels - 1]} channel (the dataset "
-                                 f"config's \"guide\": {{\"alpha_step_voxels\"}})")
+            guides.append(shard_guide(path, tensors, info, guide_channels))
             self.infos.append(info)
-            guides.append(tensors["guide"][:, :guide_channels])
             targets.append(tensors[TARGET_TENSORS[target]][:, TARGET_TO_NETWORK])
             motions.append(tensors["motion"])
             # A played-back VDB sequence has no motion field ("motion": false): no temporal pairs.
@@ -173,7 +193,7 @@ class ShardDataset:
         return np.array([i for i in self.indices(split) if self.previous[i] >= 0], dtype=np.int64)
 
     def batch(self, indices, crop=None, offsets=None, mirror=None):
-        """float32 tensors guide [B,3 or 4,c,c], target [B,8,c,c], motion [B,2,c,c] of the samples `indices`;
+        """float32 tensors guide [B,3 to 5,c,c], target [B,8,c,c], motion [B,2,c,c] of the samples `indices`;
         `offsets` (B x 2: row, column) place the crops of size `crop`; `mirror` (B booleans) flips left-right."""
         c = crop or self.size
         offsets = np.zeros((len(indices), 2), dtype=np.int64) if offsets is None else offsets

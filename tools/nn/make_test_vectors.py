@@ -14,8 +14,11 @@
   naf_wide.safetensors         NAFBlocks of 24 and 20 channels: wider than NN_UNROLLED_GROUPS, so the kernels loop
                                over their channel groups
   naf_wide_vectors.safetensors    a 18x22 guide
+  emission_guide.safetensors   like fine_alpha, with the guide's direct emission as a 5th channel: the input is
+                               padded to 8 channels (two vec4s), and alpha_from_guide reads 2 + 8 channels
+  emission_guide_vectors.safetensors  a 20x28 guide of 5 channels
 
-A vectors file holds "input" (3 or 4 x H x W), "raw" (the 8 output channels in the network's encoding), "lightmap_a"
+A vectors file holds "input" (3 to 5 x H x W), "raw" (the 8 output channels in the network's encoding), "lightmap_a"
 and "lightmap_b" (decoded and packed, 4 x H x W each) and "node.<name>" intermediates (at the padded size).
 Everything is deterministic (numpy PCG64 seeds, float32 CPU evaluation), so `--out DIR` regenerates the same
 files; check_test_vectors.py compares a regeneration with the committed ones.
@@ -70,6 +73,16 @@ NAF_WIDE_CONFIG = {
     "adapters": {"enabled": True, "width": 20, "blocks": 1},
 }
 
+EMISSION_GUIDE_CONFIG = {
+    "guide_channels": 5,
+    "input_channels": 8,
+    "guide_alpha_step_voxels": 0.5,
+    "alpha": "guide",
+    "widths": [5, 8],
+    "depth": 1,
+    "adapters": {"enabled": True, "width": 4, "blocks": 1},
+}
+
 # name: (config, weights seed, guide seed, guide height, guide width, intermediates)
 CASES = {
     "default": (None, 6, 60, 32, 48, ["enc.0.1", "down.0", "mid.1", "up.0", "dec.0.1", "adapters.0.blocks.0",
@@ -80,12 +93,13 @@ CASES = {
     "half_stem": (HALF_STEM_CONFIG, 9, 90, 27, 41, ["stem", "enc.0.1", "mid.1", "dec.0.1", "adapters.0.blocks.0",
                                                     "adapters.2.head", "alpha_from_guide"]),
     "naf_wide": (NAF_WIDE_CONFIG, 10, 100, 18, 22, ["mid.1", "adapters.0.proj", "adapters.1.blocks.0"]),
+    "emission_guide": (EMISSION_GUIDE_CONFIG, 11, 110, 20, 28, ["enc.0.0", "adapters.3.head", "alpha_from_guide"]),
 }
 
 
 def guide_image(seed, height, width, count=3):
-    """A guide-like input: smooth blobs of guide and alpha in [0, 1], depth in [0, 1] (and the fine alpha), plus a
-    little noise."""
+    """A guide-like input: smooth blobs of guide and alpha in [0, 1], depth in [0, 1] (and the fine alpha and the
+    emission), plus a little noise."""
     rng = np.random.default_rng(seed)
     y, x = np.meshgrid(np.linspace(-1, 1, height), np.linspace(-1, 1, width), indexing="ij")
     channels = []

@@ -7,7 +7,7 @@ what PyTorch computes and what the runner computes are described by one list.
 
     from sixway_net import SixwayNet, export_safetensors, load_safetensors
     model = SixwayNet(config)                 # config: dict, missing keys take DEFAULT_CONFIG's values
-    raw = model(guide)                        # (N, 3 or 4, H, W) -> (N, 8, H, W), in the network's encoding
+    raw = model(guide)                        # (N, 3 to 5, H, W) -> (N, 8, H, W), in the network's encoding
     a, b = pack_lightmaps(decode_output(raw, model.config))   # Unity packing, linear
     export_safetensors(model, "net.safetensors", {"sixway.training": json.dumps(...)})
 
@@ -28,8 +28,8 @@ from safetensors_io import read_safetensors, write_safetensors
 GRAPH_VERSION = 1
 
 DEFAULT_CONFIG = {
-    "guide_channels": 3,  # guide, alpha, depth
-    "input_channels": 4,  # the guide padded with zeros to a whole vec4
+    "guide_channels": 3,  # guide, alpha, depth (4: and the fine alpha; 5: and the emission)
+    "input_channels": 4,  # the guide padded with zeros to whole vec4s
     "widths": [16, 32, 64],  # one per encoder level; the last is the bottleneck
     "depth": 2,  # units per level: a 3x3 conv + activation, then depth-1 units of `block`
     "block": "conv",  # "conv" (3x3 conv + activation) or "naf" (NAFBlock)
@@ -41,8 +41,9 @@ DEFAULT_CONFIG = {
 }
 
 # Keys a config may add to DEFAULT_CONFIG; absent, the config (and so the export) stays as it was.
-# guide_alpha_step_voxels: the fine alpha's step of a 4-channel guide (the runtime's guide computes it).
-# alpha: "network" (the alpha_emissive head's) or "guide" (the fine alpha passed through: 4 guide channels).
+# guide_alpha_step_voxels: the fine alpha's step of a guide of 4 or 5 channels (the runtime's guide computes it;
+#   the 5th channel is the direct emitted luminance reaching the camera, marched along with the fine alpha).
+# alpha: "network" (the alpha_emissive head's) or "guide" (the fine alpha passed through: 4 or 5 guide channels).
 # stem: "full" (the UNet's first level at the guide's resolution) or "half": a 3x3 stride-2 conv stem runs the
 #   whole UNet and the adapters at half resolution, and each head is a 2x2 stride-2 transposed conv back to full
 #   resolution. The stem sees each 2x2 block of the guide (and its neighbours), so it holds pixel-unshuffle + 1x1
@@ -83,17 +84,17 @@ def full_config(config=None):
         raise ValueError("config: encoding must be srgb or linear")
     if merged["input_channels"] < merged["guide_channels"]:
         raise ValueError("config: input_channels < guide_channels")
-    if not 1 <= merged["guide_channels"] <= 4:
-        raise ValueError("config: guide_channels must be 1 to 4")
-    if (merged["guide_channels"] == 4) != (merged.get("guide_alpha_step_voxels", 0) > 0):
-        raise ValueError("config: a 4th guide channel is the fine alpha: guide_channels 4 goes with "
+    if not 1 <= merged["guide_channels"] <= 5:
+        raise ValueError("config: guide_channels must be 1 to 5")
+    if (merged["guide_channels"] >= 4) != (merged.get("guide_alpha_step_voxels", 0) > 0):
+        raise ValueError("config: a 4th guide channel is the fine alpha: guide_channels 4 or 5 goes with "
                          "guide_alpha_step_voxels > 0")
     if merged.get("alpha", "network") not in ("network", "guide"):
         raise ValueError("config: alpha must be network or guide")
     if merged.get("stem", "full") not in ("full", "half"):
         raise ValueError("config: stem must be full or half")
-    if merged.get("alpha") == "guide" and merged["guide_channels"] != 4:
-        raise ValueError("config: alpha from the guide needs its fine alpha (guide_channels 4)")
+    if merged.get("alpha") == "guide" and merged["guide_channels"] < 4:
+        raise ValueError("config: alpha from the guide needs its fine alpha (guide_channels 4 or 5)")
     return merged
 
 
@@ -285,7 +286,7 @@ class SixwayNet(nn.Module):
         return self.blocks[name.replace(".", "/")]
 
     def forward(self, guide, intermediates=None, seconds=None):
-        """guide: (N, guide_channels or input_channels, H, W), H and W multiples of size_multiple().
+        """guide: (N, guide_channels to input_channels, H, W), H and W multiples of size_multiple().
         Returns the 8 raw output channels (the network's encoding). When `intermediates` is a dict, every
         node's output is stored in it by node name; when `seconds` is, the time each node took (benchmarks)."""
         values = {}

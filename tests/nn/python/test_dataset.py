@@ -131,9 +131,9 @@ class DatasetTest(unittest.TestCase):
             with self.assertRaisesRegex(ValueError, r"shard_00000\.safetensors: holds single scattering targets, "
                                                     r"not multiple"):
                 ShardDataset(tmp, target="multiple")
-            info["version"] = 4
+            info["version"] = 5
             write_safetensors(path, tensors, {"sixway.dataset": json.dumps(info)})
-            with self.assertRaisesRegex(ValueError, r"version is 4, this reader knows 1 to 3"):
+            with self.assertRaisesRegex(ValueError, r"version is 5, this reader knows 1 to 4"):
                 ShardDataset(tmp)
 
     def test_version_3_shards_add_the_fine_alpha(self):
@@ -162,6 +162,44 @@ class DatasetTest(unittest.TestCase):
             write_safetensors(path, tensors, {"sixway.dataset": json.dumps(info)})
             with self.assertRaisesRegex(ValueError, r"guide_channels is \['guide', 'alpha', 'depth', 'alpha_coarse'\]"):
                 ShardDataset(tmp)
+
+    def test_version_4_shards_add_the_emission(self):
+        """A version 4 shard whose guide holds the emission as a 5th channel: a 5-channel reader takes all five
+        (mirrored like the others), a 4-channel one the first four."""
+        with tempfile.TemporaryDirectory() as tmp:
+            synthetic_shards.write_shards(tmp, size=8, cameras=2, frames=2, sequences=1, guide_channels=5, emission=2.0)
+            five, four = ShardDataset(tmp, guide_channels=5), ShardDataset(tmp, guide_channels=4)
+            self.assertEqual(five.guide.shape[1], 5)
+            np.testing.assert_array_equal(five.guide[:, :4], four.guide)
+            guide, _, _ = synthetic_shards.sample_tensors(8, 1, 0, 0, guide_channels=5, emission=2.0)
+            np.testing.assert_array_equal(five.guide[1], guide.astype(np.float16))
+            self.assertGreater(float(five.guide[:, 4].max()), 1.0)
+            self.assertEqual(five.guide_alpha_step_voxels(), 1.0)
+            plain = five.batch(np.array([1]))["guide"]
+            mirrored = five.batch(np.array([1]), mirror=np.array([True]))["guide"]
+            torch.testing.assert_close(mirrored, plain.flip(-1))
+
+    def test_a_guide_without_the_emission_is_zero_emission_unless_its_scene_emits(self):
+        """A 5-channel reader of 4-channel shards: zeros for the emission where the scene has no emission or an
+        intensity of 0; for an emissive scene, the shard is named; a 3-channel shard lacks the fine alpha."""
+        for emission in (None, 0.0):
+            with tempfile.TemporaryDirectory() as tmp:
+                synthetic_shards.write_shards(tmp, size=8, cameras=1, frames=2, sequences=1, guide_channels=4,
+                                              emission=emission)
+                five = ShardDataset(tmp, guide_channels=5)
+                self.assertEqual(five.guide.shape[1], 5)
+                np.testing.assert_array_equal(five.guide[:, :4], ShardDataset(tmp, guide_channels=4).guide)
+                self.assertFalse(five.guide[:, 4].any())
+        with tempfile.TemporaryDirectory() as tmp:
+            synthetic_shards.write_shards(tmp, size=8, cameras=1, frames=2, sequences=1, guide_channels=4, emission=2.0)
+            with self.assertRaisesRegex(ValueError, r"shard_00000\.safetensors: the network reads the guide's "
+                                                    r"emission, which this shard of an emissive scene lacks"):
+                ShardDataset(tmp, guide_channels=5)
+            self.assertEqual(ShardDataset(tmp, guide_channels=4).guide.shape[1], 4)
+        with tempfile.TemporaryDirectory() as tmp:
+            synthetic_shards.write_shards(tmp, size=8, cameras=1, frames=2, sequences=1)
+            with self.assertRaisesRegex(ValueError, r"shard_00000\.safetensors: its guide has no alpha_fine channel"):
+                ShardDataset(tmp, guide_channels=5)
 
     def test_baselines_score_the_baker_and_the_alphas(self):
         """tools/nn/baselines.py on shards whose light and emissive channels are 0.25 (single) and 0.5 (multiple

@@ -2,7 +2,7 @@
 """Smoke test of tools/train.py (CTest nn.python_train; exit 77 without torch): the tiny config for 6 steps on
 synthetic shards, once straight through and once stopped at step 3 and resumed; the two must give bit-identical
 weights and optimizer state. The straight run's export is left in WORK/straight/ for nn.train_export_bench
-(the C++ runner loads it).
+(the C++ runner loads it). Also train.init_from into a network with the guide's emission as a 5th input.
 
 Usage: /usr/bin/python3 tests/nn/python/test_train.py --work DIR
 """
@@ -23,10 +23,12 @@ here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.normpath(os.path.join(here, "..", "..", ".."))
 sys.path.insert(0, here)
 sys.path.insert(0, os.path.join(root, "tools", "nn"))
+sys.path.insert(0, os.path.join(root, "tools"))
 import synthetic_shards  # noqa: E402
+import train as train_module  # noqa: E402
 from safetensors_io import read_safetensors  # noqa: E402
 from bench_torch import node_flops  # noqa: E402
-from sixway_net import SixwayNet, load_safetensors  # noqa: E402
+from sixway_net import SixwayNet, load_safetensors, randomize  # noqa: E402
 
 TRAIN = os.path.join(root, "tools", "train.py")
 CONFIG = os.path.join(root, "tools", "train_configs", "tiny.json")
@@ -54,6 +56,82 @@ class HalfStemTest(unittest.TestCase):
         self.assertGreater(flops[1], 0.2 * flops[0])
         with self.assertRaisesRegex(ValueError, "stem must be full or half"):
             SixwayNet({"stem": "quarter"})
+
+
+class WidenedInitTest(unittest.TestCase):
+    """train.init_from from a network of 4 guide channels into one that also reads the emission (5 of 8 inputs)."""
+    FOUR = {"widths": [4, 8], "depth": 1, "adapters": {"width": 4}, "guide_channels": 4,
+            "guide_alpha_step_voxels": 1.0, "alpha": "guide"}
+    FIVE = dict(FOUR, guide_channels=5, input_channels=8)
+
+    def widened(self):
+        old = randomize(SixwayNet(self.FOUR), 3).eval()
+        new = SixwayNet(self.FIVE).eval()
+        state, widened = train_module.widened_weights(old.state_dict(), new.state_dict())
+        new.load_state_dict(state)
+        return old, new, widened
+
+    def test_the_widened_network_computes_the_old_function(self):
+        old, new, widened = self.widened()
+        self.assertEqual(widened, ["enc.0.0.weight", "alpha_from_guide.weight"])
+        guide = torch.rand(2, 4, 8, 8, generator=torch.Generator().manual_seed(1))
+        with torch.no_grad():
+            torch.testing.assert_close(new(torch.cat([guide, torch.zeros(2, 1, 8, 8)], 1)), old(guide),
+                                       rtol=0, atol=1e-6)
+
+    def test_the_emission_trains_the_new_weights(self):
+        # The new input weights start at zero, so the step-0 output ignores the emission; the gradient reaches the
+        # emission's weights exactly when the emission is not zero.
+        _, new, _ = self.widened()
+        guide = torch.rand(2, 5, 8, 8, generator=torch.Generator().manual_seed(2))
+        outputs = []
+        for emission, moves in ((0.0, False), (3.0, True)):
+            new.zero_grad()
+            outputs.append(new(torch.cat([guide[:, :4], emission * guide[:, 4:]], 1)))
+            outputs[-1].square().mean().backward()
+            grad = new.module("enc.0.0").weight.grad
+            self.assertEqual(bool(grad[:, 4].abs().sum() > 0), moves)
+            self.assertFalse(grad[:, 5:].any())
+        self.assertTrue(torch.equal(outputs[0], outputs[1]))
+
+    def test_only_more_guide_and_input_channels_widen(self):
+        widens = train_module.widens_input
+        self.assertTrue(widens(self.FOUR, self.FIVE))
+        self.assertTrue(widens(self.FOUR, self.FOUR))
+        self.assertFalse(widens(self.FIVE, self.FOUR))
+        self.assertFalse(widens(self.FOUR, dict(self.FIVE, widths=[4, 4])))
+        self.assertFalse(widens(self.FOUR, dict(self.FIVE, alpha="network")))
+        self.assertFalse(widens({"widths": [4, 8], "depth": 1, "adapters": {"width": 4}}, self.FIVE))  # a step more
+
+    def test_init_from_a_narrower_checkpoint(self):
+        """A 4-channel checkpoint starts a 5-channel run on 4-channel shards of a scene without emission (their
+        emission reads as zeros): at a zero rate the export is the checkpoint widened with zeros."""
+        old = randomize(SixwayNet(self.FOUR), 4)
+        checkpoint = os.path.join(WORK, "four", "checkpoint.pt")
+        os.makedirs(os.path.dirname(checkpoint), exist_ok=True)
+        torch.save({"config": {"model": self.FOUR}, "model": old.state_dict()}, checkpoint)
+        data = os.path.join(WORK, "data_fine")
+        synthetic_shards.write_shards(data, size=16, cameras=3, frames=4, sequences=2, guide_channels=4)
+        with open(CONFIG) as f:
+            tune = json.load(f)
+        tune["model"] = self.FIVE
+        tune["train"].update(init_from=os.path.dirname(checkpoint), lr=0.0, min_lr=0.0, steps=1)
+        config = os.path.join(WORK, "tune_five.json")
+        with open(config, "w") as f:
+            json.dump(tune, f)
+        out = os.path.join(WORK, "five")
+        run = subprocess.run([sys.executable, TRAIN, "--config", config, "--data", data, "--out", out, "--force"],
+                             capture_output=True, text=True)
+        self.assertEqual(run.returncode, 0, run.stderr)
+        self.assertIn("train.init_from: enc.0.0.weight, alpha_from_guide.weight widened", run.stdout)
+        tuned, _ = read_safetensors(os.path.join(out, "sixway-unet.safetensors"))
+        for name, value in old.named_tensors().items():
+            value = value.detach().numpy()
+            self.assertTrue(np.array_equal(tuned[name][:, :4] if name == "enc.0.0.weight" else
+                                           tuned[name][:, :6] if name == "alpha_from_guide.weight" else tuned[name],
+                                           value), name)
+        self.assertFalse(tuned["enc.0.0.weight"][:, 4:].any())
+        self.assertFalse(tuned["alpha_from_guide.weight"][:, 6:].any())
 
 
 class TrainTest(unittest.TestCase):
