@@ -29,6 +29,9 @@ layout(std140, binding = 0) uniform BakeParams {
 }
 params;
 
+#define RAMP_KEYS params.ramp
+#include "emission_ramp.glsl"
+
 // Continuous node coordinate of world point p in a light grid (nodes on integers).
 vec3 lightGridCoord(LightGrid g, vec3 p) {
   vec3 r = p - g.corner.xyz;

@@ -22,7 +22,6 @@
 #extension GL_GOOGLE_include_directive : require
 #include "bake_params.glsl"
 #include "depth.glsl"
-#include "emission.glsl"
 #include "phase.glsl"
 #include "random.glsl"
 
@@ -98,7 +97,7 @@ vec3 towardLight(int k) {
 float emittedPerDepth(Lerp8 l) {
   if (params.image.z == 0) return 0.0;  // no ramp: the smoke does not emit
   float t = params.image.w != 0 ? LERP8(temperature, l) : 0.0;
-  return (params.optics.w / params.optics.x) * luminance(rampColor(params.ramp, params.image.z, t));
+  return (params.optics.w / params.optics.x) * luminance(rampColor(params.image.z, t));
 }
 
 // Along the ray through [span.x, span.y] by midpoint steps of length h (the last one shortened), empty bricks

@@ -44,6 +44,9 @@ layout(std140, binding = 0) uniform TraceParams {
 }
 params;
 
+#define RAMP_KEYS params.ramp
+#include "emission_ramp.glsl"
+
 layout(std430, binding = 1) readonly buffer Density { float density[]; };
 layout(std430, binding = 2) readonly buffer Temperature { float temperature[]; };
 layout(std430, binding = 3) readonly buffer Majorants { float brickMax[]; };
@@ -83,7 +86,7 @@ bool deltaTrack(vec3 o, vec3 w, float tEnd, inout float t, inout uint rng, bool 
     float rho = max(0.0, LERP8(density, l));
     if (emitting && rho > 0.0) {
       float temp = params.flags.y != 0u ? LERP8(temperature, l) : 0.0;
-      emitted += params.optics.w * rho * rampColor(params.ramp, params.image.z, temp) / sigmaBar;
+      emitted += params.optics.w * rho * rampColor(params.image.z, temp) / sigmaBar;
     }
     if (rngNext(rng) * sigmaBar < params.optics.x * rho) return true;
   }

@@ -85,7 +85,7 @@ void main() {
       for (int light = 0; light < 6; ++light) radiance[light] += absorbed * scatter[light] * exp(-lightDepth(light, p));
       if (emissive) {
         float t = params.image.w != 0 ? LERP8(temperature, l) : 0.0;
-        emitted += absorbed * (params.optics.w / extinction) * luminance(rampColor(params.ramp, params.image.z, t));
+        emitted += absorbed * (params.optics.w / extinction) * luminance(rampColor(params.image.z, t));
       }
       transmittance *= segment;
     }
