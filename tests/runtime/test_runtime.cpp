@@ -410,8 +410,8 @@ TEST(Runtime, TheNetworkAloneTakesTheEmissionItReads) {
 }
 
 // The two networks of weights/ (weights/README.md): trained on the all-orders and the single-scattering
-// targets, both reading the 1-cell fine alpha and passing it through as their alpha; each runs under
-// validation.
+// targets, both reading the 1-cell fine alpha and passing it through as their alpha, the all-orders one also
+// the guide's emission (weights/README.md); each runs under validation.
 TEST(Runtime, TheShippedNetworksAreBothTruthsWithTheFineAlphaPassedThrough) {
   Device device({.validate = true});
   for (const auto& [name, target] : {std::pair{"ms", "multiple"}, std::pair{"ss", "single"}}) {
@@ -425,7 +425,8 @@ TEST(Runtime, TheShippedNetworksAreBothTruthsWithTheFineAlphaPassedThrough) {
     constexpr uint32_t size = 64;
     LightmapNetwork network(device, weights, size);
     EXPECT_FLOAT_EQ(network.fineAlphaStepVoxels(), 1.0f) << weights;
-    std::vector<float> guide(size * size * 4);
+    EXPECT_EQ(network.readsEmission(), std::string(name) == "ms") << weights;
+    std::vector<float> guide(size * size * 4), emission(network.readsEmission() ? size * size : 0, 0.0f);
     for (uint32_t y = 0; y < size; ++y)
       for (uint32_t x = 0; x < size; ++x) {
         const float r = std::hypot(float(x) - 32.0f, float(y) - 32.0f) / 24.0f;  // a disk of smoke
@@ -433,7 +434,7 @@ TEST(Runtime, TheShippedNetworksAreBothTruthsWithTheFineAlphaPassedThrough) {
         float* g = &guide[(y * size + x) * 4];
         g[0] = 0.6f * alpha, g[1] = alpha, g[2] = alpha > 0.0f ? 0.5f : 1.0f, g[3] = alpha;
       }
-    const std::vector<float> lightmaps = network.run(guide);
+    const std::vector<float> lightmaps = network.run(guide, emission);
     ASSERT_EQ(lightmaps.size(), size_t(size * size * 8));
     double alphaError = 0.0;
     for (size_t i = 0; i < size_t(size * size); ++i) {

@@ -73,15 +73,8 @@ NAF_WIDE_CONFIG = {
     "adapters": {"enabled": True, "width": 20, "blocks": 1},
 }
 
-EMISSION_GUIDE_CONFIG = {
-    "guide_channels": 5,
-    "input_channels": 8,
-    "guide_alpha_step_voxels": 0.5,
-    "alpha": "guide",
-    "widths": [5, 8],
-    "depth": 1,
-    "adapters": {"enabled": True, "width": 4, "blocks": 1},
-}
+# The fine-alpha network with the emission as a 5th guide channel (two groups of four input channels).
+EMISSION_GUIDE_CONFIG = dict(FINE_ALPHA_CONFIG, guide_channels=5, input_channels=8)
 
 # name: (config, weights seed, guide seed, guide height, guide width, intermediates)
 CASES = {
