@@ -95,7 +95,6 @@ vec3 towardLight(int k) {
 // The emitted luminance per unit optical depth at interpolation l: intensity · ramp / extinction, so that a
 // slab absorbing a of the light passing through emits a times it (params.image.w: a temperature grid).
 float emittedPerDepth(Lerp8 l) {
-  if (params.image.z == 0) return 0.0;  // no ramp: the smoke does not emit
   float t = params.image.w != 0 ? LERP8(temperature, l) : 0.0;
   return (params.optics.w / params.optics.x) * luminance(rampColor(params.image.z, t));
 }
@@ -104,6 +103,7 @@ float emittedPerDepth(Lerp8 l) {
 // skipped, until T < 1e-4: x = 1 − T, y = the direct emission reaching the camera (with kEmission).
 vec2 fineMarch(vec3 origin, vec3 dir, vec3 invDir, vec3 boxMin, float brickSize, vec2 span, float h) {
   float tau = 0.0, emitted = 0.0;
+  const bool emits = kEmission && params.image.z > 0;  // no ramp keys: the smoke does not emit
   for (float t0 = span.x; t0 < span.y && tau < 9.2; t0 += h) {
     float dt = min(h, span.y - t0);
     vec3 p = origin + (t0 + 0.5 * dt) * dir;
@@ -118,7 +118,7 @@ vec2 fineMarch(vec3 origin, vec3 dir, vec3 invDir, vec3 boxMin, float brickSize,
     }
     Lerp8 l = lerp8(params.volume.size.xyz, volumeSampleCoord(params.volume, p));
     float slab = params.optics.x * max(0.0, LERP8(density, l)) * dt;
-    if (kEmission && slab > 0.0) emitted += exp(-tau) * oneMinusExp(slab) * emittedPerDepth(l);
+    if (emits && slab > 0.0) emitted += exp(-tau) * oneMinusExp(slab) * emittedPerDepth(l);
     tau += slab;
   }
   return vec2(oneMinusExp(tau), emitted);

@@ -96,7 +96,7 @@ int guideChannels(const fs::path& shard, const nlohmann::json& description, cons
   const int channels = description.contains("guide_channels") ? int(description["guide_channels"].size()) : 3;
   if (channels < 3 || channels > nn::kMaxGuideChannels)
     throw io::InputError(shard.string(), "guide_channels must name 3 to 5 channels");
-  if (graph.nodes.front().guideChannels > nn::kGuideImageChannels && channels <= nn::kGuideImageChannels &&
+  if (graph.nodes.front().guideChannels > nn::kGuideImageChannels && channels == nn::kGuideImageChannels &&
       sceneEmits(description))
     throw io::InputError(shard.string(),
                          "the network reads the guide's emission, which this shard of an "

@@ -84,6 +84,8 @@ def full_config(config=None):
         raise ValueError("config: encoding must be srgb or linear")
     if merged["input_channels"] < merged["guide_channels"]:
         raise ValueError("config: input_channels < guide_channels")
+    if merged["input_channels"] > 8:
+        raise ValueError("config: input_channels must be at most 8 (the GLSL input node's two groups of four)")
     if not 1 <= merged["guide_channels"] <= 5:
         raise ValueError("config: guide_channels must be 1 to 5")
     if (merged["guide_channels"] >= 4) != (merged.get("guide_alpha_step_voxels", 0) > 0):

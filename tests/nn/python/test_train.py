@@ -56,6 +56,9 @@ class HalfStemTest(unittest.TestCase):
         self.assertGreater(flops[1], 0.2 * flops[0])
         with self.assertRaisesRegex(ValueError, "stem must be full or half"):
             SixwayNet({"stem": "quarter"})
+        # The GLSL input node holds two groups of four channels (src/nn/graph.cpp).
+        with self.assertRaisesRegex(ValueError, "input_channels must be at most 8"):
+            SixwayNet({"input_channels": 12})
 
 
 class WidenedInitTest(unittest.TestCase):
