@@ -40,7 +40,7 @@ from bench_torch import node_flops  # noqa: E402
 from dataset import SPLITS, ShardDataset  # noqa: E402
 from losses import training_loss  # noqa: E402
 from metrics import SplitMetrics, evaluate_split  # noqa: E402
-from sixway_net import SixwayNet, decode_output, export_safetensors, full_config  # noqa: E402
+from sixway_net import ADAPTERS, SixwayNet, decode_output, export_safetensors, full_config  # noqa: E402
 
 DEFAULTS = {
     "model": {},  # sixway_net.DEFAULT_CONFIG overrides
@@ -73,7 +73,8 @@ DEFAULTS = {
         # widened_weights). The optimizer starts afresh.
         "init_from": None,
     },
-    "loss": {"mse": 1.0, "ssim": 0.1, "gradient": 0.0, "temporal": 0.1, "temporal_k": 20.0},
+    # channel_weights: the MSE's factor per output channel ({"emissive": 4}: the others stay 1).
+    "loss": {"mse": 1.0, "ssim": 0.1, "gradient": 0.0, "temporal": 0.1, "temporal_k": 20.0, "channel_weights": {}},
 }
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 # The model config keys in which train.init_from's checkpoint may have fewer channels than the run.
@@ -104,6 +105,12 @@ def merge_config(config, source):
             merged[section][key] = value
     if merged["train"]["schedule"] not in ("cosine", "step"):
         raise ConfigError(f"{source}: train.schedule must be cosine or step")
+    names = [name for _, pair in ADAPTERS for name in pair]
+    for name, factor in merged["loss"]["channel_weights"].items():
+        if name not in names:
+            raise ConfigError(f"{source}: loss.channel_weights: unknown channel '{name}' (one of {', '.join(names)})")
+        if not isinstance(factor, (int, float)) or isinstance(factor, bool) or not 0 <= factor <= 100:
+            raise ConfigError(f"{source}: loss.channel_weights.{name} must be a number in [0, 100]")
     return merged
 
 
@@ -153,8 +160,8 @@ def heldout_curve_point(net, data, pairs, config, device):
     """Loss terms and PSNR of the fixed held-out pairs, on whole maps, no augmentation."""
     net.eval()
     totals, metrics = {}, SplitMetrics()
-    for start in range(0, len(pairs), 8):
-        current, previous = data.pair_batch(pairs[start:start + 8], None, np.random.default_rng(0))
+    for chunk in data.chunks_by_size(pairs, 8):
+        current, previous = data.pair_batch(chunk, None, np.random.default_rng(0))
         raw = net(torch.cat([current["guide"], previous["guide"]]).to(device))
         n = len(current["guide"])
         loss, terms = training_loss(raw[:n], raw[n:], current["target"].to(device), previous["target"].to(device),
@@ -270,7 +277,7 @@ def load_config(args, checkpoint):
         except (OSError, json.JSONDecodeError) as error:
             raise ConfigError(f"{args.config}: {error}")
     elif checkpoint is not None:
-        config = copy.deepcopy(checkpoint["config"])
+        config = merge_config(checkpoint["config"], "checkpoint")
     else:
         raise ConfigError("--config is required (unless resuming)")
     if args.data:
@@ -284,8 +291,10 @@ def load_config(args, checkpoint):
                                              and all(isinstance(d, str) for d in directories))):
         raise ConfigError(f"{args.config}: data.dir must be a directory or a list of directories")
     if checkpoint is not None:
+        # Merged again so that a checkpoint written before a config key existed compares with its default.
+        saved = merge_config(checkpoint["config"], "checkpoint")
         differs = first_difference(dict(config, data=dict(config["data"], dir=None)),
-                                   dict(checkpoint["config"], data=dict(checkpoint["config"]["data"], dir=None)))
+                                   dict(saved, data=dict(saved["data"], dir=None)))
         if differs:
             raise ConfigError(f"{args.config or '--seed'}: '{differs}' differs from the checkpoint's config; "
                               f"resume with the same config")
@@ -325,9 +334,13 @@ class Trainer:
         np.random.seed(self.train["seed"])
         self.net = SixwayNet(self.config["model"]).to(self.device)
         crop = self.config["data"]["crop"]
-        if (crop or 0) % self.net.size_multiple() or self.data.size % self.net.size_multiple():
-            raise ConfigError(f"data.crop {crop} or the lightmap size {self.data.size} is not a multiple of the "
-                              f"network's size multiple {self.net.size_multiple()}")
+        multiple = self.net.size_multiple()
+        if (crop or 0) % multiple or any(size % multiple for size in self.data.sizes()):
+            raise ConfigError(f"data.crop {crop} or a lightmap size {self.data.sizes()} is not a multiple of the "
+                              f"network's size multiple {multiple}")
+        if crop is None and len(self.data.sizes()) > 1:
+            raise ConfigError(f"the shards' lightmap sizes differ ({self.data.sizes()}): set data.crop (at most "
+                              f"{self.data.size}) so that every batch has one size")
         self.optimizer = torch.optim.Adam(self.net.parameters(), lr=self.train["lr"],
                                           weight_decay=self.train["weight_decay"])
         self.step, self.seconds_before, self.interval = 0, 0.0, {}
@@ -400,8 +413,8 @@ class Trainer:
         elif os.path.exists(self.log_path):
             os.remove(self.log_path)
         params = sum(p.numel() for p in self.net.parameters())
-        print(f"train: {len(self.data.paths)} shards, {len(self.pairs)} training pairs of {self.data.size}x"
-              f"{self.data.size}, {params} parameters, {flops_at(self.net, 256) / 1e9:.2f} GFLOP at 256x256, "
+        sizes = "/".join(f"{size}x{size}" for size in self.data.sizes())
+        print(f"train: {len(self.data.paths)} shards, {len(self.pairs)} training pairs of {sizes}, {params} parameters, {flops_at(self.net, 256) / 1e9:.2f} GFLOP at 256x256, "
               f"device {self.device}, {self.world} process(es), {self.train['threads']} threads; "
               f"steps {self.step}..{self.train['steps']}", flush=True)
 
@@ -502,7 +515,7 @@ def finish(out, net, data, config, seconds, device, world):
         "parameters": sum(p.numel() for p in net.parameters()),
         "flops_256": flops_at(net, 256),
         "dataset": {"dir": data.directories[0] if len(data.directories) == 1 else data.directories,
-                    "shards": len(data.paths), "lightmap_size": data.size,
+                    "shards": len(data.paths), "lightmap_size": data.size, "lightmap_sizes": data.sizes(),
                     "samples": {split: len(data.indices(split)) for split in SPLITS},
                     "config": data.dataset_config()},
     }

@@ -112,7 +112,11 @@ def guide_channel_count(directory):
 class ShardDataset:
     """Every sample of every shard of a directory, or of several (one per scene family, say), in memory as F16
     (a CPU dataset is a few hundred MB), with the first `guide_channels` channels of the guide (3, 4 for the
-    fine alpha, 5 for the emission)."""
+    fine alpha, 5 for the emission).
+
+    The shards may have different lightmap sizes (64² and 128² samples, say): `by_size` holds each size's
+    arrays (`guide`, `target`, `motion` are every sample's only when there is one size); `size` is the smallest
+    size, the largest crop every sample allows, and a batch of whole maps takes samples of one size."""
 
     def __init__(self, directories, target="single", guide_channels=3):
         if target not in TARGET_TENSORS:
@@ -132,9 +136,6 @@ class ShardDataset:
         self.infos = []
         for path, source in sources:
             tensors, info = read_shard(path)
-            if self.infos and info["lightmap_size"] != self.infos[0]["lightmap_size"]:
-                raise ValueError(f"{path}: lightmap_size {info['lightmap_size']} differs from "
-                                 f"{self.paths[0]}'s {self.infos[0]['lightmap_size']}")
             if target not in shard_targets(info):
                 raise ValueError(f"{path}: holds {', '.join(shard_targets(info))} scattering targets, not {target} "
                                  f"(the dataset config's \"targets\")")
@@ -145,11 +146,38 @@ class ShardDataset:
             # A played-back VDB sequence has no motion field ("motion": false): no temporal pairs.
             moves = info.get("motion", True)
             self.samples += [dict(s, sequence=info["sequence"], source=source, moves=moves) for s in info["samples"]]
-        self.guide = np.concatenate(guides)
-        self.target = np.concatenate(targets)
-        self.motion = np.concatenate(motions)
-        self.size = self.infos[0]["lightmap_size"]
+        shard_sizes = [info["lightmap_size"] for info in self.infos]
+        self.sample_sizes = np.concatenate([np.full(len(g), size) for g, size in zip(guides, shard_sizes)])
+        # Per sample: its row in its size's arrays.
+        self.rows = np.zeros(len(self.samples), dtype=np.int64)
+        self.by_size = {}
+        for size in sorted(set(shard_sizes)):
+            chosen = [k for k, s in enumerate(shard_sizes) if s == size]
+            self.rows[self.sample_sizes == size] = np.arange(int((self.sample_sizes == size).sum()))
+            self.by_size[size] = {"guide": np.concatenate([guides[k] for k in chosen]),
+                                  "target": np.concatenate([targets[k] for k in chosen]),
+                                  "motion": np.concatenate([motions[k] for k in chosen])}
+        self.size = min(self.by_size)
         self.previous = self._previous_frames()
+
+    def _every_sample(self, name):
+        if len(self.by_size) > 1:
+            raise ValueError(f"{self.directory}: samples of lightmap sizes {self.sizes()} are not one array "
+                             f"(use batch)")
+        return self.by_size[self.size][name]
+
+    @property
+    def guide(self):
+        """[N, channels, size, size] F16: every sample's guide (samples of one lightmap size only)."""
+        return self._every_sample("guide")
+
+    @property
+    def target(self):
+        return self._every_sample("target")
+
+    @property
+    def motion(self):
+        return self._every_sample("motion")
 
     def _previous_frames(self):
         """Index of the previous sample of the same sequence and camera (samples are ordered by camera, then
@@ -192,18 +220,36 @@ class ShardDataset:
         """Samples of `split` whose previous frame exists (both are always in the same split)."""
         return np.array([i for i in self.indices(split) if self.previous[i] >= 0], dtype=np.int64)
 
+    def sizes(self):
+        """The lightmap sizes of the samples, smallest first."""
+        return sorted(self.by_size)
+
+    def chunks_by_size(self, indices, count):
+        """`indices` in chunks of at most `count` samples of one lightmap size, size by size, in order."""
+        return [same[start:start + count] for size in self.sizes()
+                for same in [indices[self.sample_sizes[indices] == size]] for start in range(0, len(same), count)]
+
+    def _whole_map_size(self, indices):
+        """The one lightmap size of the samples `indices` (a batch of whole maps stacks maps of one size)."""
+        sizes = sorted(set(self.sample_sizes[indices].tolist()))
+        if len(sizes) > 1:
+            raise ValueError(f"{self.directory}: a batch of whole maps of sizes {sizes}")
+        return sizes[0] if sizes else self.size
+
     def batch(self, indices, crop=None, offsets=None, mirror=None):
         """float32 tensors guide [B,3 to 5,c,c], target [B,8,c,c], motion [B,2,c,c] of the samples `indices`;
-        `offsets` (B x 2: row, column) place the crops of size `crop`; `mirror` (B booleans) flips left-right."""
-        c = crop or self.size
+        `offsets` (B x 2: row, column) place the crops of size `crop`; `mirror` (B booleans) flips left-right.
+        Without `crop`, the samples' maps whole: they must have one size."""
+        c = crop or self._whole_map_size(indices)
         offsets = np.zeros((len(indices), 2), dtype=np.int64) if offsets is None else offsets
         out = {"guide": [], "target": [], "motion": []}
         for k, index in enumerate(indices):
             rows = slice(offsets[k][0], offsets[k][0] + c)
             cols = slice(offsets[k][1], offsets[k][1] + c)
-            guide = self.guide[index, :, rows, cols]
-            target = self.target[index, :, rows, cols]
-            motion = self.motion[index, :, rows, cols]
+            arrays, row = self.by_size[self.sample_sizes[index]], self.rows[index]
+            guide = arrays["guide"][row, :, rows, cols]
+            target = arrays["target"][row, :, rows, cols]
+            motion = arrays["motion"][row, :, rows, cols]
             if mirror is not None and mirror[k]:
                 guide = guide[:, :, ::-1]
                 target = target[MIRRORED_CHANNELS, :, ::-1]
@@ -215,9 +261,13 @@ class ShardDataset:
 
     def pair_batch(self, indices, crop, rng, mirror=False):
         """(current, previous) batches of the samples `indices` and their previous frames, with the same
-        random crop (when crop < size) and the same random mirroring (when `mirror`) drawn from `rng`."""
-        c = min(crop or self.size, self.size)
-        offsets = rng.integers(0, self.size - c + 1, size=(len(indices), 2))
+        random crop (when crop < a sample's size) and the same random mirroring (when `mirror`) drawn from
+        `rng`. Without `crop`, whole maps of one size."""
+        c = self._whole_map_size(indices) if crop is None else min(crop, self.size)
+        if len(self.by_size) == 1:
+            offsets = rng.integers(0, self.size - c + 1, size=(len(indices), 2))
+        else:
+            offsets = rng.integers(0, self.sample_sizes[indices][:, None] - c + 1, size=(len(indices), 2))
         flips = rng.random(len(indices)) < 0.5 if mirror else None
         current = self.batch(indices, c, offsets, flips)
         previous = self.batch(self.previous[indices], c, offsets, flips)

@@ -3,7 +3,9 @@
 Everything is compared in the "loss space": the six lightmaps and emissive sRGB-encoded (as the paper's MSE
 in sRGB), alpha linear. Channels are in the network's output order (sixway_net.ADAPTERS; alpha is channel 6).
 
-- `mse`: mean squared error in loss space.
+- `mse`: mean squared error in loss space; `channel_weights` may weigh a channel's error up or down (e.g. the
+  emissive channel, whose scattered glow is a small share of the mean map but a large one of an emissive
+  scene's image).
 - `ssim`: 1 - SSIM (Wang et al. 2004; 11x11 Gaussian window, sigma 1.5) per channel, and `gradient`: L1 between
   the images' finite differences. No pretrained network (VGG, LPIPS) can be downloaded here; SSIM compares
   local mean, contrast and structure, and the gradient term penalises blurred edges, which MSE alone lets
@@ -16,6 +18,8 @@ in sRGB), alpha linear. Channels are in the network's output order (sixway_net.A
 """
 import torch
 import torch.nn.functional as F
+
+from sixway_net import ADAPTERS
 
 ALPHA_CHANNEL = 6
 SSIM_C1 = 0.01 ** 2  # (K1 L)^2 with the data range L = 1 of sRGB values
@@ -49,8 +53,23 @@ def prediction_to_loss_space(raw, encoding):
     return torch.where(light_channels_mask(raw.shape[1], raw.device), srgb_encode(raw), raw)
 
 
-def mse(pred, target):
-    return F.mse_loss(pred, target)
+def mse(pred, target, channel_weights=None):
+    """Mean squared error; `channel_weights` (C factors, or None for all 1) weighs each channel's error."""
+    if channel_weights is None:
+        return F.mse_loss(pred, target)
+    return ((pred - target) ** 2 * channel_weights.view(1, -1, 1, 1)).mean()
+
+
+def channel_weight_vector(factors, device=None):
+    """`loss.channel_weights` ({output channel name: factor}, the others 1) -> (8,) tensor in the network's
+    output order, or None when no channel is weighted."""
+    if not factors:
+        return None
+    order = [name for _, names in ADAPTERS for name in names]
+    weights = torch.ones(len(order), device=device)
+    for name, factor in factors.items():
+        weights[order.index(name)] = factor
+    return weights
 
 
 def _gaussian_window(size, sigma, channels, device):
@@ -107,11 +126,12 @@ def temporal_loss(pred, pred_previous, target, target_previous, motion, k):
 def training_loss(raw, raw_previous, target, target_previous, motion, encoding, weights):
     """Total loss and its terms (a dict of floats) for a batch of temporal pairs.
     raw/raw_previous: network outputs of the current and previous frames; targets linear; `weights` maps
-    mse, ssim, gradient, temporal to their factors and temporal_k to k (terms with factor 0 are skipped)."""
+    mse, ssim, gradient, temporal to their factors, temporal_k to k (terms with factor 0 are skipped) and
+    channel_weights to the MSE's per-channel factors ({name: factor}, e.g. {"emissive": 4})."""
     pred = prediction_to_loss_space(torch.cat([raw, raw_previous]), encoding)
     ref = target_to_loss_space(torch.cat([target, target_previous]))
     n = raw.shape[0]
-    terms = {"mse": mse(pred, ref)}
+    terms = {"mse": mse(pred, ref, channel_weight_vector(weights.get("channel_weights"), pred.device))}
     if weights.get("ssim", 0):
         terms["ssim"] = 1 - ssim(pred, ref)
     if weights.get("gradient", 0):

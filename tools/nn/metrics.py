@@ -66,12 +66,12 @@ class SplitMetrics:
 
 @torch.no_grad()
 def evaluate_split(model, data, split, device, batch_size=16):
-    """Metrics of one split on whole maps (model in eval mode; the caller restores train mode)."""
+    """Metrics of one split on whole maps (model in eval mode; the caller restores train mode); samples of
+    several lightmap sizes go in batches of one size."""
     indices = data.indices(split)
     metrics = SplitMetrics()
     last = {}  # sample -> decoded prediction of the chunk before (previous frames are the sample before)
-    for start in range(0, len(indices), batch_size):
-        chunk = indices[start:start + batch_size]
+    for chunk in data.chunks_by_size(indices, batch_size):
         batch = data.batch(chunk)
         prediction = decode_output(run_padded(model, batch["guide"].to(device)), model.config).cpu()
         metrics.add(prediction, batch["target"])

@@ -20,6 +20,7 @@ import synthetic_shards  # noqa: E402
 from baselines import baselines  # noqa: E402
 from dataset import ShardDataset  # noqa: E402
 from losses import warp  # noqa: E402
+from metrics import evaluate_split  # noqa: E402
 from safetensors_io import read_safetensors, write_safetensors  # noqa: E402
 
 
@@ -65,6 +66,34 @@ class DatasetTest(unittest.TestCase):
             self.assertEqual(len(both.dataset_config()), 2)
         with self.assertRaisesRegex(ValueError, "no shard directory"):
             ShardDataset([])
+
+    def test_directories_of_two_lightmap_sizes(self):
+        with tempfile.TemporaryDirectory() as large:
+            synthetic_shards.write_shards(large, size=32, cameras=3, frames=4, sequences=2)
+            both = ShardDataset([self.tmp.name, large])
+            self.assertEqual(both.sizes(), [16, 32])
+            self.assertEqual(both.size, 16)
+            big = len(self.data.samples) + 1  # the 32² directory's second sample
+            whole = both.batch(np.array([big]))
+            self.assertEqual(tuple(whole["guide"].shape), (1, 3, 32, 32))
+            np.testing.assert_array_equal(whole["target"][0].numpy(),
+                                          ShardDataset(large).batch(np.array([1]))["target"][0].numpy())
+            # A crop of a 32² sample sits where its offset says; samples of both sizes share a cropped batch.
+            crop = both.batch(np.array([1, big]), crop=16, offsets=np.array([[0, 0], [8, 4]]))
+            np.testing.assert_array_equal(crop["guide"][1].numpy(), whole["guide"][0, :, 8:24, 4:20].numpy())
+            np.testing.assert_array_equal(crop["guide"][0].numpy(), self.data.batch(np.array([1]))["guide"][0].numpy())
+            pairs = both.pairs("train")
+            current, previous = both.pair_batch(pairs, 16, np.random.default_rng(1), mirror=True)
+            self.assertEqual(tuple(current["target"].shape), (len(pairs), 8, 16, 16))
+            with self.assertRaisesRegex(ValueError, r"whole maps of sizes \[16, 32\]"):
+                both.batch(np.array([1, big]))
+            with self.assertRaisesRegex(ValueError, "not one array"):
+                both.guide
+            # Whole-map metrics go size by size: the split's sample count is both directories'.
+            model = lambda guide, intermediates=None: torch.zeros(guide.shape[0], 8, *guide.shape[2:])
+            model.size_multiple, model.config = (lambda: 1), {"encoding": "linear"}
+            result = evaluate_split(model, both, "train", "cpu")
+            self.assertEqual(result["samples"], 2 * len(self.data.indices("train")))
 
     def test_targets_in_network_order(self):
         # Baker order Right, Left, Top, Bottom, Back, Front -> network left, right, top, bottom, front, back.

@@ -146,6 +146,22 @@ class TemporalTest(unittest.TestCase):
         self.assertAlmostEqual(float(loss), 0.25 * math.exp(-10) * valid_fraction, places=8)
 
 
+class ChannelWeightsTest(unittest.TestCase):
+    def test_weights_scale_each_channels_error(self):
+        target = smooth_image(11)
+        emissive = 7  # the network's output order: left, right, top, bottom, front, back, alpha, emissive
+        pred = target.clone()
+        pred[:, emissive] += 0.1
+        pred[:, 0] += 0.2
+        plain = float(losses.mse(pred, target))
+        self.assertAlmostEqual(plain, (0.01 + 0.04) / 8, places=6)
+        weighted = losses.mse(pred, target, losses.channel_weight_vector({"emissive": 4, "left": 0}))
+        self.assertAlmostEqual(float(weighted), 4 * 0.01 / 8, places=6)
+        self.assertIsNone(losses.channel_weight_vector({}))
+        unit = losses.mse(pred, target, losses.channel_weight_vector({"emissive": 1}))
+        self.assertAlmostEqual(float(unit), plain, places=6)
+
+
 class TrainingLossTest(unittest.TestCase):
     def test_perfect_prediction_has_zero_loss(self):
         target_previous = smooth_image(9)

@@ -222,6 +222,30 @@ class TrainTest(unittest.TestCase):
         self.assertEqual(run.stderr.strip().count("\n"), 0, run.stderr)
         self.assertIn("checkpoint.pt: train.init_from has another model config", run.stderr)
 
+    def test_two_lightmap_sizes_train_in_crops(self):
+        large = os.path.join(WORK, "data32")
+        synthetic_shards.write_shards(large, size=32, cameras=3, frames=4, sequences=2)
+        out = os.path.join(WORK, "two_sizes")
+        run = subprocess.run([sys.executable, TRAIN, "--config", CONFIG, "--data", os.path.join(WORK, "data"), large,
+                              "--out", out, "--force"], capture_output=True, text=True)
+        self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
+        self.assertIn("training pairs of 16x16/32x32", run.stdout)
+        with open(os.path.join(out, "metrics.json")) as f:
+            samples = json.load(f)["pytorch"]["heldout_sequence"]["samples"]
+        self.assertEqual(samples, 2 * 3 * 4)  # sequence 1 of both directories, whole maps of each size
+        # Whole maps of two sizes cannot share a batch: the run needs a crop.
+        whole = os.path.join(WORK, "whole.json")
+        with open(CONFIG) as f:
+            config = json.load(f)
+        config["data"]["crop"] = None
+        with open(whole, "w") as f:
+            json.dump(config, f)
+        run = subprocess.run([sys.executable, TRAIN, "--config", whole, "--data", os.path.join(WORK, "data"), large,
+                              "--out", os.path.join(WORK, "whole"), "--force"], capture_output=True, text=True)
+        self.assertNotEqual(run.returncode, 0)
+        self.assertEqual(run.stderr.strip().count("\n"), 0, run.stderr)
+        self.assertIn("the shards' lightmap sizes differ ([16, 32]): set data.crop", run.stderr)
+
     def test_bad_input_is_one_line(self):
         run = train(os.path.join(WORK, "straight"))  # exists, no --resume or --force
         self.assertNotEqual(run.returncode, 0)
@@ -233,6 +257,12 @@ class TrainTest(unittest.TestCase):
         run = subprocess.run([sys.executable, TRAIN, "--config", bad, "--out", os.path.join(WORK, "bad")],
                              capture_output=True, text=True)
         self.assertEqual(run.stderr.strip(), f"train: {bad}: unknown key 'train.stpes'")
+        with open(bad, "w") as f:
+            json.dump({"loss": {"channel_weights": {"emisive": 4}}}, f)
+        run = subprocess.run([sys.executable, TRAIN, "--config", bad, "--out", os.path.join(WORK, "bad")],
+                             capture_output=True, text=True)
+        self.assertEqual(run.stderr.strip().count("\n"), 0, run.stderr)
+        self.assertIn(f"train: {bad}: loss.channel_weights: unknown channel 'emisive'", run.stderr)
         # A network that reads the fine alpha needs shards whose guide has it (version 3).
         with open(CONFIG) as f:
             fine = json.load(f)
