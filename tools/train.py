@@ -40,7 +40,7 @@ from bench_torch import node_flops  # noqa: E402
 from dataset import SPLITS, ShardDataset  # noqa: E402
 from losses import training_loss  # noqa: E402
 from metrics import SplitMetrics, evaluate_split  # noqa: E402
-from sixway_net import ADAPTERS, SixwayNet, decode_output, export_safetensors, full_config  # noqa: E402
+from sixway_net import OUTPUT_CHANNELS, SixwayNet, decode_output, export_safetensors, full_config  # noqa: E402
 
 DEFAULTS = {
     "model": {},  # sixway_net.DEFAULT_CONFIG overrides
@@ -105,10 +105,12 @@ def merge_config(config, source):
             merged[section][key] = value
     if merged["train"]["schedule"] not in ("cosine", "step"):
         raise ConfigError(f"{source}: train.schedule must be cosine or step")
-    names = [name for _, pair in ADAPTERS for name in pair]
+    if not isinstance(merged["loss"]["channel_weights"], dict):
+        raise ConfigError(f"{source}: loss.channel_weights must be an object {{channel: factor}}")
     for name, factor in merged["loss"]["channel_weights"].items():
-        if name not in names:
-            raise ConfigError(f"{source}: loss.channel_weights: unknown channel '{name}' (one of {', '.join(names)})")
+        if name not in OUTPUT_CHANNELS:
+            raise ConfigError(f"{source}: loss.channel_weights: unknown channel '{name}' (one of "
+                              f"{', '.join(OUTPUT_CHANNELS)})")
         if not isinstance(factor, (int, float)) or isinstance(factor, bool) or not 0 <= factor <= 100:
             raise ConfigError(f"{source}: loss.channel_weights.{name} must be a number in [0, 100]")
     return merged
@@ -338,7 +340,7 @@ class Trainer:
         if (crop or 0) % multiple or any(size % multiple for size in self.data.sizes()):
             raise ConfigError(f"data.crop {crop} or a lightmap size {self.data.sizes()} is not a multiple of the "
                               f"network's size multiple {multiple}")
-        if crop is None and len(self.data.sizes()) > 1:
+        if len(self.data.sizes()) > 1 and not 0 < (crop or 0) <= self.data.size:
             raise ConfigError(f"the shards' lightmap sizes differ ({self.data.sizes()}): set data.crop (at most "
                               f"{self.data.size}) so that every batch has one size")
         self.optimizer = torch.optim.Adam(self.net.parameters(), lr=self.train["lr"],
@@ -414,7 +416,8 @@ class Trainer:
             os.remove(self.log_path)
         params = sum(p.numel() for p in self.net.parameters())
         sizes = "/".join(f"{size}x{size}" for size in self.data.sizes())
-        print(f"train: {len(self.data.paths)} shards, {len(self.pairs)} training pairs of {sizes}, {params} parameters, {flops_at(self.net, 256) / 1e9:.2f} GFLOP at 256x256, "
+        print(f"train: {len(self.data.paths)} shards, {len(self.pairs)} training pairs of {sizes}, {params} "
+              f"parameters, {flops_at(self.net, 256) / 1e9:.2f} GFLOP at 256x256, "
               f"device {self.device}, {self.world} process(es), {self.train['threads']} threads; "
               f"steps {self.step}..{self.train['steps']}", flush=True)
 

@@ -116,7 +116,8 @@ class ShardDataset:
 
     The shards may have different lightmap sizes (64² and 128² samples, say): `by_size` holds each size's
     arrays (`guide`, `target`, `motion` are every sample's only when there is one size); `size` is the smallest
-    size, the largest crop every sample allows, and a batch of whole maps takes samples of one size."""
+    size, the largest crop every sample allows, and a batch of whole maps takes samples of one size. Split
+    metrics pool pixels, so a 128² sample weighs four 64² ones."""
 
     def __init__(self, directories, target="single", guide_channels=3):
         if target not in TARGET_TENSORS:
@@ -185,6 +186,8 @@ class ShardDataset:
         VDB sequence) is its own previous frame: its pair trains the reconstruction terms, and its temporal term
         is zero."""
         previous = np.full(len(self.samples), -1, dtype=np.int64)
+        key = lambda k: (self.samples[k]["source"], self.samples[k]["sequence"], self.samples[k]["camera"],
+                         self.sample_sizes[k])
         for i in range(len(self.samples)):
             if not self.samples[i]["moves"]:
                 previous[i] = i
@@ -192,8 +195,7 @@ class ShardDataset:
             if i == 0:
                 continue
             now, before = self.samples[i], self.samples[i - 1]
-            if (now["source"], now["sequence"], now["camera"]) == (before["source"], before["sequence"],
-                                                                   before["camera"]):
+            if key(i) == key(i - 1):
                 if before["frame"] >= now["frame"]:
                     raise ValueError(f"{self.directory}: sequence {now['sequence']} camera {now['camera']}: "
                                      f"frame {now['frame']} follows frame {before['frame']}")
@@ -263,11 +265,8 @@ class ShardDataset:
         """(current, previous) batches of the samples `indices` and their previous frames, with the same
         random crop (when crop < a sample's size) and the same random mirroring (when `mirror`) drawn from
         `rng`. Without `crop`, whole maps of one size."""
-        c = self._whole_map_size(indices) if crop is None else min(crop, self.size)
-        if len(self.by_size) == 1:
-            offsets = rng.integers(0, self.size - c + 1, size=(len(indices), 2))
-        else:
-            offsets = rng.integers(0, self.sample_sizes[indices][:, None] - c + 1, size=(len(indices), 2))
+        c = min(crop, self.size) if crop else self._whole_map_size(indices)
+        offsets = rng.integers(0, self.sample_sizes[indices][:, None] - c + 1, size=(len(indices), 2))
         flips = rng.random(len(indices)) < 0.5 if mirror else None
         current = self.batch(indices, c, offsets, flips)
         previous = self.batch(self.previous[indices], c, offsets, flips)

@@ -19,7 +19,7 @@ in sRGB), alpha linear. Channels are in the network's output order (sixway_net.A
 import torch
 import torch.nn.functional as F
 
-from sixway_net import ADAPTERS
+from sixway_net import OUTPUT_CHANNELS
 
 ALPHA_CHANNEL = 6
 SSIM_C1 = 0.01 ** 2  # (K1 L)^2 with the data range L = 1 of sRGB values
@@ -65,10 +65,9 @@ def channel_weight_vector(factors, device=None):
     output order, or None when no channel is weighted."""
     if not factors:
         return None
-    order = [name for _, names in ADAPTERS for name in names]
-    weights = torch.ones(len(order), device=device)
+    weights = torch.ones(len(OUTPUT_CHANNELS), device=device)
     for name, factor in factors.items():
-        weights[order.index(name)] = factor
+        weights[OUTPUT_CHANNELS.index(name)] = factor
     return weights
 
 

@@ -53,6 +53,8 @@ OPTIONAL_CONFIG = {"guide_alpha_step_voxels": 0.0, "alpha": "network", "stem": "
 # The four adapters and the two channels of each head (docs/conventions.md, "Channels and packing").
 ADAPTERS = [("left_right", ["left", "right"]), ("top_bottom", ["top", "bottom"]),
             ("front_back", ["front", "back"]), ("alpha_emissive", ["alpha", "emissive"])]
+# The eight output channels by name, in the network's order.
+OUTPUT_CHANNELS = [name for _, names in ADAPTERS for name in names]
 # Unity packing: lightmap A = (Right, Top, Back, alpha), B = (Left, Bottom, Front, emissive).
 PACKING = {"A": ["right", "top", "back", "alpha"], "B": ["left", "bottom", "front", "emissive"]}
 ACTIVATIONS = ("relu", "leaky_relu", "gelu", "silu")
@@ -278,7 +280,7 @@ class SixwayNet(nn.Module):
                     "in_channels": 2 + c["input_channels"], "out_channels": 2, "kernel": 1, "stride": 1,
                     "scale": 1, "activation": "none"}
             heads[3] = self._add(node, FixedSelection(2 + c["input_channels"], [2 + 3, 1]))
-        channel_names = [ch for _, pair in ADAPTERS for ch in pair]
+        channel_names = OUTPUT_CHANNELS
         encodings = ["linear" if ch == "alpha" else c["encoding"] for ch in channel_names]
         self._add({"name": "output", "op": "output", "inputs": heads, "in_channels": 8, "channels": channel_names,
                    "encoding": encodings, "packing": PACKING, "scale": 1})
@@ -364,8 +366,8 @@ def decode_output(raw, config):
 
 def pack_lightmaps(decoded):
     """8 linear channels in adapter order -> (A, B), each (N, 4, H, W), Unity packing."""
-    order = [name for _, names in ADAPTERS for name in names]
-    pick = lambda names: torch.cat([decoded[:, order.index(n):order.index(n) + 1] for n in names], dim=1)
+    pick = lambda names: torch.cat([decoded[:, OUTPUT_CHANNELS.index(n):OUTPUT_CHANNELS.index(n) + 1]
+                                    for n in names], dim=1)
     return pick(PACKING["A"]), pick(PACKING["B"])
 
 

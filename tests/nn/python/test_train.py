@@ -263,6 +263,11 @@ class TrainTest(unittest.TestCase):
                              capture_output=True, text=True)
         self.assertEqual(run.stderr.strip().count("\n"), 0, run.stderr)
         self.assertIn(f"train: {bad}: loss.channel_weights: unknown channel 'emisive'", run.stderr)
+        with open(bad, "w") as f:
+            json.dump({"loss": {"channel_weights": 3}}, f)
+        run = subprocess.run([sys.executable, TRAIN, "--config", bad, "--out", os.path.join(WORK, "bad")],
+                             capture_output=True, text=True)
+        self.assertEqual(run.stderr.strip(), f"train: {bad}: loss.channel_weights must be an object {{channel: factor}}")
         # A network that reads the fine alpha needs shards whose guide has it (version 3).
         with open(CONFIG) as f:
             fine = json.load(f)
