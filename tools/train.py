@@ -40,13 +40,14 @@ from bench_torch import node_flops  # noqa: E402
 from dataset import SPLITS, ShardDataset  # noqa: E402
 from losses import training_loss  # noqa: E402
 from metrics import SplitMetrics, evaluate_split  # noqa: E402
-from sixway_net import OUTPUT_CHANNELS, SixwayNet, decode_output, export_safetensors, full_config  # noqa: E402
+from sixway_net import (FROM_GUIDE_SUFFIX, OPTIONAL_CONFIG, OUTPUT_CHANNELS, SixwayNet,  # noqa: E402
+                        decode_output, export_safetensors, full_config, output_encodings)
 
 DEFAULTS = {
     "model": {},  # sixway_net.DEFAULT_CONFIG overrides
     "data": {
         "dir": None,  # the shards: a directory or a list of them; relative paths are relative to the repository root
-        "crop": None,  # random square crops of this size (None: whole maps)
+        "crop": None,  # random square crops of this size (None: whole maps, one size per batch)
         "mirror": True,  # random left-right mirroring (swaps the Left and Right lightmaps)
         "target": "single",  # the shards' targets learnt: single or multiple scattering (target_ms)
     },
@@ -79,6 +80,8 @@ DEFAULTS = {
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 # The model config keys in which train.init_from's checkpoint may have fewer channels than the run.
 WIDENED_KEYS = ("guide_channels", "input_channels")
+# The outputs that the run may take from the guide where the checkpoint's network computed them.
+PASSED_THROUGH_KEYS = ("emissive",)
 EXPORT_NAME = "sixway-unet.safetensors"
 
 
@@ -149,6 +152,49 @@ class BatchOrder:
         return step * self.batch / len(self.pairs)
 
 
+class SizedBatchOrder:
+    """BatchOrder for whole maps of several sizes: each epoch permutes the pairs of each size, cuts them into
+    batches of B (the pairs left over from a size's last partial batch sit that epoch out; the next permutation
+    leaves out others) and shuffles the batches, all from PCG64 keyed by (seed, epoch), so that every batch has one
+    size and each size trains in proportion to its pairs; stateless like BatchOrder. An epoch is counted in whole
+    batches."""
+
+    def __init__(self, pairs, sizes, batch, seed):
+        self.batch, self.seed = batch, seed
+        self.groups = [pairs[sizes == size] for size in np.unique(sizes)]
+        self.batches_per_epoch = sum(len(group) // batch for group in self.groups)
+        self.epoch_batches = {}
+
+    def _batches(self, epoch):
+        if epoch not in self.epoch_batches:
+            rng = np.random.default_rng([self.seed, epoch])
+            batches = []
+            for group in self.groups:
+                shuffled = group[rng.permutation(len(group))]
+                batches += [shuffled[i:i + self.batch] for i in range(0, len(group) - self.batch + 1, self.batch)]
+            self.epoch_batches = {epoch: [batches[i] for i in rng.permutation(len(batches))]}
+        return self.epoch_batches[epoch]
+
+    def indices(self, step):
+        return self._batches(step // self.batches_per_epoch)[step % self.batches_per_epoch]
+
+    def epoch(self, step):
+        return step / self.batches_per_epoch
+
+
+def batch_order(data, pairs, crop, train):
+    """BatchOrder, or SizedBatchOrder for whole maps of several sizes (one size per batch)."""
+    if len(data.sizes()) == 1 or crop:
+        return BatchOrder(pairs, train["batch"], train["seed"])
+    pair_sizes = data.sample_sizes[pairs]
+    small = [size for size in data.sizes() if np.sum(pair_sizes == size) < train["batch"]]
+    if small:
+        names = "/".join(f"{size}x{size}" for size in small)
+        raise ConfigError(f"{data.directory}: fewer training pairs of {names} maps than train.batch ({train['batch']}):"
+                          f" whole maps of several sizes go in batches of one size")
+    return SizedBatchOrder(pairs, pair_sizes, train["batch"], train["seed"])
+
+
 def heldout_subset(data, count):
     """Up to `count` held-out pairs evenly spread over both held-out splits (the held-out curve)."""
     pairs = np.concatenate([data.pairs(s) for s in SPLITS if s != "train"])
@@ -167,7 +213,7 @@ def heldout_curve_point(net, data, pairs, config, device):
         raw = net(torch.cat([current["guide"], previous["guide"]]).to(device))
         n = len(current["guide"])
         loss, terms = training_loss(raw[:n], raw[n:], current["target"].to(device), previous["target"].to(device),
-                                    current["motion"].to(device), net.config["encoding"], config["loss"])
+                                    current["motion"].to(device), output_encodings(net.config), config["loss"])
         for name, value in dict(terms, loss=float(loss)).items():
             totals[name] = totals.get(name, 0.0) + value * n
         metrics.add(decode_output(raw[:n], net.config).cpu(), current["target"])
@@ -206,11 +252,19 @@ def save_checkpoint(path, net, optimizer, step, seconds, config, interval):
 
 
 def widens_input(old, new):
-    """Whether model config `new` is `old` with as many or more guide and input channels, and otherwise equal."""
-    old, new = full_config(old), full_config(new)
+    """Whether model config `new` is `old` with as many or more guide and input channels, possibly an output
+    passed through from the guide that `old` computed, and otherwise equal."""
+    old, new = ({**OPTIONAL_CONFIG, **full_config(config)} for config in (old, new))
     if any(new[key] < old[key] for key in WIDENED_KEYS):
         return False
-    return dict(old, **{key: new[key] for key in WIDENED_KEYS}) == new
+    if any(old[key] == "guide" and new[key] != "guide" for key in PASSED_THROUGH_KEYS):
+        return False
+    return dict(old, **{key: new[key] for key in WIDENED_KEYS + PASSED_THROUGH_KEYS}) == new
+
+
+def fixed_selection(key):
+    """Whether a state dict key is a tensor of a fixed selection (sixway_net.FixedSelection: not trained)."""
+    return key.removeprefix("blocks.").split(".")[0].endswith(FROM_GUIDE_SUFFIX)
 
 
 def more_input_channels(old, new):
@@ -220,12 +274,15 @@ def more_input_channels(old, new):
 
 def widened_weights(weights, current):
     """A checkpoint's `weights` (a state dict) for a network of state dict `current`: a tensor with more input
-    channels here (the first conv, alpha_from_guide) gets the old ones first and zeros after them. The new channels
-    are appended in both, so the widened network computes the old function until training moves the new weights.
-    Any other difference is left to load_state_dict to report. Returns the state dict and the widened tensors'
-    names."""
-    state, widened = {}, []
+    channels here (the first conv) gets the old ones first and zeros after them. The new channels are appended, so
+    the widened network computes the old function until training moves the new weights. The fixed selections
+    (alpha and emissive from the guide) are the current network's: its config says what they pass through. Any
+    other difference is left to load_state_dict to report. Returns the state dict and the widened tensors' names."""
+    state = {key: value for key, value in current.items() if fixed_selection(key)}
+    widened = []
     for key, old in weights.items():
+        if fixed_selection(key):
+            continue
         new = current.get(key, old)
         if more_input_channels(old.shape, new.shape):
             old = torch.cat([old, old.new_zeros(new.shape[0], new.shape[1] - old.shape[1], *new.shape[2:])], dim=1)
@@ -340,9 +397,11 @@ class Trainer:
         if (crop or 0) % multiple or any(size % multiple for size in self.data.sizes()):
             raise ConfigError(f"data.crop {crop} or a lightmap size {self.data.sizes()} is not a multiple of the "
                               f"network's size multiple {multiple}")
-        if len(self.data.sizes()) > 1 and not 0 < (crop or 0) <= self.data.size:
-            raise ConfigError(f"the shards' lightmap sizes differ ({self.data.sizes()}): set data.crop (at most "
-                              f"{self.data.size}) so that every batch has one size")
+        if len(self.data.sizes()) > 1 and crop and crop > self.data.size:
+            raise ConfigError(f"the shards' lightmap sizes differ ({self.data.sizes()}): data.crop {crop} is larger "
+                              f"than the smallest ({self.data.size})")
+        self.order = batch_order(self.data, self.pairs, crop, self.train)
+        self.encodings = output_encodings(self.net.config)
         self.optimizer = torch.optim.Adam(self.net.parameters(), lr=self.train["lr"],
                                           weight_decay=self.train["weight_decay"])
         self.step, self.seconds_before, self.interval = 0, 0.0, {}
@@ -354,7 +413,6 @@ class Trainer:
         if self.world > 1:
             ids = [local_rank] if self.device.type == "cuda" else None
             self.model = torch.nn.parallel.DistributedDataParallel(self.net, device_ids=ids)
-        self.order = BatchOrder(self.pairs, self.train["batch"], self.train["seed"])
         self.heldout = heldout_subset(self.data, self.train["heldout_pairs"])
         if self.lead:
             self._prepare_out(resumed=checkpoint is not None)
@@ -437,7 +495,7 @@ class Trainer:
         n = len(indices)
         loss, terms = training_loss(raw[:n], raw[n:], current["target"].to(self.device),
                                     previous["target"].to(self.device), current["motion"].to(self.device),
-                                    self.net.config["encoding"], self.config["loss"])
+                                    self.encodings, self.config["loss"])
         self.optimizer.zero_grad(set_to_none=True)
         loss.backward()
         if self.train["grad_clip"]:

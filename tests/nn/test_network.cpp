@@ -100,16 +100,14 @@ TEST_P(NetworkParity, MatchesPyTorch) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Vectors, NetworkParity,
-                         ::testing::Values(ParityCase{"default"}, ParityCase{"tiny"},
-                                           ParityCase{"tiny", Precision::Fp32, false},
-                                           ParityCase{"fine_alpha"}, ParityCase{"emission_guide"},
-                                           ParityCase{"half_stem"}, ParityCase{"naf_wide"},
-                                           ParityCase{"default", Precision::Fp32, true, nn::Tiling::Pixels},
-                                           ParityCase{"naf_wide", Precision::Fp32, true, nn::Tiling::Pixels}),
-                         [](const ::testing::TestParamInfo<ParityCase>& info) {
-                           return caseName(info.param);
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Vectors, NetworkParity,
+    ::testing::Values(ParityCase{"default"}, ParityCase{"tiny"}, ParityCase{"tiny", Precision::Fp32, false},
+                      ParityCase{"fine_alpha"}, ParityCase{"emission_guide"},
+                      ParityCase{"emission_passthrough"}, ParityCase{"half_stem"}, ParityCase{"naf_wide"},
+                      ParityCase{"default", Precision::Fp32, true, nn::Tiling::Pixels},
+                      ParityCase{"naf_wide", Precision::Fp32, true, nn::Tiling::Pixels}),
+    [](const ::testing::TestParamInfo<ParityCase>& info) { return caseName(info.param); });
 // Label "long" (tests/nn/CMakeLists.txt): about a minute of pipeline compilation on a cold shader cache.
 INSTANTIATE_TEST_SUITE_P(LONG_Vectors, NetworkParity,
                          ::testing::Values(ParityCase{"default", Precision::Fp16},

@@ -44,13 +44,12 @@ def target_to_loss_space(target):
     return torch.where(light_channels_mask(target.shape[1], target.device), encoded, target)
 
 
-def prediction_to_loss_space(raw, encoding):
-    """The network's raw outputs -> loss space. With "srgb" outputs (sixway_net "encoding") the light channels
-    already are sRGB values and are used as they are (a negative value is an error the loss should see);
-    with "linear" outputs they are encoded here."""
-    if encoding == "srgb":
-        return raw
-    return torch.where(light_channels_mask(raw.shape[1], raw.device), srgb_encode(raw), raw)
+def prediction_to_loss_space(raw, encodings):
+    """The network's raw outputs -> loss space; `encodings` is each channel's ("srgb" or "linear",
+    sixway_net.output_encodings). sRGB outputs already are sRGB values and are used as they are (a negative value
+    is an error the loss should see); linear light channels are encoded here."""
+    linear = torch.tensor([e == "linear" for e in encodings], device=raw.device).view(1, -1, 1, 1)
+    return torch.where(linear & light_channels_mask(raw.shape[1], raw.device), srgb_encode(raw), raw)
 
 
 def mse(pred, target, channel_weights=None):
@@ -122,12 +121,13 @@ def temporal_loss(pred, pred_previous, target, target_previous, motion, k):
     return (weight * (pred - warped_pred) ** 2).mean()
 
 
-def training_loss(raw, raw_previous, target, target_previous, motion, encoding, weights):
+def training_loss(raw, raw_previous, target, target_previous, motion, encodings, weights):
     """Total loss and its terms (a dict of floats) for a batch of temporal pairs.
-    raw/raw_previous: network outputs of the current and previous frames; targets linear; `weights` maps
+    raw/raw_previous: network outputs of the current and previous frames, `encodings` theirs per channel
+    (sixway_net.output_encodings); targets linear; `weights` maps
     mse, ssim, gradient, temporal to their factors, temporal_k to k (terms with factor 0 are skipped) and
     channel_weights to the MSE's per-channel factors ({name: factor}, e.g. {"emissive": 4})."""
-    pred = prediction_to_loss_space(torch.cat([raw, raw_previous]), encoding)
+    pred = prediction_to_loss_space(torch.cat([raw, raw_previous]), encodings)
     ref = target_to_loss_space(torch.cat([target, target_previous]))
     n = raw.shape[0]
     terms = {"mse": mse(pred, ref, channel_weight_vector(weights.get("channel_weights"), pred.device))}

@@ -17,6 +17,9 @@
   emission_guide.safetensors   like fine_alpha, with the guide's direct emission as a 5th channel: the input is
                                padded to 8 channels (two vec4s), and alpha_from_guide reads 2 + 8 channels
   emission_guide_vectors.safetensors  a 20x28 guide of 5 channels
+  emission_passthrough.safetensors   like emission_guide, with the guide's emission passed through as the emissive
+                               (linear, not sRGB-decoded): alpha_emissive_from_guide picks both
+  emission_passthrough_vectors.safetensors  a 22x26 guide of 5 channels
 
 A vectors file holds "input" (3 to 5 x H x W), "raw" (the 8 output channels in the network's encoding), "lightmap_a"
 and "lightmap_b" (decoded and packed, 4 x H x W each) and "node.<name>" intermediates (at the padded size).
@@ -75,6 +78,8 @@ NAF_WIDE_CONFIG = {
 
 # The fine-alpha network with the emission as a 5th guide channel (two groups of four input channels).
 EMISSION_GUIDE_CONFIG = dict(FINE_ALPHA_CONFIG, guide_channels=5, input_channels=8)
+# The same with the emission passed through as the emissive output (the single-scattering network's setting).
+EMISSION_PASSTHROUGH_CONFIG = dict(EMISSION_GUIDE_CONFIG, emissive="guide")
 
 # name: (config, weights seed, guide seed, guide height, guide width, intermediates)
 CASES = {
@@ -87,6 +92,8 @@ CASES = {
                                                     "adapters.2.head", "alpha_from_guide"]),
     "naf_wide": (NAF_WIDE_CONFIG, 10, 100, 18, 22, ["mid.1", "adapters.0.proj", "adapters.1.blocks.0"]),
     "emission_guide": (EMISSION_GUIDE_CONFIG, 11, 110, 20, 28, ["enc.0.0", "adapters.3.head", "alpha_from_guide"]),
+    "emission_passthrough": (EMISSION_PASSTHROUGH_CONFIG, 12, 120, 22, 26, ["adapters.3.head",
+                                                                            "alpha_emissive_from_guide"]),
 }
 
 

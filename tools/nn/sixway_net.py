@@ -37,18 +37,20 @@ DEFAULT_CONFIG = {
     "negative_slope": 0.1,  # leaky_relu only
     "upsample": "transposed",  # "transposed" (2x2 stride 2) or "bilinear" (1x1 conv, then bilinear x2)
     "adapters": {"enabled": True, "width": 16, "blocks": 1, "dw_expand": 2, "ffn_expand": 2},
-    "encoding": "srgb",  # lightmap channels are learnt sRGB-encoded; alpha is always linear
+    "encoding": "srgb",  # lightmap channels are learnt sRGB-encoded; alpha (and an emissive from the guide) is linear
 }
 
 # Keys a config may add to DEFAULT_CONFIG; absent, the config (and so the export) stays as it was.
 # guide_alpha_step_voxels: the fine alpha's step of a guide of 4 or 5 channels (the runtime's guide computes it;
 #   the 5th channel is the direct emitted luminance reaching the camera, marched along with the fine alpha).
 # alpha: "network" (the alpha_emissive head's) or "guide" (the fine alpha passed through: 4 or 5 guide channels).
+# emissive: "network" (the alpha_emissive head's) or "guide" (the guide's direct emission passed through, linear:
+#   5 guide channels; the single-scattering target's emissive is that light, which the guide marches at its own step).
 # stem: "full" (the UNet's first level at the guide's resolution) or "half": a 3x3 stride-2 conv stem runs the
 #   whole UNet and the adapters at half resolution, and each head is a 2x2 stride-2 transposed conv back to full
 #   resolution. The stem sees each 2x2 block of the guide (and its neighbours), so it holds pixel-unshuffle + 1x1
 #   conv as a special case; the transposed head is exactly a 1x1 conv + pixel shuffle. About 4x fewer FLOPs.
-OPTIONAL_CONFIG = {"guide_alpha_step_voxels": 0.0, "alpha": "network", "stem": "full"}
+OPTIONAL_CONFIG = {"guide_alpha_step_voxels": 0.0, "alpha": "network", "emissive": "network", "stem": "full"}
 
 # The four adapters and the two channels of each head (docs/conventions.md, "Channels and packing").
 ADAPTERS = [("left_right", ["left", "right"]), ("top_bottom", ["top", "bottom"]),
@@ -58,6 +60,12 @@ OUTPUT_CHANNELS = [name for _, names in ADAPTERS for name in names]
 # Unity packing: lightmap A = (Right, Top, Back, alpha), B = (Left, Bottom, Front, emissive).
 PACKING = {"A": ["right", "top", "back", "alpha"], "B": ["left", "bottom", "front", "emissive"]}
 ACTIVATIONS = ("relu", "leaky_relu", "gelu", "silu")
+# The name ending of the fixed (untrained) selections that pass guide channels through as outputs; train.py takes
+# every tensor of a node so named from the network being trained, never from a checkpoint, so no trained node may
+# end in it.
+FROM_GUIDE_SUFFIX = "_from_guide"
+# The outputs a config may take from the guide: (their channel in the alpha_emissive head, their guide channel).
+FROM_GUIDE_CHANNELS = {"alpha": (0, 3), "emissive": (1, 4)}
 LAYER_NORM_EPS = 1e-6
 
 
@@ -93,13 +101,24 @@ def full_config(config=None):
     if (merged["guide_channels"] >= 4) != (merged.get("guide_alpha_step_voxels", 0) > 0):
         raise ValueError("config: a 4th guide channel is the fine alpha: guide_channels 4 or 5 goes with "
                          "guide_alpha_step_voxels > 0")
-    if merged.get("alpha", "network") not in ("network", "guide"):
-        raise ValueError("config: alpha must be network or guide")
+    for channel in ("alpha", "emissive"):
+        if merged.get(channel, "network") not in ("network", "guide"):
+            raise ValueError(f"config: {channel} must be network or guide")
     if merged.get("stem", "full") not in ("full", "half"):
         raise ValueError("config: stem must be full or half")
     if merged.get("alpha") == "guide" and merged["guide_channels"] < 4:
         raise ValueError("config: alpha from the guide needs its fine alpha (guide_channels 4 or 5)")
+    if merged.get("emissive") == "guide" and merged["guide_channels"] < 5:
+        raise ValueError("config: emissive from the guide needs its emission (guide_channels 5)")
     return merged
+
+
+def output_encodings(config):
+    """The encoding of each output channel (OUTPUT_CHANNELS order): alpha and a channel passed through from the
+    guide are linear, the others the config's encoding."""
+    config = full_config(config)
+    linear = {"alpha"} | ({"emissive"} if config.get("emissive") == "guide" else set())
+    return ["linear" if name in linear else config["encoding"] for name in OUTPUT_CHANNELS]
 
 
 class LayerNorm2d(nn.Module):
@@ -274,16 +293,17 @@ class SixwayNet(nn.Module):
                 heads.append(self._add(node, nn.ConvTranspose2d(channels, 2, 2, stride=2)))
             else:
                 heads.append(self._conv(f"{prefix}.head", [y], channels, 2, 1, 1, 1, activation=False))
-        if c.get("alpha") == "guide":
-            # alpha = the guide's fine alpha (input channel 3), emissive = the head's (its channel 1).
-            node = {"name": "alpha_from_guide", "op": "conv2d", "inputs": [heads[3], "input"],
+        from_guide = [name for name in FROM_GUIDE_CHANNELS if c.get(name) == "guide"]
+        if from_guide:
+            # The alpha_emissive head's channels, each the head's own or the guide's (input channel 3: the fine
+            # alpha, 4: the emission), selected from [head, input].
+            picks = [2 + guide if name in from_guide else head for name, (head, guide) in FROM_GUIDE_CHANNELS.items()]
+            node = {"name": "_".join(from_guide) + FROM_GUIDE_SUFFIX, "op": "conv2d", "inputs": [heads[3], "input"],
                     "in_channels": 2 + c["input_channels"], "out_channels": 2, "kernel": 1, "stride": 1,
                     "scale": 1, "activation": "none"}
-            heads[3] = self._add(node, FixedSelection(2 + c["input_channels"], [2 + 3, 1]))
-        channel_names = OUTPUT_CHANNELS
-        encodings = ["linear" if ch == "alpha" else c["encoding"] for ch in channel_names]
-        self._add({"name": "output", "op": "output", "inputs": heads, "in_channels": 8, "channels": channel_names,
-                   "encoding": encodings, "packing": PACKING, "scale": 1})
+            heads[3] = self._add(node, FixedSelection(2 + c["input_channels"], picks))
+        self._add({"name": "output", "op": "output", "inputs": heads, "in_channels": 8, "channels": OUTPUT_CHANNELS,
+                   "encoding": output_encodings(c), "packing": PACKING, "scale": 1})
 
     # -- evaluation ----------------------------------------------------------------------------------------
     def module(self, name):
@@ -353,14 +373,10 @@ def srgb_to_linear(x):
 
 def decode_output(raw, config):
     """The 8 raw channels in the network's encoding -> linear, clamped at 0 (radiance and alpha are >= 0)."""
-    config = full_config(config)
     channels = []
-    for i, (_, names) in enumerate(ADAPTERS):
-        for j, name in enumerate(names):
-            x = raw[:, 2 * i + j:2 * i + j + 1]
-            if name != "alpha" and config["encoding"] == "srgb":
-                x = srgb_to_linear(x)
-            channels.append(x.clamp(min=0))
+    for k, encoding in enumerate(output_encodings(config)):
+        x = raw[:, k:k + 1]
+        channels.append((srgb_to_linear(x) if encoding == "srgb" else x).clamp(min=0))
     return torch.cat(channels, dim=1)
 
 

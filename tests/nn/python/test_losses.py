@@ -14,7 +14,9 @@ except ImportError as missing:
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "tools", "nn"))
 import losses  # noqa: E402
-from sixway_net import srgb_to_linear  # noqa: E402
+from sixway_net import output_encodings, srgb_to_linear  # noqa: E402
+
+SRGB = output_encodings({"encoding": "srgb"})  # an sRGB network's output encodings
 
 
 def smooth_image(seed, channels=8, size=24):
@@ -67,8 +69,15 @@ class SrgbTest(unittest.TestCase):
         torch.testing.assert_close(space[:, 6], target[:, 6])  # alpha stays linear
         torch.testing.assert_close(space[:, 0], losses.srgb_encode(target[:, 0]))
         # A linear-output network's raw values map to the same space; an srgb one's are that space already.
-        torch.testing.assert_close(losses.prediction_to_loss_space(target, "linear"), space)
-        torch.testing.assert_close(losses.prediction_to_loss_space(space, "srgb"), space)
+        linear, srgb = output_encodings({"encoding": "linear"}), output_encodings({"encoding": "srgb"})
+        torch.testing.assert_close(losses.prediction_to_loss_space(target, linear), space)
+        torch.testing.assert_close(losses.prediction_to_loss_space(space, srgb), space)
+        # An sRGB network whose emissive is the guide's (linear) encodes that channel alone.
+        passed = output_encodings({"encoding": "srgb", "guide_channels": 5, "input_channels": 8,
+                                   "guide_alpha_step_voxels": 1, "emissive": "guide"})
+        mixed = space.clone()
+        mixed[:, 7] = target[:, 7]
+        torch.testing.assert_close(losses.prediction_to_loss_space(mixed, passed), space)
 
 
 class ReconstructionTermsTest(unittest.TestCase):
@@ -170,7 +179,7 @@ class TrainingLossTest(unittest.TestCase):
         motion[:, 0], motion[:, 1] = 2, 1
         raw, raw_previous = losses.target_to_loss_space(target), losses.target_to_loss_space(target_previous)
         weights = {"mse": 1, "ssim": 0.5, "gradient": 0.5, "temporal": 1, "temporal_k": 20}
-        total, terms = losses.training_loss(raw, raw_previous, target, target_previous, motion, "srgb", weights)
+        total, terms = losses.training_loss(raw, raw_previous, target, target_previous, motion, SRGB, weights)
         self.assertEqual(set(terms), {"mse", "ssim", "gradient", "temporal"})
         self.assertLess(abs(float(total)), 1e-6)
 
@@ -179,7 +188,7 @@ class TrainingLossTest(unittest.TestCase):
         raw = torch.zeros_like(target, requires_grad=True)
         weights = {"mse": 1, "ssim": 0.5, "gradient": 0.5, "temporal": 1, "temporal_k": 20}
         total, _ = losses.training_loss(raw[:1], raw[1:], target[:1], target[1:], torch.zeros(1, 2, 24, 24),
-                                        "srgb", weights)
+                                        SRGB, weights)
         total.backward()
         self.assertGreater(float(raw.grad.abs().sum()), 0)
 

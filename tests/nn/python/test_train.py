@@ -10,6 +10,7 @@ import json
 import os
 import subprocess
 import sys
+import types
 import unittest
 
 try:
@@ -28,7 +29,7 @@ import synthetic_shards  # noqa: E402
 import train as train_module  # noqa: E402
 from safetensors_io import read_safetensors  # noqa: E402
 from bench_torch import node_flops  # noqa: E402
-from sixway_net import SixwayNet, load_safetensors, randomize  # noqa: E402
+from sixway_net import OUTPUT_CHANNELS, SixwayNet, decode_output, load_safetensors, randomize  # noqa: E402
 
 TRAIN = os.path.join(root, "tools", "train.py")
 CONFIG = os.path.join(root, "tools", "train_configs", "tiny.json")
@@ -76,7 +77,7 @@ class WidenedInitTest(unittest.TestCase):
 
     def test_the_widened_network_computes_the_old_function(self):
         old, new, widened = self.widened()
-        self.assertEqual(widened, ["enc.0.0.weight", "alpha_from_guide.weight"])
+        self.assertEqual(widened, ["enc.0.0.weight"])  # alpha_from_guide is the new network's own selection
         guide = torch.rand(2, 4, 8, 8, generator=torch.Generator().manual_seed(1))
         with torch.no_grad():
             torch.testing.assert_close(new(torch.cat([guide, torch.zeros(2, 1, 8, 8)], 1)), old(guide),
@@ -97,6 +98,29 @@ class WidenedInitTest(unittest.TestCase):
             self.assertFalse(grad[:, 5:].any())
         self.assertTrue(torch.equal(outputs[0], outputs[1]))
 
+    def test_the_emission_passed_through(self):
+        """A 4-channel network widened into one whose emissive is the guide's emission: the other seven outputs
+        are the old network's, the emissive is the emission itself (linear; decoded unchanged, clamped at 0)."""
+        old = randomize(SixwayNet(self.FOUR), 5).eval()
+        new = SixwayNet(dict(self.FIVE, emissive="guide")).eval()
+        state, widened = train_module.widened_weights(old.state_dict(), new.state_dict())
+        new.load_state_dict(state)
+        self.assertEqual(widened, ["enc.0.0.weight"])
+        guide = torch.rand(2, 5, 8, 8, generator=torch.Generator().manual_seed(3))
+        with torch.no_grad():
+            before = decode_output(old(guide[:, :4]), old.config)
+            after = decode_output(new(guide), new.config)
+        emissive = OUTPUT_CHANNELS.index("emissive")
+        others = [k for k in range(8) if k != emissive]
+        torch.testing.assert_close(after[:, others], before[:, others], rtol=0, atol=1e-6)
+        torch.testing.assert_close(after[:, emissive], guide[:, 4], rtol=0, atol=0)
+
+    def test_the_emission_passed_through_needs_it_in_the_guide(self):
+        with self.assertRaisesRegex(ValueError, "emissive from the guide needs its emission"):
+            SixwayNet(dict(self.FOUR, emissive="guide"))
+        with self.assertRaisesRegex(ValueError, "emissive must be network or guide"):
+            SixwayNet(dict(self.FIVE, emissive="baker"))
+
     def test_only_more_guide_and_input_channels_widen(self):
         widens = train_module.widens_input
         self.assertTrue(widens(self.FOUR, self.FIVE))
@@ -104,6 +128,9 @@ class WidenedInitTest(unittest.TestCase):
         self.assertFalse(widens(self.FIVE, self.FOUR))
         self.assertFalse(widens(self.FOUR, dict(self.FIVE, widths=[4, 4])))
         self.assertFalse(widens(self.FOUR, dict(self.FIVE, alpha="network")))
+        self.assertTrue(widens(self.FOUR, dict(self.FIVE, emissive="guide")))  # an output passed through
+        self.assertTrue(widens(dict(self.FOUR, emissive="network"), self.FIVE))  # the default spelt out
+        self.assertFalse(widens(dict(self.FIVE, emissive="guide"), self.FIVE))
         self.assertFalse(widens({"widths": [4, 8], "depth": 1, "adapters": {"width": 4}}, self.FIVE))  # a step more
 
     def test_init_from_a_narrower_checkpoint(self):
@@ -126,15 +153,17 @@ class WidenedInitTest(unittest.TestCase):
         run = subprocess.run([sys.executable, TRAIN, "--config", config, "--data", data, "--out", out, "--force"],
                              capture_output=True, text=True)
         self.assertEqual(run.returncode, 0, run.stderr)
-        self.assertIn("train.init_from: enc.0.0.weight, alpha_from_guide.weight widened", run.stdout)
+        self.assertIn("train.init_from: enc.0.0.weight widened", run.stdout)
         tuned, _ = read_safetensors(os.path.join(out, "sixway-unet.safetensors"))
         for name, value in old.named_tensors().items():
+            if name.startswith("alpha_from_guide."):
+                continue  # a fixed selection: the new network's own (below)
             value = value.detach().numpy()
-            self.assertTrue(np.array_equal(tuned[name][:, :4] if name == "enc.0.0.weight" else
-                                           tuned[name][:, :6] if name == "alpha_from_guide.weight" else tuned[name],
-                                           value), name)
+            self.assertTrue(np.array_equal(tuned[name][:, :4] if name == "enc.0.0.weight" else tuned[name], value),
+                            name)
         self.assertFalse(tuned["enc.0.0.weight"][:, 4:].any())
-        self.assertFalse(tuned["alpha_from_guide.weight"][:, 6:].any())
+        fresh = SixwayNet(self.FIVE).named_tensors()["alpha_from_guide.weight"].detach().numpy()
+        self.assertTrue(np.array_equal(tuned["alpha_from_guide.weight"], fresh))
 
 
 class TrainTest(unittest.TestCase):
@@ -222,7 +251,7 @@ class TrainTest(unittest.TestCase):
         self.assertEqual(run.stderr.strip().count("\n"), 0, run.stderr)
         self.assertIn("checkpoint.pt: train.init_from has another model config", run.stderr)
 
-    def test_two_lightmap_sizes_train_in_crops(self):
+    def test_two_lightmap_sizes_train_in_crops_or_whole(self):
         large = os.path.join(WORK, "data32")
         synthetic_shards.write_shards(large, size=32, cameras=3, frames=4, sequences=2)
         out = os.path.join(WORK, "two_sizes")
@@ -233,7 +262,7 @@ class TrainTest(unittest.TestCase):
         with open(os.path.join(out, "metrics.json")) as f:
             samples = json.load(f)["pytorch"]["heldout_sequence"]["samples"]
         self.assertEqual(samples, 2 * 3 * 4)  # sequence 1 of both directories, whole maps of each size
-        # Whole maps of two sizes cannot share a batch: the run needs a crop.
+        # Without a crop, whole maps of two sizes train in batches of one size each.
         whole = os.path.join(WORK, "whole.json")
         with open(CONFIG) as f:
             config = json.load(f)
@@ -242,9 +271,40 @@ class TrainTest(unittest.TestCase):
             json.dump(config, f)
         run = subprocess.run([sys.executable, TRAIN, "--config", whole, "--data", os.path.join(WORK, "data"), large,
                               "--out", os.path.join(WORK, "whole"), "--force"], capture_output=True, text=True)
+        self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
+        self.assertIn("training pairs of 16x16/32x32", run.stdout)
+        # A crop larger than the smaller size is one line.
+        config["data"]["crop"] = 32
+        with open(whole, "w") as f:
+            json.dump(config, f)
+        run = subprocess.run([sys.executable, TRAIN, "--config", whole, "--data", os.path.join(WORK, "data"), large,
+                              "--out", os.path.join(WORK, "whole"), "--force"], capture_output=True, text=True)
         self.assertNotEqual(run.returncode, 0)
         self.assertEqual(run.stderr.strip().count("\n"), 0, run.stderr)
-        self.assertIn("the shards' lightmap sizes differ ([16, 32]): set data.crop", run.stderr)
+        self.assertIn("the shards' lightmap sizes differ ([16, 32]): data.crop 32 is larger than the smallest (16)",
+                      run.stderr)
+
+    def test_sized_batches_have_one_size_and_cover_every_size(self):
+        pairs = np.arange(40)
+        sizes = np.where(pairs < 30, 64, 128)  # 30 pairs of 64², 10 of 128²
+        order = train_module.SizedBatchOrder(pairs, sizes, 4, seed=5)
+        self.assertEqual(order.batches_per_epoch, 7 + 2)  # whole batches per size; the partial ones wait
+        epoch = [order.indices(step) for step in range(order.batches_per_epoch)]
+        for batch in epoch:
+            self.assertEqual(len(batch), 4)
+            self.assertEqual(len(set(sizes[batch])), 1)
+        self.assertEqual(sum(sizes[batch[0]] == 128 for batch in epoch), 2)
+        self.assertEqual(len(set(np.concatenate(epoch))), 36)  # no pair twice in an epoch
+        again = train_module.SizedBatchOrder(pairs, sizes, 4, seed=5)  # stateless: the step alone decides
+        np.testing.assert_array_equal(again.indices(12), order.indices(12))
+        self.assertAlmostEqual(order.epoch(order.batches_per_epoch), 1.0)
+        # A size with fewer pairs than a batch would never train: one line naming it.
+        data = types.SimpleNamespace(sizes=lambda: [64, 128], sample_sizes=sizes, directory="shards")
+        with self.assertRaisesRegex(train_module.ConfigError, r"shards: fewer training pairs of 128x128 maps than "
+                                                              r"train.batch \(16\)"):
+            train_module.batch_order(data, pairs, None, {"batch": 16, "seed": 5})
+        self.assertIsInstance(train_module.batch_order(data, pairs, 32, {"batch": 16, "seed": 5}),
+                              train_module.BatchOrder)  # crops: any batch may mix sizes
 
     def test_bad_input_is_one_line(self):
         run = train(os.path.join(WORK, "straight"))  # exists, no --resume or --force
