@@ -39,6 +39,7 @@ from atomic_file import atomic_open, atomic_path  # noqa: E402
 from bench_torch import node_flops  # noqa: E402
 from dataset import SPLITS, ShardDataset  # noqa: E402
 from losses import training_loss  # noqa: E402
+from net2wider import wider_state  # noqa: E402
 from metrics import SplitMetrics, evaluate_split  # noqa: E402
 from sixway_net import (FROM_GUIDE_SUFFIX, OPTIONAL_CONFIG, OUTPUT_CHANNELS, SixwayNet,  # noqa: E402
                         decode_output, export_safetensors, full_config, output_encodings)
@@ -71,8 +72,11 @@ DEFAULTS = {
         # Fine-tuning: a checkpoint.pt (or a training directory holding one), relative to the repository root,
         # whose model weights start this run; its model config must equal this one, or differ only in fewer
         # guide_channels and input_channels (the new input channels start with zero weights, see
-        # widened_weights). The optimizer starts afresh.
+        # widened_weights), or in wider widths (tools/nn/net2wider.py). The optimizer starts afresh.
         "init_from": None,
+        # The noise in the copied units' incoming weights when init_from's widths are narrower, relative to
+        # each layer's weight spread: it lets the copies part (net2wider.wider_state).
+        "widen_noise": 0.01,
     },
     # channel_weights: the MSE's factor per output channel ({"emissive": 4}: the others stay 1).
     "loss": {"mse": 1.0, "ssim": 0.1, "gradient": 0.0, "temporal": 0.1, "temporal_k": 20.0, "channel_weights": {}},
@@ -108,6 +112,9 @@ def merge_config(config, source):
             merged[section][key] = value
     if merged["train"]["schedule"] not in ("cosine", "step"):
         raise ConfigError(f"{source}: train.schedule must be cosine or step")
+    noise = merged["train"]["widen_noise"]
+    if not isinstance(noise, (int, float)) or isinstance(noise, bool) or not 0 <= noise <= 1:
+        raise ConfigError(f"{source}: train.widen_noise must be a number in [0, 1]")
     if not isinstance(merged["loss"]["channel_weights"], dict):
         raise ConfigError(f"{source}: loss.channel_weights must be an object {{channel: factor}}")
     for name, factor in merged["loss"]["channel_weights"].items():
@@ -251,15 +258,21 @@ def save_checkpoint(path, net, optimizer, step, seconds, config, interval):
         torch.save(state, temporary)
 
 
-def widens_input(old, new):
+def widens(old, new):
     """Whether model config `new` is `old` with as many or more guide and input channels, possibly an output
-    passed through from the guide that `old` computed, and otherwise equal."""
+    passed through from the guide that `old` computed, possibly wider widths (as many levels, a UNet of conv
+    units), and otherwise equal."""
     old, new = ({**OPTIONAL_CONFIG, **full_config(config)} for config in (old, new))
     if any(new[key] < old[key] for key in WIDENED_KEYS):
         return False
     if any(old[key] == "guide" and new[key] != "guide" for key in PASSED_THROUGH_KEYS):
         return False
-    return dict(old, **{key: new[key] for key in WIDENED_KEYS + PASSED_THROUGH_KEYS}) == new
+    if new["widths"] != old["widths"] and (
+            len(new["widths"]) != len(old["widths"]) or new["block"] != "conv"
+            or any(n < o for n, o in zip(new["widths"], old["widths"]))
+            or new["widths"][0] == new["adapters"]["width"] != old["widths"][0]):  # an adapter projection lost
+        return False
+    return dict(old, **{key: new[key] for key in WIDENED_KEYS + PASSED_THROUGH_KEYS + ("widths",)}) == new
 
 
 def fixed_selection(key):
@@ -456,12 +469,20 @@ class Trainer:
             weights = start["model"]
         except Exception as error:  # a corrupt or foreign file: one line naming it
             raise ConfigError(f"{path}: not a training checkpoint ({type(error).__name__})")
-        if not widens_input(model_config, self.config["model"]):
+        if not widens(model_config, self.config["model"]):
             raise ConfigError(f"{path}: train.init_from has another model config than this run's")
-        state, widened = widened_weights(weights, self.net.state_dict())
+        # The input first, in a network of the checkpoint's widths; then the widths (net2wider).
+        widths = full_config(model_config)["widths"]
+        narrow = SixwayNet(dict(self.config["model"], widths=widths)) if widths != self.net.config["widths"] else self.net
+        state, widened = widened_weights(weights, narrow.state_dict())
         if widened and self.lead:
             print(f"train.init_from: {', '.join(widened)} widened to this run's input channels (the new ones "
                   f"start at zero)", flush=True)
+        if narrow is not self.net:
+            state = wider_state(narrow, self.net, state, self.train["widen_noise"], self.train["seed"])
+            if self.lead:
+                print(f"train.init_from: widths {narrow.config['widths']} widened to {self.net.config['widths']} "
+                      f"(net2wider, noise {self.train['widen_noise']})", flush=True)
         self.net.load_state_dict(state)
 
     def _prepare_out(self, resumed):

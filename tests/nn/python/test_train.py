@@ -30,6 +30,7 @@ import train as train_module  # noqa: E402
 from safetensors_io import read_safetensors  # noqa: E402
 from bench_torch import node_flops  # noqa: E402
 from sixway_net import OUTPUT_CHANNELS, SixwayNet, decode_output, load_safetensors, randomize  # noqa: E402
+from net2wider import wider_state  # noqa: E402
 
 TRAIN = os.path.join(root, "tools", "train.py")
 CONFIG = os.path.join(root, "tools", "train_configs", "tiny.json")
@@ -122,7 +123,7 @@ class WidenedInitTest(unittest.TestCase):
             SixwayNet(dict(self.FIVE, emissive="baker"))
 
     def test_only_more_guide_and_input_channels_widen(self):
-        widens = train_module.widens_input
+        widens = train_module.widens
         self.assertTrue(widens(self.FOUR, self.FIVE))
         self.assertTrue(widens(self.FOUR, self.FOUR))
         self.assertFalse(widens(self.FIVE, self.FOUR))
@@ -164,6 +165,82 @@ class WidenedInitTest(unittest.TestCase):
         self.assertFalse(tuned["enc.0.0.weight"][:, 4:].any())
         fresh = SixwayNet(self.FIVE).named_tensors()["alpha_from_guide.weight"].detach().numpy()
         self.assertTrue(np.array_equal(tuned["alpha_from_guide.weight"], fresh))
+
+
+class WiderWidthsTest(unittest.TestCase):
+    """train.init_from from a network of narrower widths (tools/nn/net2wider.py)."""
+    NARROW = {"widths": [4, 8], "depth": 2, "adapters": {"width": 4}, "guide_channels": 4,
+              "guide_alpha_step_voxels": 1.0, "alpha": "guide"}
+    WIDE = dict(NARROW, widths=[6, 12])  # its adapters get a projection from 6 to 4 channels the narrow one lacks
+
+    def wider(self, narrow_config, wide_config, noise):
+        old = randomize(SixwayNet(narrow_config), 5).eval()
+        new = SixwayNet(wide_config).eval()
+        new.load_state_dict(wider_state(old, new, old.state_dict(), noise, seed=1))
+        guide = torch.rand(2, 4, 16, 16, generator=torch.Generator().manual_seed(3))
+        with torch.no_grad():
+            return old, new, old(guide), new(guide)
+
+    def test_the_wider_network_computes_the_old_function(self):
+        variants = {"transposed": {}, "bilinear": {"upsample": "bilinear"}, "half stem": {"stem": "half"},
+                    "a projection in both": {"adapters": {"width": 5}}}
+        for variant, change in variants.items():
+            with self.subTest(variant=variant):
+                narrow = dict(self.NARROW, **change)
+                _, new, before, after = self.wider(narrow, dict(narrow, widths=[6, 12]), noise=0.0)
+                self.assertIn("adapters.0.proj", [node["name"] for node in new.nodes])
+                torch.testing.assert_close(after, before, rtol=1e-4, atol=1e-4)  # sums in another order
+
+    def test_the_noise_parts_the_copies(self):
+        _, new, before, after = self.wider(self.NARROW, self.WIDE, noise=0.01)
+        exact = self.wider(self.NARROW, self.WIDE, noise=0.0)[1].module("enc.0.0").weight
+        weight = new.module("enc.0.0").weight  # 6 units: 4 and 5 copy 0 and 1, with noise
+        self.assertTrue(torch.equal(weight[:4], exact[:4]))
+        parted = (weight[4:] - exact[4:]).std() / weight.std()
+        self.assertTrue(0.005 < parted < 0.02, parted)
+        self.assertFalse(torch.equal(after, before))
+
+    def test_only_wider_widths_of_as_many_levels_widen(self):
+        widens = train_module.widens
+        self.assertTrue(widens(self.NARROW, self.WIDE))
+        self.assertFalse(widens(self.WIDE, self.NARROW))
+        self.assertFalse(widens(self.NARROW, dict(self.NARROW, widths=[4, 8, 16])))
+        self.assertFalse(widens(self.NARROW, dict(self.WIDE, block="naf")))
+        self.assertFalse(widens(self.NARROW, dict(self.WIDE, adapters={"width": 6})))
+        lost = dict(self.NARROW, adapters={"width": 6})  # its projection from 4 to 6 has no place at [6, 12]
+        self.assertFalse(widens(lost, dict(lost, widths=[6, 12])))
+        with self.assertRaisesRegex(ValueError, "node adapters.0.proj is not in the wider network"):
+            wider_state(SixwayNet(lost), SixwayNet(dict(lost, widths=[6, 12])), SixwayNet(lost).state_dict(), 0, 0)
+        with self.assertRaisesRegex(ValueError, "block: conv"):
+            naf = dict(self.NARROW, block="naf")
+            wider_state(SixwayNet(naf), SixwayNet(dict(naf, widths=[6, 12])), SixwayNet(naf).state_dict(), 0, 0)
+
+    def test_init_from_a_narrower_checkpoint(self):
+        """At a zero rate and no noise, a run from a checkpoint of narrower widths and fewer input channels exports
+        its function (the emission's new input weights start at zero)."""
+        old = randomize(SixwayNet(self.NARROW), 6).eval()
+        checkpoint = os.path.join(WORK, "narrow", "checkpoint.pt")
+        os.makedirs(os.path.dirname(checkpoint), exist_ok=True)
+        torch.save({"config": {"model": self.NARROW}, "model": old.state_dict()}, checkpoint)
+        data = os.path.join(WORK, "data_narrow")
+        synthetic_shards.write_shards(data, size=16, cameras=3, frames=4, sequences=2, guide_channels=5)
+        with open(CONFIG) as f:
+            tune = json.load(f)
+        tune["model"] = dict(self.WIDE, guide_channels=5, input_channels=8)
+        tune["train"].update(init_from=os.path.dirname(checkpoint), lr=0.0, min_lr=0.0, steps=1, widen_noise=0.0)
+        config = os.path.join(WORK, "tune_wide.json")
+        with open(config, "w") as f:
+            json.dump(tune, f)
+        out = os.path.join(WORK, "wide")
+        run = subprocess.run([sys.executable, TRAIN, "--config", config, "--data", data, "--out", out, "--force"],
+                             capture_output=True, text=True)
+        self.assertEqual(run.returncode, 0, run.stderr)
+        self.assertIn("enc.0.0.weight widened to this run's input channels", run.stdout)
+        self.assertIn("widths [4, 8] widened to [6, 12]", run.stdout)
+        tuned, _ = load_safetensors(os.path.join(out, "sixway-unet.safetensors"))
+        guide = torch.rand(1, 5, 16, 16, generator=torch.Generator().manual_seed(4))
+        with torch.no_grad():
+            torch.testing.assert_close(tuned.eval()(guide), old(guide[:, :4]), rtol=1e-4, atol=1e-4)
 
 
 class TrainTest(unittest.TestCase):
@@ -328,6 +405,11 @@ class TrainTest(unittest.TestCase):
         run = subprocess.run([sys.executable, TRAIN, "--config", bad, "--out", os.path.join(WORK, "bad")],
                              capture_output=True, text=True)
         self.assertEqual(run.stderr.strip(), f"train: {bad}: loss.channel_weights must be an object {{channel: factor}}")
+        with open(bad, "w") as f:
+            json.dump({"train": {"widen_noise": -0.1}}, f)
+        run = subprocess.run([sys.executable, TRAIN, "--config", bad, "--out", os.path.join(WORK, "bad")],
+                             capture_output=True, text=True)
+        self.assertEqual(run.stderr.strip(), f"train: {bad}: train.widen_noise must be a number in [0, 1]")
         # A network that reads the fine alpha needs shards whose guide has it (version 3).
         with open(CONFIG) as f:
             fine = json.load(f)
