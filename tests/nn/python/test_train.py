@@ -63,6 +63,27 @@ class HalfStemTest(unittest.TestCase):
             SixwayNet({"input_channels": 12})
 
 
+def tune_from_checkpoint(name, old_config, old, guide_channels, model, **train_settings):
+    """A one-step run at lr 0 of `model` with train.init_from a checkpoint of network `old` (config `old_config`), on
+    synthetic shards of `guide_channels`. Returns the finished process and the run's directory."""
+    checkpoint = os.path.join(WORK, name, "checkpoint.pt")
+    os.makedirs(os.path.dirname(checkpoint), exist_ok=True)
+    torch.save({"config": {"model": old_config}, "model": old.state_dict()}, checkpoint)
+    data = os.path.join(WORK, f"data_{name}")
+    synthetic_shards.write_shards(data, size=16, cameras=3, frames=4, sequences=2, guide_channels=guide_channels)
+    with open(CONFIG) as f:
+        tune = json.load(f)
+    tune["model"] = model
+    tune["train"].update(init_from=os.path.dirname(checkpoint), lr=0.0, min_lr=0.0, steps=1, **train_settings)
+    config = os.path.join(WORK, f"tune_{name}.json")
+    with open(config, "w") as f:
+        json.dump(tune, f)
+    out = os.path.join(WORK, f"{name}_tuned")
+    run = subprocess.run([sys.executable, TRAIN, "--config", config, "--data", data, "--out", out, "--force"],
+                         capture_output=True, text=True)
+    return run, out
+
+
 class WidenedInitTest(unittest.TestCase):
     """train.init_from from a network of 4 guide channels into one that also reads the emission (5 of 8 inputs)."""
     FOUR = {"widths": [4, 8], "depth": 1, "adapters": {"width": 4}, "guide_channels": 4,
@@ -138,21 +159,7 @@ class WidenedInitTest(unittest.TestCase):
         """A 4-channel checkpoint starts a 5-channel run on 4-channel shards of a scene without emission (their
         emission reads as zeros): at a zero rate the export is the checkpoint widened with zeros."""
         old = randomize(SixwayNet(self.FOUR), 4)
-        checkpoint = os.path.join(WORK, "four", "checkpoint.pt")
-        os.makedirs(os.path.dirname(checkpoint), exist_ok=True)
-        torch.save({"config": {"model": self.FOUR}, "model": old.state_dict()}, checkpoint)
-        data = os.path.join(WORK, "data_fine")
-        synthetic_shards.write_shards(data, size=16, cameras=3, frames=4, sequences=2, guide_channels=4)
-        with open(CONFIG) as f:
-            tune = json.load(f)
-        tune["model"] = self.FIVE
-        tune["train"].update(init_from=os.path.dirname(checkpoint), lr=0.0, min_lr=0.0, steps=1)
-        config = os.path.join(WORK, "tune_five.json")
-        with open(config, "w") as f:
-            json.dump(tune, f)
-        out = os.path.join(WORK, "five")
-        run = subprocess.run([sys.executable, TRAIN, "--config", config, "--data", data, "--out", out, "--force"],
-                             capture_output=True, text=True)
+        run, out = tune_from_checkpoint("four", self.FOUR, old, 4, self.FIVE)
         self.assertEqual(run.returncode, 0, run.stderr)
         self.assertIn("train.init_from: enc.0.0.weight widened", run.stdout)
         tuned, _ = read_safetensors(os.path.join(out, "sixway-unet.safetensors"))
@@ -219,21 +226,8 @@ class WiderWidthsTest(unittest.TestCase):
         """At a zero rate and no noise, a run from a checkpoint of narrower widths and fewer input channels exports
         its function (the emission's new input weights start at zero)."""
         old = randomize(SixwayNet(self.NARROW), 6).eval()
-        checkpoint = os.path.join(WORK, "narrow", "checkpoint.pt")
-        os.makedirs(os.path.dirname(checkpoint), exist_ok=True)
-        torch.save({"config": {"model": self.NARROW}, "model": old.state_dict()}, checkpoint)
-        data = os.path.join(WORK, "data_narrow")
-        synthetic_shards.write_shards(data, size=16, cameras=3, frames=4, sequences=2, guide_channels=5)
-        with open(CONFIG) as f:
-            tune = json.load(f)
-        tune["model"] = dict(self.WIDE, guide_channels=5, input_channels=8)
-        tune["train"].update(init_from=os.path.dirname(checkpoint), lr=0.0, min_lr=0.0, steps=1, widen_noise=0.0)
-        config = os.path.join(WORK, "tune_wide.json")
-        with open(config, "w") as f:
-            json.dump(tune, f)
-        out = os.path.join(WORK, "wide")
-        run = subprocess.run([sys.executable, TRAIN, "--config", config, "--data", data, "--out", out, "--force"],
-                             capture_output=True, text=True)
+        wide = dict(self.WIDE, guide_channels=5, input_channels=8)
+        run, out = tune_from_checkpoint("narrow", self.NARROW, old, 5, wide, widen_noise=0.0)
         self.assertEqual(run.returncode, 0, run.stderr)
         self.assertIn("enc.0.0.weight widened to this run's input channels", run.stdout)
         self.assertIn("widths [4, 8] widened to [6, 12]", run.stdout)
