@@ -473,7 +473,9 @@ class Trainer:
             raise ConfigError(f"{path}: train.init_from has another model config than this run's")
         # The input first, in a network of the checkpoint's widths; then the widths (net2wider).
         widths = full_config(model_config)["widths"]
-        narrow = SixwayNet(dict(self.config["model"], widths=widths)) if widths != self.net.config["widths"] else self.net
+        narrow = self.net
+        if widths != self.net.config["widths"]:
+            narrow = SixwayNet(dict(self.config["model"], widths=widths))
         state, widened = widened_weights(weights, narrow.state_dict())
         if widened and self.lead:
             print(f"train.init_from: {', '.join(widened)} widened to this run's input channels (the new ones "
