@@ -394,7 +394,7 @@ class Trainer:
         if args.resume:
             if not os.path.exists(self.checkpoint_path):
                 raise ConfigError(f"{self.checkpoint_path}: no checkpoint to resume from")
-            checkpoint = torch.load(self.checkpoint_path, map_location="cpu")
+            checkpoint = torch.load(self.checkpoint_path, map_location="cpu", weights_only=False)
         elif self.lead and os.path.isdir(args.out) and os.listdir(args.out) and not args.force:
             raise ConfigError(f"{args.out}: exists and is not empty (use --resume to continue, --force to restart)")
         self.config = load_config(args, checkpoint)
@@ -464,7 +464,7 @@ class Trainer:
         if not os.path.isfile(path):
             raise ConfigError(f"{path}: train.init_from names no checkpoint")
         try:
-            start = torch.load(path, map_location="cpu")
+            start = torch.load(path, map_location="cpu", weights_only=False)
             model_config = start["config"]["model"]
             weights = start["model"]
         except Exception as error:  # a corrupt or foreign file: one line naming it

@@ -5,4 +5,5 @@ list(APPEND SIXWAY_SHADERS
   gpu/fill_gradient.frag
   gpu/texel_buffer_scale.comp
   gpu/linear_index_probe.comp
+  gpu/copy_words.comp
 )

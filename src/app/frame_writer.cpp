@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <functional>
 #include <regex>
 #include <set>
@@ -21,6 +22,18 @@ namespace sixway::app {
 namespace {
 
 namespace fs = std::filesystem;
+
+// Whether process `pid` has ended: it no longer exists, or it is a zombie (it has exited and only its exit
+// status waits for its parent; a parent that killed it on a timeout may never collect it).
+bool processEnded(long pid) {
+  if (pid <= 0) return false;
+  if (::kill(pid_t(pid), 0) != 0) return errno == ESRCH;
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  std::getline(stat, line);
+  const size_t command = line.rfind(')');  // the state follows the command name, which may hold spaces
+  return command != std::string::npos && line.compare(command, 3, ") Z") == 0;
+}
 
 // RGB of `frame`, box-filtered down to `width` pixels across (never up).
 io::Image thumbnail(const io::Image& frame, int width) {
@@ -103,11 +116,10 @@ void FrameWriter::commit() {
 }
 
 // A render killed half-way leaves its hidden staging directory; the next render into the directory removes
-// it once its process is gone.
+// it once its process has ended.
 void FrameWriter::removeStagingOfKilledRuns() const {
   static const std::regex name(R"(\.render\.([0-9]{1,9})\.partial)");
-  io::removeNumberedEntries(directory_, name, fs::file_type::directory,
-                            [](long pid) { return pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH; });
+  io::removeNumberedEntries(directory_, name, fs::file_type::directory, processEnded);
 }
 
 std::string FrameWriter::frameName(int index) {

@@ -5,8 +5,9 @@ namespace sixway::gpu {
 
 class Context;
 
-// GB/s counting each copied byte twice (read and written): the median of several timed copies of
-// a 64 MiB buffer, after a warm-up copy.
+// GB/s counting each copied byte twice (read and written): the median of several timed copies of a 64 MiB
+// buffer after a warm-up copy, by vkCmdCopyBuffer and by a compute shader (shaders/gpu/copy_words.comp),
+// whichever is faster (lavapipe's vkCmdCopyBuffer is a memcpy; NVIDIA's ran at a quarter of the shader's).
 double measureCopyBandwidth(const Context& context);
 
 }  // namespace sixway::gpu

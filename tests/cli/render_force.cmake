@@ -35,15 +35,24 @@ if(NOT staging)
   message(FATAL_ERROR "the killed render left no staging directory: was it killed before it wrote anything?")
 endif()
 
-# A killed process can take a while to go (NVIDIA's driver releases the GPU first) and until then its staging
-# directory is a live render's: wait for it, up to 30 s.
+# A killed process can take a while to end (NVIDIA's driver releases the GPU first) and until then its staging
+# directory is a live render's: wait for it, up to 30 s. A zombie has ended: its parent (CMake) may not have
+# collected it yet. On NVIDIA's driver the process still existed after 30 s, in a state not recorded then.
 string(REGEX REPLACE ".*\\.render\\.([0-9]+)\\.partial$" "\\1" killed_pid "${staging}")
 foreach(attempt RANGE 150)
-  if(NOT EXISTS /proc/${killed_pid})
+  if(NOT EXISTS /proc/${killed_pid}/stat)
+    break()
+  endif()
+  file(READ /proc/${killed_pid}/stat stat)
+  if(stat MATCHES "\\) Z ")
     break()
   endif()
   execute_process(COMMAND sleep 0.2)
 endforeach()
+set(killed_state "ended")
+if(EXISTS /proc/${killed_pid}/stat)
+  file(READ /proc/${killed_pid}/stat killed_state)
+endif()
 
 # Finished: one frame replaces three; the user's files stay; the killed run's staging directory is removed.
 execute_process(COMMAND ${SIXWAY} render --scene ${SCENE} --frames 1 --out ${OUT} --mode guide --force
@@ -55,7 +64,7 @@ file(GLOB visible RELATIVE ${OUT} ${OUT}/* ${OUT}/.*)
 list(SORT visible)
 set(expected contact_sheet.png frame_0000.png frame_001.png frame_notes.txt timings.json)
 if(NOT visible STREQUAL expected)
-  message(FATAL_ERROR "after a finished --force rerun: ${visible}, expected ${expected}")
+  message(FATAL_ERROR "after a finished --force rerun: ${visible}, expected ${expected} (killed render: ${killed_state})")
 endif()
 file(READ ${OUT}/timings.json timings)
 string(JSON mode GET "${timings}" mode)

@@ -29,9 +29,9 @@ strip --strip-unneeded "$stage/layers/libVkLayer_khronos_validation.so"
 sed 's#"library_path": *"[^"]*"#"library_path": "./libVkLayer_khronos_validation.so"#' \
   /usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json >"$stage/layers/VkLayer_khronos_validation.json"
 
-# The trained networks of the model study, timed beside the shipped ones.
+# The trained networks of the model study (lavapipe's and the GPU's), timed beside the shipped ones.
 mkdir -p "$stage/study"
-for dir in data/study_model_*_ms; do
+for dir in data/study_model_*_ms data/gpu_*; do
   [[ -f $dir/sixway-unet.safetensors ]] && cp "$dir/sixway-unet.safetensors" "$stage/study/$(basename "$dir").safetensors"
 done
 

@@ -56,22 +56,31 @@ tail -n 25 "$work/ctest.log"
 wait "${workers[@]}"
 step "dataset done: $(ls data/inputs/shard_*.safetensors 2>/dev/null | wc -l) shards"
 
+# A step gets at most its own limit and never more than leaves 40 s for packing the results.
+limit() { local t=$(($(left) - 40)); ((t < $1)) && echo $t || echo $1; }
 bench() {  # report name, then sixway bench options
-  local name=$1
+  local name=$1 t
   shift
+  t=$(limit 120)
+  ((t > 10)) || { step "bench $name skipped: no time left"; return; }
   step "bench $name: $*"
-  "${vk[@]}" timeout 120 $sixway bench --warmup 5 --repeats 20 --report "$work/bench_$name.json" "$@"
+  "${vk[@]}" timeout $t $sixway bench --warmup 5 --repeats 20 --report "$work/bench_$name.json" "$@"
 }
-for tiling in blocks pixels; do
-  bench "network_$tiling" --sections network --size 256 512 --tiling "$tiling"
+# The targets first (network at 256² in fp16, the frame, the LBM against a copy), then the rest.
+for tiling in pixels blocks; do
   bench "network_${tiling}_fp16" --sections network --size 256 512 --tiling "$tiling" --fp16
 done
 bench frame --sections frame lightmaps --grid 64x128x64 --size 256 --frame-lightmaps 256
 bench sim --sections sim --population-storage fp32 fp16 --repeats-large 10
-step "stream_bound_bench"
-"${vk[@]}" timeout 60 build/tests/sim/stream_bound_bench 20
+if (($(limit 60) > 10)); then
+  step "stream_bound_bench"
+  "${vk[@]}" timeout "$(limit 60)" build/tests/sim/stream_bound_bench 20
+fi
+for tiling in pixels blocks; do
+  bench "network_$tiling" --sections network --size 256 512 --tiling "$tiling"
+done
 for weights in .dev/study/*.safetensors; do
-  bench "$(basename "$weights" .safetensors)" --sections network --size 256 --weights "$weights" --fp16
+  [[ -f $weights ]] && bench "$(basename "$weights" .safetensors)" --sections network --size 256 --weights "$weights" --fp16
 done
 
 trainers=()
