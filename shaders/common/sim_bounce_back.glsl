@@ -9,23 +9,15 @@
 //   The moving-wall term is Ladd's, carried with the weight of the population reflected at the wall: 1 for
 //   q < ½, 1/(2q) for q ≥ ½ (Bouzidi et al. 2001; Lallemand & Luo 2003, J. Comput. Phys. 184, 406).
 //   Both agree with half-way at q = ½, which meshes and links without a known wall position use.
-// The including shader declares: the specialization constant INTERPOLATED_BOUNCE_BACK (bool), SIZE (the
-// lattice's cells per axis), the faces' specialization constants (sim_faces.glsl), the lattice streamed from
-// as buffers f0..f3 (lbm_lattice.glsl) and the cell flags as `flags`.
+// The including shader declares: the specialization constant INTERPOLATED_BOUNCE_BACK (bool), the cell flags
+// as `flags`, and `float awayFromWall(int i, ivec3 p)`: f*_i(p), the population fluid cell p sent along C[i]
+// (away from the wall) in the step before; and includes lbm_in_place.glsl (the lattice) first.
 #ifndef SIXWAY_SIM_BOUNCE_BACK_GLSL
 #define SIXWAY_SIM_BOUNCE_BACK_GLSL
 
 #include "lbm_d3q19.glsl"
-#include "lbm_lattice.glsl"
-#include "sim_faces.glsl"
+#include "lbm_in_place.glsl"
 #include "sim_grid.glsl"
-
-// A cell index moved back into the lattice across periodic faces (one lattice length at most).
-ivec3 wrapPeriodic(ivec3 p) {
-  [[unroll]] for (int a = 0; a < 3; ++a)
-    if (faceType(2 * a) == FACE_PERIODIC) p[a] = (p[a] + SIZE[a]) % SIZE[a];
-  return p;
-}
 
 // Parameter intervals [x, y] of the line m + t d (relative to the shape's centre) inside a shape's parts.
 const vec2 EVERYWHERE = vec2(-1e30, 1e30);
@@ -72,26 +64,23 @@ float wallFraction(Obstacle o, vec3 from, vec3 link) {
   return clamp(t.x, 1e-3, 1.0);
 }
 
-// The population f_i that reaches fluid cell p (index `cell`) along C[i] from the wall of obstacle o in
-// the cell source = p − C[i] (wrapped on periodic axes). `covered`: o covers the source cell now; a cell it
+// The population f_i that reaches fluid cell p along C[i] from the wall of obstacle o in the cell
+// source = p − C[i] (wrapped on periodic axes). `covered`: o covers the source cell now; a cell it
 // uncovered this step still sends its wall's bounce-back, but where that wall now crosses the link is not
 // known, so half-way. `rho`: the fluid cell's density a step ago.
-float bounceBack(int i, ivec3 p, uint cell, ivec3 source, bool covered, Obstacle o, float rho) {
-  float toWall = SIXWAY_LOAD(opposite(i), cell, f0, f1, f2, f3);  // f*_ī(x_f)
+float bounceBack(int i, ivec3 p, ivec3 source, bool covered, Obstacle o, float rho) {
+  float toWall = loadKept(opposite(i), p);  // f*_ī(x_f)
   float momentum = 6.0 * W[i] * rho * dot(vec3(C[i]), o.velocity.xyz);
   if (!INTERPOLATED_BOUNCE_BACK || !covered) return toWall + momentum;
   // The fluid cell seen from the source's side of a periodic face, so that the link ends in the source.
   float q = wallFraction(o, vec3(source + C[i]) + 0.5, vec3(-C[i]));
-  if (q >= 0.5) {
-    float away = SIXWAY_LOAD(i, cell, f0, f1, f2, f3);  // f*_i(x_f)
-    return (toWall + (2.0 * q - 1.0) * away + momentum) / (2.0 * q);
-  }
+  if (q > 0.5) return (toWall + (2.0 * q - 1.0) * awayFromWall(i, p) + momentum) / (2.0 * q);
+  if (q == 0.5) return toWall + momentum;
   // q < ½ needs the next fluid cell away from the wall, x_f + c_i: half-way where there is none.
   ivec3 beyond = wrapPeriodic(p + C[i]);
   if (any(lessThan(beyond, ivec3(0))) || any(greaterThanEqual(beyond, SIZE))) return toWall + momentum;
-  uint beyondCell = cellIndex(beyond, SIZE);
-  if (wallOf(flags[beyondCell]) != 0u) return toWall + momentum;
-  float farther = SIXWAY_LOAD(opposite(i), beyondCell, f0, f1, f2, f3);  // f*_ī(x_f + c_i)
+  if (wallOf(flags[cellIndex(beyond, SIZE)]) != 0u) return toWall + momentum;
+  float farther = loadKept(opposite(i), beyond);  // f*_ī(x_f + c_i)
   return 2.0 * q * toWall + (1.0 - 2.0 * q) * farther + momentum;
 }
 

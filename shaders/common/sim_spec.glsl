@@ -34,11 +34,12 @@
 #define SIM_SPEC_PARABOLIC_INFLOW 27
 #define SIM_SPEC_BOUNDARY_CELLS 28
 #define SIM_SPEC_DECAY 29  // smoke_sources.comp
-#define SIM_SPEC_CELLS 30  // lbm_init.comp
 #define SIM_SPEC_PULL 31   // stream_bound.comp
 #define SIM_SPEC_SPARSE 32  // the FCT passes: skip inactive bricks (sim_bricks.glsl)
 #define SIM_SPEC_SPARSE_THRESHOLD 33  // smoke_activity.comp
 #define SIM_SPEC_BOUNDARY_FACES 34      // lbm_step.comp's boundary pipelines
 #define SIM_SPEC_BOUNDARY_OBSTACLES 35
+#define SIM_SPEC_PARITY 36  // the in-place lattice's step (lbm_in_place.glsl)
+#define SIM_SPEC_UNCOVERED_CELLS 37  // lbm_step.comp's last pipeline
 
 #endif

@@ -4,7 +4,7 @@
 // f_i the population the wall sends back by the rule lbm_step uses (sim_bounce_back.glsl); plus, for
 // moving obstacles, the momentum of the cells that change sides (Wen et al.'s refilling term): a cell
 // the obstacle covers gives it the fluid's ρu, a cell it uncovers takes ρ₀u_w from it.
-// Reads the same post-collision lattice that the coming lbm_step streams from. Each subgroup adds
+// Reads the lattice as the coming lbm_step finds it (PARITY, lbm_in_place.glsl). Each subgroup adds
 // its sum into the step's slot with one float atomic per component (workgroup barriers cost a
 // coroutine switch per invocation on lavapipe); the order of the additions is not fixed. Only the
 // cells of the obstacles' swept box run (push.boxMin/boxSize): no link to an obstacle lies outside it.
@@ -26,8 +26,8 @@ layout(constant_id = SIM_SPEC_FACE_ZM) const uint FACE_ZM = 0u;
 layout(constant_id = SIM_SPEC_FACE_ZP) const uint FACE_ZP = 0u;
 // As lbm_step's.
 layout(constant_id = SIM_SPEC_INTERPOLATED_BOUNCE_BACK) const bool INTERPOLATED_BOUNCE_BACK = false;
+layout(constant_id = SIM_SPEC_PARITY) const uint PARITY = 0u;  // the coming step's
 
-const uint CELLS = uint(NX * NY * NZ);
 const ivec3 SIZE = ivec3(NX, NY, NZ);
 
 #include "linear_index.glsl"
@@ -37,10 +37,10 @@ const ivec3 SIZE = ivec3(NX, NY, NZ);
 
 layout(std430, binding = 0) readonly buffer Params { StepParams params[]; };
 layout(std430, binding = 1) readonly buffer Flags { uint flags[]; };
-layout(std430, binding = 2) readonly buffer F0 { LbmPopulation f0[]; };
-layout(std430, binding = 3) readonly buffer F1 { LbmPopulation f1[]; };
-layout(std430, binding = 4) readonly buffer F2 { LbmPopulation f2[]; };
-layout(std430, binding = 5) readonly buffer F3 { LbmPopulation f3[]; };
+layout(std430, binding = 2) readonly buffer A0 { LbmPopulation a0[]; };
+layout(std430, binding = 3) readonly buffer A1 { LbmPopulation a1[]; };
+layout(std430, binding = 4) readonly buffer A2 { LbmPopulation a2[]; };
+layout(std430, binding = 5) readonly buffer A3 { LbmPopulation a3[]; };
 layout(std430, binding = 6) readonly buffer Macro_ { vec4 macro[]; };
 layout(std430, binding = 7) buffer Forces { float forces[]; };  // [slot][obstacle] vec4, zeroed before
 layout(push_constant) uniform Push {
@@ -49,6 +49,11 @@ layout(push_constant) uniform Push {
   ivec4 boxMin;   // xyz: the first cell of the box visited
   ivec4 boxSize;  // xyz: its cells per axis
 } push;
+
+#include "lbm_in_place.glsl"
+
+// Nothing writes the lattice in this pass: every kept population can be read where it lies.
+float awayFromWall(int i, ivec3 p) { return loadKept(i, p); }
 
 #include "sim_bounce_back.glsl"
 
@@ -85,8 +90,8 @@ void main() {
     vec3 wall = obstacle.velocity.xyz;
     [[unroll]] for (int i = 1; i < Q; ++i) {
       if (neighbour[i] != o + 1u) continue;
-      float toWall = SIXWAY_LOAD(opposite(i), cell, f0, f1, f2, f3);
-      float back = bounceBack(i, p, cell, wrapPeriodic(p - C[i]), wallCovers[i], obstacle, rho);
+      float toWall = loadKept(opposite(i), p);
+      float back = bounceBack(i, p, wrapPeriodic(p - C[i]), wallCovers[i], obstacle, rho);
       force += (vec3(-C[i]) - wall) * toWall - (vec3(C[i]) - wall) * back;
     }
     if (covered == o + 1u) force += state.w * state.xyz;

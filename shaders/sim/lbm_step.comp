@@ -1,14 +1,18 @@
 #version 460
-// One lattice Boltzmann step per fluid cell: pull streaming from lattice F with the boundary
-// conditions, regularized collision with Smagorinsky and Guo forcing (lbm_d3q19.glsl), result
-// into lattice G, and the cell's velocity and density into `macro` for the smoke and the watchdog.
+// One lattice Boltzmann step per fluid cell, in place (lbm_in_place.glsl: steps of parity 0 pull from and push
+// into the neighbours, steps of parity 1 stay in the cell): streaming with the boundary conditions,
+// regularized collision with Smagorinsky and Guo forcing (lbm_d3q19.glsl), and the cell's velocity and density
+// into `macro` for the smoke and the watchdog.
 // Pipelines of this shader share the cells (BOUNDARY_CELLS): the interior, which pulls every population
 // from a fixed offset, and the cells next to a face or an obstacle, which need the boundary conditions.
 // llvmpipe runs the code of a branch in every SIMD group whether or not a lane takes it, so keeping the
 // boundary code out of the interior dispatch makes the LBM pass 1.5–2.2× faster there (docs/benchmarks.md).
 // For the same reason the boundary cells come in two pipelines when the obstacles' box stays off the domain's
 // faces (BOUNDARY_FACES: the face slabs, without bounce-back code; BOUNDARY_OBSTACLES: the box, without the
-// face conditions), and in one with both codes when it reaches a face.
+// face conditions), and in one with both codes when it reaches a face. The cells a moving obstacle uncovered
+// this step come last, in a pipeline of their own (UNCOVERED_CELLS): they restart from equilibrium and so read
+// nothing, but their slots hold what their neighbours sent towards the wall, which the neighbours read back
+// in this step (lbm_in_place.glsl).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
 #include "sim_spec.glsl"
@@ -46,8 +50,11 @@ layout(constant_id = SIM_SPEC_INTERPOLATED_BOUNCE_BACK) const bool INTERPOLATED_
 layout(constant_id = SIM_SPEC_BOUNDARY_CELLS) const bool BOUNDARY_CELLS = false;
 layout(constant_id = SIM_SPEC_BOUNDARY_FACES) const bool BOUNDARY_FACES = true;          // boundary pipelines:
 layout(constant_id = SIM_SPEC_BOUNDARY_OBSTACLES) const bool BOUNDARY_OBSTACLES = true;  // which cells and code
+layout(constant_id = SIM_SPEC_UNCOVERED_CELLS) const bool UNCOVERED_CELLS = false;
+layout(constant_id = SIM_SPEC_PARITY) const uint PARITY = 0u;  // lbm_in_place.glsl
 
 const uint CELLS = uint(NX * NY * NZ);
+const ivec3 SIZE = ivec3(NX, NY, NZ);
 
 #include "linear_index.glsl"
 #include "lbm_d3q19.glsl"
@@ -56,16 +63,17 @@ const uint CELLS = uint(NX * NY * NZ);
 
 layout(std430, binding = 0) readonly buffer Params { StepParams params[]; };
 layout(std430, binding = 1) readonly buffer Flags { uint flags[]; };
-layout(std430, binding = 2) readonly buffer F0 { LbmPopulation f0[]; };
-layout(std430, binding = 3) readonly buffer F1 { LbmPopulation f1[]; };
-layout(std430, binding = 4) readonly buffer F2 { LbmPopulation f2[]; };
-layout(std430, binding = 5) readonly buffer F3 { LbmPopulation f3[]; };
-layout(std430, binding = 6) writeonly buffer G0 { LbmPopulation g0[]; };
-layout(std430, binding = 7) writeonly buffer G1 { LbmPopulation g1[]; };
-layout(std430, binding = 8) writeonly buffer G2 { LbmPopulation g2[]; };
-layout(std430, binding = 9) writeonly buffer G3 { LbmPopulation g3[]; };
-layout(std430, binding = 10) buffer Macro_ { vec4 macro[]; };  // xyz velocity, w density
-layout(std430, binding = 11) readonly buffer Smoke { vec2 smoke[]; };  // density, temperature
+layout(std430, binding = 2) buffer A0 { LbmPopulation a0[]; };
+layout(std430, binding = 3) buffer A1 { LbmPopulation a1[]; };
+layout(std430, binding = 4) buffer A2 { LbmPopulation a2[]; };
+layout(std430, binding = 5) buffer A3 { LbmPopulation a3[]; };
+layout(std430, binding = 6) buffer Macro_ { vec4 macro[]; };  // xyz velocity, w density
+layout(std430, binding = 7) readonly buffer Smoke { vec2 smoke[]; };  // density, temperature
+// The box cells' populations sent in the step before, as stored (lbm_keep_away.comp).
+layout(std430, binding = 8) readonly buffer W0 { LbmPopulation w0[]; };
+layout(std430, binding = 9) readonly buffer W1 { LbmPopulation w1[]; };
+layout(std430, binding = 10) readonly buffer W2 { LbmPopulation w2[]; };
+layout(std430, binding = 11) readonly buffer W3 { LbmPopulation w3[]; };
 layout(push_constant) uniform Push {
   uint step;
   uint unused[3];
@@ -73,13 +81,22 @@ layout(push_constant) uniform Push {
   ivec4 boxSize;  // xyz: its cells per axis
 } push;
 
-const ivec3 SIZE = ivec3(NX, NY, NZ);
-#include "sim_faces.glsl"
+#include "lbm_in_place.glsl"
+
+// Interpolated bounce-back (q > ½): the cell next to the wall lies in the obstacles' box.
+float awayFromWall(int i, ivec3 p) {
+  uint boxCells = uint(push.boxSize.x * push.boxSize.y * push.boxSize.z);
+  uint word = uint(i % POPULATIONS_PER_BUFFER) * boxCells + cellIndex(p - push.boxMin.xyz, push.boxSize.xyz);
+  return decodePopulation(i, SIXWAY_RAW(i, word, w0, w1, w2, w3));
+}
+
 #include "sim_bounce_back.glsl"
 
-float loadPost(int i, uint cell) { return SIXWAY_LOAD(i, cell, f0, f1, f2, f3); }
-
-void store(int i, uint cell, float value) { SIXWAY_STORE(i, cell, value, g0, g1, g2, g3) }
+// f*_j of cell p, this step's result, kept where the next step (the other parity) looks for it.
+void storeKept(int j, ivec3 p, float value) {
+  Slot s = keptSlot(j, p, 1u - PARITY);
+  SIXWAY_STORE(s.population, s.cell, value, a0, a1, a2, a3)
+}
 
 vec3 inflowVelocity(ivec3 p, int normalAxis) {
   vec3 u = vec3(WIND_X, WIND_Y, WIND_Z);
@@ -93,8 +110,8 @@ vec3 inflowVelocity(ivec3 p, int normalAxis) {
 }
 
 // The population arriving at fluid cell p along C[i] from a neighbour outside the domain.
-float fromOutside(int i, ivec3 p, ivec3 source, uint cell, vec4 previous) {
-  float bounceBack = loadPost(opposite(i), cell);  // a wall at rest, half-way between the cells
+float fromOutside(int i, ivec3 p, ivec3 source, vec4 previous) {
+  float bounceBack = loadKept(opposite(i), p);  // a wall at rest, half-way between the cells
   int outAxes = 0, axis = 0;
   bool wall = false, inflow = false;
   [[unroll]] for (int a = 0; a < 3; ++a) {
@@ -118,7 +135,7 @@ float fromOutside(int i, ivec3 p, ivec3 source, uint cell, vec4 previous) {
     if (any(lessThan(from, ivec3(0))) || any(greaterThanEqual(from, SIZE))) return bounceBack;
     uint fromCell = cellIndex(from, SIZE);
     if (wallOf(flags[fromCell]) != 0u) return bounceBack;
-    return loadPost(r, fromCell);
+    return loadKept(r, from);
   }
   // Inflow: a wall moving at the inflow velocity, half-way outside (Ladd 1994), second order like
   // the obstacles' bounce-back; an equilibrium inflow falls a few percent short of the set velocity.
@@ -154,6 +171,23 @@ bvec3 oneCellPeriodic() {
 ivec3 innerMin() { return ivec3(not(oneCellPeriodic())); }  // the interior: [innerMin, SIZE − innerMin)
 ivec3 innerSize() { return max(SIZE - 2 * innerMin(), ivec3(0)); }
 
+// Stored cells from a cell to its neighbour along C[i]; 0 along an axis one cell deep between periodic faces.
+int neighbourOffset(int i) {
+  ivec3 c = mix(C[i], ivec3(0), oneCellPeriodic());
+  return c.x + STORED.x * (c.y + STORED.y * c.z);
+}
+
+// The interior's cells store at fixed offsets; the boundary cells' neighbours may wrap or be ghosts.
+void storeCollided(int i, ivec3 p, uint stored, float value) {
+  if (BOUNDARY_CELLS) {
+    storeKept(i, p, value);
+  } else if (PARITY == 0u) {
+    SIXWAY_STORE(i, uint(int(stored) + neighbourOffset(i)), value, a0, a1, a2, a3)
+  } else {
+    SIXWAY_STORE(opposite(i), stored, value, a0, a1, a2, a3)
+  }
+}
+
 bool onShell(ivec3 p) { return any(lessThan(p, innerMin())) || any(greaterThanEqual(p, SIZE - innerMin())); }
 bool inSweptBox(ivec3 p) {
   return all(greaterThanEqual(p, push.boxMin.xyz)) && all(lessThan(p, push.boxMin.xyz + push.boxSize.xyz));
@@ -168,8 +202,12 @@ uint slabCells(int axis) {
 // The cell that invocation `index` updates, or −1 for none. Interior pipeline: the interior box less the
 // cells next to an obstacle (nearSolid, inside the swept box). Boundary pipelines: the face slabs across x,
 // y, z (a cell on two faces counted by the first; BOUNDARY_FACES), then the swept box's cells off the faces
-// next to an obstacle this step (BOUNDARY_OBSTACLES).
+// next to an obstacle this step (BOUNDARY_OBSTACLES). Uncovered pipeline: the swept box's cells (main() keeps
+// the uncovered ones).
 int cellVisited(uint index) {
+  uint boxCells = uint(push.boxSize.x * push.boxSize.y * push.boxSize.z);
+  if (UNCOVERED_CELLS)
+    return index < boxCells ? int(cellIndex(push.boxMin.xyz + cellOf(index, push.boxSize.xyz), SIZE)) : -1;
   if (!BOUNDARY_CELLS) {
     ivec3 inner = innerSize();
     if (index >= uint(inner.x * inner.y * inner.z)) return -1;
@@ -192,7 +230,7 @@ int cellVisited(uint index) {
     }
     index -= cells;
   }
-  if (!BOUNDARY_OBSTACLES || index >= uint(push.boxSize.x * push.boxSize.y * push.boxSize.z)) return -1;
+  if (!BOUNDARY_OBSTACLES || index >= boxCells) return -1;
   ivec3 p = push.boxMin.xyz + cellOf(index, push.boxSize.xyz);
   return !onShell(p) && nearSolid(params[push.step], p) ? int(cellIndex(p, SIZE)) : -1;
 }
@@ -203,6 +241,9 @@ void main() {
   uint cell = uint(visited);
   ivec3 p = cellOf(cell, SIZE);
   uint flag = flags[cell];
+  // Uncovered by a moving obstacle this step: the last pipeline's cells, and only its.
+  bool uncovered = BOUNDARY_CELLS && BOUNDARY_OBSTACLES && !isSolid(flag) && previousObstacleOf(flag) != 0u;
+  if (uncovered != UNCOVERED_CELLS) return;
   vec4 previous = macro[cell];
   if (isSolid(flag)) {  // obstacles move rigidly; their cells carry the wall velocity
     macro[cell] = vec4(params[push.step].obstacles[obstacleOf(flag) - 1u].velocity.xyz, 1.0);
@@ -210,30 +251,30 @@ void main() {
   }
 
   float f[Q];
+  uint stored = storedCell(p);
   if (!BOUNDARY_CELLS) {  // no face and no obstacle among the neighbours: fixed offsets
     [[unroll]] for (int i = 0; i < Q; ++i) {
-      ivec3 c = mix(C[i], ivec3(0), oneCellPeriodic());
-      f[i] = loadPost(i, uint(int(cell) - (c.x + NX * (c.y + NY * c.z))));
+      f[i] = PARITY == 0u ? SIXWAY_LOAD(opposite(i), uint(int(stored) - neighbourOffset(i)), a0, a1, a2, a3)
+                          : SIXWAY_LOAD(i, stored, a0, a1, a2, a3);
     }
-  } else if (BOUNDARY_OBSTACLES && previousObstacleOf(flag) != 0u) {
-    // Uncovered by a moving obstacle: start from equilibrium at the wall's velocity.
+  } else if (UNCOVERED_CELLS) {  // start from equilibrium at the wall's velocity
     [[unroll]] for (int i = 0; i < Q; ++i) f[i] = equilibrium(i, 1.0, previous.xyz);
   } else {
     [[unroll]] for (int i = 0; i < Q; ++i) {
       ivec3 source = wrapPeriodic(p - C[i]);
       if (BOUNDARY_FACES && (any(lessThan(source, ivec3(0))) || any(greaterThanEqual(source, SIZE)))) {
-        f[i] = fromOutside(i, p, source, cell, previous);
+        f[i] = fromOutside(i, p, source, previous);
         continue;
       }
-      uint sourceCell = cellIndex(source, SIZE);
       // Outside the obstacles' box no cell is or was solid: no flags to read (the box holds wrapped cells).
-      uint sourceFlags = BOUNDARY_OBSTACLES && nearSolid(params[push.step], source) ? flags[sourceCell] : 0u;
+      uint sourceFlags =
+          BOUNDARY_OBSTACLES && nearSolid(params[push.step], source) ? flags[cellIndex(source, SIZE)] : 0u;
       uint wallIndex = wallOf(sourceFlags);
       if (wallIndex != 0u) {
         Obstacle wall = params[push.step].obstacles[wallIndex - 1u];
-        f[i] = bounceBack(i, p, cell, source, isSolid(sourceFlags), wall, previous.w);
+        f[i] = bounceBack(i, p, source, isSolid(sourceFlags), wall, previous.w);
       } else {
-        f[i] = loadPost(i, sourceCell);
+        f[i] = loadKept(i, source);
       }
     }
   }
@@ -249,10 +290,10 @@ void main() {
   if (inlet != 0u) {  // a velocity inlet: the populations are set to equilibrium at the inflow velocity
     Inlet in_ = params[push.step].inlets[inlet - 1u];
     vec3 u = in_.velocity.xyz + in_.velocity.w * length(in_.velocity.xyz) * noise3(p, params[push.step].counts.z);
-    [[unroll]] for (int i = 0; i < Q; ++i) store(i, cell, equilibrium(i, m.rho, u));
+    [[unroll]] for (int i = 0; i < Q; ++i) storeCollided(i, p, stored, equilibrium(i, m.rho, u));
     macro[cell] = vec4(u, m.rho);
     return;
   }
-  [[unroll]] for (int i = 0; i < Q; ++i) store(i, cell, collide(i, m, tau, force));
+  [[unroll]] for (int i = 0; i < Q; ++i) storeCollided(i, p, stored, collide(i, m, tau, force));
   macro[cell] = vec4(m.u, m.rho);
 }

@@ -5,6 +5,7 @@ list(APPEND SIXWAY_SHADERS
   sim/voxelize_mesh.comp
   sim/lbm_init.comp
   sim/lbm_step.comp
+  sim/lbm_keep_away.comp
   sim/forces.comp
   sim/smoke_sources.comp
   sim/smoke_activity.comp
@@ -17,5 +18,6 @@ list(APPEND SIXWAY_SHADERS
   sim/stream_bound.comp
   sim/lbm_init.comp:LBM_FP16
   sim/lbm_step.comp:LBM_FP16
+  sim/lbm_keep_away.comp:LBM_FP16
   sim/forces.comp:LBM_FP16
 )

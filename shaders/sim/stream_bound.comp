@@ -1,9 +1,10 @@
 #version 460
 // The memory ceiling of a lattice update on this device (tests/sim/bench_stream_bound.cpp, not used by the
-// simulation): the pull-streaming of lbm_step.comp with the same storage layout and the same 19 gathers and
-// 19 stores per cell, and nothing else (no collision, no flags, periodic wrap). Its bandwidth is the most a
-// compute kernel with the LBM's access pattern gets from the device, next to a plain buffer copy. With
-// PULL = false every population stays in its cell: the same traffic without the neighbour gathers.
+// simulation): lbm_step.comp's traffic, 19 populations read and 19 written per cell in its storage layout, and
+// nothing else (no collision, no flags, periodic wrap), from one lattice into another. With PULL the reads
+// gather from the neighbours (as a step of parity 0 does, lbm_in_place.glsl); without, every population stays
+// in its cell (as in a step of parity 1). Its bandwidth is the most a compute kernel with the LBM's access
+// pattern gets from the device, next to a plain buffer copy.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
 #include "sim_spec.glsl"
@@ -15,6 +16,7 @@ layout(constant_id = SIM_SPEC_NZ) const int NZ = 1;
 layout(constant_id = SIM_SPEC_PULL) const bool PULL = true;
 
 const uint CELLS = uint(NX * NY * NZ);
+const uint STORED_CELLS = CELLS;  // two lattices without ghost cells (lbm_lattice.glsl)
 const ivec3 SIZE = ivec3(NX, NY, NZ);
 
 #include "linear_index.glsl"

@@ -33,7 +33,8 @@ nlohmann::json benchLattice(const gpu::Context& context, const gpu::PipelineCach
   const int warmup = large ? std::min(o.warmup, 1) : o.warmup;
   const int repeats = large ? o.repeatsLarge : o.repeats;
   const uint32_t bytesPerUpdate = sim::bytesPerCellUpdate(scene.fluid.populationStorage);
-  const uint64_t latticeBytes = sim::latticeBytes(cells, scene.fluid.populationStorage);
+  const uint64_t latticeBytes =
+      sim::latticeBytes(scene.grid.size, scene.boundaries.faces, scene.fluid.populationStorage);
   std::printf(
       "simulation %s (%.2f M cells, cell %.4g m), %s populations (%u bytes per update, lattice %.1f MiB), %s "
       "smoke transport: %d warm-up and %d timed runs of %d steps\n",

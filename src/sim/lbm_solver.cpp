@@ -17,7 +17,7 @@ constexpr uint32_t kPopulationsPerBuffer = 5;  // lbm_lattice.glsl
 
 using gpu::BindingType;
 
-struct StepPush {  // lbm_step.comp
+struct StepPush {  // lbm_step.comp, lbm_keep_away.comp
   uint32_t slot, unused[3];
   glm::ivec4 boxMin, boxSize;
 };
@@ -35,13 +35,28 @@ std::vector<BindingType> storageBuffers(int count) {
   return std::vector<BindingType>(count, BindingType::StorageBuffer);
 }
 
-// What lbm_step.comp and forces.comp share: the lattice, its faces, the obstacles' boundary rule.
-gpu::SpecConstants latticeSpec(const LbmSettings& settings) {
+// What every shader of the in-place lattice needs: its size and faces (the ghost layers, lbm_in_place.glsl).
+gpu::SpecConstants storageSpec(const LbmSettings& settings) {
   gpu::SpecConstants constants;
   for (int a = 0; a < 3; ++a) constants.set(spec::kSize[a], settings.size[a]);
   for (int f = 0; f < 6; ++f) constants.set(spec::kFaces[f], uint32_t(settings.faces[f]));
-  constants.set(spec::kInterpolatedBounceBack, settings.interpolatedBounceBack);
   return constants;
+}
+
+// What lbm_step.comp and forces.comp share besides: the obstacles' boundary rule.
+gpu::SpecConstants latticeSpec(const LbmSettings& settings) {
+  return storageSpec(settings).set(spec::kInterpolatedBounceBack, settings.interpolatedBounceBack);
+}
+
+// A shader of the lattice, in the variant of its population storage, with `bindings` storage buffers.
+gpu::ComputePipelineDesc latticeDesc(const std::string& shader, const LbmSettings& settings, int bindings,
+                                     uint32_t pushConstantBytes, gpu::SpecConstants spec) {
+  gpu::ComputePipelineDesc desc;
+  desc.shader = latticeShader(shader, settings.storage);
+  desc.bindings = storageBuffers(bindings);
+  desc.pushConstantBytes = pushConstantBytes;
+  desc.spec = std::move(spec);
+  return desc;
 }
 
 }  // namespace
@@ -54,8 +69,17 @@ uint32_t bytesPerCellUpdate(io::PopulationStorage storage) {
   return 19 * populationBytes(storage) * 2 + 4 + 16 * 2;
 }
 
-uint64_t latticeBytes(uint64_t cells, io::PopulationStorage storage) {
-  return cells * (2 * 19 * populationBytes(storage) + 16);
+glm::ivec3 storedSize(glm::ivec3 size, const std::array<io::BoundaryType, 6>& faces) {
+  for (int a = 0; a < 3; ++a)
+    if (faces[2 * a] != io::BoundaryType::Periodic) size[a] += 2;
+  return size;
+}
+
+uint64_t latticeBytes(glm::ivec3 size, const std::array<io::BoundaryType, 6>& faces,
+                      io::PopulationStorage storage) {
+  const glm::ivec3 stored = storedSize(size, faces);
+  return uint64_t(stored.x) * uint64_t(stored.y) * uint64_t(stored.z) * 19 * populationBytes(storage) +
+         uint64_t(size.x) * uint64_t(size.y) * uint64_t(size.z) * 16;
 }
 
 LbmSettings lbmSettings(const io::Scene& scene, const LatticeUnits& units) {
@@ -76,12 +100,27 @@ LbmSettings lbmSettings(const io::Scene& scene, const LatticeUnits& units) {
   return s;
 }
 
+ParityPipelines::ParityPipelines(const gpu::Context& context, const gpu::PipelineCache& cache,
+                                 gpu::ComputePipelineDesc desc)
+    : context_(&context), cache_(&cache), desc_(std::move(desc)) {}
+
+const gpu::Pipeline& ParityPipelines::operator[](int parity) {
+  if (!built_[parity]) {
+    gpu::ComputePipelineDesc desc = desc_;
+    desc.spec.set(spec::kParity, uint32_t(parity));
+    built_[parity] = std::make_unique<gpu::Pipeline>(*context_, *cache_, desc);
+  }
+  return *built_[parity];
+}
+
 LbmSolver::LbmSolver(const gpu::Context& context, const gpu::PipelineCache& cache,
                      const LbmSettings& settings)
     : context_(&context),
       settings_(settings),
-      cells_(uint64_t(settings.size.x) * settings.size.y * settings.size.z) {
-  if (cells_ > UINT32_MAX / kPopulationsPerBuffer)
+      cells_(uint64_t(settings.size.x) * settings.size.y * settings.size.z),
+      storedSize_(sim::storedSize(settings.size, settings.faces)) {
+  const uint64_t storedCells = uint64_t(storedSize_.x) * uint64_t(storedSize_.y) * uint64_t(storedSize_.z);
+  if (storedCells > UINT32_MAX / kPopulationsPerBuffer)
     throw io::InputError("grid.size", "the lattice has too many cells for 32-bit population addressing");
   if (settings.storage == io::PopulationStorage::Fp16 && !context.capabilities().storage16Bit)
     throw io::InputError(
@@ -89,26 +128,19 @@ LbmSolver::LbmSolver(const gpu::Context& context, const gpu::PipelineCache& cach
         "fp16 needs 16-bit storage buffers (storageBuffer16BitAccess), which this device lacks");
   const std::string shape = std::to_string(settings.size.x) + "x" + std::to_string(settings.size.y) + "x" +
                             std::to_string(settings.size.z);
-  for (int parity = 0; parity < 2; ++parity)
-    for (uint32_t b = 0; b < 4; ++b) {
-      const uint32_t populations = b < 3 ? kPopulationsPerBuffer : 19 - 3 * kPopulationsPerBuffer;
-      lattices_[parity][b] =
-          gpu::Buffer::storage(context, uint64_t(populations) * cells_ * populationBytes(settings.storage),
-                               "the " + shape + " lattice (populations " + std::to_string(b * 5) + "..)");
-    }
+  // Zeroed by gpu::Buffer: the ghost cells' slots that no step writes read as zero, not as old memory.
+  lattice_ = populationBuffers(storedCells, "the " + shape + " lattice");
   macro_ = gpu::Buffer::storage(context, cells_ * 16, "the " + shape + " velocity field");
+  away_.push_back(populationBuffers(1, "the obstacles' populations"));
 
-  gpu::ComputePipelineDesc init;
-  init.shader = latticeShader("sim/lbm_init.comp", settings.storage);
-  init.bindings = storageBuffers(5);
-  init.spec.set(spec::kCells, uint32_t(cells_));
-  init_ = std::make_unique<gpu::Pipeline>(context, cache, init);
+  init_ = ParityPipelines(context, cache,
+                          latticeDesc("sim/lbm_init.comp", settings, 5, 0, storageSpec(settings)));
+  keepAway_ = ParityPipelines(
+      context, cache,
+      latticeDesc("sim/lbm_keep_away.comp", settings, 10, sizeof(StepPush), storageSpec(settings)));
 
-  gpu::ComputePipelineDesc step;
-  step.shader = latticeShader("sim/lbm_step.comp", settings.storage);
-  step.bindings = storageBuffers(12);
-  step.pushConstantBytes = sizeof(StepPush);
-  step.spec = latticeSpec(settings);
+  gpu::ComputePipelineDesc step =
+      latticeDesc("sim/lbm_step.comp", settings, 12, sizeof(StepPush), latticeSpec(settings));
   step.spec.set(spec::kTau0, settings.tau).set(spec::kSmagorinsky, settings.smagorinsky);
   step.spec.set(spec::kSmokeUpres, settings.smokeUpres);
   step.spec.set(spec::kBuoyancyTemperature, settings.buoyancyTemperature)
@@ -118,23 +150,43 @@ LbmSolver::LbmSolver(const gpu::Context& context, const gpu::PipelineCache& cach
     step.spec.set(spec::kWind[a], settings.wind[a]);
   }
   step.spec.set(spec::kParabolicInflow, settings.parabolicInflow);
-  step_ = std::make_unique<gpu::Pipeline>(context, cache, step);  // the interior (BOUNDARY_CELLS false)
+  step_ = ParityPipelines(context, cache, step);  // the interior (BOUNDARY_CELLS false)
   gpu::ComputePipelineDesc boundary = step;
   boundary.spec.set(spec::kBoundaryCells, true);
-  stepBoundary_ = std::make_unique<gpu::Pipeline>(context, cache, boundary);
+  stepBoundary_ = ParityPipelines(context, cache, boundary);
   gpu::ComputePipelineDesc faces = boundary;
   faces.spec.set(spec::kBoundaryObstacles, false);
-  stepFaces_ = std::make_unique<gpu::Pipeline>(context, cache, faces);
+  stepFaces_ = ParityPipelines(context, cache, faces);
   gpu::ComputePipelineDesc obstacles = boundary;
   obstacles.spec.set(spec::kBoundaryFaces, false);
-  stepObstacles_ = std::make_unique<gpu::Pipeline>(context, cache, obstacles);
+  stepObstacles_ = ParityPipelines(context, cache, obstacles);
+  gpu::ComputePipelineDesc uncovered = boundary;
+  uncovered.spec.set(spec::kUncoveredCells, true);
+  stepUncovered_ = ParityPipelines(context, cache, uncovered);
 
-  gpu::ComputePipelineDesc forces;
-  forces.shader = latticeShader("sim/forces.comp", settings.storage);
-  forces.bindings = storageBuffers(8);
-  forces.pushConstantBytes = sizeof(ForcesPush);
-  forces.spec = latticeSpec(settings);
-  forces_ = std::make_unique<gpu::Pipeline>(context, cache, forces);
+  forces_ = ParityPipelines(
+      context, cache, latticeDesc("sim/forces.comp", settings, 8, sizeof(ForcesPush), latticeSpec(settings)));
+}
+
+std::array<gpu::Buffer, 4> LbmSolver::populationBuffers(uint64_t cells, const std::string& name) const {
+  std::array<gpu::Buffer, 4> buffers;
+  for (uint32_t b = 0; b < 4; ++b) {
+    const uint32_t populations = b < 3 ? kPopulationsPerBuffer : 19 - 3 * kPopulationsPerBuffer;
+    buffers[b] =
+        gpu::Buffer::storage(*context_, uint64_t(populations) * cells * populationBytes(settings_.storage),
+                             name + " (populations " + std::to_string(b * 5) + "..)");
+  }
+  return buffers;
+}
+
+const std::array<gpu::Buffer, 4>& LbmSolver::awayBuffers(uint64_t boxCells) {
+  const uint64_t capacity =
+      away_.back()[0].size() / (kPopulationsPerBuffer * populationBytes(settings_.storage));
+  // Doubling, up to a lattice's worth: few buffers however the box grows, none beyond the lattice's limits.
+  if (capacity < boxCells)
+    away_.push_back(
+        populationBuffers(std::min(std::max(boxCells, 2 * capacity), cells_), "the obstacles' populations"));
+  return away_.back();
 }
 
 void LbmSolver::initialize(const std::vector<glm::vec4>& macro, int parity) {
@@ -143,9 +195,9 @@ void LbmSolver::initialize(const std::vector<glm::vec4>& macro, int parity) {
                                 " cells given, the lattice has " + std::to_string(cells_));
   macro_.upload(macro);
   gpu::Sequence sequence(*context_);
-  const auto& f = lattices_[parity];
+  const auto& f = lattice_;
   sequence.dispatchLinear(
-      *init_,
+      init_[parity],
       {gpu::reads(macro_), gpu::writes(f[0]), gpu::writes(f[1]), gpu::writes(f[2]), gpu::writes(f[3])},
       std::span<const std::byte>(), cells_, kGroupSize);
   sequence.submit();
@@ -153,19 +205,26 @@ void LbmSolver::initialize(const std::vector<glm::vec4>& macro, int parity) {
 
 void LbmSolver::recordStep(gpu::Sequence& sequence, const gpu::Buffer& params, const gpu::Buffer& flags,
                            const gpu::Buffer& smoke, uint32_t slot, int parity,
-                           const std::pair<glm::ivec3, glm::ivec3>& box) const {
-  const auto& from = lattices_[parity];
-  const auto& to = lattices_[1 - parity];
-  const std::vector<gpu::Binding> bindings{gpu::reads(params),  gpu::reads(flags),        gpu::reads(from[0]),
-                                           gpu::reads(from[1]), gpu::reads(from[2]),      gpu::reads(from[3]),
-                                           gpu::writes(to[0]),  gpu::writes(to[1]),       gpu::writes(to[2]),
-                                           gpu::writes(to[3]),  gpu::readsWrites(macro_), gpu::reads(smoke)};
+                           const std::pair<glm::ivec3, glm::ivec3>& box) {
+  const auto& f = lattice_;
   const glm::ivec3 boxSize = box.second - box.first;
+  const uint64_t boxCells = uint64_t(boxSize.x) * uint64_t(boxSize.y) * uint64_t(boxSize.z);
+  const bool keepAway = settings_.interpolatedBounceBack && boxCells > 0;
+  const auto& away = keepAway ? awayBuffers(boxCells) : away_.back();
   const StepPush push{slot, {}, glm::ivec4(box.first, 0), glm::ivec4(boxSize, 0)};
+  if (keepAway)
+    sequence.dispatchLinear(keepAway_[parity],
+                            {gpu::reads(f[0]), gpu::reads(f[1]), gpu::reads(f[2]), gpu::reads(f[3]),
+                             gpu::writes(away[0]), gpu::writes(away[1]), gpu::writes(away[2]),
+                             gpu::writes(away[3]), gpu::reads(params), gpu::reads(flags)},
+                            push, boxCells, kGroupSize);
+  const std::vector<gpu::Binding> bindings{
+      gpu::reads(params),     gpu::reads(flags),      gpu::readsWrites(f[0]),   gpu::readsWrites(f[1]),
+      gpu::readsWrites(f[2]), gpu::readsWrites(f[3]), gpu::readsWrites(macro_), gpu::reads(smoke),
+      gpu::reads(away[0]),    gpu::reads(away[1]),    gpu::reads(away[2]),      gpu::reads(away[3])};
   // The cells lbm_step.comp's pipelines visit (cellVisited there): the interior box, the face slabs across
   // each axis and the obstacles' swept box.
   const glm::ivec3 size = settings_.size;
-  const uint64_t boxCells = uint64_t(boxSize.x) * uint64_t(boxSize.y) * uint64_t(boxSize.z);
   uint64_t interior = 1, slabs = 0;
   bool boxOnFace = false;  // a cell of the box on a face slab: a slab cell may border an obstacle
   for (int a = 0; a < 3; ++a) {
@@ -176,22 +235,24 @@ void LbmSolver::recordStep(gpu::Sequence& sequence, const gpu::Buffer& params, c
       boxOnFace = boxOnFace || box.first[a] < 1 || box.second[a] > size[a] - 1;
   }
   // A lattice at most two cells deep along a walled axis has no interior, a periodic 1×1×1 one no face slabs.
-  if (interior > 0) sequence.dispatchLinear(*step_, bindings, push, interior, kGroupSize);
+  if (interior > 0) sequence.dispatchLinear(step_[parity], bindings, push, interior, kGroupSize);
   if (boxOnFace) {
-    sequence.dispatchLinear(*stepBoundary_, bindings, push, slabs + boxCells, kGroupSize);
-    return;
+    sequence.dispatchLinear(stepBoundary_[parity], bindings, push, slabs + boxCells, kGroupSize);
+  } else {
+    if (slabs > 0) sequence.dispatchLinear(stepFaces_[parity], bindings, push, slabs, kGroupSize);
+    if (boxCells > 0) sequence.dispatchLinear(stepObstacles_[parity], bindings, push, boxCells, kGroupSize);
   }
-  if (slabs > 0) sequence.dispatchLinear(*stepFaces_, bindings, push, slabs, kGroupSize);
-  if (boxCells > 0) sequence.dispatchLinear(*stepObstacles_, bindings, push, boxCells, kGroupSize);
+  // Last: the cells uncovered this step overwrite slots their neighbours have read back by now.
+  if (boxCells > 0) sequence.dispatchLinear(stepUncovered_[parity], bindings, push, boxCells, kGroupSize);
 }
 
 void LbmSolver::recordForces(gpu::Sequence& sequence, const gpu::Buffer& params, const gpu::Buffer& flags,
                              uint32_t slot, int parity, const gpu::Buffer& forces,
-                             const std::pair<glm::ivec3, glm::ivec3>& box) const {
-  const auto& f = lattices_[parity];
+                             const std::pair<glm::ivec3, glm::ivec3>& box) {
+  const auto& f = lattice_;
   const glm::ivec3 size = box.second - box.first;
   const uint64_t cells = uint64_t(size.x) * uint64_t(size.y) * uint64_t(size.z);
-  sequence.dispatchLinear(*forces_,
+  sequence.dispatchLinear(forces_[parity],
                           {gpu::reads(params), gpu::reads(flags), gpu::reads(f[0]), gpu::reads(f[1]),
                            gpu::reads(f[2]), gpu::reads(f[3]), gpu::reads(macro_), gpu::readsWrites(forces)},
                           ForcesPush{slot, slot, {}, glm::ivec4(box.first, 0), glm::ivec4(size, 0)}, cells,

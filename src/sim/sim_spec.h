@@ -26,7 +26,6 @@ inline constexpr SpecId kWind[3] = {{24, "WIND_X"}, {25, "WIND_Y"}, {26, "WIND_Z
 inline constexpr SpecId kParabolicInflow{27, "PARABOLIC_INFLOW"};
 inline constexpr SpecId kBoundaryCells{28, "BOUNDARY_CELLS"};
 inline constexpr SpecId kDecay{29, "DECAY"};    // smoke_sources.comp
-inline constexpr SpecId kCells{30, "CELLS"};    // lbm_init.comp
 inline constexpr SpecId kPull{31, "PULL"};      // stream_bound.comp
 inline constexpr SpecId kSparse{32, "SPARSE"};  // the FCT passes: skip inactive bricks (sim_bricks.glsl)
 inline constexpr SpecId kSparseThreshold{33, "SPARSE_THRESHOLD"};  // smoke_activity.comp
@@ -34,6 +33,10 @@ inline constexpr SpecId kSparseThreshold{33, "SPARSE_THRESHOLD"};  // smoke_acti
 // box).
 inline constexpr SpecId kBoundaryFaces{34, "BOUNDARY_FACES"};
 inline constexpr SpecId kBoundaryObstacles{35, "BOUNDARY_OBSTACLES"};
+// The in-place lattice's step parity (lbm_in_place.glsl).
+inline constexpr SpecId kParity{36, "PARITY"};
+// lbm_step.comp's last pipeline: the cells a moving obstacle uncovered.
+inline constexpr SpecId kUncoveredCells{37, "UNCOVERED_CELLS"};
 
 // Every constant above.
 // clang-format off
@@ -44,7 +47,8 @@ inline constexpr SpecId kAll[] = {
     kTau0, kSmagorinsky, kBuoyancyTemperature, kBuoyancyDensity,
     kUp[0], kUp[1], kUp[2], kBody[0], kBody[1], kBody[2], kWind[0], kWind[1], kWind[2],
     kParabolicInflow, kBoundaryCells,
-    kDecay, kCells, kPull, kSparse, kSparseThreshold, kBoundaryFaces, kBoundaryObstacles};
+    kDecay, kPull, kSparse, kSparseThreshold, kBoundaryFaces, kBoundaryObstacles, kParity,
+    kUncoveredCells};
 // clang-format on
 
 }  // namespace sixway::sim::spec

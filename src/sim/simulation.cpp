@@ -99,17 +99,18 @@ gpu::Sequence& Simulation::sequenceFor(uint32_t steps, int parity) {
   const uint32_t obstacleCount = uint32_t(obstacles_->obstacleCount());
   if (obstacleCount > 0) sequence.fill(forces_, 0);
   for (uint32_t s = 0; s < steps; ++s) {
-    const int from = (parity + int(s)) % 2;
+    const int stepParity = (parity + int(s)) % 2;  // LbmSolver: steps alternate
     sequence.beginStage("obstacles");
     obstacles_->recordFlags(sequence, params_, flagsDispatch_, s);
     sequence.endStage();
     if (obstacleCount > 0) {
       sequence.beginStage("forces");
-      lbm_->recordForces(sequence, params_, obstacles_->flags(), s, from, forces_, obstacles_->sweptBox());
+      lbm_->recordForces(sequence, params_, obstacles_->flags(), s, stepParity, forces_,
+                         obstacles_->sweptBox());
       sequence.endStage();
     }
     sequence.beginStage("lbm");
-    lbm_->recordStep(sequence, params_, obstacles_->flags(), smoke_->smoke(), s, from,
+    lbm_->recordStep(sequence, params_, obstacles_->flags(), smoke_->smoke(), s, stepParity,
                      obstacles_->sweptBox());
     sequence.endStage();
     smoke_->recordSources(sequence, params_, obstacles_->flags(), s, obstacles_->inletBox());

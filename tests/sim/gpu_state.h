@@ -1,6 +1,7 @@
 #pragma once
-// Reading the simulation's GPU state back into the oracles' terms: populations (lbm_lattice.glsl
-// layout: population i of cell c is word (i % 5) · cells + c of buffer i / 5) and cell flags
+// Reading the simulation's GPU state back into the oracles' terms: populations (the post-collision
+// populations f*_j of every cell, as the step of `parity` finds them: lbm_lattice.glsl's layout, slot i of
+// stored cell c is word (i % 5) · stored cells + c of buffer i / 5; lbm_in_place.glsl's slots) and cell flags
 // (sim_grid.glsl: bits 0..7 obstacle + 1, bits 8..15 the obstacle of the step before + 1, bits 16..23
 // inlet + 1).
 #include <cstdint>
