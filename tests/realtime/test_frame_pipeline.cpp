@@ -8,6 +8,7 @@
 //   what the model cannot represent (printed, not bounded).
 // - obstacle shadows: a sphere between the light and the smoke darkens exactly the smoke pixels whose shell
 //   points are in its shadow, by a CPU ray test of the shell points (from the frame's own guiding map).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -213,6 +214,35 @@ TEST_F(FramePipelineTest, GuideLitLightmapsAreTheGuidesMeanLight) {
       smoke += guide.at(x, y, 1) > 0.01f;
     }
   EXPECT_GT(smoke, 500);
+}
+
+// Smoke without emission, no light and no ambient is black, whatever the network's emissive channel holds:
+// the shipped all-orders network predicts some glow on any smoke (docs/network-study.md, "A spurious glow"),
+// and the frame must not show it.
+TEST_F(FramePipelineTest, SmokeWithoutEmissionShowsNoGlowFromTheNetwork) {
+  nlohmann::json dark = sceneJson({1.0f, 0.0f, 0.0f}, 1);
+  dark["lights"] = nlohmann::json::array();
+  const io::Scene scene = io::parseScene(dark, "frame_test.json", ".");
+  eval::FramePipelineOptions options;
+  options.mode = eval::RenderMode::Neural;
+  options.weights = std::filesystem::path(SIXWAY_WEIGHTS_DIR) / "sixway-unet-ms.safetensors";
+  eval::FramePipeline pipeline(context(), pipelineCache(), scene, options);
+  const io::Image image = pipeline.render(0, 0.0, volume_.view()).image;
+  const io::Image lightmaps = pipeline.lightmaps();
+  float glow = 0.0f, light = 0.0f;
+  int smoke = 0;
+  for (int y = 0; y < lightmaps.height; ++y)
+    for (int x = 0; x < lightmaps.width; ++x) glow = std::max(glow, lightmaps.at(x, y, 7));
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      for (int c = 0; c < 3; ++c) light = std::max(light, std::abs(image.at(x, y, c)));
+      smoke += image.at(x, y, 3) > 0.01f;
+    }
+  std::printf("  the network's emissive up to %.4f; the frame's light up to %.6f over %d smoke pixels\n",
+              glow, light, smoke);
+  ASSERT_GT(smoke, 500);
+  ASSERT_GT(glow, 1e-3f) << "the network predicts no glow here, so this test shows nothing";
+  EXPECT_EQ(light, 0.0f);
 }
 
 TEST_F(FramePipelineTest, AUsersViewRendersLikeTheSceneViewItCopies) {
