@@ -1,6 +1,6 @@
 #version 460
 // The network's output: eight channels taken from up to four head feature maps (channel k is component
-// SOURCE_k % 4 of map SOURCE_k / 4), decoded from the network's encoding (sRGB where bit k of SRGB_MASK is set),
+// SOURCE_k % 4 of map SOURCE_k / 4, or the constant 0 where SOURCE_k < 0), decoded from the network's encoding (sRGB where bit k of SRGB_MASK is set),
 // clamped at 0 (radiance and alpha are never negative), and packed into the two lightmaps
 // (docs/conventions.md, "Channels and packing": A = Right, Top, Back, alpha; B = Left, Bottom, Front,
 // emissive), cropped to the lightmaps' size.
@@ -57,6 +57,10 @@ void main() {
   const int sources[8] = int[8](SOURCE_0, SOURCE_1, SOURCE_2, SOURCE_3, SOURCE_4, SOURCE_5, SOURCE_6, SOURCE_7);
   float channels[8];
   [[unroll]] for (int k = 0; k < 8; ++k) {
+    if (sources[k] < 0) {
+      channels[k] = 0.0;
+      continue;
+    }
     float v = texels[sources[k] / 4][sources[k] % 4];
     if ((SRGB_MASK & (1 << k)) != 0) v = srgbToLinear(v);
     channels[k] = max(v, 0.0);

@@ -129,6 +129,7 @@ struct FramePipeline::Passes {
                            "no such weights file (train one with tools/train.py, or pass --weights)");
     nn::NetworkOptions networkOptions;
     networkOptions.precision = options.fp16 ? nn::Precision::Fp16 : nn::Precision::Fp32;
+    networkOptions.emission = scene.smoke.emission.intensity > 0.0f;
     const uint32_t size = uint32_t(scene.render.lightmapSize);
     return std::make_unique<nn::Network>(context, cache, io::readSafetensors(options.weights), size, size,
                                          networkOptions);

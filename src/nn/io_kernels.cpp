@@ -41,11 +41,14 @@ void InputKernel::record(gpu::Sequence& sequence, const gpu::Image& guide, const
                     groupsFor(map_.height, kTile));
 }
 
-OutputLayout outputLayout(const Node& output, const std::vector<int>& inputChannels) {
+OutputLayout outputLayout(const Node& output, const std::vector<int>& inputChannels, bool emission) {
   OutputLayout layout;
   int k = 0;
   for (size_t input = 0; input < inputChannels.size(); ++input)
     for (int c = 0; c < inputChannels[input]; ++c) layout.source.at(k++) = int(input) * 4 + c;
+  if (!emission)
+    for (int i = 0; i < 8; ++i)
+      if (output.channels.at(i) == "emissive") layout.source[i] = -1;
   for (int i = 0; i < 8; ++i) layout.encoding[i] = output.encodings.at(i);
   layout.lightmapA = output.lightmapA;
   layout.lightmapB = output.lightmapB;

@@ -37,13 +37,14 @@ class InputKernel {
 
 // Where each of the eight output channels comes from, how it is encoded, and where it goes.
 struct OutputLayout {
-  std::array<int, 8> source{};  // input map * 4 + channel within its first group
+  std::array<int, 8> source{};  // input map * 4 + channel within its first group; -1: the constant 0
   std::array<Encoding, 8> encoding{};
   std::array<int, 4> lightmapA{}, lightmapB{};  // indices into the eight channels
 };
 
-// The layout of an output node whose inputs have `inputChannels` channels each (at most 4 each, 4 inputs).
-OutputLayout outputLayout(const Node& output, const std::vector<int>& inputChannels);
+// The layout of an output node whose inputs have `inputChannels` channels each (at most 4 each, 4 inputs);
+// without `emission` its emissive channel is the constant 0 (NetworkOptions::emission).
+OutputLayout outputLayout(const Node& output, const std::vector<int>& inputChannels, bool emission = true);
 
 class OutputKernel {
  public:

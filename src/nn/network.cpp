@@ -139,8 +139,9 @@ Network::Network(const gpu::Context& context, const gpu::PipelineCache& cache,
         break;
       }
       case Op::Output:
-        addLayer(OutputKernel(setup, outputLayout(node, channels), in, guideWidth, guideHeight), std::nullopt,
-                 0.0);
+        addLayer(
+            OutputKernel(setup, outputLayout(node, channels, options.emission), in, guideWidth, guideHeight),
+            std::nullopt, 0.0);
         break;
     }
   }

@@ -26,6 +26,9 @@ struct NetworkOptions {
   // (an adapter's head): the block's own output is then never stored, and has no feature map.
   bool fuseProjections = true;
   Tiling tiling = Tiling::Device;  // work per invocation (nn/kernel.h)
+  // False for smoke that emits nothing (a scene without emission): the lightmaps' emissive is then 0 whatever
+  // the network's head holds, which on such smoke can only be spurious glow (docs/network-format.md).
+  bool emission = true;
 };
 
 // A layer as the benchmark sees it: one timed stage, or one per kernel (`parts`, in stage order).

@@ -52,9 +52,6 @@ RealtimeFrame::RealtimeFrame(const gpu::Context& context, const gpu::PipelineCac
   if (guide.emission) guideEmission_.emplace(context, guiding_.emissionDesc());
   controls_.emissiveGradient = render::emissiveGradientFromRamp(scene.smoke.emission);
   controls_.emissiveStraightScale = render::emissiveStraightScale(scene.smoke);
-  // Smoke without emission emits nothing: whatever a network's emissive channel holds there is spurious glow
-  // (docs/real-time-rendering.md, "Emission"), so it is not shaded.
-  if (scene.smoke.emission.intensity <= 0.0f) controls_.emissiveMultiplier = 0.0f;
 }
 
 void RealtimeFrame::record(gpu::Sequence& s, const render::Volume& volume, FrameStages stages,

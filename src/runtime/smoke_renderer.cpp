@@ -16,11 +16,13 @@ namespace sixway {
 namespace {
 
 std::unique_ptr<nn::Network> loadNetwork(const gpu::Context& context, const gpu::PipelineCache& cache,
-                                         const RendererOptions& options, uint32_t size) {
+                                         const RendererOptions& options, const io::Scene& scene) {
   if (!std::filesystem::is_regular_file(options.weights))
     throw io::InputError(options.weights.string(), "no such weights file");
   nn::NetworkOptions networkOptions;
   networkOptions.precision = options.fp16 ? nn::Precision::Fp16 : nn::Precision::Fp32;
+  networkOptions.emission = scene.smoke.emission.intensity > 0.0f;
+  const uint32_t size = uint32_t(scene.render.lightmapSize);
   return std::make_unique<nn::Network>(context, cache, io::readSafetensors(options.weights), size, size,
                                        networkOptions);
 }
@@ -52,8 +54,7 @@ SmokeRenderer::Impl::Impl(Device::Impl& device, SmokeSimulation::Impl& simulatio
                           const RendererOptions& options, const RenderTarget* target)
     : simulation(simulation),
       engineTarget(target != nullptr),
-      network(loadNetwork(*device.context, *device.cache, options,
-                          uint32_t(simulation.scene.render.lightmapSize))),
+      network(loadNetwork(*device.context, *device.cache, options, simulation.scene)),
       frame(*device.context, *device.cache, simulation.scene,
             frameTarget(*device.context, simulation.scene, target), shadowTiles(simulation.scene, options),
             runtime::networkGuide(simulation.scene, network->graph())),
