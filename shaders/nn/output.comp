@@ -1,6 +1,7 @@
 #version 460
 // The network's output: eight channels taken from up to four head feature maps (channel k is component
-// SOURCE_k % 4 of map SOURCE_k / 4, or the constant 0 where SOURCE_k < 0), decoded from the network's encoding (sRGB where bit k of SRGB_MASK is set),
+// SOURCE_k % 4 of map SOURCE_k / 4, or the constant 0 where SOURCE_k < 0: smoke without emission),
+// decoded from the network's encoding (sRGB where bit k of SRGB_MASK is set),
 // clamped at 0 (radiance and alpha are never negative), and packed into the two lightmaps
 // (docs/conventions.md, "Channels and packing": A = Right, Top, Back, alpha; B = Left, Bottom, Front,
 // emissive), cropped to the lightmaps' size.

@@ -238,7 +238,7 @@ TEST_F(FramePipelineTest, SmokeWithoutEmissionShowsNoGlowFromTheNetwork) {
     return std::pair{std::move(image), pipeline.lightmaps()};
   };
   const auto [image, lightmaps] = neural(false);
-  const auto [glowingImage, glowingLightmaps] = neural(true);
+  const io::Image glowingLightmaps = neural(true).second;
   float glow = 0.0f, emissive = 0.0f, light = 0.0f, otherChannels = 0.0f;
   for (int y = 0; y < lightmaps.height; ++y)
     for (int x = 0; x < lightmaps.width; ++x) {

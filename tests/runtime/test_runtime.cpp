@@ -100,7 +100,8 @@ double lightSum(const std::vector<float>& rgba) {
 
 // An engine's own lights, a restart, and what the API reports: the simulation's stage times, notes for a
 // light beyond the shadow atlas, the device memory (flat over a restart). With the shipped network: the
-// tiny test network's lightmaps are not light.
+// tiny test network's lightmaps are not light. small_plume's smoke emits nothing, so the lightmaps an engine
+// reads hold no emissive (docs/embedding.md), while they hold light.
 TEST(Runtime, EngineLightsRestartAndReports) {
   Device device({.validate = true});
   SmokeSimulation simulation(device, kScene);
@@ -113,6 +114,14 @@ TEST(Runtime, EngineLightsRestartAndReports) {
   renderer.render();
   const std::vector<float> sceneLit = renderer.image();
   ASSERT_EQ(renderer.notes().size(), 1u);
+  float light = 0.0f, emissive = 0.0f;
+  const std::vector<uint16_t> b = renderer.impl().frame.lightmaps().b.download<uint16_t>();
+  for (size_t i = 0; i < b.size(); i += 4) {  // B = left, bottom, front, emissive
+    light = std::max(light, glm::unpackHalf1x16(b[i]));
+    emissive = std::max(emissive, std::abs(glm::unpackHalf1x16(b[i + 3])));
+  }
+  EXPECT_GT(light, 0.01f);
+  EXPECT_EQ(emissive, 0.0f);
   const std::vector<StageTime> simTimes = simulation.stageTimes();
   ASSERT_EQ(simTimes.size(), 4u);
   double simulated = 0.0;
