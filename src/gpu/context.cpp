@@ -103,7 +103,30 @@ std::optional<int> deviceIndexFromEnvironment() {
   return static_cast<int>(index);
 }
 
+void checkDeviceIndex(int requested, uint32_t count) {
+  if (requested < 0 || requested >= static_cast<int>(count))
+    throw GpuError("--device " + std::to_string(requested) + ": no such device; valid indices are 0.." +
+                   std::to_string(count - 1) + " (see `sixway info`)");
+}
+
 }  // namespace
+
+void checkRequestedDevice(const ContextOptions& options) {
+  const std::optional<int> requested =
+      options.deviceIndex ? options.deviceIndex : deviceIndexFromEnvironment();
+  if (!requested) return;
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.apiVersion = VK_API_VERSION_1_3;
+  VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+  info.pApplicationInfo = &app;
+  VkInstance instance = VK_NULL_HANDLE;
+  const VkResult result = vkCreateInstance(&info, nullptr, &instance);
+  if (result != VK_SUCCESS) return;  // the Context says why it cannot start
+  uint32_t count = 0;
+  vkEnumeratePhysicalDevices(instance, &count, nullptr);
+  vkDestroyInstance(instance, nullptr);
+  if (count > 0) checkDeviceIndex(*requested, count);
+}
 
 void ValidationLog::add(const char* message) {
   std::fprintf(stderr, "validation: %s\n", message);
@@ -228,9 +251,7 @@ void Context::pickPhysicalDevice(const ContextOptions& options) {
 
   std::optional<int> requested = options.deviceIndex ? options.deviceIndex : deviceIndexFromEnvironment();
   if (requested) {
-    if (*requested < 0 || *requested >= static_cast<int>(count))
-      throw GpuError("--device " + std::to_string(*requested) + ": no such device; valid indices are 0.." +
-                     std::to_string(count - 1) + " (see `sixway info`)");
+    checkDeviceIndex(*requested, count);
     physicalDevice_ = devices[*requested];
     if (std::string why = unsuitability(physicalDevice_); !why.empty())
       throw GpuError("--device " + std::to_string(*requested) + ": the device " + why);

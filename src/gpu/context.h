@@ -133,6 +133,9 @@ class Context {
   mutable std::atomic<uint64_t> hostWaits_{0};
 };
 
+// Throws the Context's GpuError for a requested device index (--device, SIXWAY_DEVICE) that no device has,
+// from a bare instance: so a program may reject it before it opens a window.
+void checkRequestedDevice(const ContextOptions& options);
 // One line per physical device: "index: name (type)", for --device and `sixway info`.
 std::vector<std::string> listPhysicalDevices(VkInstance instance);
 const char* deviceTypeName(VkPhysicalDeviceType type);

@@ -45,6 +45,7 @@ io::Image downloadFrame(const gpu::Image& image) {
 Demo::Demo(const DemoOptions& options) : options_(options), vsync_(options.vsync) {
   if (options.script) script_.emplace(loadScript(*options.script));
   const io::Scene scene = io::loadScene(options.scene);  // bad input fails before a window opens
+  gpu::checkRequestedDevice(options.context);
   window_ = std::make_unique<Window>(options.width, options.height, "sixway-demo");
   gpu::ContextOptions contextOptions = options.context;
   contextOptions.instanceExtensions = Window::requiredInstanceExtensions();
