@@ -71,13 +71,10 @@ vec3 latticeVelocity(vec3 x) {
 }
 
 // Normal velocity on the lower face of smoke cell s along axis a, in smoke cells per substep
-// (lattice cells per step: a substep is 1/SMOKE_UPRES of a step and a smoke cell as much smaller).
+// (lattice cells per step: a substep is 1/SMOKE_UPRES of a step and a smoke cell as much smaller),
+// interpolated when the smoke is finer than the lattice (with SMOKE_UPRES 1, faceFluxes averages the
+// two cells' velocities it has read).
 float faceVelocity(ivec3 s, int a) {
-  if (SMOKE_UPRES == 1) {
-    ivec3 left = s;
-    left[a] = (s[a] - 1 + SMOKE[a]) % SMOKE[a];  // periodic wrap; other boundaries are handled by the caller
-    return 0.5 * (macro[cellIndex(s, LATTICE)][a] + macro[cellIndex(left, LATTICE)][a]);
-  }
   vec3 x = (vec3(s) + 0.5) / float(SMOKE_UPRES);
   x[a] = float(s[a]) / float(SMOKE_UPRES);
   return latticeVelocity(x)[a];
@@ -89,29 +86,29 @@ vec3 cellVelocity(ivec3 s) {
   return latticeVelocity((vec3(s) + 0.5) / float(SMOKE_UPRES));
 }
 
-// Fluxes through the lower face of smoke cell s along axis a (s[a] may equal SMOKE[a]: the upper
-// boundary). Returns (low-order flux, antidiffusive flux) per value.
-mat2 faceFluxes(ivec3 s, int a) {
-  bool lower = s[a] == 0, upper = s[a] == SMOKE[a];
-  uint type = lower ? faceType(2 * a) : faceType(2 * a + 1);
-  if ((lower || upper) && type != FACE_PERIODIC) {
+// Fluxes through the lower (upperFace false) or upper face of smoke cell s along axis a, given the
+// cell's own values, which all six faces share (q; solid; with SMOKE_UPRES 1, its velocity u in smoke
+// cells per substep): each neighbour is read once (llvmpipe does not merge repeated buffer loads).
+// Returns (low-order flux, antidiffusive flux) per value, + along a.
+mat2 faceFluxes(ivec3 s, int a, bool upperFace, vec2 q, bool solid, vec3 u) {
+  ivec3 n = s;
+  n[a] += upperFace ? 1 : -1;
+  uint type = faceType(2 * a + (upperFace ? 1 : 0));
+  if ((n[a] < 0 || n[a] >= SMOKE[a]) && type != FACE_PERIODIC) {
     // Domain boundary: walls pass nothing; open faces let smoke out (zero gradient) and clean air in.
-    if (type == FACE_NO_SLIP || type == FACE_FREE_SLIP) return mat2(0.0);
-    ivec3 inside = s;
-    if (upper) inside[a] -= 1;
-    if (solidAt(inside)) return mat2(0.0);
-    float u = cellVelocity(inside)[a];  // zero gradient: the boundary cell's own velocity
-    bool leaving = upper ? u > 0.0 : u < 0.0;
-    return mat2(leaving ? u * smoke[cellIndex(inside, SMOKE)] : vec2(0.0), vec2(0.0));
+    if (type == FACE_NO_SLIP || type == FACE_FREE_SLIP || solid) return mat2(0.0);
+    float uOut = SMOKE_UPRES == 1 ? u[a] : cellVelocity(s)[a];  // zero gradient: the cell's own velocity
+    bool leaving = upperFace ? uOut > 0.0 : uOut < 0.0;
+    return mat2(leaving ? uOut * q : vec2(0.0), vec2(0.0));
   }
-  ivec3 right = s, left = s;
-  right[a] = s[a] % SMOKE[a];
-  left[a] = (s[a] - 1 + SMOKE[a]) % SMOKE[a];
-  if (solidAt(left) || solidAt(right)) return mat2(0.0);  // obstacles pass no smoke
-  float u = faceVelocity(right, a);
-  vec2 qL = smoke[cellIndex(left, SMOKE)], qR = smoke[cellIndex(right, SMOKE)];
-  vec2 low = u > 0.0 ? u * qL : u * qR;
-  vec2 high = u * 0.5 * (qL + qR) - 0.5 * u * u * (qR - qL);  // Lax–Wendroff
+  n[a] = (n[a] + SMOKE[a]) % SMOKE[a];  // periodic wrap
+  if (solid || solidAt(n)) return mat2(0.0);  // obstacles pass no smoke
+  uint neighbour = cellIndex(n, SMOKE);
+  float uFace = SMOKE_UPRES == 1 ? 0.5 * (u[a] + macro[neighbour][a]) : faceVelocity(upperFace ? n : s, a);
+  vec2 qN = smoke[neighbour];
+  vec2 qL = upperFace ? q : qN, qR = upperFace ? qN : q;
+  vec2 low = uFace > 0.0 ? uFace * qL : uFace * qR;
+  vec2 high = uFace * 0.5 * (qL + qR) - 0.5 * uFace * uFace * (qR - qL);  // Lax–Wendroff
   return mat2(low, high - low);
 }
 
@@ -119,16 +116,16 @@ void main() {
   ivec3 s;
   if (!fctCell(s)) return;
   uint index = cellIndex(s, SMOKE);
-  vec2 q = smoke[index];
+  vec2 q = smoke[index], qtd = q;
+  bool solid = solidAt(s);
+  vec3 u = SMOKE_UPRES == 1 ? cellVelocity(s) : vec3(0.0);  // finer grids interpolate per face
   [[unroll]] for (int a = 0; a < 3; ++a) {
-    ivec3 up = s;
-    up[a] += 1;
-    mat2 lowerFace = faceFluxes(s, a);
-    mat2 upperFace = faceFluxes(up, a);
-    q += lowerFace[0] - upperFace[0];
+    mat2 lowerFace = faceFluxes(s, a, false, q, solid, u);
+    mat2 upperFace = faceFluxes(s, a, true, q, solid, u);
+    qtd += lowerFace[0] - upperFace[0];
     if (a == 0) antidiffusiveX[index] = lowerFace[1];  // sim_fct_fluxes.glsl
     else if (a == 1) antidiffusiveY[index] = lowerFace[1];
     else antidiffusiveZ[index] = lowerFace[1];
   }
-  lowOrder[index] = q;
+  lowOrder[index] = qtd;
 }
