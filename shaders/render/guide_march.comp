@@ -20,6 +20,7 @@
 // network learns the scattered glow from it (docs/network-study.md, "Emission in the guide").
 // Samples in empty bricks (majorant.comp) are skipped without moving the sample lattice: same sums.
 #extension GL_GOOGLE_include_directive : require
+#define BAKE_PARAMS_IN_STORAGE
 #include "bake_params.glsl"
 #include "depth.glsl"
 #include "phase.glsl"
@@ -37,7 +38,7 @@ layout(constant_id = 4) const bool kEmission = false;  // only with kFineAlpha
 
 // Per-frame values besides BakeParams (whose lights[] hold the light grids, at most one per axis, march.x the
 // step and march.y the transmittance below which a ray stops once its shell depth is known).
-layout(std140, binding = 1) uniform GuideFrame {
+layout(std430, binding = 1) readonly buffer GuideFrame {
   uvec4 jitter;  // x: seed, y: frame
   vec4 shell;    // x: opacity threshold, y, z: near and far view depths of the encoding
 }

@@ -11,7 +11,7 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(std140, binding = 0) uniform MotionParams {
+layout(std430, binding = 0) readonly buffer MotionParams {
   CameraRays camera;    // the billboard's rays (plane = billboardBounds of the volume box)
   VolumeGrid velocity;  // the lattice of the velocity buffer
   vec4 shell;           // x, y: near and far view depths of the shell encoding; z: metres per velocity unit

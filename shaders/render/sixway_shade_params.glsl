@@ -1,5 +1,5 @@
 // Parameters of the six-way billboard shading (src/render/sixway_shading.cpp mirrors them), shared by
-// billboard.vert and sixway_shade.frag. Per-frame values live in the uniform block and the light buffer, so a
+// billboard.vert and sixway_shade.frag. Per-frame values live in the parameter and light buffers, so a
 // recorded frame replays; what fixes the recording (the shadow atlas, the obstacle depth image) is pushed.
 #ifndef SIXWAY_SHADE_PARAMS_GLSL
 #define SIXWAY_SHADE_PARAMS_GLSL
@@ -7,7 +7,7 @@
 #include "camera.glsl"
 #include "sixway_lighting.glsl"
 
-layout(std140, binding = 0) uniform ShadeParams {
+layout(std430, binding = 0) readonly buffer ShadeParams {
   CameraRays camera;    // plane: the whole frame, i.e. the colour target
   vec4 frameToBillboard;  // the lightmaps' uv of frame uv f (both row 0 at the top): f · xy + zw
   vec4 depths;          // xy: view-depth range of the shell depth (the volume box); zw: of the obstacle depth

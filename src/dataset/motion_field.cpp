@@ -25,14 +25,14 @@ constexpr uint32_t kGroup = 8;  // the shader's local size in x and y
 MotionField::MotionField(const gpu::Context& context, const gpu::PipelineCache& cache, uint32_t size)
     : size_(size) {
   if (size == 0) throw std::invalid_argument("motion field: size 0");
-  params_ = gpu::Buffer(context, sizeof(MotionParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+  params_ = gpu::Buffer(context, sizeof(MotionParams), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                         gpu::MemoryKind::HostUpload, "motion parameters");
   motion_ = gpu::Buffer::storage(context, uint64_t(size) * size * 2 * sizeof(float), "motion field");
   using gpu::BindingType;
   pass_ = std::make_unique<gpu::Pipeline>(
       context, cache,
       gpu::ComputePipelineDesc{"render/motion_field.comp",
-                               {BindingType::UniformBuffer, BindingType::StorageImage,
+                               {BindingType::StorageBuffer, BindingType::StorageImage,
                                 BindingType::StorageBuffer, BindingType::StorageBuffer}});
 }
 

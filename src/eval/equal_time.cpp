@@ -35,6 +35,10 @@ nlohmann::json equalTimeStudy(const gpu::Context& context, const gpu::PipelineCa
   const auto trace = [&](uint32_t spp, uint32_t perPass, uint32_t seedOffset) {
     settings.samplesPerPass = int(perPass);
     settings.seed = scene.render.seed + uint32_t(index) + seedOffset;
+    // One untimed pass first: lavapipe compiles the tracer again for each samples-per-pass value (it
+    // specializes on the uniform block, render/gpu_layout.h), which is not the tracer's time.
+    tracer.beginImage(volume, scene.smoke, camera, frame, lights, settings);
+    tracer.accumulate(perPass);
     tracer.beginImage(volume, scene.smoke, camera, frame, lights, settings);
     const auto started = std::chrono::steady_clock::now();
     tracer.accumulate(spp);

@@ -108,9 +108,10 @@ GuidingMap::GuidingMap(const gpu::Context& context, const gpu::PipelineCache& ca
                        const GuideSettings& settings)
     : context_(&context),
       settings_(settings),
-      params_(context, sizeof(layout::BakeParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+      params_(context, sizeof(layout::BakeParams),
+              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
               gpu::MemoryKind::FrameParameters, "guide parameters"),
-      frame_(context, sizeof(GuideFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+      frame_(context, sizeof(GuideFrame), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
              gpu::MemoryKind::FrameParameters, "guide frame"),
       noEmission_(context, {1, 1, 1, VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT, "no guide emission"}) {
   checkSettings(settings_);
@@ -131,7 +132,6 @@ GuidingMap::GuidingMap(const gpu::Context& context, const gpu::PipelineCache& ca
   // guide_march.comp's bindings: parameters, frame, density, bricks, the light grids, the guide, temperature,
   // the emission.
   std::vector<BindingType> march(4 + kMaxGrids + 3, BindingType::StorageBuffer);
-  march[0] = march[1] = BindingType::UniformBuffer;
   march[4 + kMaxGrids] = march.back() = BindingType::StorageImage;
   gpu::SpecConstants constants;
   constants.set(spec::kShadowedLights, shadowed);

@@ -18,7 +18,8 @@ namespace {
 
 constexpr float kPi = 3.14159265358979f;
 
-// Mirrors ShadeParams in shaders/render/sixway_shade_params.glsl (std140: every member 16 bytes wide).
+// Mirrors ShadeParams in shaders/render/sixway_shade_params.glsl (every member 16 bytes wide:
+// render/gpu_layout.h).
 struct ShadeParams {
   layout::CameraRays camera;
   glm::vec4 frameToBillboard;
@@ -146,7 +147,7 @@ SixWayShading::SixWayShading(const gpu::Context& context, const gpu::PipelineCac
       maxLights_(maxLights),
       linear_(std::make_unique<gpu::Sampler>(context, VK_FILTER_LINEAR)),
       nearest_(std::make_unique<gpu::Sampler>(context, VK_FILTER_NEAREST)),
-      params_(context, sizeof(ShadeParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+      params_(context, sizeof(ShadeParams), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
               gpu::MemoryKind::FrameParameters, "six-way shading parameters"),
       lights_(context, std::max<uint32_t>(maxLights, 1) * sizeof(ShadeLight),
               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryKind::FrameParameters, "six-way shading lights"),
@@ -156,7 +157,7 @@ SixWayShading::SixWayShading(const gpu::Context& context, const gpu::PipelineCac
   gpu::GraphicsPipelineDesc desc;
   desc.vertexShader = "render/billboard.vert";
   desc.fragmentShader = "render/sixway_shade.frag";
-  desc.bindings = {BindingType::UniformBuffer, BindingType::StorageBuffer, BindingType::SampledImage,
+  desc.bindings = {BindingType::StorageBuffer, BindingType::StorageBuffer, BindingType::SampledImage,
                    BindingType::SampledImage,  BindingType::SampledImage,  BindingType::SampledImage,
                    BindingType::SampledImage};
   desc.pushConstantBytes = sizeof(ShadePush);
