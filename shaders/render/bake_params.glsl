@@ -1,5 +1,5 @@
 // Parameters of the reference six-way baker (src/reference/lightmap_baker.cpp mirrors them in
-// src/render/gpu_layout.h), shared by light_depth.comp and sixway_march.comp.
+// src/render/gpu_layout.h), shared by light_depth.comp, sixway_march.comp and guide_march.comp.
 #ifndef SIXWAY_BAKE_PARAMS_GLSL
 #define SIXWAY_BAKE_PARAMS_GLSL
 
@@ -20,7 +20,9 @@ struct LightGrid {
 // A uniform block for the baker (lavapipe specializes its shaders on the values their branches test, which
 // are fixed per bake setting: 15% faster), a read-only storage buffer for the guide march, which defines
 // BAKE_PARAMS_IN_STORAGE: its camera changes every frame, and a specialized shader would be compiled again each
-// time (render/gpu_layout.h). The layouts agree: every member is 16 bytes wide.
+// time (render/gpu_layout.h). light_depth.comp keeps the uniform block in the guide too: the per-frame values it
+// reads (lights[]) are indexed by a push constant, so they are not specialized on. The layouts agree: every
+// member is 16 bytes wide.
 #ifdef BAKE_PARAMS_IN_STORAGE
 layout(std430, binding = 0) readonly buffer BakeParams {
 #else

@@ -3,9 +3,10 @@
 // GLSL layouts (std140 and std430 alike) agree member for member (checked by the static_asserts).
 // lavapipe (Mesa 22) specializes a shader on the uniform-block values its branches and loop bounds test and
 // compiles it again, about 0.5 s on the 2-core machine, whenever they change. So the blocks whose values
-// change every frame (the six-way shading's, the guide march's: the camera) are read-only storage buffers,
-// which it does not specialize on; the baker's and the path tracer's, fixed per setting, stay uniform blocks,
-// on which the specialization makes them faster (docs/benchmarks.md, "Shaders compiled again every frame").
+// change every frame (the six-way shading's, the guide march's, the motion field's: the camera) are read-only
+// storage buffers, which it does not specialize on; the baker's and the path tracer's, fixed per setting,
+// stay uniform blocks, on which the specialization makes them faster (docs/benchmarks.md, "Shaders compiled
+// again every frame").
 #include <glm/vec4.hpp>
 
 #include "io/scene.h"

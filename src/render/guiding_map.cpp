@@ -108,6 +108,7 @@ GuidingMap::GuidingMap(const gpu::Context& context, const gpu::PipelineCache& ca
                        const GuideSettings& settings)
     : context_(&context),
       settings_(settings),
+      // A storage buffer for guide_march.comp, a uniform block for light_depth.comp (render/gpu_layout.h).
       params_(context, sizeof(layout::BakeParams),
               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
               gpu::MemoryKind::FrameParameters, "guide parameters"),
