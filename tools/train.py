@@ -39,10 +39,12 @@ from atomic_file import atomic_open, atomic_path  # noqa: E402
 from bench_torch import node_flops  # noqa: E402
 from dataset import SPLITS, ShardDataset  # noqa: E402
 from losses import training_loss  # noqa: E402
+from net2deeper import deeper_state  # noqa: E402
 from net2wider import wider_state  # noqa: E402
 from metrics import SplitMetrics, evaluate_split  # noqa: E402
 from sixway_net import (FROM_GUIDE_SUFFIX, OPTIONAL_CONFIG, OUTPUT_CHANNELS, SixwayNet,  # noqa: E402
-                        decode_output, export_safetensors, full_config, output_encodings)
+                        decode_output, export_safetensors, full_config, load_safetensors,
+                        output_encodings)
 
 DEFAULTS = {
     "model": {},  # sixway_net.DEFAULT_CONFIG overrides
@@ -69,10 +71,11 @@ DEFAULTS = {
         "heldout_every": 100,  # the held-out curve: loss and PSNR on heldout_pairs fixed held-out pairs
         "heldout_pairs": 32,
         "checkpoint_every": 500,
-        # Fine-tuning: a checkpoint.pt (or a training directory holding one), relative to the repository root,
-        # whose model weights start this run; its model config must equal this one, or differ only in fewer
-        # guide_channels and input_channels (the new input channels start with zero weights, see
-        # widened_weights), or in wider widths (tools/nn/net2wider.py). The optimizer starts afresh.
+        # Fine-tuning: a checkpoint.pt (or a training directory holding one) or an exported network
+        # (.safetensors), relative to the repository root, whose model weights start this run; its model config
+        # must equal this one, or differ only in fewer guide_channels and input_channels (the new input channels
+        # start with zero weights, see widened_weights), or in wider widths (tools/nn/net2wider.py), or in one
+        # more level (tools/nn/net2deeper.py). The optimizer starts afresh.
         "init_from": None,
         # The noise in the copied units' incoming weights when init_from's widths are narrower, relative to
         # each layer's weight spread: it lets the copies part (net2wider.wider_state).
@@ -275,6 +278,14 @@ def widens(old, new):
     return dict(old, **{key: new[key] for key in WIDENED_KEYS + PASSED_THROUGH_KEYS + ("widths",)}) == new
 
 
+def deepens(old, new):
+    """Whether model config `new` is `old` with one more level (a width appended), a UNet of conv units with ReLU
+    activations, and otherwise equal."""
+    old, new = ({**OPTIONAL_CONFIG, **full_config(config)} for config in (old, new))
+    return (new["widths"][:-1] == old["widths"] and len(new["widths"]) == len(old["widths"]) + 1
+            and new["block"] == "conv" and new["activation"] == "relu" and dict(old, widths=new["widths"]) == new)
+
+
 def fixed_selection(key):
     """Whether a state dict key is a tensor of a fixed selection (sixway_net.FixedSelection: not trained)."""
     return key.removeprefix("blocks.").split(".")[0].endswith(FROM_GUIDE_SUFFIX)
@@ -464,11 +475,21 @@ class Trainer:
         if not os.path.isfile(path):
             raise ConfigError(f"{path}: train.init_from names no checkpoint")
         try:
-            start = torch.load(path, map_location="cpu", weights_only=False)
-            model_config = start["config"]["model"]
-            weights = start["model"]
+            if path.endswith(".safetensors"):  # an exported network: its config is in the file's metadata
+                start, _ = load_safetensors(path)
+                model_config, weights = start.config, start.state_dict()
+            else:
+                start = torch.load(path, map_location="cpu", weights_only=False)
+                model_config = start["config"]["model"]
+                weights = start["model"]
         except Exception as error:  # a corrupt or foreign file: one line naming it
-            raise ConfigError(f"{path}: not a training checkpoint ({type(error).__name__})")
+            raise ConfigError(f"{path}: not a training checkpoint or exported network ({type(error).__name__})")
+        if deepens(model_config, self.config["model"]):
+            self.net.load_state_dict(deeper_state(SixwayNet(model_config), self.net, weights))
+            if self.lead:
+                print(f"train.init_from: widths {full_config(model_config)['widths']} deepened to "
+                      f"{self.net.config['widths']} (net2deeper: the new level starts closed)", flush=True)
+            return
         if not widens(model_config, self.config["model"]):
             raise ConfigError(f"{path}: train.init_from has another model config than this run's")
         # The input first, in a network of the checkpoint's widths; then the widths (net2wider).

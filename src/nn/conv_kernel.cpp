@@ -25,9 +25,10 @@ struct Block {
   int pixels, rows;  // output pixels along x and rows per invocation
 };
 
-// The conv2d block. Blocks: 4 x 8 (fastest on lavapipe), fewer rows while an output group would not fill one
-// workgroup, so that small maps still spread over the device's threads. Pixels: rows, then pixels, halve
-// until the dispatch has kGpuInvocations invocations (or one pixel each).
+// The conv2d block. Blocks: 4 x 8 (fastest on lavapipe), fewer rows, then fewer pixels, while an output group
+// would not fill one workgroup: lavapipe runs every lane of a workgroup, so on the small maps of a UNet's
+// deep levels (8 x 8) a 4 x 1 block left three lanes of four idle. Pixels: rows, then pixels, halve until the
+// dispatch has kGpuInvocations invocations (or one pixel each).
 Block convBlock(const MapShape& out, int outGroups, Tiling tiling) {
   Block b{kConvPixels, 8};
   const auto blocks = [&] {
@@ -35,6 +36,7 @@ Block convBlock(const MapShape& out, int outGroups, Tiling tiling) {
   };
   if (tiling == Tiling::Blocks) {
     while (b.rows > 1 && blocks() < kTile * kTile) b.rows /= 2;
+    while (b.pixels > 1 && blocks() < kTile * kTile) b.pixels /= 2;
     return b;
   }
   while ((b.rows > 1 || b.pixels > 1) && blocks() * outGroups < kGpuInvocations) {
@@ -46,12 +48,15 @@ Block convBlock(const MapShape& out, int outGroups, Tiling tiling) {
   return b;
 }
 
-// Input pixels along x per conv_transpose2x2 invocation: 8, halved under Pixels tiling as conv2d's blocks.
+// Input pixels along x per conv_transpose2x2 invocation: 8, halved as conv2d's blocks are (Blocks: while an
+// output group would not fill one workgroup; Pixels: until the dispatch has kGpuInvocations invocations).
 int transposedPixels(const ConvShape& shape, int outGroups, Tiling tiling) {
   int pixels = kTransposedPixels;
-  while (tiling == Tiling::Pixels && pixels > 1 &&
-         uint64_t(groupsFor(shape.inWidth, pixels)) * shape.inHeight * outGroups < kGpuInvocations)
-    pixels /= 2;
+  const auto tooFew = [&] {
+    const uint64_t invocations = uint64_t(groupsFor(shape.inWidth, pixels)) * shape.inHeight;
+    return tiling == Tiling::Blocks ? invocations < kTile * kTile : invocations * outGroups < kGpuInvocations;
+  };
+  while (pixels > 1 && tooFew()) pixels /= 2;
   return pixels;
 }
 
@@ -101,8 +106,8 @@ ConvKernel::ConvKernel(const KernelSetup& setup, const ConvShape& shape, const s
   const MapShape o = shape.output();
   Block block = convBlock(o, outGroups_, setup.tiling);
   if (shape.rows) block.rows = shape.rows;
-  if (shape.pixels) block.pixels = shape.pixels;
-  const int pixels = shape.transposed ? transposedPixels(shape, outGroups_, setup.tiling) : block.pixels;
+  int pixels = shape.transposed ? transposedPixels(shape, outGroups_, setup.tiling) : block.pixels;
+  if (shape.pixels) pixels = shape.pixels;
   gpu::ComputePipelineDesc desc;
   desc.shader = shaderName(shape.transposed ? "conv_transpose2x2" : "conv2d", setup.precision);
   desc.pushConstantBytes = sizeof(Push);

@@ -27,8 +27,10 @@ struct ConvShape {
   bool transposed = false;  // ConvTranspose2d: kernel 2, stride 2
   Activation activation = Activation::None;
   float negativeSlope = 0.0f;
-  int rows = 0;    // conv2d: output rows per invocation (1, 2, 4 or 8); 0 chooses from the map size
-  int pixels = 0;  // conv2d: output pixels along x per invocation (1, 2 or 4); 0 chooses likewise
+  // Per invocation, 0 chooses from the map size: conv2d's output rows (1, 2, 4 or 8), and pixels along x
+  // (conv2d: output pixels, 1, 2 or 4; transposed: input pixels, 1 to 8).
+  int rows = 0;
+  int pixels = 0;
 
   int inChannels() const;
   MapShape output() const;

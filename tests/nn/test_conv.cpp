@@ -67,10 +67,11 @@ TEST_P(ConvTest, MatchesCpuReference) {
   EXPECT_TRUE(allClose(output.download(), expected.values, tolerance, tolerance));
 }
 
-// Output rows per invocation are forced on some small maps (the kernel would choose fewer) so that blocks
-// overhang the map; 40 and 36 input channels need a loop of unrolled slices plus a remainder, and 40 -> 48
-// needs two weight chunks. Pixels tiling shrinks every block of these small maps to one pixel (nn/kernel.h);
-// 2 x 2 blocks are forced once.
+// Output rows and pixels per invocation are forced on some small maps (the kernel would choose fewer: on maps
+// this small both tilings shrink the blocks towards one pixel, conv_kernel.cpp) so that blocks overhang the
+// map; 40 and 36 input channels need a loop of unrolled slices plus a remainder, and 40 -> 48 needs two
+// weight chunks. 2 x 2 blocks are forced once; an 8 x 8 map of 24 channels is a deep UNet level as the kernel
+// tiles it (1-pixel blocks).
 using C = ConvCase;
 const nn::Tiling kPixels = nn::Tiling::Pixels;
 const Activation kRelu = Activation::Relu, kLeaky = Activation::LeakyRelu, kGelu = Activation::Gelu,
@@ -92,7 +93,8 @@ INSTANTIATE_TEST_SUITE_P(Layers, ConvTest,
                                              .height = 13,
                                              .width = 11,
                                              .activation = kRelu,
-                                             .rows = 8},
+                                             .rows = 8,
+                                             .pixels = 4},
                                            C{.name = "conv3x3_rows4_concat",
                                              .inputs = {4, 3},
                                              .outChannels = 9,
@@ -213,7 +215,8 @@ INSTANTIATE_TEST_SUITE_P(Layers, ConvTest,
                                              .height = 5,
                                              .width = 7,
                                              .activation = kRelu,
-                                             .transposed = true},
+                                             .transposed = true,
+                                             .pixels = 8},
                                            C{.name = "transposed_fp16",
                                              .inputs = {6},
                                              .outChannels = 3,
@@ -252,6 +255,14 @@ INSTANTIATE_TEST_SUITE_P(Layers, ConvTest,
                                              .activation = kRelu,
                                              .rows = 2,
                                              .pixels = 2},
+                                           C{.name = "blocks_deep_level_8x8",
+                                             .inputs = {24},
+                                             .outChannels = 12,
+                                             .kernel = 3,
+                                             .stride = 1,
+                                             .height = 8,
+                                             .width = 8,
+                                             .activation = kRelu},
                                            C{.name = "pixels_transposed_fp16",
                                              .inputs = {12},
                                              .outChannels = 10,

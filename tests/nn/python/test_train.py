@@ -29,7 +29,9 @@ import synthetic_shards  # noqa: E402
 import train as train_module  # noqa: E402
 from safetensors_io import read_safetensors  # noqa: E402
 from bench_torch import node_flops  # noqa: E402
-from sixway_net import OUTPUT_CHANNELS, SixwayNet, decode_output, load_safetensors, randomize  # noqa: E402
+from sixway_net import (OUTPUT_CHANNELS, SixwayNet, decode_output, export_safetensors, load_safetensors,  # noqa: E402
+                        randomize)
+from net2deeper import deeper_state  # noqa: E402
 from net2wider import wider_state  # noqa: E402
 
 TRAIN = os.path.join(root, "tools", "train.py")
@@ -63,18 +65,23 @@ class HalfStemTest(unittest.TestCase):
             SixwayNet({"input_channels": 12})
 
 
-def tune_from_checkpoint(name, old_config, old, guide_channels, model, **train_settings):
-    """A one-step run at lr 0 of `model` with train.init_from a checkpoint of network `old` (config `old_config`), on
-    synthetic shards of `guide_channels`. Returns the finished process and the run's directory."""
+def tune_from_checkpoint(name, old_config, old, guide_channels, model, exported=False, **train_settings):
+    """A one-step run at lr 0 of `model` with train.init_from a checkpoint of network `old` (config `old_config`), or
+    with `exported` the network's .safetensors file, on synthetic shards of `guide_channels`. Returns the finished
+    process and the run's directory."""
     checkpoint = os.path.join(WORK, name, "checkpoint.pt")
     os.makedirs(os.path.dirname(checkpoint), exist_ok=True)
     torch.save({"config": {"model": old_config}, "model": old.state_dict()}, checkpoint)
+    if exported:
+        checkpoint = os.path.join(WORK, name, "exported", "network.safetensors")
+        os.makedirs(os.path.dirname(checkpoint), exist_ok=True)
+        export_safetensors(old, checkpoint)
     data = os.path.join(WORK, f"data_{name}")
     synthetic_shards.write_shards(data, size=16, cameras=3, frames=4, sequences=2, guide_channels=guide_channels)
     with open(CONFIG) as f:
         tune = json.load(f)
     tune["model"] = model
-    tune["train"].update(init_from=os.path.dirname(checkpoint), lr=0.0, min_lr=0.0, steps=1, **train_settings)
+    tune["train"].update(init_from=checkpoint if exported else os.path.dirname(checkpoint), lr=0.0, min_lr=0.0, steps=1, **train_settings)
     config = os.path.join(WORK, f"tune_{name}.json")
     with open(config, "w") as f:
         json.dump(tune, f)
@@ -235,6 +242,62 @@ class WiderWidthsTest(unittest.TestCase):
         guide = torch.rand(1, 5, 16, 16, generator=torch.Generator().manual_seed(4))
         with torch.no_grad():
             torch.testing.assert_close(tuned.eval()(guide), old(guide[:, :4]), rtol=1e-4, atol=1e-4)
+
+
+class DeeperTest(unittest.TestCase):
+    """train.init_from from a network of one level fewer (tools/nn/net2deeper.py)."""
+    SHALLOW = {"widths": [4, 8], "depth": 2, "adapters": {"width": 4}, "guide_channels": 4,
+               "guide_alpha_step_voxels": 1.0, "alpha": "guide"}
+
+    def deeper(self, shallow_config):
+        old = randomize(SixwayNet(shallow_config), 5).eval()
+        new = randomize(SixwayNet(dict(shallow_config, widths=shallow_config["widths"] + [16])), 9).eval()
+        new.load_state_dict(deeper_state(old, new, old.state_dict()))
+        guide = torch.rand(2, 4, 16, 16, generator=torch.Generator().manual_seed(3))
+        with torch.no_grad():
+            return new, old(guide), new(guide), guide
+
+    def test_the_deeper_network_computes_the_old_function(self):
+        variants = {"transposed": {}, "bilinear": {"upsample": "bilinear"}, "half stem": {"stem": "half"},
+                    "depth 1": {"depth": 1}, "depth 3": {"depth": 3}, "three levels": {"widths": [4, 8, 12]}}
+        for variant, change in variants.items():
+            with self.subTest(variant=variant):
+                _, before, after, _ = self.deeper(dict(self.SHALLOW, **change))
+                torch.testing.assert_close(after, before, rtol=1e-5, atol=1e-5)
+
+    def test_the_new_level_gets_gradients(self):
+        """The zero weights that read the new bottleneck are not a dead end: the first step's gradient moves them."""
+        new, _, _, guide = self.deeper(self.SHALLOW)
+        new(guide).square().sum().backward()
+        reading_the_new_level = new.module("dec.1.0").weight.grad[:, :8]
+        self.assertGreater(float(reading_the_new_level.abs().max()), 0.0)
+
+    def test_only_one_more_level_of_relu_conv_units_deepens(self):
+        deepens, deeper = train_module.deepens, dict(self.SHALLOW, widths=[4, 8, 16])
+        self.assertTrue(deepens(self.SHALLOW, deeper))
+        self.assertFalse(deepens(deeper, self.SHALLOW))
+        self.assertFalse(deepens(self.SHALLOW, dict(deeper, widths=[4, 8, 16, 32])))
+        self.assertFalse(deepens(self.SHALLOW, dict(deeper, widths=[6, 8, 16])))
+        self.assertFalse(deepens(self.SHALLOW, dict(deeper, depth=3)))
+        leaky = dict(self.SHALLOW, activation="leaky_relu")
+        self.assertFalse(deepens(leaky, dict(leaky, widths=[4, 8, 16])))
+        with self.assertRaisesRegex(ValueError, "ReLU"):
+            deeper_state(SixwayNet(leaky), SixwayNet(dict(leaky, widths=[4, 8, 16])), SixwayNet(leaky).state_dict())
+        with self.assertRaisesRegex(ValueError, "one more level"):
+            deeper_state(SixwayNet(self.SHALLOW), SixwayNet(dict(self.SHALLOW, widths=[4, 16, 16])),
+                         SixwayNet(self.SHALLOW).state_dict())
+
+    def test_init_from_an_exported_shallower_network(self):
+        """At a zero rate, a run from an exported network (.safetensors) of one level fewer exports its function."""
+        old = randomize(SixwayNet(self.SHALLOW), 6).eval()
+        run, out = tune_from_checkpoint("shallow", self.SHALLOW, old, 4, dict(self.SHALLOW, widths=[4, 8, 16]),
+                                        exported=True)
+        self.assertEqual(run.returncode, 0, run.stderr)
+        self.assertIn("widths [4, 8] deepened to [4, 8, 16]", run.stdout)
+        tuned, _ = load_safetensors(os.path.join(out, "sixway-unet.safetensors"))
+        guide = torch.rand(1, 4, 16, 16, generator=torch.Generator().manual_seed(4))
+        with torch.no_grad():
+            torch.testing.assert_close(tuned.eval()(guide), old(guide), rtol=1e-5, atol=1e-5)
 
 
 class TrainTest(unittest.TestCase):
