@@ -89,6 +89,8 @@ REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 WIDENED_KEYS = ("guide_channels", "input_channels")
 # The outputs that the run may take from the guide where the checkpoint's network computed them.
 PASSED_THROUGH_KEYS = ("emissive",)
+# The inputs that the run may add to the checkpoint's network (their channel's weights start at zero).
+ADDED_INPUT_KEYS = ("albedo_input",)
 EXPORT_NAME = "sixway-unet.safetensors"
 
 
@@ -270,12 +272,15 @@ def widens(old, new):
         return False
     if any(old[key] == "guide" and new[key] != "guide" for key in PASSED_THROUGH_KEYS):
         return False
+    if any(old[key] is not None and new[key] != old[key] for key in ADDED_INPUT_KEYS):
+        return False
     if new["widths"] != old["widths"] and (
             len(new["widths"]) != len(old["widths"]) or new["block"] != "conv"
             or any(n < o for n, o in zip(new["widths"], old["widths"]))
             or new["widths"][0] == new["adapters"]["width"] != old["widths"][0]):  # an adapter projection lost
         return False
-    return dict(old, **{key: new[key] for key in WIDENED_KEYS + PASSED_THROUGH_KEYS + ("widths",)}) == new
+    return dict(old, **{key: new[key] for key in WIDENED_KEYS + PASSED_THROUGH_KEYS + ADDED_INPUT_KEYS
+                        + ("widths",)}) == new
 
 
 def deepens(old, new):
@@ -313,6 +318,20 @@ def widened_weights(weights, current):
             widened.append(key.removeprefix("blocks.").replace("/", "."))
         state[key] = old
     return state, widened
+
+
+def closed_input_channel(net, state, channel):
+    """Zeroes input channel `channel`'s weights in `state` in every trained node that reads the input node (the
+    first conv), so that a channel the checkpoint saw as zero padding can carry a new input while the network
+    still computes the checkpoint's function (its weights there never had a gradient, but need not be zero).
+    Returns those nodes' names."""
+    readers = [n["name"] for n in net.nodes
+               if "input" in n.get("inputs", []) and not n["name"].endswith(FROM_GUIDE_SUFFIX)]
+    for name in readers:
+        key = "blocks." + name.replace(".", "/") + ".weight"
+        state[key] = state[key].clone()
+        state[key][:, channel] = 0
+    return readers
 
 
 def first_difference(a, b, prefix=""):
@@ -446,7 +465,8 @@ class Trainer:
         directories = [directories] if isinstance(directories, str) else directories
         model = full_config(self.config["model"])
         self.data = ShardDataset([os.path.join(REPO_ROOT, d) for d in directories],
-                                 target=self.config["data"]["target"], guide_channels=model["guide_channels"])
+                                 target=self.config["data"]["target"], guide_channels=model["guide_channels"],
+                                 albedo=bool(model.get("albedo_input")))
         # The network reads the guide it was trained on: a fine alpha of another step is another input.
         wanted, held = model.get("guide_alpha_step_voxels", 0), self.data.guide_alpha_step_voxels()
         if wanted and wanted != held:
@@ -501,6 +521,11 @@ class Trainer:
         if widened and self.lead:
             print(f"train.init_from: {', '.join(widened)} widened to this run's input channels (the new ones "
                   f"start at zero)", flush=True)
+        if self.net.config.get("albedo_input") and not full_config(model_config).get("albedo_input"):
+            opened = closed_input_channel(narrow, state, self.net.config["guide_channels"])
+            if self.lead:
+                print(f"train.init_from: the albedo input added; {', '.join(opened)} read it from zero weights",
+                      flush=True)
         if narrow is not self.net:
             state = wider_state(narrow, self.net, state, self.train["widen_noise"], self.train["seed"])
             if self.lead:

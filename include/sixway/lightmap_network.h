@@ -27,11 +27,17 @@ class LightmapNetwork {
   // Whether the network's guide has a 5th channel: the direct emission of the fine march (the guiding map's
   // emission image, docs/real-time-rendering.md).
   bool readsEmission() const;
+  // Whether the network reads the smoke's single-scattering albedo (run's `albedo`): the multiply-scattered
+  // light depends on it beyond what the guide shows (docs/network-format.md).
+  bool readsAlbedo() const;
   // `guide`: size² RGBA pixels, row 0 at the top (guide light, alpha, shell depth, fine alpha or unused; the
-  // guiding map of docs/real-time-rendering.md); `emission`: size² values when readsEmission(), else empty.
-  // Returns size² pixels of eight channels: right, left, top, bottom, back, front, alpha, emissive
-  // (docs/conventions.md). Waits for the GPU. Throws std::invalid_argument for inputs of another size.
-  std::vector<float> run(std::span<const float> guide, std::span<const float> emission = {});
+  // guiding map of docs/real-time-rendering.md); `emission`: size² values when readsEmission(), else empty;
+  // `albedo`: the smoke's (the one its guide was marched with; a scene's default 0.9), read when
+  // readsAlbedo(). Returns size² pixels of eight channels: right, left, top, bottom, back, front, alpha,
+  // emissive (docs/conventions.md). Waits for the GPU. Throws std::invalid_argument for inputs of another
+  // size or an albedo outside [0, 1].
+  std::vector<float> run(std::span<const float> guide, std::span<const float> emission = {},
+                         float albedo = 0.9f);
 
  private:
   struct Impl;

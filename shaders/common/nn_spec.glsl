@@ -54,5 +54,6 @@
 #define NN_SPEC_B_1 47
 #define NN_SPEC_B_2 48
 #define NN_SPEC_B_3 49
+#define NN_SPEC_ALBEDO_CHANNEL 50  // input.comp
 
 #endif

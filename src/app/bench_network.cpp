@@ -16,6 +16,7 @@
 #include "gpu/context.h"
 #include "gpu/image.h"
 #include "gpu/sequence.h"
+#include "io/scene.h"
 #include "nn/network.h"
 
 namespace sixway::app {
@@ -64,8 +65,9 @@ nlohmann::json benchNetworkSize(const gpu::Context& context, const gpu::Pipeline
   const nn::Tiling tiling = o.tiling == "blocks"   ? nn::Tiling::Blocks
                             : o.tiling == "pixels" ? nn::Tiling::Pixels
                                                    : nn::Tiling::Device;
-  nn::Network network(context, cache, weights, size, size,
-                      {o.fp16 ? nn::Precision::Fp16 : nn::Precision::Fp32, true, tiling});
+  nn::NetworkOptions options{o.fp16 ? nn::Precision::Fp16 : nn::Precision::Fp32, true, tiling};
+  options.albedo = io::Smoke{}.albedo;  // a network that reads it sees a scene's default smoke
+  nn::Network network(context, cache, weights, size, size, options);
   const gpu::Image guide = benchGuide(context, size), emission = benchEmission(context, size);
   const gpu::ImageDesc lightmap{size,
                                 size,

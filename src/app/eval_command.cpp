@@ -23,6 +23,7 @@
 #include "io/json_reader.h"
 #include "io/report.h"
 #include "io/safetensors.h"
+#include "io/scene.h"
 #include "nn/network.h"
 #include "render/lightmap_images.h"
 
@@ -118,6 +119,15 @@ int guideChannels(const fs::path& shard, const nlohmann::json& description, cons
   return channels;
 }
 
+// The smoke's albedo of a shard's scene (absent: a scene's default), which a network may read.
+float sceneAlbedo(const fs::path& shard, const nlohmann::json& description) {
+  const nlohmann::json albedo = description.value(nlohmann::json::json_pointer("/scene/smoke/albedo"),
+                                                  nlohmann::json(io::Smoke{}.albedo));
+  if (!albedo.is_number() || !(albedo.get<float>() >= 0.0f && albedo.get<float>() <= 1.0f))
+    throw io::InputError(shard.string(), "scene.smoke.albedo must be a number in [0, 1]");
+  return albedo.get<float>();
+}
+
 void evaluateDataset(const EvalOptions& o) {
   io::requireWritable(o.scene.report, o.scene.force);
   const std::vector<fs::path> shards = shardFiles(o.dataset);
@@ -146,7 +156,10 @@ void evaluateDataset(const EvalOptions& o) {
     const int shardSize = description["lightmap_size"].get<int>();
     if (!network) {
       size = shardSize;
-      network = std::make_unique<nn::Network>(context, cache, weights, uint32_t(size), uint32_t(size));
+      nn::NetworkOptions options;
+      options.albedo = sceneAlbedo(shardPath, description);
+      network =
+          std::make_unique<nn::Network>(context, cache, weights, uint32_t(size), uint32_t(size), options);
       lightmaps = std::make_unique<render::LightmapImages>(context, uint32_t(size), uint32_t(size));
       guide = std::make_unique<gpu::Image>(
           context, gpu::ImageDesc{uint32_t(size), uint32_t(size), 1, VK_FORMAT_R32G32B32A32_SFLOAT,
@@ -175,6 +188,7 @@ void evaluateDataset(const EvalOptions& o) {
     const int64_t pixels = int64_t(size) * size;
     const nlohmann::json& samples = description["samples"];
     const int channels = guideChannels(shardPath, description, network->graph());
+    network->setAlbedo(sceneAlbedo(shardPath, description));
     if (int64_t(guides.size()) != int64_t(samples.size()) * channels * pixels ||
         int64_t(targets.size()) != int64_t(samples.size()) * 8 * pixels)
       throw io::InputError(shardPath.string(),

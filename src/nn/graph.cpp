@@ -89,6 +89,17 @@ Node readNode(io::JsonReader& r) {
       r.fail("guide_channels",
              "a 4th guide channel is the fine alpha: guide_channels 4 or 5 go with "
              "guide_alpha_step_voxels > 0");
+    r.optionalObject("albedo", [&](io::JsonReader& a) {
+      n.albedoChannel = a.required<int>("channel");
+      if (n.albedoChannel != n.guideChannels)
+        a.fail("channel", "must be the one after the guide's, " + io::show(n.guideChannels) + " (got " +
+                              io::show(n.albedoChannel) + ")");
+      if (n.albedoChannel >= n.outChannels) a.fail("channel", "is past the input's out_channels");
+      n.albedoOffset = a.required<float>("offset", io::inRange(-1e6, 1e6));
+      n.albedoScale = a.required<float>("scale", io::inRange(-1e6, 1e6));
+      if (n.albedoScale == 0.0f) a.fail("scale", "must not be 0");
+      return 0;
+    });
     return n;
   }
   n.inputs = r.required<std::vector<std::string>>("inputs");

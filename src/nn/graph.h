@@ -35,6 +35,10 @@ struct Node {
   // input
   int guideChannels = 3;              // 4: with the fine alpha; 5: and the emission (kGuideImageChannels)
   float guideAlphaStepVoxels = 0.0f;  // > 0: channel 4 is the guide's fine alpha of this step
+  // The smoke's single-scattering albedo as an input: channel albedoChannel (the one after the guide's; -1:
+  // none) holds (albedo - albedoOffset) * albedoScale over the whole map (NetworkOptions::albedo).
+  int albedoChannel = -1;
+  float albedoOffset = 0.0f, albedoScale = 1.0f;
   // output: the eight channels (names, encodings) and the lightmaps' components as indices into them
   std::vector<std::string> channels;
   std::vector<Encoding> encodings;

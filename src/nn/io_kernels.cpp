@@ -10,7 +10,7 @@
 namespace sixway::nn {
 
 InputKernel::InputKernel(const KernelSetup& setup, MapShape map, uint32_t guideWidth, uint32_t guideHeight,
-                         int guideChannels)
+                         int guideChannels, int albedoChannel)
     : map_(map),
       guideChannels_(guideChannels),
       sampler_(std::make_unique<gpu::Sampler>(*setup.context, VK_FILTER_NEAREST)) {
@@ -20,23 +20,24 @@ InputKernel::InputKernel(const KernelSetup& setup, MapShape map, uint32_t guideW
   gpu::ComputePipelineDesc desc;
   desc.shader = shaderName("input", setup.precision);
   desc.bindings = {gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
-                   gpu::BindingType::SampledImage};
+                   gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer};
   desc.spec.set(spec::kLocalSizeX, kTile).set(spec::kLocalSizeY, kTile);
   desc.spec.set(spec::kWidth, int(map.width)).set(spec::kHeight, int(map.height));
   desc.spec.set(spec::kChannels, int(map.channels));
   desc.spec.set(spec::kGuideWidth, int(guideWidth)).set(spec::kGuideHeight, int(guideHeight));
   desc.spec.set(spec::kGuideChannels, guideChannels);
+  desc.spec.set(spec::kAlbedoChannel, albedoChannel);
   pipeline_ = &setup.pipelines->get(desc);
 }
 
 void InputKernel::record(gpu::Sequence& sequence, const gpu::Image& guide, const gpu::Image* emission,
-                         const FeatureMap& output) const {
+                         const gpu::Buffer& scene, const FeatureMap& output) const {
   if (guideChannels_ > kGuideImageChannels && !emission)
     throw gpu::GpuError("network input: the guide's 5th channel needs an emission image");
   // Without an emission channel the guide stands in for the unread second image.
   sequence.dispatch(*pipeline_,
                     {gpu::samples(guide, *sampler_), gpu::writes(output.buffer()),
-                     gpu::samples(emission ? *emission : guide, *sampler_)},
+                     gpu::samples(emission ? *emission : guide, *sampler_), gpu::reads(scene)},
                     std::span<const std::byte>(), groupsFor(map_.width, kTile),
                     groupsFor(map_.height, kTile));
 }

@@ -21,12 +21,13 @@ namespace sixway::nn {
 class InputKernel {
  public:
   // `map`: the first feature map (the guide's size rounded up, 4 or 8 channels); the guide is `guideWidth` x
-  // `guideHeight`, of `guideChannels` channels: the guide image's first ones, the 5th the emission image's R.
+  // `guideHeight`, of `guideChannels` channels: the guide image's first ones, the 5th the emission image's R;
+  // `albedoChannel` (-1: none) holds the encoded albedo of the `scene` buffer that record() binds.
   InputKernel(const KernelSetup& setup, MapShape map, uint32_t guideWidth, uint32_t guideHeight,
-              int guideChannels);
-  // `emission`: required with 5 guide channels, unread otherwise.
+              int guideChannels, int albedoChannel);
+  // `emission`: required with 5 guide channels, unread otherwise; `scene`: one float, the encoded albedo.
   void record(gpu::Sequence& sequence, const gpu::Image& guide, const gpu::Image* emission,
-              const FeatureMap& output) const;
+              const gpu::Buffer& scene, const FeatureMap& output) const;
 
  private:
   MapShape map_;

@@ -62,8 +62,16 @@ std::vector<int> fusedProjections(const Graph& graph) {
 Network::Network(const gpu::Context& context, const gpu::PipelineCache& cache,
                  const io::SafetensorsFile& weights, uint32_t guideWidth, uint32_t guideHeight,
                  const NetworkOptions& options)
-    : graph_(parseGraph(weights)), guideWidth_(guideWidth), guideHeight_(guideHeight) {
+    : graph_(parseGraph(weights)),
+      guideWidth_(guideWidth),
+      guideHeight_(guideHeight),
+      scene_(context, sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryKind::FrameParameters,
+             "network scene parameters") {
   if (guideWidth == 0 || guideHeight == 0) throw gpu::GpuError("network: the guide has no pixels");
+  if (readsAlbedo() && !options.albedo)
+    throw gpu::GpuError("network: " + weights.path.filename().string() +
+                        " reads the smoke's albedo, and none was given (NetworkOptions::albedo)");
+  setAlbedo(options.albedo.value_or(0.0f));
   mapWidth_ = roundUp(guideWidth, uint32_t(graph_.sizeMultiple));
   mapHeight_ = roundUp(guideHeight, uint32_t(graph_.sizeMultiple));
   pipelines_ = std::make_unique<PipelinePool>(context, cache);
@@ -100,7 +108,8 @@ Network::Network(const gpu::Context& context, const gpu::PipelineCache& cache,
     switch (node.op) {
       case Op::Input: {
         const MapShape out{mapWidth_, mapHeight_, uint32_t(node.outChannels)};
-        addLayer(InputKernel(setup, out, guideWidth, guideHeight, node.guideChannels), out, 0.0);
+        addLayer(InputKernel(setup, out, guideWidth, guideHeight, node.guideChannels, node.albedoChannel),
+                 out, 0.0);
         break;
       }
       case Op::Conv2d:
@@ -149,6 +158,14 @@ Network::Network(const gpu::Context& context, const gpu::PipelineCache& cache,
 
 Network::~Network() = default;
 
+void Network::setAlbedo(float albedo) {
+  if (!(albedo >= 0.0f && albedo <= 1.0f))
+    throw gpu::GpuError("network: the smoke's albedo must be in [0, 1] (got " + std::to_string(albedo) + ")");
+  const Node& input = graph_.nodes.front();
+  const float encoded = readsAlbedo() ? (albedo - input.albedoOffset) * input.albedoScale : 0.0f;
+  scene_.upload(std::as_bytes(std::span(&encoded, 1)));
+}
+
 void Network::record(gpu::Sequence& sequence, const GuideImages& guide, const gpu::Image& lightmapA,
                      const gpu::Image& lightmapB, bool timeLayers) const {
   if (graph_.nodes.front().guideChannels > kGuideImageChannels && !guide.emission)
@@ -171,7 +188,7 @@ void Network::record(gpu::Sequence& sequence, const GuideImages& guide, const gp
           if constexpr (std::is_same_v<Kernel, std::monostate>)
             return;
           else if constexpr (std::is_same_v<Kernel, InputKernel>)
-            kernel.record(sequence, guide.guide, guide.emission, *layer.output);
+            kernel.record(sequence, guide.guide, guide.emission, scene_, *layer.output);
           else if constexpr (std::is_same_v<Kernel, OutputKernel>)
             kernel.record(sequence, inputs, lightmapA, lightmapB);
           else if constexpr (std::is_same_v<Kernel, ConvKernel>)

@@ -3,9 +3,11 @@
 // metadata gives the layers, the tensors their weights. Everything (pipelines, weights, feature maps) is made
 // once for one guide size; record() puts the whole network into a Sequence that is then replayed per frame.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "gpu/buffer.h"
 #include "io/safetensors.h"
 #include "nn/feature_map.h"
 #include "nn/graph.h"
@@ -29,6 +31,9 @@ struct NetworkOptions {
   // False for smoke that emits nothing (a scene without emission): the lightmaps' emissive is then 0 whatever
   // the network's head holds, which on such smoke can only be spurious glow (docs/network-format.md).
   bool emission = true;
+  // The smoke's single-scattering albedo (the scene's smoke.albedo), for a graph whose input reads it (its
+  // input node's "albedo"); such a network cannot be built without it. Network::setAlbedo changes it.
+  std::optional<float> albedo;
 };
 
 // A layer as the benchmark sees it: one timed stage, or one per kernel (`parts`, in stage order).
@@ -62,6 +67,12 @@ class Network {
   Network& operator=(const Network&) = delete;
 
   const Graph& graph() const { return graph_; }
+  // Whether the input reads the smoke's albedo (NetworkOptions::albedo).
+  bool readsAlbedo() const { return graph_.nodes.front().albedoChannel >= 0; }
+  // The albedo that the next submission or recording into a command buffer reads (a frame parameter: the
+  // recorded work need not change); for a network that does not read it, ignored. Throws gpu::GpuError
+  // outside [0, 1].
+  void setAlbedo(float albedo);
   // The feature maps' size: the guide's, rounded up to the graph's size multiple.
   uint32_t mapWidth() const { return mapWidth_; }
   uint32_t mapHeight() const { return mapHeight_; }
@@ -87,6 +98,7 @@ class Network {
   uint32_t guideWidth_, guideHeight_, mapWidth_, mapHeight_;
   Tiling tiling_;
   std::unique_ptr<PipelinePool> pipelines_;  // outlives the layers that use its pipelines
+  gpu::Buffer scene_;                        // the input's encoded albedo (a frame parameter)
   std::vector<Layer> layers_;                // one per node
   std::vector<int> mapOf_;                   // per node: the layer whose feature map holds its values, or -1
   const FeatureMap& valuesOf(int node) const;

@@ -34,6 +34,8 @@ inline constexpr SpecId kSource[8] = {{34, "SOURCE_0"}, {35, "SOURCE_1"}, {36, "
                                       {38, "SOURCE_4"}, {39, "SOURCE_5"}, {40, "SOURCE_6"}, {41, "SOURCE_7"}};
 inline constexpr SpecId kLightmapA[4] = {{42, "A_0"}, {43, "A_1"}, {44, "A_2"}, {45, "A_3"}};
 inline constexpr SpecId kLightmapB[4] = {{46, "B_0"}, {47, "B_1"}, {48, "B_2"}, {49, "B_3"}};
+// input.comp
+inline constexpr SpecId kAlbedoChannel{50, "ALBEDO_CHANNEL"};
 
 // Every constant above.
 inline constexpr SpecId kAll[] = {
@@ -45,6 +47,6 @@ inline constexpr SpecId kAll[] = {
     kGuideChannels, kMapWidth,     kMapHeight,    kSrgbMask,      kSource[0],    kSource[1],
     kSource[2],     kSource[3],    kSource[4],    kSource[5],     kSource[6],    kSource[7],
     kLightmapA[0],  kLightmapA[1], kLightmapA[2], kLightmapA[3],  kLightmapB[0], kLightmapB[1],
-    kLightmapB[2],  kLightmapB[3]};
+    kLightmapB[2],  kLightmapB[3], kAlbedoChannel};
 
 }  // namespace sixway::nn::spec

@@ -9,6 +9,7 @@
 #include "gpu/sequence.h"
 #include "io/error.h"
 #include "io/safetensors.h"
+#include "io/scene.h"
 #include "nn/network.h"
 #include "render/lightmap_images.h"
 #include "runtime/device_impl.h"
@@ -26,6 +27,7 @@ struct LightmapNetwork::Impl {
       throw io::InputError(weights.string(), "no such weights file");
     nn::NetworkOptions options;
     options.precision = fp16 ? nn::Precision::Fp16 : nn::Precision::Fp32;
+    options.albedo = io::Smoke{}.albedo;  // run() sets each run's
     network = std::make_unique<nn::Network>(*device.context, *device.cache, io::readSafetensors(weights),
                                             size, size, options);
     if (network->graph().nodes.front().guideChannels > nn::kGuideImageChannels)
@@ -65,13 +67,21 @@ bool LightmapNetwork::readsEmission() const {
   return impl_->emission.has_value();
 }
 
-std::vector<float> LightmapNetwork::run(std::span<const float> guide, std::span<const float> emission) {
+bool LightmapNetwork::readsAlbedo() const {
+  return impl_->network->readsAlbedo();
+}
+
+std::vector<float> LightmapNetwork::run(std::span<const float> guide, std::span<const float> emission,
+                                        float albedo) {
   const size_t pixels = size_t(impl_->size) * impl_->size;
   if (guide.size() != pixels * 4)
     throw std::invalid_argument("LightmapNetwork::run: the guide needs size² RGBA pixels");
   if (emission.size() != (readsEmission() ? pixels : 0))
     throw std::invalid_argument(readsEmission() ? "LightmapNetwork::run: the emission needs size² values"
                                                 : "LightmapNetwork::run: this network reads no emission");
+  if (!(albedo >= 0.0f && albedo <= 1.0f))
+    throw std::invalid_argument("LightmapNetwork::run: the albedo must be in [0, 1]");
+  impl_->network->setAlbedo(albedo);
   if (impl_->emission) impl_->emission->upload(std::as_bytes(emission));
   std::vector<uint16_t> halves(guide.size());
   for (size_t i = 0; i < guide.size(); ++i) halves[i] = glm::packHalf1x16(guide[i]);

@@ -22,6 +22,7 @@ std::unique_ptr<nn::Network> loadNetwork(const gpu::Context& context, const gpu:
   nn::NetworkOptions networkOptions;
   networkOptions.precision = options.fp16 ? nn::Precision::Fp16 : nn::Precision::Fp32;
   networkOptions.emission = scene.smoke.emission.intensity > 0.0f;
+  networkOptions.albedo = scene.smoke.albedo;
   const uint32_t size = uint32_t(scene.render.lightmapSize);
   return std::make_unique<nn::Network>(context, cache, io::readSafetensors(options.weights), size, size,
                                        networkOptions);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 
+#include "gpu/check.h"
 #include "gpu/pipeline.h"
 #include "io/safetensors.h"
 #include "nn/graph.h"
@@ -143,6 +144,36 @@ TEST_F(MalformedWeights, FourGuideChannelsNeedTheFineAlphaStep) {
   EXPECT_FLOAT_EQ(nn::parseGraph(io::readSafetensors(kTiny)).nodes.front().guideAlphaStepVoxels, 0.0f);
 }
 
+// The smoke's albedo as an input: in the channel after the guide's, with a nonzero scale.
+TEST_F(MalformedWeights, AlbedoInputInTheChannelAfterTheGuide) {
+  const nlohmann::json albedo = {{"channel", 3}, {"offset", 0.875}, {"scale", 13.5}};
+  const std::string wrongChannel = errorAfter([&](std::vector<io::Tensor>&, nlohmann::json& graph) {
+    node(graph, "input")["albedo"] = albedo;
+    node(graph, "input")["albedo"]["channel"] = 2;
+  });
+  EXPECT_THAT(wrongChannel,
+              namesFileAndProblem(path(), "albedo.channel: must be the one after the guide's, 3 (got 2)"));
+  const std::string zeroScale = errorAfter([&](std::vector<io::Tensor>&, nlohmann::json& graph) {
+    node(graph, "input")["albedo"] = albedo;
+    node(graph, "input")["albedo"]["scale"] = 0;
+  });
+  EXPECT_THAT(zeroScale, namesFileAndProblem(path(), "albedo.scale: must not be 0"));
+  const std::string noOffset = errorAfter([&](std::vector<io::Tensor>&, nlohmann::json& graph) {
+    node(graph, "input")["albedo"] = {{"channel", 3}, {"scale", 2}};
+  });
+  EXPECT_THAT(noOffset, namesFileAndProblem(path(), "albedo.offset"));
+  io::SafetensorsFile file = io::readSafetensors(kTiny);
+  nlohmann::json json = nlohmann::json::parse(file.metadata.at("sixway.graph"));
+  node(json, "input")["albedo"] = albedo;
+  file.metadata["sixway.graph"] = json.dump();
+  io::writeSafetensors(path(), file.tensors, file.metadata);
+  const nn::Node input = nn::parseGraph(io::readSafetensors(path())).nodes.front();
+  EXPECT_EQ(input.albedoChannel, 3);
+  EXPECT_FLOAT_EQ(input.albedoOffset, 0.875f);
+  EXPECT_FLOAT_EQ(input.albedoScale, 13.5f);
+  EXPECT_EQ(nn::parseGraph(io::readSafetensors(kTiny)).nodes.front().albedoChannel, -1);
+}
+
 TEST_F(MalformedWeights, BadGraphJson) {
   io::SafetensorsFile file = io::readSafetensors(kTiny);
   file.metadata["sixway.graph"] = "{\"version\": 1, \"nodes\": [";
@@ -171,6 +202,25 @@ TEST_F(MalformedWeightsOnGpu, NetworkRefusesTheFileBeforeBuildingAnything) {
                 nn::Network(context(), pipelineCache(), io::readSafetensors(dir / "net.safetensors"), 32, 32);
               }),
               namesFileAndProblem(dir / "net.safetensors", "missing tensor 'mid.1.beta'"));
+}
+
+// A network that reads the albedo is not built without one, and takes none outside [0, 1].
+TEST_F(MalformedWeightsOnGpu, AlbedoNetworkNeedsTheAlbedo) {
+  const io::SafetensorsFile file =
+      io::readSafetensors(std::filesystem::path(SIXWAY_TEST_DATA_DIR) / "nn" / "albedo_input.safetensors");
+  try {
+    nn::Network(context(), pipelineCache(), file, 16, 16);
+    ADD_FAILURE() << "built without an albedo";
+  } catch (const gpu::GpuError& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("albedo_input.safetensors reads the smoke's albedo"));
+  }
+  nn::NetworkOptions options;
+  options.albedo = 0.9f;
+  nn::Network network(context(), pipelineCache(), file, 16, 16, options);
+  EXPECT_TRUE(network.readsAlbedo());
+  EXPECT_THROW(network.setAlbedo(1.5f), gpu::GpuError);
+  EXPECT_THROW(network.setAlbedo(std::numeric_limits<float>::quiet_NaN()), gpu::GpuError);
+  EXPECT_FALSE(nn::Network(context(), pipelineCache(), io::readSafetensors(kTiny), 16, 16).readsAlbedo());
 }
 
 }  // namespace

@@ -83,8 +83,10 @@ TEST_P(NetworkParity, MatchesPyTorch) {
   gpu::Image a(context(), {width, height, 1, VK_FORMAT_R32G32B32A32_SFLOAT, usage, "lightmap A"});
   gpu::Image b(context(), {width, height, 1, VK_FORMAT_R32G32B32A32_SFLOAT, usage, "lightmap B"});
 
-  nn::Network network(context(), pipelineCache(), weights, width, height,
-                      {c.precision, c.fuseProjections, c.tiling, c.emission});
+  nn::NetworkOptions options{c.precision, c.fuseProjections, c.tiling, c.emission};
+  if (vectors.contains("albedo")) options.albedo = vectors.at("albedo").toFloat().at(0);
+  nn::Network network(context(), pipelineCache(), weights, width, height, options);
+  EXPECT_EQ(network.readsAlbedo(), vectors.contains("albedo"));
   gpu::Sequence sequence(context(), network.stageCount());
   network.record(sequence, {guide, channels > 4 ? &emission : nullptr}, a, b, true);
   sequence.submit();
@@ -116,7 +118,8 @@ INSTANTIATE_TEST_SUITE_P(
     Vectors, NetworkParity,
     ::testing::Values(ParityCase{"default"}, ParityCase{"tiny"}, ParityCase{"tiny", Precision::Fp32, false},
                       ParityCase{"fine_alpha"}, ParityCase{"emission_guide"},
-                      ParityCase{"emission_passthrough"}, ParityCase{"half_stem"}, ParityCase{"naf_wide"},
+                      ParityCase{"emission_passthrough"}, ParityCase{"albedo_input"}, ParityCase{"half_stem"},
+                      ParityCase{"naf_wide"},
                       ParityCase{"default", Precision::Fp32, true, nn::Tiling::Pixels},
                       ParityCase{"naf_wide", Precision::Fp32, true, nn::Tiling::Pixels},
                       ParityCase{"emission_guide", Precision::Fp32, true, nn::Tiling::Device, false}),

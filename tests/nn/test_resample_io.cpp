@@ -2,7 +2,9 @@
 // kernel (head maps decoded and packed into the two lightmaps, cropped) against CPU references.
 #include <array>
 #include <cmath>
+#include <utility>
 
+#include "gpu/buffer.h"
 #include "gpu/check.h"
 #include "gpu/image.h"
 #include "gpu/sequence.h"
@@ -52,13 +54,24 @@ TEST_P(ResampleIoTest, UpsampleBilinearMatchesCpu) {
   }
 }
 
-// 3 guide channels into a map of 4; 5 into a map of 8, the 5th from the emission image's R channel.
+// A buffer of one float, as nn::Network holds the encoded albedo.
+gpu::Buffer sceneBuffer(const gpu::Context& context, float encodedAlbedo) {
+  gpu::Buffer buffer(context, sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                     gpu::MemoryKind::FrameParameters, "scene");
+  buffer.upload(std::as_bytes(std::span(&encodedAlbedo, 1)));
+  return buffer;
+}
+
+// 3 guide channels into a map of 4; 5 into a map of 8, the 5th from the emission image's R channel; with the
+// albedo, the channel after the guide's holds it at every pixel of the map, the padding too.
 TEST_P(ResampleIoTest, InputCopiesTheGuideChannelsAndZeroPads) {
   const uint32_t guideWidth = 13, guideHeight = 9, mapWidth = 16, mapHeight = 12;
   const size_t pixels = size_t(guideWidth) * guideHeight;
+  const float encodedAlbedo = -0.625f;
+  const gpu::Buffer scene = sceneBuffer(context(), encodedAlbedo);
   std::mt19937 rng(4);
   for (VkFormat format : {VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT})
-    for (int guideChannels : {3, 5}) {
+    for (auto [guideChannels, albedoChannel] : {std::pair{3, -1}, {5, -1}, {3, 3}, {5, 5}}) {
       const VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT;
       std::vector<float> rgba = randomValues(pixels * 4, rng, 0.0f, 1.0f);
       gpu::Image guide(context(), {guideWidth, guideHeight, 1, format, usage, "guide"});
@@ -69,10 +82,10 @@ TEST_P(ResampleIoTest, InputCopiesTheGuideChannelsAndZeroPads) {
       emission.upload(std::as_bytes(std::span(emitted)));
       const uint32_t mapChannels = guideChannels > 4 ? 8 : 4;
       nn::InputKernel kernel(setup(GetParam()), {mapWidth, mapHeight, mapChannels}, guideWidth, guideHeight,
-                             guideChannels);
+                             guideChannels, albedoChannel);
       nn::FeatureMap map = empty({mapWidth, mapHeight, mapChannels}, GetParam());
       gpu::Sequence sequence(context());
-      kernel.record(sequence, guide, guideChannels > 4 ? &emission : nullptr, map);
+      kernel.record(sequence, guide, guideChannels > 4 ? &emission : nullptr, scene, map);
       sequence.submit();
       CpuMap expected(int(mapChannels), mapHeight, mapWidth);
       for (uint32_t y = 0; y < guideHeight; ++y)
@@ -81,19 +94,22 @@ TEST_P(ResampleIoTest, InputCopiesTheGuideChannelsAndZeroPads) {
             expected.at(c, y, x) = rgba[(y * guideWidth + x) * 4 + c];
           if (guideChannels > 4) expected.at(4, y, x) = emitted[y * guideWidth + x];
         }
+      if (albedoChannel >= 0)
+        for (uint32_t y = 0; y < mapHeight; ++y)
+          for (uint32_t x = 0; x < mapWidth; ++x) expected.at(albedoChannel, y, x) = encodedAlbedo;
       EXPECT_TRUE(allClose(map.download(), expected.values, tolerance(), tolerance()))
-          << "format " << format << ", " << guideChannels << " channels";
+          << "format " << format << ", " << guideChannels << " channels, albedo channel " << albedoChannel;
     }
 }
 
 // A 5-channel guide needs its emission image: a clear error, not an unbound descriptor.
 TEST_P(ResampleIoTest, InputOfFiveChannelsRefusesAMissingEmission) {
-  nn::InputKernel kernel(setup(GetParam()), {16, 16, 8}, 16, 16, 5);
+  nn::InputKernel kernel(setup(GetParam()), {16, 16, 8}, 16, 16, 5, -1);
   gpu::Image guide(context(),
                    {16, 16, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT, "guide"});
   nn::FeatureMap map = empty({16, 16, 8}, GetParam());
   gpu::Sequence sequence(context());
-  EXPECT_THROW(kernel.record(sequence, guide, nullptr, map), gpu::GpuError);
+  EXPECT_THROW(kernel.record(sequence, guide, nullptr, sceneBuffer(context(), 0.0f), map), gpu::GpuError);
 }
 
 TEST_P(ResampleIoTest, OutputDecodesPacksAndCrops) {

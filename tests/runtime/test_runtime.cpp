@@ -418,6 +418,23 @@ TEST(Runtime, TheNetworkAloneTakesTheEmissionItReads) {
   EXPECT_EQ(device.validationMessages(), 0u);
 }
 
+// A network that reads the smoke's albedo takes it from run()'s third argument, within [0, 1].
+TEST(Runtime, TheNetworkAloneTakesTheAlbedoItReads) {
+  Device device({.validate = true});
+  LightmapNetwork network(device, std::filesystem::path(SIXWAY_TEST_DATA_DIR) / "nn/albedo_input.safetensors",
+                          16);
+  EXPECT_TRUE(network.readsAlbedo());
+  EXPECT_FALSE(LightmapNetwork(device, kWeights, 16).readsAlbedo());
+  std::vector<float> guide(16 * 16 * 4, 0.0f), emission(16 * 16, 0.0f);
+  for (size_t i = 0; i < 16 * 16; ++i) guide[i * 4 + 0] = guide[i * 4 + 1] = guide[i * 4 + 3] = 0.5f;
+  EXPECT_THROW(network.run(guide, emission, 1.2f), std::invalid_argument);
+  const std::vector<float> grey = network.run(guide, emission, 0.8f),
+                           white = network.run(guide, emission, 0.95f);
+  EXPECT_GT(maxDifference(grey, white), 1e-4) << "the albedo is read";
+  EXPECT_EQ(network.run(guide, emission, 0.8f), grey) << "and set again for each run";
+  EXPECT_EQ(device.validationMessages(), 0u);
+}
+
 // The two networks of weights/ (weights/README.md): trained on the all-orders and the single-scattering
 // targets, both reading the 1-cell fine alpha and passing it through as their alpha, and both reading the
 // guide's emission: the single-scattering one passes it through as its emissive (its target is that direct

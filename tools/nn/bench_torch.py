@@ -19,7 +19,7 @@ import torch
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from atomic_file import atomic_open  # noqa: E402
-from sixway_net import load_safetensors  # noqa: E402
+from sixway_net import input_channel_count, load_safetensors  # noqa: E402
 
 
 def node_flops(node, height, width):
@@ -45,7 +45,7 @@ def layer_kind(node):
 
 
 def bench_size(model, size, warmup, repeats):
-    guide = torch.rand(1, model.config["guide_channels"], size, size)
+    guide = torch.rand(1, input_channel_count(model.config), size, size)
     with torch.no_grad():
         for _ in range(warmup):
             model(guide)

@@ -12,6 +12,7 @@ and the metadata `sixway.dataset` that names each sample's camera, frame and spl
                                                    # with the fine alpha, 5: and the emission
     pairs = data.pairs("train")                    # samples that have the previous frame of their camera
     current, previous = data.pair_batch(pairs[:8], crop=64, rng=np.random.default_rng(0))
+    ShardDataset(directory, albedo=True)           # each guide gains a plane: its scene's smoke albedo
 
 Targets are reordered here into the network's output order (sixway_net.ADAPTERS: left, right, top, bottom,
 front, back, alpha, emissive), so that everything downstream compares channel i with channel i.
@@ -87,6 +88,14 @@ def scene_emits(info):
     return info["scene"].get("smoke", {}).get("emission", {}).get("intensity", 0) > 0
 
 
+def shard_albedo(path, info):
+    """The smoke's single-scattering albedo of the shard's scene (its `smoke.albedo`; absent, a scene's 0.9)."""
+    albedo = info["scene"].get("smoke", {}).get("albedo", 0.9)
+    if not isinstance(albedo, (int, float)) or not 0 <= albedo <= 1:
+        raise ValueError(f"{path}: sixway.dataset.scene.smoke.albedo is {albedo!r}, not in [0, 1]")
+    return float(albedo)
+
+
 def shard_guide(path, tensors, info, channels):
     """The first `channels` channels of the shard's guide. A guide without the emission channel stands for one
     whose emission is zero, which it is exactly when the scene emits nothing."""
@@ -119,7 +128,7 @@ class ShardDataset:
     size, the largest crop every sample allows, and a batch of whole maps takes samples of one size. Split
     metrics pool pixels, so a 128² sample weighs four 64² ones."""
 
-    def __init__(self, directories, target="single", guide_channels=3):
+    def __init__(self, directories, target="single", guide_channels=3, albedo=False):
         if target not in TARGET_TENSORS:
             raise ValueError(f"target is {target!r}: single or multiple")
         if guide_channels not in (3, 4, 5):
@@ -129,6 +138,7 @@ class ShardDataset:
             raise ValueError("no shard directory given")
         self.directory = ", ".join(self.directories)
         self.target_kind = target
+        self.with_albedo = albedo
         sources = [(path, source) for source, d in enumerate(self.directories) for path in shard_paths(d)]
         self.paths = [path for path, _ in sources]
         self.shard_sources = [source for _, source in sources]
@@ -148,6 +158,9 @@ class ShardDataset:
             moves = info.get("motion", True)
             self.samples += [dict(s, sequence=info["sequence"], source=source, moves=moves) for s in info["samples"]]
         shard_sizes = [info["lightmap_size"] for info in self.infos]
+        # Per sample: its scene's single-scattering albedo (the smoke's, as the shard's scene states it).
+        self.albedo = np.concatenate([np.full(len(info["samples"]), shard_albedo(path, info), dtype=np.float32)
+                                      for path, info in zip(self.paths, self.infos)])
         self.sample_sizes = np.concatenate([np.full(len(g), size) for g, size in zip(guides, shard_sizes)])
         # Per sample: its row in its size's arrays.
         self.rows = np.zeros(len(self.samples), dtype=np.int64)
@@ -239,9 +252,10 @@ class ShardDataset:
         return sizes[0] if sizes else self.size
 
     def batch(self, indices, crop=None, offsets=None, mirror=None):
-        """float32 tensors guide [B,3 to 5,c,c], target [B,8,c,c], motion [B,2,c,c] of the samples `indices`;
-        `offsets` (B x 2: row, column) place the crops of size `crop`; `mirror` (B booleans) flips left-right.
-        Without `crop`, the samples' maps whole: they must have one size."""
+        """float32 tensors guide [B,3 to 5,c,c] (one more channel, the albedo plane, with `albedo`), target
+        [B,8,c,c], motion [B,2,c,c] of the samples `indices`; `offsets` (B x 2: row, column) place the crops of
+        size `crop`; `mirror` (B booleans) flips left-right. Without `crop`, the samples' maps whole: they must
+        have one size."""
         c = crop or self._whole_map_size(indices)
         offsets = np.zeros((len(indices), 2), dtype=np.int64) if offsets is None else offsets
         out = {"guide": [], "target": [], "motion": []}
@@ -256,6 +270,8 @@ class ShardDataset:
                 guide = guide[:, :, ::-1]
                 target = target[MIRRORED_CHANNELS, :, ::-1]
                 motion = motion[:, :, ::-1] * np.array([-1, 1], dtype=motion.dtype)[:, None, None]
+            if self.with_albedo:
+                guide = np.concatenate([guide, np.full((1, c, c), self.albedo[index], dtype=np.float32)])
             out["guide"].append(guide)
             out["target"].append(target)
             out["motion"].append(motion)

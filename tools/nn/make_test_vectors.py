@@ -80,6 +80,9 @@ NAF_WIDE_CONFIG = {
 EMISSION_GUIDE_CONFIG = dict(FINE_ALPHA_CONFIG, guide_channels=5, input_channels=8)
 # The same with the emission passed through as the emissive output (the single-scattering network's setting).
 EMISSION_PASSTHROUGH_CONFIG = dict(EMISSION_GUIDE_CONFIG, emissive="guide")
+# The emission network reading the smoke's albedo in its 6th input channel; its vectors hold the albedo.
+ALBEDO_INPUT_CONFIG = dict(EMISSION_GUIDE_CONFIG, albedo_input={"offset": 0.875, "scale": 13.333333})
+ALBEDO = 0.82
 
 # name: (config, weights seed, guide seed, guide height, guide width, intermediates)
 CASES = {
@@ -94,6 +97,7 @@ CASES = {
     "emission_guide": (EMISSION_GUIDE_CONFIG, 11, 110, 20, 28, ["enc.0.0", "adapters.3.head", "alpha_from_guide"]),
     "emission_passthrough": (EMISSION_PASSTHROUGH_CONFIG, 12, 120, 22, 26, ["adapters.3.head",
                                                                             "alpha_emissive_from_guide"]),
+    "albedo_input": (ALBEDO_INPUT_CONFIG, 13, 130, 19, 30, ["enc.0.0", "adapters.3.head"]),
 }
 
 
@@ -118,11 +122,15 @@ def make_case(name, out_dir):
                        {"sixway.training": {"note": "untrained: random weights for tests and benchmarks",
                                             "seed": weight_seed}})
     guide = guide_image(guide_seed, height, width, model.config["guide_channels"])
+    tensors = {"input": guide[0]}
+    if model.config.get("albedo_input"):  # the raw albedo as a plane after the guide (sixway_net.SixwayNet.forward)
+        guide = torch.cat([guide, torch.full_like(guide[:, :1], ALBEDO)], dim=1)
+        tensors["albedo"] = torch.tensor([ALBEDO])
     intermediates = {}
     with torch.no_grad():
         raw = run_padded(model, guide, intermediates)
         a, b = pack_lightmaps(decode_output(raw, model.config))
-    tensors = {"input": guide[0], "raw": raw[0], "lightmap_a": a[0], "lightmap_b": b[0]}
+    tensors.update({"raw": raw[0], "lightmap_a": a[0], "lightmap_b": b[0]})
     for node in nodes:
         tensors[f"node.{node}"] = intermediates[node][0]
     tensors = {k: v.numpy().astype(np.float32) for k, v in tensors.items()}

@@ -8,6 +8,7 @@ what PyTorch computes and what the runner computes are described by one list.
     from sixway_net import SixwayNet, export_safetensors, load_safetensors
     model = SixwayNet(config)                 # config: dict, missing keys take DEFAULT_CONFIG's values
     raw = model(guide)                        # (N, 3 to 5, H, W) -> (N, 8, H, W), in the network's encoding
+                                              # (with albedo_input: one more channel, the smoke's albedo)
     a, b = pack_lightmaps(decode_output(raw, model.config))   # Unity packing, linear
     export_safetensors(model, "net.safetensors", {"sixway.training": json.dumps(...)})
 
@@ -50,7 +51,12 @@ DEFAULT_CONFIG = {
 #   whole UNet and the adapters at half resolution, and each head is a 2x2 stride-2 transposed conv back to full
 #   resolution. The stem sees each 2x2 block of the guide (and its neighbours), so it holds pixel-unshuffle + 1x1
 #   conv as a special case; the transposed head is exactly a 1x1 conv + pixel shuffle. About 4x fewer FLOPs.
-OPTIONAL_CONFIG = {"guide_alpha_step_voxels": 0.0, "alpha": "network", "emissive": "network", "stem": "full"}
+# albedo_input: {"offset": o, "scale": s}: the input channel after the guide's holds (albedo - o) * s, the smoke's
+#   single-scattering albedo (a scene constant: the guide's in-scattered light is albedo x the single-scattered light,
+#   so the multiply-scattered light, a series in powers of the albedo, is not a function of the guide alone).
+#   Centred and scaled so that the training range spans about [-1, 1]: the channel starts as a zero-mean plane.
+OPTIONAL_CONFIG = {"guide_alpha_step_voxels": 0.0, "alpha": "network", "emissive": "network", "stem": "full",
+                   "albedo_input": None}
 
 # The four adapters and the two channels of each head (docs/conventions.md, "Channels and packing").
 ADAPTERS = [("left_right", ["left", "right"]), ("top_bottom", ["top", "bottom"]),
@@ -110,7 +116,20 @@ def full_config(config=None):
         raise ValueError("config: alpha from the guide needs its fine alpha (guide_channels 4 or 5)")
     if merged.get("emissive") == "guide" and merged["guide_channels"] < 5:
         raise ValueError("config: emissive from the guide needs its emission (guide_channels 5)")
+    albedo = merged.get("albedo_input")
+    if albedo is not None:
+        if (not isinstance(albedo, dict) or set(albedo) != {"offset", "scale"}
+                or not all(isinstance(albedo[k], (int, float)) and math.isfinite(albedo[k]) for k in albedo)
+                or albedo["scale"] == 0):
+            raise ValueError("config: albedo_input must be {\"offset\": number, \"scale\": nonzero number}")
+        if merged["input_channels"] < merged["guide_channels"] + 1:
+            raise ValueError("config: albedo_input needs an input channel after the guide's (input_channels)")
     return merged
+
+
+def input_channel_count(config):
+    """The channels a caller passes to the network: the guide's, and the raw albedo after them with albedo_input."""
+    return config["guide_channels"] + (1 if config.get("albedo_input") else 0)
 
 
 def output_encodings(config):
@@ -246,6 +265,8 @@ class SixwayNet(nn.Module):
                 "guide_channels": c["guide_channels"], "scale": 1}
         if c.get("guide_alpha_step_voxels", 0) > 0:
             node["guide_alpha_step_voxels"] = c["guide_alpha_step_voxels"]
+        if c.get("albedo_input"):
+            node["albedo"] = {"channel": c["guide_channels"], **c["albedo_input"]}
         x = self._add(node)
         skips = []
         cin = c["input_channels"]
@@ -310,9 +331,13 @@ class SixwayNet(nn.Module):
         return self.blocks[name.replace(".", "/")]
 
     def forward(self, guide, intermediates=None, seconds=None):
-        """guide: (N, guide_channels to input_channels, H, W), H and W multiples of size_multiple().
+        """guide: (N, input_channel_count(config) to input_channels, H, W), H and W multiples of size_multiple();
+        with albedo_input, channel guide_channels holds the raw albedo (encoded here, as the input node says).
         Returns the 8 raw output channels (the network's encoding). When `intermediates` is a dict, every
         node's output is stored in it by node name; when `seconds` is, the time each node took (benchmarks)."""
+        if guide.shape[1] < input_channel_count(self.config):
+            raise ValueError(f"the network reads {input_channel_count(self.config)} channels (the guide's, then the "
+                             f"albedo), got {guide.shape[1]}")
         values = {}
         for node in self.nodes:
             start = time.perf_counter()
@@ -320,6 +345,10 @@ class SixwayNet(nn.Module):
             if op == "input":
                 pad = node["out_channels"] - guide.shape[1]
                 out = F.pad(guide, (0, 0, 0, 0, 0, pad)) if pad > 0 else guide
+                if "albedo" in node:
+                    k, albedo = node["albedo"]["channel"], node["albedo"]
+                    out = torch.cat([out[:, :k], (out[:, k:k + 1] - albedo["offset"]) * albedo["scale"],
+                                     out[:, k + 1:]], dim=1)
             else:
                 inputs = [values[name] for name in node["inputs"]]
                 x = torch.cat(inputs, dim=1) if len(inputs) > 1 else inputs[0]
@@ -360,10 +389,15 @@ class SixwayNet(nn.Module):
 
 def run_padded(model, guide, intermediates=None):
     """Runs a guide of any size: zero-padded at the right and bottom to the size multiple, as the GLSL runner
-    does, and cropped back. Intermediates (when a dict is given) stay at the padded size."""
+    does, and cropped back; the albedo (a scene constant) fills the padding too. Intermediates (when a dict is
+    given) stay at the padded size."""
     m = model.size_multiple()
     height, width = guide.shape[2], guide.shape[3]
-    padded = F.pad(guide, (0, (-width) % m, 0, (-height) % m))
+    pad = (0, (-width) % m, 0, (-height) % m)
+    padded = F.pad(guide, pad)
+    if model.config.get("albedo_input"):
+        k = model.config["guide_channels"]
+        padded[:, k:k + 1] = F.pad(guide[:, k:k + 1], pad, mode="replicate")
     return model(padded, intermediates)[:, :, :height, :width]
 
 

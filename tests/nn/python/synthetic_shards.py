@@ -45,10 +45,11 @@ def sample_tensors(size, frame, camera, sequence, guide_channels=3, emission=0.0
 
 
 def write_shards(directory, size=16, cameras=3, frames=4, sequences=2, heldout_camera=2, guide_channels=3,
-                 emission=None):
+                 emission=None, albedos=None):
     """Sequences 0..sequences-2 are training sequences (camera `heldout_camera` held out), the last one is a
     held-out sequence. A guide of 4 or 5 channels makes version 4 shards, with a fine alpha step of 1 voxel;
-    `emission` (None: none) is the scene's emission intensity. Returns the shard paths."""
+    `emission` (None: none) is the scene's emission intensity; `albedos` (None: none) the smoke's albedo per
+    sequence. Returns the shard paths."""
     os.makedirs(directory, exist_ok=True)
     config = {"synthetic": True, "lightmap_size": size}
     paths = []
@@ -72,6 +73,8 @@ def write_shards(directory, size=16, cameras=3, frames=4, sequences=2, heldout_c
             info["scene"]["render"] = {"guide_alpha_step_voxels": 1.0}
         if emission is not None:
             info["scene"]["smoke"] = {"emission": {"intensity": emission}}
+        if albedos is not None:
+            info["scene"].setdefault("smoke", {})["albedo"] = albedos[sequence]
         path = os.path.join(directory, f"shard_{sequence:05d}.safetensors")
         tensors = {name: np.stack(values).astype(np.float16)
                    for name, values in (("guide", guides), ("target", targets), ("motion", motions))}

@@ -208,6 +208,29 @@ class DatasetTest(unittest.TestCase):
             mirrored = five.batch(np.array([1]), mirror=np.array([True]))["guide"]
             torch.testing.assert_close(mirrored, plain.flip(-1))
 
+    def test_the_albedo_plane_follows_the_guide(self):
+        """With `albedo`, a batch's guide gains a plane of its sample's scene albedo (a scene's 0.9 where the shard
+        states none), crops and mirroring included; an albedo outside [0, 1] names the shard."""
+        with tempfile.TemporaryDirectory() as tmp:
+            synthetic_shards.write_shards(tmp, size=8, cameras=2, frames=2, sequences=2, albedos=[0.8, 0.95])
+            data = ShardDataset(tmp, albedo=True)
+            indices = np.array([0, len(data.samples) - 1])
+            batch = data.batch(indices, crop=4, offsets=np.array([[1, 2], [0, 0]]), mirror=np.array([True, False]))
+            self.assertEqual(tuple(batch["guide"].shape), (2, 4, 4, 4))
+            torch.testing.assert_close(batch["guide"][:, :3], ShardDataset(tmp).batch(
+                indices, crop=4, offsets=np.array([[1, 2], [0, 0]]), mirror=np.array([True, False]))["guide"])
+            self.assertTrue(torch.equal(batch["guide"][0, 3], torch.full((4, 4), 0.8)))
+            self.assertTrue(torch.equal(batch["guide"][1, 3], torch.full((4, 4), 0.95)))
+        with tempfile.TemporaryDirectory() as tmp:
+            synthetic_shards.write_shards(tmp, size=8, cameras=1, frames=2, sequences=1)
+            self.assertTrue(torch.equal(ShardDataset(tmp, albedo=True).batch(np.array([0]))["guide"][0, 3],
+                                        torch.full((8, 8), 0.9)))
+        with tempfile.TemporaryDirectory() as tmp:
+            synthetic_shards.write_shards(tmp, size=8, cameras=1, frames=2, sequences=1, albedos=[1.5])
+            with self.assertRaisesRegex(ValueError, r"shard_00000\.safetensors: sixway\.dataset\.scene\.smoke\.albedo "
+                                                    r"is 1\.5, not in \[0, 1\]"):
+                ShardDataset(tmp, albedo=True)
+
     def test_a_guide_without_the_emission_is_zero_emission_unless_its_scene_emits(self):
         """A 5-channel reader of 4-channel shards: zeros for the emission where the scene has no emission or an
         intensity of 0; for an emissive scene, the shard is named; a 3-channel shard lacks the fine alpha."""

@@ -30,7 +30,7 @@ import train as train_module  # noqa: E402
 from safetensors_io import read_safetensors  # noqa: E402
 from bench_torch import node_flops  # noqa: E402
 from sixway_net import (OUTPUT_CHANNELS, SixwayNet, decode_output, export_safetensors, load_safetensors,  # noqa: E402
-                        randomize)
+                        randomize, run_padded)
 from net2deeper import deeper_state  # noqa: E402
 from net2wider import wider_state  # noqa: E402
 
@@ -179,6 +179,66 @@ class WidenedInitTest(unittest.TestCase):
         self.assertFalse(tuned["enc.0.0.weight"][:, 4:].any())
         fresh = SixwayNet(self.FIVE).named_tensors()["alpha_from_guide.weight"].detach().numpy()
         self.assertTrue(np.array_equal(tuned["alpha_from_guide.weight"], fresh))
+
+
+class AlbedoInputTest(unittest.TestCase):
+    """train.init_from from a network of 5 guide channels in 8 inputs into one that also reads the smoke's albedo
+    in the 6th: that channel's weights start at zero (whatever the checkpoint held there), so the function is kept."""
+    FIVE = dict(WidenedInitTest.FIVE)
+    ALBEDO = dict(FIVE, albedo_input={"offset": 0.875, "scale": 13.333333})
+
+    def test_the_albedo_is_encoded_in_the_channel_after_the_guide(self):
+        net = randomize(SixwayNet(self.ALBEDO), 6).eval()
+        node = net.nodes[0]
+        self.assertEqual(node["albedo"], {"channel": 5, "offset": 0.875, "scale": 13.333333})
+        guide = torch.rand(1, 5, 8, 8, generator=torch.Generator().manual_seed(4))
+        encoded = torch.cat([guide, (torch.full((1, 1, 8, 8), 0.95) - 0.875) * 13.333333, torch.zeros(1, 2, 8, 8)], 1)
+        plain = SixwayNet(dict(self.FIVE))
+        plain.load_state_dict(net.state_dict())
+        with torch.no_grad():
+            torch.testing.assert_close(net(torch.cat([guide, torch.full((1, 1, 8, 8), 0.95)], 1)), plain(encoded),
+                                       rtol=0, atol=1e-6)
+        # run_padded pads the guide with zeros and the albedo with itself, as the GLSL input kernel writes it.
+        intermediates = {}
+        with torch.no_grad():
+            run_padded(net, torch.cat([guide[:, :, :7, :7], torch.full((1, 1, 7, 7), 0.95)], 1), intermediates)
+        torch.testing.assert_close(intermediates["input"][0, 5], (torch.full((8, 8), 0.95) - 0.875) * 13.333333)
+        self.assertFalse(intermediates["input"][0, :5, 7:].any())
+        self.assertFalse(intermediates["input"][0, :5, :, 7:].any())
+
+    def test_bad_albedo_configs(self):
+        for bad, message in (({"offset": 0.875}, "albedo_input must be"), ({"offset": 0, "scale": 0}, "albedo_input must be"),
+                             ({"offset": 0, "scale": 1, "bias": 2}, "albedo_input must be")):
+            with self.assertRaisesRegex(ValueError, message):
+                SixwayNet(dict(self.FIVE, albedo_input=bad))
+        with self.assertRaisesRegex(ValueError, "albedo_input needs an input channel after the guide's"):
+            SixwayNet(dict(self.FIVE, input_channels=5, albedo_input={"offset": 0, "scale": 1}))
+
+    def test_only_an_added_albedo_widens(self):
+        widens = train_module.widens
+        self.assertTrue(widens(self.FIVE, self.ALBEDO))
+        self.assertTrue(widens(WidenedInitTest.FOUR, self.ALBEDO))
+        self.assertFalse(widens(self.ALBEDO, self.FIVE))
+        self.assertFalse(widens(self.ALBEDO, dict(self.ALBEDO, albedo_input={"offset": 0.5, "scale": 2})))
+
+    def test_init_from_a_network_without_the_albedo(self):
+        """At a zero rate the export is the checkpoint with the 6th input channel's weights zeroed: the albedo
+        changes nothing until training moves them."""
+        old = randomize(SixwayNet(self.FIVE), 7)
+        self.assertTrue(old.module("enc.0.0").weight[:, 5].abs().sum() > 0)
+        run, out = tune_from_checkpoint("albedo", self.FIVE, old, 5, self.ALBEDO)
+        self.assertEqual(run.returncode, 0, run.stderr)
+        self.assertIn("train.init_from: the albedo input added; enc.0.0 read it from zero weights", run.stdout)
+        tuned, _ = read_safetensors(os.path.join(out, "sixway-unet.safetensors"))
+        weight = old.module("enc.0.0").weight.detach().numpy()
+        self.assertFalse(tuned["enc.0.0.weight"][:, 5].any())
+        self.assertTrue(np.array_equal(tuned["enc.0.0.weight"][:, [0, 1, 2, 3, 4, 6, 7]], weight[:, [0, 1, 2, 3, 4, 6, 7]]))
+        net, _ = load_safetensors(os.path.join(out, "sixway-unet.safetensors"))
+        guide = torch.rand(2, 5, 8, 8, generator=torch.Generator().manual_seed(5))
+        with torch.no_grad():
+            for albedo in (0.8, 0.95):
+                torch.testing.assert_close(net(torch.cat([guide, torch.full((2, 1, 8, 8), albedo)], 1)),
+                                           old.eval()(guide), rtol=0, atol=1e-6)
 
 
 class WiderWidthsTest(unittest.TestCase):
