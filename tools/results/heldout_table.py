@@ -24,6 +24,9 @@ FAMILIES = [
     ("families_young128_jet_bunny", "young jet + bunny, 128²"),
     ("families_young128_moving_sphere", "young moving sphere, 128²"),
     ("families_young128_explosion", "young explosion, 128²"),
+    ("families_young_lattice_jet_plume", "young jet, 128², scene lattice"),
+    ("families_young_lattice_jet_bunny", "young jet + bunny, 128², scene lattice"),
+    ("families_young_lattice_moving_sphere", "young moving sphere, 128², scene lattice"),
     ("families_chimney_wind", "chimney in wind (unseen family)"),
 ]
 SPLITS = ["heldout_sequence", "heldout_camera"]
