@@ -9,7 +9,8 @@ DDP starts when WORLD_SIZE > 1 (NCCL on GPUs, gloo on the CPU). Debian's torch 1
 starting the workers (AttributeError in torch.distributed.elastic's `redirects`); there, start one process per
 rank with MASTER_ADDR, MASTER_PORT, WORLD_SIZE, RANK and LOCAL_RANK set.
 
-Loss (tools/nn/losses.py): MSE in sRGB space + SSIM and/or gradient + the temporal term on temporal pairs.
+Loss (tools/nn/losses.py): MSE in sRGB space + SSIM and/or gradient + the temporal term on temporal pairs
++ optionally the MSE of the shaded images.
 Every batch is B pairs (a frame and the previous frame of its camera, the same random crop), so both frames
 train the reconstruction terms and the pair trains the temporal term. Adam with a cosine or step schedule.
 Deterministic from the config and the seed: the model's initialisation comes from torch.manual_seed(seed),
@@ -82,7 +83,9 @@ DEFAULTS = {
         "widen_noise": 0.01,
     },
     # channel_weights: the MSE's factor per output channel ({"emissive": 4}: the others stay 1).
-    "loss": {"mse": 1.0, "ssim": 0.1, "gradient": 0.0, "temporal": 0.1, "temporal_k": 20.0, "channel_weights": {}},
+    # shaded: the MSE of the images the maps shade under fixed lightings (losses.shaded_loss).
+    "loss": {"mse": 1.0, "ssim": 0.1, "gradient": 0.0, "temporal": 0.1, "temporal_k": 20.0, "shaded": 0.0,
+             "channel_weights": {}},
 }
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 # The model config keys in which train.init_from's checkpoint may have fewer channels than the run.

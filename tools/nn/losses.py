@@ -15,15 +15,22 @@ in sRGB), alpha linear. Channels are in the network's output order (sixway_net.A
   w = exp(-k |target_t - warp(target_t-1)|),  loss = mean(w * valid * (pred_t - warp(pred_t-1))^2).
   Smoke that appears, disappears or changes its lighting has a large reference difference and a small weight,
   so real changes are not punished; pixels whose source lies outside the image (valid = 0) are left out.
+- `shaded`: MSE of the billboard images that the maps shade (docs/conventions.md, "Shading"), linear, under a
+  fixed set of lightings: what `sixway eval` compares with the path tracer. The per-map terms weigh every map
+  and every pixel alike in sRGB; the image weighs each map by the light's squared direction, sums the errors of
+  the lights and the ambient (correlated errors add up) and, being linear, weighs bright smoke most.
 """
 import torch
 import torch.nn.functional as F
 
-from sixway_net import OUTPUT_CHANNELS
+from sixway_net import OUTPUT_CHANNELS, srgb_to_linear
 
 ALPHA_CHANNEL = 6
 SSIM_C1 = 0.01 ** 2  # (K1 L)^2 with the data range L = 1 of sRGB values
 SSIM_C2 = 0.03 ** 2
+# The shaded term's lightings: fixed (a resumed run and the held-out curve see the same ones), drawn once.
+SHADED_LIGHTINGS = 32
+SHADED_SEED = 20
 
 
 def srgb_encode(x):
@@ -68,6 +75,56 @@ def channel_weight_vector(factors, device=None):
     for name, factor in factors.items():
         weights[OUTPUT_CHANNELS.index(name)] = factor
     return weights
+
+
+def lighting_weights(directions, energies, ambient, background):
+    """(L, 8) weights, in the network's output order, of L lightings of K directional lights each: unit
+    `directions` (L, K, 3) toward the lights in the six-way frame (x right, y up, z away from the camera),
+    `energies` (L, K) = E/pi, a constant `ambient` L0 (L,) and `background` (L,). A lighting's image is linear in
+    the maps: image = w . maps + background, with w_i = sum_k E_k d_i^2 on right/top/back where d_i >= 0, on
+    left/bottom/front where d_i < 0, (2/3) L0 more on all six, 1 on the emissive and -background on alpha
+    (premultiplied over)."""
+    energies = energies.unsqueeze(-1)
+    positive = (energies * directions.square() * (directions >= 0)).sum(1)  # (L, 3): right, top, back
+    negative = (energies * directions.square() * (directions < 0)).sum(1)  # left, bottom, front
+    column = {name: k for k, name in enumerate(OUTPUT_CHANNELS)}
+    weights = torch.zeros(directions.shape[0], len(OUTPUT_CHANNELS))
+    for axis, (plus, minus) in enumerate([("right", "left"), ("top", "bottom"), ("back", "front")]):
+        weights[:, column[plus]] = positive[:, axis] + 2 / 3 * ambient
+        weights[:, column[minus]] = negative[:, axis] + 2 / 3 * ambient
+    weights[:, column["emissive"]] = 1
+    weights[:, column["alpha"]] = -background
+    return weights
+
+
+def shading_lightings(count=SHADED_LIGHTINGS, seed=SHADED_SEED):
+    """The shaded term's lightings, (weights (count, 8), backgrounds (count,)): a key light (E/pi in [0.5, 1.5])
+    and a fill light (in [0, 0.6]) from directions uniform on the sphere, an ambient L0 in [0, 0.15] and a
+    background in [0, 0.6] (the shipped scenes' lights lie in these ranges)."""
+    g = torch.Generator().manual_seed(seed)
+    uniform = lambda lo, hi, *shape: lo + (hi - lo) * torch.rand(*shape, generator=g)
+    directions = F.normalize(torch.randn(count, 2, 3, generator=g), dim=-1)
+    energies = torch.stack([uniform(0.5, 1.5, count), uniform(0.0, 0.6, count)], dim=1)
+    ambient, background = uniform(0.0, 0.15, count), uniform(0.0, 0.6, count)
+    return lighting_weights(directions, energies, ambient, background), background
+
+
+SHADING_WEIGHTS, SHADING_BACKGROUNDS = shading_lightings()
+
+
+def prediction_to_linear(raw, encodings):
+    """The network's raw outputs -> linear values, not clamped (a negative value is an error the loss sees)."""
+    srgb = torch.tensor([e == "srgb" for e in encodings], device=raw.device).view(1, -1, 1, 1)
+    return torch.where(srgb, srgb_to_linear(raw), raw)
+
+
+def shaded_loss(pred_linear, target_linear, weights, backgrounds):
+    """Mean over the lightings (`weights` (L, 8), `backgrounds` (L,)) and the pixels of the squared difference of
+    the shaded images, each clipped to [0, 1] as `sixway eval` clips them (an emissive core brighter than white
+    is no error where both are)."""
+    shade = lambda maps: (torch.einsum("lc,nchw->nlhw", weights.to(maps.device), maps) +
+                          backgrounds.to(maps.device).view(1, -1, 1, 1)).clamp(0, 1)
+    return (shade(pred_linear) - shade(target_linear)).square().mean()
 
 
 def _gaussian_window(size, sigma, channels, device):
@@ -125,8 +182,8 @@ def training_loss(raw, raw_previous, target, target_previous, motion, encodings,
     """Total loss and its terms (a dict of floats) for a batch of temporal pairs.
     raw/raw_previous: network outputs of the current and previous frames, `encodings` theirs per channel
     (sixway_net.output_encodings); targets linear; `weights` maps
-    mse, ssim, gradient, temporal to their factors, temporal_k to k (terms with factor 0 are skipped) and
-    channel_weights to the MSE's per-channel factors ({name: factor}, e.g. {"emissive": 4})."""
+    mse, ssim, gradient, temporal, shaded to their factors, temporal_k to k (terms with factor 0 are skipped)
+    and channel_weights to the MSE's per-channel factors ({name: factor}, e.g. {"emissive": 4})."""
     pred = prediction_to_loss_space(torch.cat([raw, raw_previous]), encodings)
     ref = target_to_loss_space(torch.cat([target, target_previous]))
     n = raw.shape[0]
@@ -137,5 +194,9 @@ def training_loss(raw, raw_previous, target, target_previous, motion, encodings,
         terms["gradient"] = gradient_loss(pred, ref)
     if weights.get("temporal", 0):
         terms["temporal"] = temporal_loss(pred[:n], pred[n:], ref[:n], ref[n:], motion, weights["temporal_k"])
+    if weights.get("shaded", 0):
+        terms["shaded"] = shaded_loss(prediction_to_linear(torch.cat([raw, raw_previous]), encodings),
+                                      torch.cat([target, target_previous]), SHADING_WEIGHTS,
+                                      SHADING_BACKGROUNDS)
     total = sum(weights[name] * value for name, value in terms.items())
     return total, {name: float(value) for name, value in terms.items()}

@@ -14,7 +14,7 @@ except ImportError as missing:
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "tools", "nn"))
 import losses  # noqa: E402
-from sixway_net import output_encodings, srgb_to_linear  # noqa: E402
+from sixway_net import OUTPUT_CHANNELS, output_encodings, srgb_to_linear  # noqa: E402
 
 SRGB = output_encodings({"encoding": "srgb"})  # an sRGB network's output encodings
 
@@ -171,6 +171,65 @@ class ChannelWeightsTest(unittest.TestCase):
         self.assertAlmostEqual(float(unit), plain, places=6)
 
 
+def numpy_shaded_image(maps, directions, energies, ambient, background):
+    """The billboard image of linear maps (8, H, W) in the network's order under directional lights, written out
+    from docs/conventions.md's "Shading": t = sum_i d_i^2 (d_i >= 0 ? A_i : B_i) per light, the ambient
+    (2/3) sum_i [A_i L0 + B_i L0], the emissive, then premultiplied over the background."""
+    channel = {name: maps[k].astype(np.float64) for k, name in enumerate(OUTPUT_CHANNELS)}
+    a, b = ["right", "top", "back"], ["left", "bottom", "front"]
+    image = np.zeros_like(channel["alpha"])
+    for d, energy in zip(directions, energies):
+        for i in range(3):
+            image += energy * d[i] ** 2 * (channel[a[i]] if d[i] >= 0 else channel[b[i]])
+    image += 2 / 3 * sum(channel[a[i]] * ambient + channel[b[i]] * ambient for i in range(3))
+    return image + channel["emissive"] + (1 - channel["alpha"]) * background
+
+
+class ShadedTest(unittest.TestCase):
+    def test_weights_shade_as_the_billboard_does(self):
+        maps = smooth_image(11)[0].numpy()
+        directions = torch.nn.functional.normalize(torch.tensor([[[0.3, 0.8, -0.5], [-0.9, -0.2, 0.4]]]), dim=-1)
+        energies, ambient, background = torch.tensor([[1.2, 0.4]]), torch.tensor([0.1]), torch.tensor([0.3])
+        weights = losses.lighting_weights(directions, energies, ambient, background)
+        image = torch.einsum("lc,chw->lhw", weights, torch.from_numpy(maps))[0] + background[0]
+        expected = numpy_shaded_image(maps, directions[0].numpy(), energies[0].numpy(), 0.1, 0.3)
+        np.testing.assert_allclose(image.numpy(), expected, rtol=1e-5, atol=1e-6)
+
+    def test_an_error_costs_what_the_light_gives_it(self):
+        # A light from straight above sees the top map's error whole and the bottom map's not at all.
+        weights = losses.lighting_weights(torch.tensor([[[0.0, 1.0, 0.0]]]), torch.tensor([[1.0]]),
+                                          torch.tensor([0.0]), torch.tensor([0.0]))
+        target = torch.full((1, 8, 4, 4), 0.2)
+        for name, cost in (("top", 0.01), ("bottom", 0.0)):
+            pred = target.clone()
+            pred[:, OUTPUT_CHANNELS.index(name)] += 0.1
+            self.assertAlmostEqual(float(losses.shaded_loss(pred, target, weights, torch.zeros(1))), cost, places=7)
+
+    def test_images_clipped_as_eval_clips_them(self):
+        # Both images brighter than white (an emissive core) differ in nothing that eval measures.
+        weights, backgrounds = losses.shading_lightings(4)
+        target = torch.full((1, 8, 4, 4), 0.5)
+        target[:, OUTPUT_CHANNELS.index("emissive")] = 3.0
+        pred = target.clone()
+        pred[:, OUTPUT_CHANNELS.index("emissive")] = 2.0
+        self.assertEqual(float(losses.shaded_loss(pred, target, weights, backgrounds)), 0.0)
+        pred[:, OUTPUT_CHANNELS.index("emissive")] = 0.0
+        self.assertGreater(float(losses.shaded_loss(pred, target, weights, backgrounds)), 0.0)
+
+    def test_the_lightings_are_fixed_and_in_range(self):
+        weights, backgrounds = losses.shading_lightings()
+        again, _ = losses.shading_lightings()
+        torch.testing.assert_close(weights, again)
+        torch.testing.assert_close(weights, losses.SHADING_WEIGHTS)
+        self.assertEqual(tuple(weights.shape), (losses.SHADED_LIGHTINGS, 8))
+        six = [OUTPUT_CHANNELS.index(n) for n in ("right", "left", "top", "bottom", "back", "front")]
+        # sum_i d_i^2 = 1 per light: the six weights add up to E_key + E_fill + 4 L0, in [0.5, 1.5 + 0.6 + 0.6].
+        total = weights[:, six].sum(1)
+        self.assertTrue(bool((weights[:, six] >= 0).all()))
+        self.assertTrue(bool((total >= 0.5).all()) and bool((total <= 2.7).all()))
+        self.assertTrue(bool((backgrounds >= 0).all()) and bool((backgrounds <= 0.6).all()))
+
+
 class TrainingLossTest(unittest.TestCase):
     def test_perfect_prediction_has_zero_loss(self):
         target_previous = smooth_image(9)
@@ -178,9 +237,9 @@ class TrainingLossTest(unittest.TestCase):
         motion = torch.zeros(2, 2, 24, 24)
         motion[:, 0], motion[:, 1] = 2, 1
         raw, raw_previous = losses.target_to_loss_space(target), losses.target_to_loss_space(target_previous)
-        weights = {"mse": 1, "ssim": 0.5, "gradient": 0.5, "temporal": 1, "temporal_k": 20}
+        weights = {"mse": 1, "ssim": 0.5, "gradient": 0.5, "temporal": 1, "temporal_k": 20, "shaded": 2}
         total, terms = losses.training_loss(raw, raw_previous, target, target_previous, motion, SRGB, weights)
-        self.assertEqual(set(terms), {"mse", "ssim", "gradient", "temporal"})
+        self.assertEqual(set(terms), {"mse", "ssim", "gradient", "temporal", "shaded"})
         self.assertLess(abs(float(total)), 1e-6)
 
     def test_gradients_flow_to_the_prediction(self):
