@@ -8,15 +8,19 @@
 # LIGHTMAP=N (lightmap size, default 64: half the frame's; 128 separates the lightmaps' resolution from the
 # six-way model) WEIGHTS=ms|ss|PATH (the network, default ms); reports go to out/ms_ceiling/lightmap_N/, or
 # out/ms_ceiling/lightmap_N_ss or out/ms_ceiling/lightmap_N_<name> with WEIGHTS=PATH (the file's directory).
+# WARMUP=N (default 0) first simulates N frames unseen (scenes with their own warm-up keep it): the smoke developed
+# rather than the first puffs at the inlet; reports then go to a directory ending in _warmN.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 frames="${FRAMES:-8}"
 spp="${SPP:-128}"
 lightmap="${LIGHTMAP:-64}"
+warmup="${WARMUP:-0}"
 python=/usr/bin/python3
 weights="${WEIGHTS:-ms}"
 out="$root/out/ms_ceiling/lightmap_$lightmap"
 case "$weights" in ms) ;; ss) out="${out}_ss" ;; *) out="${out}_$(basename "$(dirname "$weights")")" ;; esac
+[ "$warmup" = 0 ] || out="${out}_warm$warmup"
 sixway="${SIXWAY:-$root/build/src/app/sixway}"
 [ -x "$sixway" ] || source "$root/tools/build.sh"
 mkdir -p "$out"
@@ -24,7 +28,7 @@ for scene in "$root"/assets/scenes/*.json; do
   name=$(basename "$scene" .json)
   [ "$name" = bench ] && continue
   small="$out/$name.json"
-  "$python" "$root/tools/results/resized_scene.py" "$scene" "$small" --size 128 --lightmap "$lightmap"
+  "$python" "$root/tools/results/resized_scene.py" "$scene" "$small" --size 128 --lightmap "$lightmap" --warmup "$warmup"
   echo "ms_ceiling.sh: $name" >&2
   "$sixway" eval --scene "$small" --frames "$frames" --spp "$spp" --orders 64 --weights "$weights" \
     --report "$out/$name.report.json" --force >&2
