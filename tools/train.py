@@ -84,8 +84,9 @@ DEFAULTS = {
     },
     # channel_weights: the MSE's factor per output channel ({"emissive": 4}: the others stay 1).
     # shaded: the MSE of the images the maps shade under fixed lightings (losses.shaded_loss).
+    # area_power: p of the per-sample weights (smoke area)^-p of the MSE and shaded terms (losses.area_weights).
     "loss": {"mse": 1.0, "ssim": 0.1, "gradient": 0.0, "temporal": 0.1, "temporal_k": 20.0, "shaded": 0.0,
-             "channel_weights": {}},
+             "channel_weights": {}, "area_power": 0.0},
 }
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 # The model config keys in which train.init_from's checkpoint may have fewer channels than the run.
@@ -131,6 +132,9 @@ def merge_config(config, source):
                               f"{', '.join(OUTPUT_CHANNELS)})")
         if not isinstance(factor, (int, float)) or isinstance(factor, bool) or not 0 <= factor <= 100:
             raise ConfigError(f"{source}: loss.channel_weights.{name} must be a number in [0, 100]")
+    power = merged["loss"]["area_power"]
+    if not isinstance(power, (int, float)) or isinstance(power, bool) or not 0 <= power <= 1:
+        raise ConfigError(f"{source}: loss.area_power must be a number in [0, 1]")
     return merged
 
 

@@ -5,7 +5,11 @@ in sRGB), alpha linear. Channels are in the network's output order (sixway_net.A
 
 - `mse`: mean squared error in loss space; `channel_weights` may weigh a channel's error up or down (e.g. the
   emissive channel, whose scattered glow is a small share of the mean map but a large one of an emissive
-  scene's image).
+  scene's image), `sample_weights` a sample's (`area_weights`).
+- `area_weights`: a mean over all pixels weighs a sample by the smoke's area, so a young puff of a hundred
+  pixels counts 40x less than a developed plume in the same batch, where the metrics (masked PSNR per sample or
+  set) weigh it alike. Weights (area fraction)^-p, p in [0, 1], normalised to mean 1 over the batch, undo that:
+  p = 1 makes every sample's masked MSE count alike, p = 0 is the plain mean.
 - `ssim`: 1 - SSIM (Wang et al. 2004; 11x11 Gaussian window, sigma 1.5) per channel, and `gradient`: L1 between
   the images' finite differences. No pretrained network (VGG, LPIPS) can be downloaded here; SSIM compares
   local mean, contrast and structure, and the gradient term penalises blurred edges, which MSE alone lets
@@ -23,6 +27,7 @@ in sRGB), alpha linear. Channels are in the network's output order (sixway_net.A
 import torch
 import torch.nn.functional as F
 
+from metrics import ALPHA_MASK_THRESHOLD
 from sixway_net import OUTPUT_CHANNELS, srgb_to_linear
 
 ALPHA_CHANNEL = 6
@@ -59,11 +64,25 @@ def prediction_to_loss_space(raw, encodings):
     return torch.where(linear & light_channels_mask(raw.shape[1], raw.device), srgb_encode(raw), raw)
 
 
-def mse(pred, target, channel_weights=None):
-    """Mean squared error; `channel_weights` (C factors, or None for all 1) weighs each channel's error."""
-    if channel_weights is None:
-        return F.mse_loss(pred, target)
-    return ((pred - target) ** 2 * channel_weights.view(1, -1, 1, 1)).mean()
+def mse(pred, target, channel_weights=None, sample_weights=None):
+    """Mean squared error; `channel_weights` (C factors, or None for all 1) weighs each channel's error,
+    `sample_weights` (N factors, or None) each sample's."""
+    error = (pred - target) ** 2
+    if channel_weights is not None:
+        error = error * channel_weights.view(1, -1, 1, 1)
+    if sample_weights is not None:
+        error = error * sample_weights.view(-1, 1, 1, 1)
+    return error.mean()
+
+
+def area_weights(target_alpha, power):
+    """(N,) weights (mask area fraction)^-power, mean 1, of linear reference alphas (N, H, W); the mask is the
+    metrics' (alpha > 0.01), its area at least one pixel. None when power is 0."""
+    if not power:
+        return None
+    area = (target_alpha > ALPHA_MASK_THRESHOLD).float().mean((1, 2)).clamp(min=1.0 / target_alpha[0].numel())
+    weights = area ** -power
+    return weights / weights.mean()
 
 
 def channel_weight_vector(factors, device=None):
@@ -118,13 +137,16 @@ def prediction_to_linear(raw, encodings):
     return torch.where(srgb, srgb_to_linear(raw), raw)
 
 
-def shaded_loss(pred_linear, target_linear, weights, backgrounds):
+def shaded_loss(pred_linear, target_linear, weights, backgrounds, sample_weights=None):
     """Mean over the lightings (`weights` (L, 8), `backgrounds` (L,)) and the pixels of the squared difference of
     the shaded images, each clipped to [0, 1] as `sixway eval` clips them (an emissive core brighter than white
-    is no error where both are)."""
+    is no error where both are); `sample_weights` (N factors, or None) weighs each sample's."""
     shade = lambda maps: (torch.einsum("lc,nchw->nlhw", weights.to(maps.device), maps) +
                           backgrounds.to(maps.device).view(1, -1, 1, 1)).clamp(0, 1)
-    return (shade(pred_linear) - shade(target_linear)).square().mean()
+    error = (shade(pred_linear) - shade(target_linear)).square()
+    if sample_weights is not None:
+        error = error * sample_weights.view(-1, 1, 1, 1)
+    return error.mean()
 
 
 def _gaussian_window(size, sigma, channels, device):
@@ -182,12 +204,15 @@ def training_loss(raw, raw_previous, target, target_previous, motion, encodings,
     """Total loss and its terms (a dict of floats) for a batch of temporal pairs.
     raw/raw_previous: network outputs of the current and previous frames, `encodings` theirs per channel
     (sixway_net.output_encodings); targets linear; `weights` maps
-    mse, ssim, gradient, temporal, shaded to their factors, temporal_k to k (terms with factor 0 are skipped)
-    and channel_weights to the MSE's per-channel factors ({name: factor}, e.g. {"emissive": 4})."""
+    mse, ssim, gradient, temporal, shaded to their factors, temporal_k to k (terms with factor 0 are skipped),
+    channel_weights to the MSE's per-channel factors ({name: factor}, e.g. {"emissive": 4}) and area_power to
+    the power p of the per-sample weights of the MSE and shaded terms (area_weights; 0 or absent: none)."""
+    targets = torch.cat([target, target_previous])
     pred = prediction_to_loss_space(torch.cat([raw, raw_previous]), encodings)
-    ref = target_to_loss_space(torch.cat([target, target_previous]))
+    ref = target_to_loss_space(targets)
     n = raw.shape[0]
-    terms = {"mse": mse(pred, ref, channel_weight_vector(weights.get("channel_weights"), pred.device))}
+    samples = area_weights(targets[:, ALPHA_CHANNEL], weights.get("area_power", 0))
+    terms = {"mse": mse(pred, ref, channel_weight_vector(weights.get("channel_weights"), pred.device), samples)}
     if weights.get("ssim", 0):
         terms["ssim"] = 1 - ssim(pred, ref)
     if weights.get("gradient", 0):
@@ -196,7 +221,6 @@ def training_loss(raw, raw_previous, target, target_previous, motion, encodings,
         terms["temporal"] = temporal_loss(pred[:n], pred[n:], ref[:n], ref[n:], motion, weights["temporal_k"])
     if weights.get("shaded", 0):
         terms["shaded"] = shaded_loss(prediction_to_linear(torch.cat([raw, raw_previous]), encodings),
-                                      torch.cat([target, target_previous]), SHADING_WEIGHTS,
-                                      SHADING_BACKGROUNDS)
+                                      targets, SHADING_WEIGHTS, SHADING_BACKGROUNDS, samples)
     total = sum(weights[name] * value for name, value in terms.items())
     return total, {name: float(value) for name, value in terms.items()}

@@ -18,7 +18,8 @@ families=(inputs families/explosion families/jet_plume families/jet_bunny famili
   families/young/explosion families/young/explosion_views families/young/explosion_start
   families/young128/plume families/young128/jet_plume families/young128/jet_bunny
   families/young128/moving_sphere families/young128/explosion families/young_lattice/jet_plume
-  families/young_lattice/jet_bunny families/young_lattice/moving_sphere families/chimney_wind)
+  families/young_lattice/jet_bunny families/young_lattice/moving_sphere families/young_full/jet_plume
+  families/young_full/jet_bunny families/young_full/moving_sphere families/chimney_wind)
 [[ $# -ge 1 ]] || { echo "usage: $0 LABEL=WEIGHTS [LABEL=WEIGHTS ...]" >&2; exit 2; }
 labels=() failed=0
 for arg in "$@"; do

@@ -27,6 +27,9 @@ FAMILIES = [
     ("families_young_lattice_jet_plume", "young jet, 128², scene lattice"),
     ("families_young_lattice_jet_bunny", "young jet + bunny, 128², scene lattice"),
     ("families_young_lattice_moving_sphere", "young moving sphere, 128², scene lattice"),
+    ("families_young_full_jet_plume", "young jet, scene lattice, full-resolution MS targets"),
+    ("families_young_full_jet_bunny", "young jet + bunny, scene lattice, full-resolution MS targets"),
+    ("families_young_full_moving_sphere", "young moving sphere, scene lattice, full-resolution MS targets"),
     ("families_chimney_wind", "chimney in wind (unseen family)"),
 ]
 SPLITS = ["heldout_sequence", "heldout_camera"]

@@ -171,6 +171,44 @@ class ChannelWeightsTest(unittest.TestCase):
         self.assertAlmostEqual(float(unit), plain, places=6)
 
 
+class AreaWeightsTest(unittest.TestCase):
+    @staticmethod
+    def alphas(pixels_per_sample, size=20):
+        """Linear alphas (N, size, size) whose first `pixels` pixels (row-major) are smoke (0.5), the rest 0.005."""
+        alpha = torch.full((len(pixels_per_sample), size * size), 0.005)
+        for k, pixels in enumerate(pixels_per_sample):
+            alpha[k, :pixels] = 0.5
+        return alpha.view(-1, size, size)
+
+    def test_weights_undo_the_area(self):
+        self.assertIsNone(losses.area_weights(self.alphas([4, 100]), 0))
+        full = losses.area_weights(self.alphas([4, 100]), 1)
+        self.assertAlmostEqual(float(full.mean()), 1.0, places=6)
+        self.assertAlmostEqual(float(full[0] / full[1]), 25.0, places=4)
+        half = losses.area_weights(self.alphas([4, 100]), 0.5)
+        self.assertAlmostEqual(float(half[0] / half[1]), 5.0, places=4)
+        # No smoke counts as one pixel of it (alpha 0.005 is under the metrics' 0.01), not as a division by 0.
+        empty = losses.area_weights(self.alphas([0, 1]), 1)
+        self.assertAlmostEqual(float(empty[0] / empty[1]), 1.0, places=6)
+
+    def test_every_samples_masked_error_counts_alike_at_power_1(self):
+        # Two samples, the same error 0.1 on their smoke only: a puff of 4 pixels and a plume of 100.
+        target = torch.zeros(2, 8, 20, 20)
+        target[:, losses.ALPHA_CHANNEL] = self.alphas([4, 100])
+        pred = target.clone()
+        smoke = (target[:, losses.ALPHA_CHANNEL:losses.ALPHA_CHANNEL + 1] > 0.01).float()
+        pred[:, :1] += 0.1 * smoke
+        weights = losses.area_weights(target[:, losses.ALPHA_CHANNEL], 1)
+        per_sample = [float(losses.mse(pred[k:k + 1], target[k:k + 1], None, weights[k:k + 1])) for k in range(2)]
+        self.assertAlmostEqual(per_sample[0], per_sample[1], places=7)
+        # The plain mean counts the plume 25x more.
+        plain = [float(losses.mse(pred[k:k + 1], target[k:k + 1])) for k in range(2)]
+        self.assertAlmostEqual(plain[1] / plain[0], 25.0, places=4)
+        shaded = [float(losses.shaded_loss(pred[k:k + 1], target[k:k + 1], losses.SHADING_WEIGHTS,
+                                           losses.SHADING_BACKGROUNDS, weights[k:k + 1])) for k in range(2)]
+        self.assertAlmostEqual(shaded[0] / shaded[1], 1.0, places=5)
+
+
 def numpy_shaded_image(maps, directions, energies, ambient, background):
     """The billboard image of linear maps (8, H, W) in the network's order under directional lights, written out
     from docs/conventions.md's "Shading": t = sum_i d_i^2 (d_i >= 0 ? A_i : B_i) per light, the ambient

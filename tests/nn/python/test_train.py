@@ -527,6 +527,11 @@ class TrainTest(unittest.TestCase):
         run = subprocess.run([sys.executable, TRAIN, "--config", bad, "--out", os.path.join(WORK, "bad")],
                              capture_output=True, text=True)
         self.assertEqual(run.stderr.strip(), f"train: {bad}: train.widen_noise must be a number in [0, 1]")
+        with open(bad, "w") as f:
+            json.dump({"loss": {"area_power": 2}}, f)
+        run = subprocess.run([sys.executable, TRAIN, "--config", bad, "--out", os.path.join(WORK, "bad")],
+                             capture_output=True, text=True)
+        self.assertEqual(run.stderr.strip(), f"train: {bad}: loss.area_power must be a number in [0, 1]")
         # A network that reads the fine alpha needs shards whose guide has it (version 3).
         with open(CONFIG) as f:
             fine = json.load(f)
