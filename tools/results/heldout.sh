@@ -19,7 +19,11 @@ families=(inputs families/explosion families/jet_plume families/jet_bunny famili
   families/young128/plume families/young128/jet_plume families/young128/jet_bunny
   families/young128/moving_sphere families/young128/explosion families/young_lattice/jet_plume
   families/young_lattice/jet_bunny families/young_lattice/moving_sphere families/young_full/jet_plume
-  families/young_full/jet_bunny families/young_full/moving_sphere families/chimney_wind)
+  families/young_full/jet_bunny families/young_full/moving_sphere
+  families/young_full64/plume families/young_full64/jet_plume families/young_full64/jet_bunny
+  families/young_full64/moving_sphere families/young_full64/explosion families/young_full128/plume
+  families/young_full128/jet_plume families/young_full128/jet_bunny families/young_full128/moving_sphere
+  families/young_full128/explosion families/chimney_wind)
 [[ $# -ge 1 ]] || { echo "usage: $0 LABEL=WEIGHTS [LABEL=WEIGHTS ...]" >&2; exit 2; }
 labels=() failed=0
 for arg in "$@"; do
