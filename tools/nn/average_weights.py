@@ -20,7 +20,7 @@ import sys
 import torch
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from atomic_file import atomic_open  # noqa: E402
+from atomic_file import atomic_open, atomic_path  # noqa: E402
 from dataset import SPLITS, ShardDataset  # noqa: E402
 from metrics import evaluate_split  # noqa: E402
 from sixway_net import export_safetensors, full_config, load_safetensors  # noqa: E402
@@ -49,7 +49,8 @@ def average(components):
         try:
             models.append(load_safetensors(path))
         except (OSError, KeyError, ValueError) as error:
-            raise ValueError(f"{path}: {error}")
+            message = str(error)  # the reader's messages already name the file
+            raise ValueError(message if path in message else f"{path}: {message}")
     first_model, first_metadata = models[0]
     for (_, path), (model, _) in zip(components[1:], models[1:]):
         if model.config != first_model.config:
@@ -102,7 +103,8 @@ def main():
         metadata["sixway.metrics"] = metrics
         with atomic_open(os.path.join(os.path.dirname(os.path.abspath(args.out)), "metrics.json")) as f:
             json.dump(metrics, f, indent=2)
-    export_safetensors(model, args.out, metadata)
+    with atomic_path(args.out) as partial:  # an interrupted write leaves no broken network behind
+        export_safetensors(model, partial, metadata)
     print(f"wrote {args.out}: " + ", ".join(f"{w:.3g} × {p}" for w, p in
                                             ((part["weight"], part["file"]) for part in training["weight_average"])))
 
