@@ -292,6 +292,9 @@ void addEvalCommand(CLI::App& app) {
   eval->add_flag(
       "--no-equal-time", [&s](int64_t) { s.equalTime = false; },
       "Scene: no equal-time study (it path-traces the strip frame up to the reference's samples)");
+  eval->add_flag(
+      "--truth-noise", s.truthNoise,
+      "Scene: path-trace each frame twice to take the truth's noise out of its frame-to-frame change");
   eval->add_option("--weights", s.weights, kWeightsHelp);
   eval->add_option("--report", s.report, "JSON report")->required();
   eval->add_flag("--force", s.force, "Overwrite an existing report (and --out directory)");

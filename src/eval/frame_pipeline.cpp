@@ -243,7 +243,7 @@ RenderedFrame FramePipeline::render(const FrameView& view, int index, double sec
   render::TraceSettings trace;
   trace.width = int(p.frame.width());
   trace.height = int(p.frame.height());
-  trace.seed = scene.render.seed + uint32_t(index);
+  trace.seed = scene.render.seed + uint32_t(index) + p.options.pathTraceSeedOffset;
   trace.maxOrders = p.options.pathTraceOrders;
   if (scene.ambient) {
     if (const auto* c = std::get_if<io::AmbientColor>(&*scene.ambient)) trace.environment = {c->color};

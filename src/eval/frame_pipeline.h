@@ -51,11 +51,12 @@ const char* renderModeName(RenderMode mode);
 
 struct FramePipelineOptions {
   RenderMode mode = RenderMode::Neural;
-  std::filesystem::path weights;   // neural: the network file
-  bool fp16 = false;               // neural: fp16 feature maps where the device has 16-bit storage
-  bool shadows = true;             // obstacle shadows on the smoke
-  uint32_t pathTraceSamples = 64;  // pathtrace: samples per pixel
-  int pathTraceOrders = 64;        // pathtrace: scattering orders (1: single scattering, like the baker)
+  std::filesystem::path weights;     // neural: the network file
+  bool fp16 = false;                 // neural: fp16 feature maps where the device has 16-bit storage
+  bool shadows = true;               // obstacle shadows on the smoke
+  uint32_t pathTraceSamples = 64;    // pathtrace: samples per pixel
+  int pathTraceOrders = 64;          // pathtrace: scattering orders (1: single scattering, like the baker)
+  uint32_t pathTraceSeedOffset = 0;  // pathtrace: added to its seed (render.seed + frame): other noise
   // reference-ms, traditional-ms: the higher orders' tracing (its seed is the scene's render.seed + frame)
   render::MultipleScattering multipleScattering;
   // Shadow atlas tiles; unset: one per shadow-casting light of the scene (the demo reserves room for the

@@ -6,7 +6,8 @@
 //   - the final images of neural, reference-lightmap (single and multiple scattering), traditional-flipbook
 //     (single and multiple scattering) and guide-lit rendering against the path tracer (ground truth);
 //   - GPU time per stage of every method and of the simulation;
-//   - the path tracer at the neural frame's time (equal_time.h), and a side-by-side strip of one frame.
+//   - the path tracer at the neural frame's time (equal_time.h), and a side-by-side strip of one frame;
+//   - each method's frame-to-frame change against the truth's (temporal_change.h).
 // The path tracer knows no obstacles, so by default the obstacles shape the flow but no method draws them
 // (nor their shadows); --draw-obstacles draws them in every method (the path-traced smoke then lies over them
 // unshadowed, as in `sixway render --mode pathtrace`).
@@ -30,6 +31,9 @@ struct SceneEvalSettings {
   std::optional<int> stripFrame;        // default: the last frame
   uint32_t equalTimeReferenceSamples = 256;
   bool equalTime = true;  // false: no equal-time study (the report's equal_time is null)
+  // Path-trace every frame a second time with another seed, so that the truth's frame-to-frame change can be
+  // told from its noise (temporal_change.h); doubles the truth's cost.
+  bool truthNoise = false;
   bool force = false;
 };
 

@@ -46,6 +46,19 @@ std::string summaryTable(const nlohmann::json& summary, const nlohmann::json& eq
     table += "  path tracer in the neural frame's " + cell(at(equalTime, "budget_ms"), "%*.1f", 0) +
              " ms: " + cell(at(equalTime, "equal_time_spp"), "%*.0f", 0) + " spp, " +
              cell(at(at(equalTime, "equal_time"), "psnr_masked_db"), "%*.2f", 0) + " dB\n";
+  const nlohmann::json& temporal = at(summary, "temporal");
+  if (temporal.is_object()) {
+    const nlohmann::json& truth = at(temporal, "truth");
+    table += "  frame-to-frame change (RMS where the smoke is): truth " + cell(at(truth, "rms"), "%*.4f", 0);
+    if (at(temporal, "truth_noise_removed") == true)
+      table += ", " + cell(at(truth, "rms_without_noise"), "%*.4f", 0) + " without its noise (" +
+               cell(at(truth, "noise_rms"), "%*.4f", 0) + ")";
+    table += "; x the truth's:";
+    for (const std::string& method : methods)
+      table +=
+          " " + method + " " + cell(at(at(at(temporal, "methods"), method.c_str()), "rms_ratio"), "%*.2f", 0);
+    table += "\n";
+  }
   return table;
 }
 

@@ -31,6 +31,18 @@ TEST(SummaryTableTest, OneRowPerMethodWithItsFigures) {
   EXPECT_THAT(table, ::testing::HasSubstr(
                          "neural lightmaps: 20.88 dB against the single-scattering baker's, 25.10 dB"));
   EXPECT_THAT(table, ::testing::HasSubstr("path tracer in the neural frame's 12.3 ms: 1 spp, 9.50 dB"));
+  EXPECT_EQ(table.find("frame-to-frame"), std::string::npos) << "no temporal line without the report's";
+}
+
+TEST(SummaryTableTest, FrameToFrameChangeOverTheTruths) {
+  const nlohmann::json temporal = {
+      {"truth", {{"rms", 0.02}, {"rms_without_noise", 0.015}, {"noise_rms", 0.0132}}},
+      {"truth_noise_removed", true},
+      {"methods", {{"neural", {{"rms_ratio", 1.061}}}, {"reference", {{"rms_ratio", nullptr}}}}}};
+  const std::string table = eval::summaryTable({{"temporal", temporal}}, nullptr, {"neural", "reference"});
+  EXPECT_THAT(table,
+              ::testing::HasSubstr("frame-to-frame change (RMS where the smoke is): truth 0.0200, 0.0150 "
+                                   "without its noise (0.0132); x the truth's: neural 1.06 reference -\n"));
 }
 
 }  // namespace

@@ -3,9 +3,11 @@
 # method, the equal-time study and the strip; and the reference lightmaps (exact single scattering, the same
 # shading) must come closer to the single-scattering path tracer than the guide-lit baseline (the guiding map's
 # three surrogate lights standing in for all six), which they do by 5.2 dB here (measured 31.5 vs 26.2 dB).
+# With --truth-noise the truth is traced twice a frame: its frame-to-frame change must be reported with its
+# noise and without it (less), and every method's change as a positive multiple of it.
 file(REMOVE_RECURSE ${OUT})
 execute_process(COMMAND ${SIXWAY} eval --scene ${SCENE} --frames 2 --spp 16 --orders 1 --weights ${WEIGHTS}
-                        --equal-time-reference-spp 64 --report ${OUT}/eval.json --out ${OUT}/strip --validate
+                        --equal-time-reference-spp 64 --truth-noise --report ${OUT}/eval.json --out ${OUT}/strip --validate
                 RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT code EQUAL 0 OR err MATCHES "validation:")
   message(FATAL_ERROR "sixway eval failed (${code}):\n${out}\n${err}")
@@ -65,4 +67,20 @@ string(JSON budget GET "${report}" equal_time budget_ms)
 if(NOT spp GREATER 0 OR NOT noise GREATER 0 OR NOT budget GREATER 0)
   message(FATAL_ERROR "eval.json: equal time: ${spp} spp, ${noise} dB in ${budget} ms")
 endif()
-message(STATUS "reference ${reference} dB, guide-lit ${guide} dB; path tracer at ${budget} ms: ${spp} spp, ${noise} dB")
+string(JSON removed GET "${report}" summary temporal truth_noise_removed)
+string(JSON raw GET "${report}" summary temporal truth rms)
+string(JSON truth_noise GET "${report}" summary temporal truth noise_rms)
+string(JSON clean GET "${report}" summary temporal truth rms_without_noise)
+if(NOT removed OR NOT raw GREATER 0 OR NOT truth_noise GREATER 0 OR clean GREATER raw OR clean LESS 0)
+  message(FATAL_ERROR "eval.json: the truth's change ${raw}, its noise ${truth_noise}, without it ${clean}")
+endif()
+foreach(method neural reference reference-ms traditional traditional-ms guide-lit)
+  string(JSON ratio GET "${report}" summary temporal methods ${method} rms_ratio)
+  if(NOT ratio GREATER 0)
+    message(FATAL_ERROR "eval.json: ${method}'s change is ${ratio} x the truth's")
+  endif()
+endforeach()
+if(NOT out MATCHES "frame-to-frame change \\(RMS where the smoke is\\): truth [0-9.]+, [0-9.]+ without its noise")
+  message(FATAL_ERROR "sixway eval printed no frame-to-frame line:\n${out}")
+endif()
+message(STATUS "truth's change ${raw} (noise ${truth_noise}, without it ${clean}); reference ${reference} dB, guide-lit ${guide} dB; path tracer at ${budget} ms: ${spp} spp, ${noise} dB")

@@ -3,7 +3,8 @@
 # assets/scenes/*.json (but bench.json) at a small size (128x128 frames, 64x64 lightmaps), against the path
 # tracer with every scattering order, printed as a markdown table of masked PSNRs (reference-ms: the
 # multiply-scattered lightmaps through the six-way shading; reference: single scattering; neural;
-# traditional-ms: a flipbook baked with multiple scattering).
+# traditional-ms: a flipbook baked with multiple scattering), then each method's frame-to-frame change over the
+# truth's (RMS where the smoke is; the truth traced twice a frame to take its noise out: `--truth-noise`).
 # About 10-15 minutes on the 2-core lavapipe machine. FRAMES=N (default 8) SPP=N (truth, default 128)
 # LIGHTMAP=N (lightmap size, default 64: half the frame's; 128 separates the lightmaps' resolution from the
 # six-way model) WEIGHTS=ms|ss|PATH (the network, default ms); reports go to out/ms_ceiling/lightmap_N/, or
@@ -31,15 +32,21 @@ for scene in "$root"/assets/scenes/*.json; do
   "$python" "$root/tools/results/resized_scene.py" "$scene" "$small" --size 128 --lightmap "$lightmap" --warmup "$warmup"
   echo "ms_ceiling.sh: $name" >&2
   "$sixway" eval --scene "$small" --frames "$frames" --spp "$spp" --orders 64 --weights "$weights" \
-    --report "$out/$name.report.json" --force >&2
+    --truth-noise --report "$out/$name.report.json" --force >&2
 done
 "$python" - "$out" <<'PY'
 import glob, json, os, sys
 methods = ["reference-ms", "reference", "neural", "traditional-ms", "traditional"]
-print("| scene | " + " | ".join(methods) + " |")
-print("|---|" + "---|" * len(methods))
+changes = ["neural", "reference-ms", "traditional-ms"]
+print("| scene | " + " | ".join(methods) + " | truth's change | " + " | ".join(f"{m} change" for m in changes) + " |")
+print("|---|" + "---|" * (len(methods) + 1 + len(changes)))
 for path in sorted(glob.glob(os.path.join(sys.argv[1], "*.report.json"))):
-    image = json.load(open(path))["summary"]["image"]
+    summary = json.load(open(path))["summary"]
+    image, temporal = summary["image"], summary.get("temporal") or {}
     name = os.path.basename(path).removesuffix(".report.json")
-    print(f"| {name} | " + " | ".join(f"{image[m]['psnr_masked_db']:.2f}" for m in methods) + " |")
+    truth = temporal.get("truth", {}).get("rms_without_noise")
+    ratios = [temporal.get("methods", {}).get(m, {}).get("rms_ratio") for m in changes]
+    print(f"| {name} | " + " | ".join(f"{image[m]['psnr_masked_db']:.2f}" for m in methods)
+          + (f" | {truth:.4f} | " if truth is not None else " | – | ")
+          + " | ".join(f"{r:.2f}×" if r is not None else "–" for r in ratios) + " |")
 PY
