@@ -346,6 +346,26 @@ TEST_F(DatasetConfigTest, HeldOutRuleBySequenceThenCamera) {
     }
 }
 
+// Every config shipped under tools/datasets (the JSON files with a base scene; the others are the ablations'
+// scenes) loads (base scene, meshes and VDB scenes found, every key known) and plans its first and last
+// sequence (the last is a played-back VDB scene where the config has one): a path broken by a move fails
+// here, not an hour into making a dataset.
+TEST(ShippedDatasetConfigs, EveryOneLoadsAndPlans) {
+  int configs = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(SIXWAY_DATASETS_DIR)) {
+    if (entry.path().extension() != ".json") continue;
+    SCOPED_TRACE(entry.path().string());
+    std::ifstream file(entry.path());
+    if (!nlohmann::json::parse(file).contains("base_scene")) continue;
+    DatasetConfig config;
+    ASSERT_NO_THROW(config = dataset::loadDatasetConfig(entry.path()));
+    EXPECT_NO_THROW(dataset::planSequence(config, 0));
+    EXPECT_NO_THROW(dataset::planSequence(config, config.sequenceCount() - 1));
+    ++configs;
+  }
+  EXPECT_GE(configs, 39);
+}
+
 TEST(DatasetShards, EverySequenceGoesToExactlyOneWorker) {
   for (int workers = 1; workers <= 7; ++workers)
     for (int s = 0; s < 40; ++s) {
