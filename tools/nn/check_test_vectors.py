@@ -3,7 +3,9 @@
 so that the committed vectors cannot drift from the PyTorch model in tools/nn/sixway_net.py.
 
 Weights, metadata and the guides must match exactly (they come from seeded numpy generators); PyTorch's outputs
-must match to NMSE <= 1e-10 and max-abs <= 1e-5 (CPU kernels may sum in another order on another machine).
+must match to NMSE <= 1e-10 and max-abs <= 1e-5 of the tensor's largest magnitude (at least 1): CPU kernels may sum
+in another order on another machine, which moves a sum of terms near 5 by a few float32 ulps of 5 (1.7e-5 on an AMD
+EPYC against the vectors made elsewhere, NMSE 5e-13).
 Exit status: 0 equal, 1 different (each difference printed), 77 when torch or numpy is missing (CTest: skipped).
 
 Usage: /usr/bin/python3 tools/nn/check_test_vectors.py --committed tests/data/nn --out build/nn-vectors
@@ -47,7 +49,8 @@ def compare(name, committed_path, fresh_path):
         else:
             error = float(np.sum((old.astype(np.float64) - new) ** 2) / max(np.sum(old.astype(np.float64) ** 2), 1e-30))
             worst = float(np.abs(old - new).max())
-            if error > OUTPUT_NMSE or worst > OUTPUT_MAX_ABS:
+            scale = max(1.0, float(np.abs(old).max()))
+            if error > OUTPUT_NMSE or worst > OUTPUT_MAX_ABS * scale:
                 problems.append(f"{name}: {key}: NMSE {error:.3g}, max-abs {worst:.3g}")
     return problems
 
