@@ -5,18 +5,23 @@
 # multiply-scattered lightmaps through the six-way shading; reference: single scattering; neural;
 # traditional-ms: a flipbook baked with multiple scattering), then each method's frame-to-frame change over the
 # truth's (RMS where the smoke is; the truth traced twice a frame to take its noise out: `--truth-noise`).
+# No equal-time study (tools/results.sh makes it at the default size).
 # About 10-15 minutes on the 2-core lavapipe machine. FRAMES=N (default 8) SPP=N (truth, default 128)
 # LIGHTMAP=N (lightmap size, default 64: half the frame's; 128 separates the lightmaps' resolution from the
 # six-way model) WEIGHTS=ms|ss|PATH (the network, default ms); reports go to out/ms_ceiling/lightmap_N/, or
 # out/ms_ceiling/lightmap_N_ss or out/ms_ceiling/lightmap_N_<name> with WEIGHTS=PATH (the file's directory).
 # WARMUP=N (default 0) first simulates N frames unseen (scenes with their own warm-up keep it): the smoke developed
-# rather than the first puffs at the inlet; reports then go to a directory ending in _warmN.
+# rather than the first puffs at the inlet; reports then go to a directory ending in _warmN. SCENES="plume jet_plume"
+# (default: every scene) evaluates only those; the table lists every report in the directory.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 frames="${FRAMES:-8}"
 spp="${SPP:-128}"
 lightmap="${LIGHTMAP:-64}"
 warmup="${WARMUP:-0}"
+for name in ${SCENES:-}; do
+  [ -f "$root/assets/scenes/$name.json" ] || { echo "ms_ceiling.sh: SCENES: no assets/scenes/$name.json" >&2; exit 2; }
+done
 python=/usr/bin/python3
 weights="${WEIGHTS:-ms}"
 out="$root/out/ms_ceiling/lightmap_$lightmap"
@@ -28,11 +33,12 @@ mkdir -p "$out"
 for scene in "$root"/assets/scenes/*.json; do
   name=$(basename "$scene" .json)
   [ "$name" = bench ] && continue
+  [ -z "${SCENES:-}" ] || [[ " $SCENES " == *" $name "* ]] || continue
   small="$out/$name.json"
   "$python" "$root/tools/results/resized_scene.py" "$scene" "$small" --size 128 --lightmap "$lightmap" --warmup "$warmup"
   echo "ms_ceiling.sh: $name" >&2
   "$sixway" eval --scene "$small" --frames "$frames" --spp "$spp" --orders 64 --weights "$weights" \
-    --truth-noise --report "$out/$name.report.json" --force >&2
+    --truth-noise --no-equal-time --report "$out/$name.report.json" --force >&2
 done
 "$python" - "$out" <<'PY'
 import glob, json, os, sys
