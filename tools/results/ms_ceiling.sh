@@ -12,13 +12,16 @@
 # out/ms_ceiling/lightmap_N_ss or out/ms_ceiling/lightmap_N_<name> with WEIGHTS=PATH (the file's directory).
 # WARMUP=N (default 0) first simulates N frames unseen (scenes with their own warm-up keep it): the smoke developed
 # rather than the first puffs at the inlet; reports then go to a directory ending in _warmN. SCENES="plume jet_plume"
-# (default: every scene) evaluates only those; the table lists every report in the directory.
+# (default: every scene) evaluates only those; the table lists every report in the directory. MS_SPP=N (default 64)
+# traces reference-ms's and traditional-ms's orders >= 2 with N samples per texel (their own noise, which adds to
+# their frame-to-frame change, falls as 1/N); reports then go to a directory ending in _msspp<N>.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 frames="${FRAMES:-8}"
 spp="${SPP:-128}"
 lightmap="${LIGHTMAP:-64}"
 warmup="${WARMUP:-0}"
+ms_spp="${MS_SPP:-64}"
 for name in ${SCENES:-}; do
   [ -f "$root/assets/scenes/$name.json" ] || { echo "ms_ceiling.sh: SCENES: no assets/scenes/$name.json" >&2; exit 2; }
 done
@@ -27,6 +30,7 @@ weights="${WEIGHTS:-ms}"
 out="$root/out/ms_ceiling/lightmap_$lightmap"
 case "$weights" in ms) ;; ss) out="${out}_ss" ;; *) out="${out}_$(basename "$(dirname "$weights")")" ;; esac
 [ "$warmup" = 0 ] || out="${out}_warm$warmup"
+[ "$ms_spp" = 64 ] || out="${out}_msspp$ms_spp"
 sixway="${SIXWAY:-$root/build/src/app/sixway}"
 [ -x "$sixway" ] || source "$root/tools/build.sh"
 mkdir -p "$out"
@@ -37,7 +41,7 @@ for scene in "$root"/assets/scenes/*.json; do
   small="$out/$name.json"
   "$python" "$root/tools/results/resized_scene.py" "$scene" "$small" --size 128 --lightmap "$lightmap" --warmup "$warmup"
   echo "ms_ceiling.sh: $name" >&2
-  "$sixway" eval --scene "$small" --frames "$frames" --spp "$spp" --orders 64 --weights "$weights" \
+  "$sixway" eval --scene "$small" --frames "$frames" --spp "$spp" --orders 64 --ms-spp "$ms_spp" --weights "$weights" \
     --truth-noise --no-equal-time --report "$out/$name.report.json" --force >&2
 done
 "$python" - "$out" <<'PY'
