@@ -15,6 +15,7 @@
 # (default: every scene) evaluates only those; the table lists every report in the directory. MS_SPP=N (default 64)
 # traces reference-ms's and traditional-ms's orders >= 2 with N samples per texel (their own noise, which adds to
 # their frame-to-frame change, falls as 1/N); reports then go to a directory ending in _msspp<N>.
+# tools/results/ceiling_change.py takes two such directories (N and 4N) to their change without that noise.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 frames="${FRAMES:-8}"
