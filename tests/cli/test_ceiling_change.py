@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """tools/results/ceiling_change.py on reports written by hand (CTest results.ceiling_change): a change built as
 sqrt(c0^2 + k/N) at N and 4N samples comes back as c0, a scene missing from the first directory is left out, and
-two runs with different truths are refused."""
+two runs with different truths, a broken report and no common scene are one error line."""
 import json
 import math
 import os
@@ -57,6 +57,21 @@ class CeilingChangeTest(unittest.TestCase):
             result = run(low, high)
             self.assertNotEqual(result.returncode, 0)
             self.assertIn("plume.report.json: another truth", result.stderr)
+
+    def test_one_error_line_for_a_broken_report_or_no_common_scene(self):
+        with tempfile.TemporaryDirectory() as work:
+            low, high = os.path.join(work, "a"), os.path.join(work, "b")
+            write_report(high, "plume", 0.02, {"neural": 0.01, "reference-ms": 0.02, "traditional-ms": 0.02})
+            result = run(low, high)
+            self.assertNotEqual(result.returncode, 0)
+            self.assertIn("no scene has a report in both", result.stderr)
+            os.makedirs(low)
+            with open(os.path.join(low, "plume.report.json"), "w") as f:
+                f.write("{ not json")
+            result = run(low, high)
+            self.assertNotEqual(result.returncode, 0)
+            self.assertIn("plume.report.json: not a sixway eval --scene --truth-noise report", result.stderr)
+            self.assertNotIn("Traceback", result.stderr)
 
     def test_usage_without_two_directories(self):
         result = subprocess.run([sys.executable, SCRIPT], capture_output=True, text=True)

@@ -16,9 +16,13 @@ import sys
 METHODS = ("reference-ms", "traditional-ms")
 
 
-def summary(path):
-    with open(path) as f:
-        return json.load(f)["summary"]
+def temporal(path):
+    """The report's summary.temporal, or one error line naming the file."""
+    try:
+        with open(path) as f:
+            return json.load(f)["summary"]["temporal"]
+    except (OSError, ValueError, KeyError, TypeError) as error:
+        sys.exit(f"ceiling_change.py: {path}: not a sixway eval --scene --truth-noise report ({error!r})")
 
 
 def main(low_dir, high_dir):
@@ -27,17 +31,24 @@ def main(low_dir, high_dir):
         low_path = os.path.join(low_dir, os.path.basename(high_path))
         if not os.path.exists(low_path):
             continue
-        low, high = summary(low_path)["temporal"], summary(high_path)["temporal"]
-        truth = high["truth"]["rms_without_noise"]
-        if abs(truth - low["truth"]["rms_without_noise"]) > 1e-6 * truth:
-            sys.exit(f"ceiling_change.py: {high_path}: another truth than {low_path}'s (not the same scene and frames)")
-        cells = []
-        for m in METHODS:
-            n, four_n = low["methods"][m]["rms"], high["methods"][m]["rms"]
-            c0 = max(0.0, (4 * four_n ** 2 - n ** 2) / 3) ** 0.5
-            cells.append(f"{n / truth:.2f}×, {four_n / truth:.2f}×, **{c0 / truth:.2f}×**")
+        low, high = temporal(low_path), temporal(high_path)
+        try:
+            truth = high["truth"]["rms_without_noise"]
+            if not truth or abs(truth - low["truth"]["rms_without_noise"]) > 1e-6 * truth:
+                sys.exit(f"ceiling_change.py: {high_path}: another truth than {low_path}'s (not the same scene and "
+                         "frames), or none")
+            cells = []
+            for m in METHODS:
+                n, four_n = low["methods"][m]["rms"], high["methods"][m]["rms"]
+                c0 = max(0.0, (4 * four_n ** 2 - n ** 2) / 3) ** 0.5
+                cells.append(f"{n / truth:.2f}×, {four_n / truth:.2f}×, **{c0 / truth:.2f}×**")
+            neural = low["methods"]["neural"]["rms"] / truth
+        except (KeyError, TypeError) as error:
+            sys.exit(f"ceiling_change.py: {high_path} or {low_path}: no frame-to-frame change of {error!r}")
         name = os.path.basename(high_path).removesuffix(".report.json")
-        rows.append(f"| {name} | {truth:.4f} | {low['methods']['neural']['rms'] / truth:.2f}× | " + " | ".join(cells) + " |")
+        rows.append(f"| {name} | {truth:.4f} | {neural:.2f}× | " + " | ".join(cells) + " |")
+    if not rows:
+        sys.exit(f"ceiling_change.py: no scene has a report in both {low_dir} and {high_dir}")
     print("| scene | truth's change | neural | " + " | ".join(f"{m}: N, 4N, without noise" for m in METHODS) + " |")
     print("|---|---|---|" + "---|" * len(METHODS))
     print("\n".join(rows))
