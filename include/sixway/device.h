@@ -34,7 +34,8 @@ struct EngineDevice {
 
 // What an engine enables on its device for sixway: Vulkan 1.3 with synchronization2, dynamicRendering and
 // maintenance4, float atomic add on storage buffers, push descriptors; and the optional features sixway uses
-// where the device has them (16-bit storage, fp16 arithmetic, 64-bit integers).
+// where the device has them (16-bit storage, fp16 arithmetic, 64-bit integers, the Vulkan memory model with
+// its device scope, and VK_NV_cooperative_matrix: the network's convolutions on tensor cores).
 class DeviceRequirements {
  public:
   explicit DeviceRequirements(VkPhysicalDevice physicalDevice);

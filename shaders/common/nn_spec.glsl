@@ -55,5 +55,12 @@
 #define NN_SPEC_B_2 48
 #define NN_SPEC_B_3 49
 #define NN_SPEC_ALBEDO_CHANNEL 50  // input.comp
+#define NN_SPEC_MATRIX_M 51  // conv2d_matrix.comp
+#define NN_SPEC_MATRIX_N 52
+#define NN_SPEC_MATRIX_K 53
+#define NN_SPEC_N_TILES 54
+#define NN_SPEC_K_CHUNKS 55
+#define NN_SPEC_N_PADDED 56
+#define NN_SPEC_OUT_GROUPS 57
 
 #endif

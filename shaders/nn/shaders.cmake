@@ -4,3 +4,5 @@ foreach(nn_shader conv2d conv_transpose2x2 upsample_bilinear naf_norm_expand naf
   list(APPEND SIXWAY_SHADERS nn/${nn_shader}.comp nn/${nn_shader}.comp:NN_FP16)
 endforeach()
 list(APPEND SIXWAY_SHADERS nn/naf_attention.comp)
+# Conv2d on cooperative matrices (NVIDIA's tensor cores): fp16 maps only.
+list(APPEND SIXWAY_SHADERS nn/conv2d_matrix.comp:NN_FP16)

@@ -113,8 +113,9 @@ BenchInputs prepare(BenchOptions& o) {
     if (transport != "sparse" && transport != "dense")
       throw io::InputError("--smoke-transport",
                            "unknown transport \"" + transport + "\" (known: sparse, dense)");
-  if (o.tiling != "device" && o.tiling != "blocks" && o.tiling != "pixels")
-    throw io::InputError("--tiling", "unknown tiling \"" + o.tiling + "\" (known: device, blocks, pixels)");
+  if (o.tiling != "device" && o.tiling != "blocks" && o.tiling != "pixels" && o.tiling != "matrix")
+    throw io::InputError("--tiling",
+                         "unknown tiling \"" + o.tiling + "\" (known: device, blocks, pixels, matrix)");
   for (uint32_t size : o.sizes) requireLightmapSize("--size", size);
   requireLightmapSize("--frame-lightmaps", o.frameLightmapSize);
   if (!o.report.empty()) io::requireWritable(o.report, o.force);
@@ -245,11 +246,13 @@ void addBenchCommand(CLI::App& app) {
           "Sim section: the smoke transport, sparse (the scene's threshold) and/or dense (each with each)")
       ->delimiter(',')
       ->capture_default_str();
-  command->add_flag("--fp16", o->fp16, "Network section: fp16 feature maps (arithmetic stays fp32)");
+  command->add_flag("--fp16", o->fp16,
+                    "Network and frame sections: fp16 feature maps (arithmetic stays fp32; the frame's only "
+                    "where the device has 16-bit storage)");
   command
-      ->add_option(
-          "--tiling", o->tiling,
-          "Network section: work per invocation, blocks (lavapipe's best), pixels (a GPU's) or device")
+      ->add_option("--tiling", o->tiling,
+                   "Network section: work per invocation, blocks (lavapipe's best), pixels (a GPU's), matrix "
+                   "(pixels, with the conv2d layers of fp16 maps on cooperative matrices) or device")
       ->capture_default_str();
   command->callback([o] { run(*o); });
 }

@@ -64,6 +64,7 @@ nlohmann::json benchNetworkSize(const gpu::Context& context, const gpu::Pipeline
                                 const io::SafetensorsFile& weights, const BenchOptions& o, uint32_t size) {
   const nn::Tiling tiling = o.tiling == "blocks"   ? nn::Tiling::Blocks
                             : o.tiling == "pixels" ? nn::Tiling::Pixels
+                            : o.tiling == "matrix" ? nn::Tiling::Matrix
                                                    : nn::Tiling::Device;
   nn::NetworkOptions options{o.fp16 ? nn::Precision::Fp16 : nn::Precision::Fp32, true, tiling};
   options.albedo = io::Smoke{}.albedo;  // a network that reads it sees a scene's default smoke

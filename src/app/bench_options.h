@@ -32,9 +32,9 @@ struct BenchOptions {
   int simSteps = 4;      // lattice steps per submission (a run) of the sim section
   std::vector<std::string> populationStorages = {"fp32"};  // sim section: each lattice with each, in turn
   std::vector<std::string> smokeTransports = {"sparse"};   // sim section: "sparse", "dense"; each with each
-  bool fp16 = false;                                       // network section: fp16 feature maps
+  bool fp16 = false;                                       // network and frame sections: fp16 feature maps
   std::string tiling =
-      "device";  // network section: work per invocation (nn/kernel.h): device, blocks, pixels
+      "device";  // network section: work per invocation (nn/kernel.h): device, blocks, pixels, matrix
 };
 
 // A lattice larger than this (2 M cells) takes seconds per step on lavapipe: --repeats-large and at most one

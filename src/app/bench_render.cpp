@@ -29,9 +29,9 @@ eval::FramePipelineOptions neural(const BenchOptions& o, bool fp16) {
 }
 
 // The network's stage named by the precision of its feature maps, so that both can sit in one table.
-void addFrameStages(StageTimes& times, const std::vector<gpu::StageTime>& stages) {
+void addFrameStages(StageTimes& times, const std::vector<gpu::StageTime>& stages, bool fp16 = false) {
   for (const gpu::StageTime& t : stages)
-    times.add(t.name == "network" ? "network fp32" : t.name, t.milliseconds);
+    times.add(t.name == "network" ? (fp16 ? "network fp16" : "network fp32") : t.name, t.milliseconds);
 }
 
 // The GPU time of a stage, or of the stages whose names start with `prefix` + "/".
@@ -120,9 +120,10 @@ nlohmann::json benchFrame(const gpu::Context& context, const gpu::PipelineCache&
   io::Scene scene = benchScene(o.scene, inputs.lattices.front());
   scene.render.lightmapSize = int(o.frameLightmapSize);
   const uint32_t steps = uint32_t(io::lbmStepsPerFrame(scene));
-  std::printf("\nframe: %d lattice steps of %dx%dx%d + %ux%u lightmaps (fp32 maps) + a %dx%d frame\n", steps,
+  const bool fp16 = o.fp16 && context.capabilities().storage16Bit;
+  std::printf("\nframe: %d lattice steps of %dx%dx%d + %ux%u lightmaps (%s maps) + a %dx%d frame\n", steps,
               scene.grid.size.x, scene.grid.size.y, scene.grid.size.z, o.frameLightmapSize,
-              o.frameLightmapSize, scene.render.width, scene.render.height);
+              o.frameLightmapSize, fp16 ? "fp16" : "fp32", scene.render.width, scene.render.height);
   std::fflush(stdout);
   std::unique_ptr<sim::Simulation> simulation;
   try {
@@ -143,7 +144,7 @@ nlohmann::json benchFrame(const gpu::Context& context, const gpu::PipelineCache&
   simulation->smoke().recordExport(exportSmoke, volume.density(), volume.temperature());
   exportSmoke.endStage();
   exportSmoke.finish();
-  eval::FramePipeline pipeline(context, cache, scene, neural(o, false));
+  eval::FramePipeline pipeline(context, cache, scene, neural(o, fp16));
 
   int index = 0;
   const auto frame = [&](StageTimes* times) {
@@ -160,7 +161,7 @@ nlohmann::json benchFrame(const gpu::Context& context, const gpu::PipelineCache&
     times->add("simulation: smoke", t.smoke);
     times->add("simulation: watchdog", t.watchdog);
     times->add(exportSmoke.stageTimes());
-    addFrameStages(*times, rendered.stages);
+    addFrameStages(*times, rendered.stages, fp16);
   };
   for (int i = 0; i < o.warmup; ++i) frame(nullptr);
   StageTimes times;
@@ -186,7 +187,7 @@ nlohmann::json benchFrame(const gpu::Context& context, const gpu::PipelineCache&
                  {"weights", o.weights.string()},
                  {"lightmap_size", o.frameLightmapSize},
                  {"steps_per_frame", steps},
-                 {"precision", "fp32"},
+                 {"precision", fp16 ? "fp16" : "fp32"},
                  {"warmup", o.warmup},
                  {"simulation", timingJson(simulationMs)},
                  {"rendering", timingJson(renderingMs)},

@@ -43,6 +43,8 @@ nlohmann::json describe(const gpu::Context& context) {
       {"subgroup_size", caps.subgroupSize},
       {"shader_float16", caps.shaderFloat16},
       {"storage_buffer_16bit", caps.storage16Bit},
+      {"cooperative_matrix_mnk",
+       {caps.cooperativeMatrix.m, caps.cooperativeMatrix.n, caps.cooperativeMatrix.k}},
       {"timestamps", caps.timestamps},
       {"timestamp_period_ns", caps.timestampPeriodNs},
       {"validation", context.validationEnabled()},
@@ -69,6 +71,12 @@ void printInfo(const nlohmann::json& info) {
   std::printf("  subgroup size              %u\n", info["subgroup_size"].get<unsigned>());
   std::printf("  fp16 arithmetic            %s\n", yesNo(info["shader_float16"]));
   std::printf("  16-bit storage             %s\n", yesNo(info["storage_buffer_16bit"]));
+  const auto& matrix = info["cooperative_matrix_mnk"];
+  if (matrix[0].get<unsigned>() == 0)
+    std::printf("  cooperative matrices       no\n");
+  else
+    std::printf("  cooperative matrices       %ux%ux%u (M x N x K: fp16 inputs, fp32 sums)\n",
+                matrix[0].get<unsigned>(), matrix[1].get<unsigned>(), matrix[2].get<unsigned>());
   std::printf("  timestamps                 %s (%.3g ns per tick)\n", yesNo(info["timestamps"]),
               info["timestamp_period_ns"].get<double>());
   std::printf("  validation layers          %s\n", info["validation"].get<bool>() ? "on" : "off");

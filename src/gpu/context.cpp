@@ -44,15 +44,6 @@ bool hasLayer(const char* name) {
                      [&](auto& l) { return std::strcmp(l.layerName, name) == 0; });
 }
 
-bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
-  uint32_t count = 0;
-  vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr);
-  std::vector<VkExtensionProperties> extensions(count);
-  vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data());
-  return std::any_of(extensions.begin(), extensions.end(),
-                     [&](auto& e) { return std::strcmp(e.extensionName, name) == 0; });
-}
-
 std::optional<uint32_t> computeGraphicsFamily(VkPhysicalDevice device) {
   uint32_t count = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
@@ -188,6 +179,11 @@ Context::Context(const ExternalDevice& external)
                    " is not enabled (see sixway::DeviceRequirements)");
   capabilities_.shaderFloat16 = enabled.vulkan12().shaderFloat16;
   capabilities_.storage16Bit = enabled.vulkan11().storageBuffer16BitAccess;
+  if (chainEnablesCooperativeMatrix(external.enabledExtensions, external.enabledFeatures))
+    capabilities_.cooperativeMatrix =
+        offeredMatrixShape(instance_, physicalDevice_,
+                           {capabilities_.subgroupSize, capabilities_.shaderFloat16,
+                            capabilities_.storage16Bit, bool(enabled.vulkan12().vulkanMemoryModel)});
   cmdPushDescriptorSet = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
       vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
 }
@@ -308,6 +304,19 @@ void Context::createDevice(const ContextOptions& options) {
 
   std::vector<const char*> extensions = requiredDeviceExtensions();
   if (options.presentation) extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+  // Cooperative matrices where the device offers a shape the network's conv2d can use.
+  VkPhysicalDeviceCooperativeMatrixFeaturesNV matrixFeatures{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_COOPERATIVE_MATRIX_FEATURES_NV};
+  capabilities_.cooperativeMatrix =
+      offeredMatrixShape(instance_, physicalDevice_,
+                         {capabilities_.subgroupSize, capabilities_.shaderFloat16, capabilities_.storage16Bit,
+                          bool(enable.vulkan12().vulkanMemoryModel)});
+  if (capabilities_.cooperativeMatrix) {
+    extensions.push_back(VK_NV_COOPERATIVE_MATRIX_EXTENSION_NAME);
+    matrixFeatures.cooperativeMatrix = VK_TRUE;
+    matrixFeatures.pNext = enable.chain()->pNext;
+    enable.chain()->pNext = &matrixFeatures;
+  }
 
   float priority = 1.0f;
   VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};

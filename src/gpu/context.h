@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "gpu/cooperative_matrix.h"
+
 namespace sixway::gpu {
 
 struct ContextOptions {
@@ -43,6 +45,8 @@ struct DeviceCapabilities {
   uint32_t timestampValidBits = 64;
   uint32_t subgroupSize = 1;
   uint64_t deviceLocalHeapBytes = 0;
+  // Enabled cooperative matrices (gpu/cooperative_matrix.h), or none.
+  MatrixShape cooperativeMatrix;
 };
 
 // The device memory of our live gpu::Buffer and gpu::Image objects (their requested sizes), for long-run

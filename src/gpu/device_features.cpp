@@ -1,5 +1,8 @@
 #include "gpu/device_features.h"
 
+#include <algorithm>
+#include <cstring>
+
 namespace sixway::gpu {
 
 DeviceFeatures::DeviceFeatures() {
@@ -79,6 +82,12 @@ DeviceFeatures DeviceFeatures::toEnable(const DeviceFeatures& supported) {
   enable.v11_.storageBuffer16BitAccess = supported.v11_.storageBuffer16BitAccess;
   enable.v12_.shaderFloat16 = supported.v12_.shaderFloat16;
   enable.v12_.hostQueryReset = supported.v12_.hostQueryReset;
+  // The Vulkan memory model: cooperative-matrix shaders declare it (SPV_NV_cooperative_matrix requires it).
+  // Enabled only with its device scope: with the model on and the scope off, the atomics of every other
+  // shader (GLSL's default, Device scope) are invalid (VUID-RuntimeSpirv-vulkanMemoryModel-06265).
+  const bool memoryModel = supported.v12_.vulkanMemoryModel && supported.v12_.vulkanMemoryModelDeviceScope;
+  enable.v12_.vulkanMemoryModel = memoryModel;
+  enable.v12_.vulkanMemoryModelDeviceScope = memoryModel;
   enable.v13_.synchronization2 = VK_TRUE;
   enable.v13_.dynamicRendering = VK_TRUE;
   enable.v13_.subgroupSizeControl = supported.v13_.subgroupSizeControl;
@@ -97,6 +106,15 @@ std::vector<std::string> DeviceFeatures::missingRequired() const {
   if (!v13_.maintenance4) missing.push_back("maintenance4");
   if (!atomics_.shaderBufferFloat32AtomicAdd) missing.push_back("shaderBufferFloat32AtomicAdd");
   return missing;
+}
+
+bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
+  uint32_t count = 0;
+  vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr);
+  std::vector<VkExtensionProperties> extensions(count);
+  vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data());
+  return std::any_of(extensions.begin(), extensions.end(),
+                     [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
 }
 
 std::vector<const char*> requiredDeviceExtensions() {

@@ -49,4 +49,7 @@ class DeviceFeatures {
 // The device extensions sixway needs (push descriptors, float atomics).
 std::vector<const char*> requiredDeviceExtensions();
 
+// Whether `device` offers the device extension `name`.
+bool hasDeviceExtension(VkPhysicalDevice device, const char* name);
+
 }  // namespace sixway::gpu

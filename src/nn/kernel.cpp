@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "gpu/check.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 
@@ -41,8 +42,14 @@ gpu::Buffer uniformBuffer(const gpu::Context& context, const std::vector<float>&
 }
 
 Tiling resolveTiling(Tiling requested, const gpu::Context& context) {
+  const bool matrices = bool(context.capabilities().cooperativeMatrix);
+  if (requested == Tiling::Matrix && !matrices)
+    throw gpu::GpuError(std::string("matrix tiling: ") + context.properties().deviceName +
+                        " has no cooperative matrices sixway can use (VK_NV_cooperative_matrix with fp16 "
+                        "inputs, fp32 sums and subgroups of 32)");
   if (requested != Tiling::Device) return requested;
-  return context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? Tiling::Blocks : Tiling::Pixels;
+  if (context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU) return Tiling::Blocks;
+  return matrices ? Tiling::Matrix : Tiling::Pixels;
 }
 
 const char* tilingName(Tiling tiling) {
@@ -53,6 +60,8 @@ const char* tilingName(Tiling tiling) {
       return "blocks";
     case Tiling::Pixels:
       return "pixels";
+    case Tiling::Matrix:
+      return "matrix";
   }
   return "?";
 }

@@ -39,8 +39,11 @@ class PipelinePool {
 // filled anyway. Pixels: conv blocks shrink until a dispatch has kGpuInvocations invocations (down to one
 // pixel) and the NAF kernels take one pixel each, since a GPU's tens of thousands of threads idle otherwise
 // (NVIDIA's H200 ran the 64x64 middle of the UNet at the same speed at 256² and 512² maps: too few
-// invocations). Device: Blocks on a CPU device, else Pixels.
-enum class Tiling { Device, Blocks, Pixels };
+// invocations). Matrix: as Pixels, but the conv2d layers of fp16 maps run on cooperative matrices (tensor
+// cores: conv_matrix_kernel.h); only where the device has them (gpu/cooperative_matrix.h). Device: Blocks on
+// a CPU device, else Matrix where the device has cooperative matrices, else Pixels.
+enum class Tiling { Device, Blocks, Pixels, Matrix };
+// Throws gpu::GpuError when Matrix is asked of a device without cooperative matrices.
 Tiling resolveTiling(Tiling requested, const gpu::Context& context);
 const char* tilingName(Tiling tiling);
 constexpr uint64_t kGpuInvocations = uint64_t(1) << 16;
@@ -49,7 +52,7 @@ struct KernelSetup {
   const gpu::Context* context;
   PipelinePool* pipelines;
   Precision precision = Precision::Fp32;
-  Tiling tiling = Tiling::Blocks;  // resolved: Blocks or Pixels
+  Tiling tiling = Tiling::Blocks;  // resolved: Blocks, Pixels or Matrix
 };
 
 // "nn/<name>.comp", or its NN_FP16 variant.

@@ -8,6 +8,7 @@
 #include "gpu/context.h"
 #include "gpu/sequence.h"
 #include "nn/conv_kernel.h"
+#include "nn/conv_matrix_kernel.h"
 #include "nn/io_kernels.h"
 #include "nn/naf_block_kernel.h"
 #include "nn/upsample_kernel.h"
@@ -17,7 +18,9 @@ namespace sixway::nn {
 struct Network::Layer {
   const Node* node;
   // std::monostate: a projection fused into the NAFBlock before it, which computes it.
-  std::variant<std::monostate, InputKernel, ConvKernel, UpsampleKernel, NafBlockKernel, OutputKernel> kernel;
+  std::variant<std::monostate, InputKernel, ConvKernel, ConvMatrixKernel, UpsampleKernel, NafBlockKernel,
+               OutputKernel>
+      kernel;
   std::optional<FeatureMap> output;  // what the kernel writes (none for the output node and fused layers)
   std::vector<int> inputs;           // the input nodes
   double flops = 0.0;
@@ -123,9 +126,13 @@ Network::Network(const gpu::Context& context, const gpu::PipelineCache& cache,
                         node.op == Op::ConvTranspose2d,
                         node.activation,
                         node.negativeSlope};
-        addLayer(ConvKernel(setup, shape, tensorValues(weights, node.name + ".weight"),
-                            tensorValues(weights, node.name + ".bias"), label),
-                 shape.output(), shape.flops());
+        std::vector<float> weight = tensorValues(weights, node.name + ".weight"),
+                           bias = tensorValues(weights, node.name + ".bias");
+        // Matrix tiling: the conv2d layers of fp16 maps on cooperative matrices, the rest as Pixels.
+        if (setup.tiling == Tiling::Matrix && setup.precision == Precision::Fp16 && node.op == Op::Conv2d)
+          addLayer(ConvMatrixKernel(setup, shape, weight, bias, label), shape.output(), shape.flops());
+        else
+          addLayer(ConvKernel(setup, shape, weight, bias, label), shape.output(), shape.flops());
         break;
       }
       case Op::UpsampleBilinear: {
@@ -191,7 +198,7 @@ void Network::record(gpu::Sequence& sequence, const GuideImages& guide, const gp
             kernel.record(sequence, guide.guide, guide.emission, scene_, *layer.output);
           else if constexpr (std::is_same_v<Kernel, OutputKernel>)
             kernel.record(sequence, inputs, lightmapA, lightmapB);
-          else if constexpr (std::is_same_v<Kernel, ConvKernel>)
+          else if constexpr (std::is_same_v<Kernel, ConvKernel> || std::is_same_v<Kernel, ConvMatrixKernel>)
             kernel.record(sequence, inputs, *layer.output);
           else if constexpr (std::is_same_v<Kernel, NafBlockKernel>)
             kernel.record(sequence, *inputs.at(0), *layer.output, timeLayers ? layer.node->name : "");

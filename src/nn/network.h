@@ -76,7 +76,7 @@ class Network {
   // The feature maps' size: the guide's, rounded up to the graph's size multiple.
   uint32_t mapWidth() const { return mapWidth_; }
   uint32_t mapHeight() const { return mapHeight_; }
-  Tiling tiling() const { return tiling_; }  // resolved: Blocks or Pixels
+  Tiling tiling() const { return tiling_; }  // resolved: Blocks, Pixels or Matrix
 
   // The guide in, lightmaps A and B (any float RGBA storage format, the guide's size) out. With
   // `timeLayers`, every node is a timed stage named after it, and a NAFBlock is four stages

@@ -36,17 +36,22 @@ inline constexpr SpecId kLightmapA[4] = {{42, "A_0"}, {43, "A_1"}, {44, "A_2"}, 
 inline constexpr SpecId kLightmapB[4] = {{46, "B_0"}, {47, "B_1"}, {48, "B_2"}, {49, "B_3"}};
 // input.comp
 inline constexpr SpecId kAlbedoChannel{50, "ALBEDO_CHANNEL"};
+// conv2d_matrix.comp
+inline constexpr SpecId kMatrixM{51, "MATRIX_M"}, kMatrixN{52, "MATRIX_N"}, kMatrixK{53, "MATRIX_K"};
+inline constexpr SpecId kNTiles{54, "N_TILES"}, kKChunks{55, "K_CHUNKS"}, kNPadded{56, "N_PADDED"};
+inline constexpr SpecId kOutGroups{57, "OUT_GROUPS"};
 
 // Every constant above.
 inline constexpr SpecId kAll[] = {
-    kLocalSizeX,    kLocalSizeY,   kWidth,        kHeight,        kInWidth,      kInHeight,
-    kOutWidth,      kOutHeight,    kChannels,     kGatedChannels, kFfnChannels,  kProjectionChannels,
-    kGroups,        kGroupsIn,     kGroupsA,      kGroupsB,       kPx,           kPy,
-    kKernel,        kStride,       kSlice,        kWeightVec4s,   kActivation,   kNegativeSlope,
-    kEps,           kFactor,       kPartialCount, kPixels,        kGuideWidth,   kGuideHeight,
-    kGuideChannels, kMapWidth,     kMapHeight,    kSrgbMask,      kSource[0],    kSource[1],
-    kSource[2],     kSource[3],    kSource[4],    kSource[5],     kSource[6],    kSource[7],
-    kLightmapA[0],  kLightmapA[1], kLightmapA[2], kLightmapA[3],  kLightmapB[0], kLightmapB[1],
-    kLightmapB[2],  kLightmapB[3], kAlbedoChannel};
+    kLocalSizeX,    kLocalSizeY,   kWidth,         kHeight,        kInWidth,      kInHeight,
+    kOutWidth,      kOutHeight,    kChannels,      kGatedChannels, kFfnChannels,  kProjectionChannels,
+    kGroups,        kGroupsIn,     kGroupsA,       kGroupsB,       kPx,           kPy,
+    kKernel,        kStride,       kSlice,         kWeightVec4s,   kActivation,   kNegativeSlope,
+    kEps,           kFactor,       kPartialCount,  kPixels,        kGuideWidth,   kGuideHeight,
+    kGuideChannels, kMapWidth,     kMapHeight,     kSrgbMask,      kSource[0],    kSource[1],
+    kSource[2],     kSource[3],    kSource[4],     kSource[5],     kSource[6],    kSource[7],
+    kLightmapA[0],  kLightmapA[1], kLightmapA[2],  kLightmapA[3],  kLightmapB[0], kLightmapB[1],
+    kLightmapB[2],  kLightmapB[3], kAlbedoChannel, kMatrixM,       kMatrixN,      kMatrixK,
+    kNTiles,        kKChunks,      kNPadded,       kOutGroups};
 
 }  // namespace sixway::nn::spec

@@ -40,6 +40,20 @@ std::vector<float> packConvolution(const std::vector<float>& weight, const std::
   return packed;
 }
 
+std::vector<float> packMatrix(const std::vector<float>& weight, int taps, int outChannels,
+                              const ChannelLayout& in, size_t rows, size_t columns) {
+  const size_t inChannels = in.index.size();
+  if (weight.size() != size_t(outChannels) * inChannels * taps || size_t(taps) * in.padded > rows ||
+      size_t(outChannels) > columns)
+    throw std::invalid_argument("packMatrix: weight size or matrix shape does not match the layer");
+  std::vector<float> matrix(rows * columns, 0.0f);
+  for (size_t o = 0; o < size_t(outChannels); ++o)
+    for (size_t i = 0; i < inChannels; ++i)
+      for (int t = 0; t < taps; ++t)
+        matrix[(size_t(t) * in.padded + in.index[i]) * columns + o] = weight[(o * inChannels + i) * taps + t];
+  return matrix;
+}
+
 std::vector<float> swapInOut(const std::vector<float>& weight, int inChannels, int outChannels, int taps) {
   std::vector<float> swapped(weight.size());
   for (int i = 0; i < inChannels; ++i)

@@ -2,6 +2,7 @@
 // PyTorch weights rearranged into the vec4 layouts the kernels read from uniform buffers. Channels live in
 // groups of 4 (a feature map texel); a layout says where each real channel sits among the padded ones, and
 // the padding gets zero weights, so padded channels stay zero through every layer.
+#include <cstddef>
 #include <vector>
 
 namespace sixway::nn {
@@ -24,6 +25,11 @@ ChannelLayout gateLayout(int channels);
 // channels; then, with a bias, the bias vec4. `weight` is [out][in][taps] (PyTorch Conv2d, taps = kh x kw).
 std::vector<float> packConvolution(const std::vector<float>& weight, const std::vector<float>* bias, int taps,
                                    const ChannelLayout& out, const ChannelLayout& in);
+
+// conv2d_matrix.comp's weight matrix W[k][o], `rows` x `columns` row-major and zero past the layer: k = tap x
+// in.padded + the input channel's padded position, o the output channel. `weight` is [out][in][taps].
+std::vector<float> packMatrix(const std::vector<float>& weight, int taps, int outChannels,
+                              const ChannelLayout& in, size_t rows, size_t columns);
 
 // ConvTranspose2d's [in][out][taps] weight reordered to Conv2d's [out][in][taps].
 std::vector<float> swapInOut(const std::vector<float>& weight, int inChannels, int outChannels, int taps);

@@ -1,5 +1,6 @@
 #include <sixway/device.h>
 
+#include "gpu/cooperative_matrix.h"
 #include "gpu/device_features.h"
 #include "runtime/device_impl.h"
 
@@ -15,10 +16,19 @@ Device::Impl::Impl(std::unique_ptr<gpu::Context> own)
 struct DeviceRequirements::Impl {
   std::vector<const char*> extensions = gpu::requiredDeviceExtensions();
   gpu::DeviceFeatures features;
+  VkPhysicalDeviceCooperativeMatrixFeaturesNV matrix{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_COOPERATIVE_MATRIX_FEATURES_NV};
 };
 
 DeviceRequirements::DeviceRequirements(VkPhysicalDevice physicalDevice) : impl_(std::make_unique<Impl>()) {
   impl_->features = gpu::DeviceFeatures::toEnable(gpu::DeviceFeatures::supportedBy(physicalDevice));
+  // Optional: the network's conv2d on cooperative matrices (tensor cores) where the device has them.
+  if (gpu::hasCooperativeMatrix(physicalDevice) && impl_->features.vulkan12().vulkanMemoryModel) {
+    impl_->extensions.push_back(VK_NV_COOPERATIVE_MATRIX_EXTENSION_NAME);
+    impl_->matrix.cooperativeMatrix = VK_TRUE;
+    impl_->matrix.pNext = impl_->features.chain()->pNext;
+    impl_->features.chain()->pNext = &impl_->matrix;
+  }
 }
 
 DeviceRequirements::~DeviceRequirements() = default;

@@ -29,7 +29,10 @@ struct ParityCase {
 
 std::string caseName(const ParityCase& c) {
   return std::string(c.network) + (c.precision == Precision::Fp16 ? "_fp16" : "_fp32") +
-         (c.fuseProjections ? "" : "_unfused") + (c.tiling == nn::Tiling::Pixels ? "_pixels" : "") +
+         (c.fuseProjections ? "" : "_unfused") +
+         (c.tiling == nn::Tiling::Pixels   ? "_pixels"
+          : c.tiling == nn::Tiling::Matrix ? "_matrix"
+                                           : "") +
          (c.emission ? "" : "_no_emission");
 }
 
@@ -58,6 +61,8 @@ class NetworkParity : public NnTest, public ::testing::WithParamInterface<Parity
 
 TEST_P(NetworkParity, MatchesPyTorch) {
   const ParityCase& c = GetParam();
+  if (c.tiling == nn::Tiling::Matrix && !context().capabilities().cooperativeMatrix)
+    GTEST_SKIP() << context().properties().deviceName << " has no cooperative matrices sixway can use";
   const auto data = std::filesystem::path(SIXWAY_TEST_DATA_DIR) / "nn";
   const io::SafetensorsFile weights = io::readSafetensors(data / (std::string(c.network) + ".safetensors"));
   const io::SafetensorsFile vectors =
@@ -122,6 +127,10 @@ INSTANTIATE_TEST_SUITE_P(
                       ParityCase{"naf_wide"},
                       ParityCase{"default", Precision::Fp32, true, nn::Tiling::Pixels},
                       ParityCase{"naf_wide", Precision::Fp32, true, nn::Tiling::Pixels},
+                      // Skipped where the device has no cooperative matrices (lavapipe).
+                      ParityCase{"default", Precision::Fp16, true, nn::Tiling::Matrix},
+                      ParityCase{"naf_wide", Precision::Fp16, true, nn::Tiling::Matrix},
+                      ParityCase{"albedo_input", Precision::Fp16, true, nn::Tiling::Matrix},
                       ParityCase{"emission_guide", Precision::Fp32, true, nn::Tiling::Device, false}),
     [](const ::testing::TestParamInfo<ParityCase>& info) { return caseName(info.param); });
 // Label "long" (tests/nn/CMakeLists.txt): about a minute of pipeline compilation on a cold shader cache.

@@ -1,6 +1,5 @@
 #!/bin/bash
-# Packs what an NVIDIA machine without our Debian packages needs to run the build (issue #24,
-# docs/gpu.md): the build tree without objects (executables stripped), the shared libraries they load
+# Packs what an NVIDIA machine without our Debian packages needs to run the build (docs/gpu.md): the build tree without objects (executables stripped), the shared libraries they load
 # beyond the C/C++ runtime, Khronos' validation layer, and the study networks to time. Writes
 # .dev/bundle.tar.xz, which tools/gpu/nvidia_check.sh unpacks on the device machine.
 set -euo pipefail

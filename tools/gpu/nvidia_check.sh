@@ -1,15 +1,15 @@
 #!/bin/bash
-# Issue #24 on a lent NVIDIA machine (docs/gpu.md), in one call: the suite under validation on NVIDIA's
-# Vulkan driver, `sixway bench` at the default and the paper's sizes, and the model study's larger networks
-# trained with PyTorch on the GPU from a dataset made there by `sixway dataset` (same config and seed as
-# data/inputs here). Needs .gl/ (Debian's Vulkan loader and libglvnd as .debs) and .dev/bundle.tar.xz
-# (tools/gpu/bundle.sh). Every step has a deadline so that the results come back inside the call.
+# sixway on a lent NVIDIA machine (docs/gpu.md), in one call: the whole suite under validation on NVIDIA's
+# Vulkan driver, `sixway bench` at the paper's sizes (the network in each tiling, the lightmaps and the whole
+# frame, the lattices, the lattice against the memory), and the default run's frames with their GPU timings.
+# Needs .gl/ (Debian's Vulkan loader and libglvnd as .debs) and .dev/bundle.tar.xz (tools/gpu/bundle.sh). Every
+# step has a deadline so that the results come back inside the call.
 #
-# Usage: tools/gpu/nvidia_check.sh [seconds]   (default 520; results in $OUT or out/gpu)
+# Usage: tools/gpu/nvidia_check.sh [seconds]   (default 480; results in $OUT or out/gpu)
 set -u
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 cd "$root"
-budget=${1:-520}
+budget=${1:-480}
 start=$(date +%s)
 left() { echo $((start + budget - $(date +%s))); }
 step() { echo "== $(($(date +%s) - start)) s: $*"; }
@@ -33,76 +33,66 @@ icd=$(ls /usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json /usr/share/vulkan/
   /etc/vulkan/icd.d/nvidia_icd.json 2>/dev/null | head -1)
 [[ -n $icd ]] || icd=$(find / -xdev -name 'nvidia_icd*.json' 2>/dev/null | head -1)
 echo "ICD manifest: $icd"
-# Our executables get the bundled libraries; PyTorch keeps the machine's own.
+# Our executables get the bundled libraries.
 vk=(env LD_LIBRARY_PATH="$root/.dev/lib" VK_LAYER_PATH="$root/.dev/layers" VK_DRIVER_FILES="$icd"
   VK_ICD_FILENAMES="$icd")
 sixway=build/src/app/sixway
 nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm,clocks.max.mem --format=csv
 "${vk[@]}" $sixway info
 
-step "dataset (4 workers) beside the suite (which fills the driver's shader cache for the benchmarks)"
-workers=()
-for i in 0 1 2 3; do
-  "${vk[@]}" timeout 240 $sixway dataset --config tools/datasets/studies/inputs.json --out data/inputs \
-    --shard $i/4 >"$work/dataset_$i.log" 2>&1 &
-  workers+=($!)
-done
-# Left out: what the machine lacks, not the driver (docs/gpu.md): an X server, a compiler, ffmpeg, Debian's Python.
-(cd build && "${vk[@]}" SIXWAY_VALIDATE=1 timeout 240 ctest -j16 --timeout 200 -LE long \
-  -E '^(nn\.python_|demo\.|runtime\.public_headers_alone|cli\.render_outputs)' \
+# A step gets at most its own limit and never more than leaves 30 s for packing the results.
+limit() { local t=$(($(left) - 30)); ((t < $1)) && echo $t || echo $1; }
+
+# The cooperative-matrix kernel and the networks built on it first (they are new on this driver), then the rest
+# of the suite, long tests included. Left out: what the machine lacks, not the driver (docs/gpu.md): an X
+# server, a compiler, ffmpeg, Debian's Python.
+step "cooperative-matrix tests"
+(cd build && "${vk[@]}" SIXWAY_VALIDATE=1 timeout "$(limit 90)" ctest -j16 --timeout 80 \
+  -R 'ConvMatrix|NetworkParity' --output-on-failure >"$work/ctest_matrix.log" 2>&1)
+step "cooperative-matrix tests done (exit $?)"
+grep -E "NMSE|max-abs|tests passed|Failed|\*\*\*|Skipped" "$work/ctest_matrix.log" | head -n 80
+step "the suite"
+(cd build && "${vk[@]}" SIXWAY_VALIDATE=1 timeout "$(limit 200)" ctest -j16 --timeout 150 \
+  -E '^(nn\.python_|demo\.|runtime\.public_headers_alone|cli\.render_outputs)|ConvMatrix|NetworkParity' \
   --output-junit "$work/ctest.xml" >"$work/ctest.log" 2>&1)
 step "suite done (exit $?)"
-tail -n 25 "$work/ctest.log"
-wait "${workers[@]}"
-step "dataset done: $(ls data/inputs/shard_*.safetensors 2>/dev/null | wc -l) shards"
+tail -n 30 "$work/ctest.log"
 
-# A step gets at most its own limit and never more than leaves 40 s for packing the results.
-limit() { local t=$(($(left) - 40)); ((t < $1)) && echo $t || echo $1; }
 bench() {  # report name, then sixway bench options
   local name=$1 t
   shift
-  t=$(limit 120)
+  t=$(limit 100)
   ((t > 10)) || { step "bench $name skipped: no time left"; return; }
   step "bench $name: $*"
   "${vk[@]}" timeout $t $sixway bench --warmup 5 --repeats 20 --report "$work/bench_$name.json" "$@"
 }
-# The targets first (network at 256² in fp16, the frame, the LBM against a copy), then the rest.
-for tiling in pixels blocks; do
+# The targets first: the network at 256² in fp16 (each tiling), the frame, the lattice against the memory.
+for tiling in matrix pixels; do
   bench "network_${tiling}_fp16" --sections network --size 256 512 --tiling "$tiling" --fp16
 done
-bench frame --sections frame lightmaps --grid 64x128x64 --size 256 --frame-lightmaps 256
+bench frame_fp16 --sections frame lightmaps --grid 64x128x64 --size 256 --frame-lightmaps 256 --fp16
 bench sim --sections sim --population-storage fp32 fp16 --repeats-large 10
 if (($(limit 60) > 10)); then
   step "stream_bound_bench"
   "${vk[@]}" timeout "$(limit 60)" build/tests/sim/stream_bound_bench 20
 fi
-for tiling in pixels blocks; do
-  bench "network_$tiling" --sections network --size 256 512 --tiling "$tiling"
+bench frame_fp32 --sections frame --grid 64x128x64 --frame-lightmaps 256
+# The default run (tools/run.sh): the showcase's 64 frames, their per-stage GPU timings.
+for precision in fp16 fp32; do
+  t=$(limit 90)
+  ((t > 20)) || break
+  step "the default run's frames ($precision maps)"
+  flags=()
+  [[ $precision == fp16 ]] && flags=(--fp16)
+  "${vk[@]}" timeout "$t" $sixway render --scene assets/scenes/showcase.json --frames 64 --force \
+    --out "$work/render_$precision" "${flags[@]}" | tail -n 4
+  rm -f "$work/render_$precision"/frame_00[0-4]*.png "$work/render_$precision"/frame_005[0-8].png
 done
+bench network_blocks_fp16 --sections network --size 256 --tiling blocks --fp16
+# The model study's networks (tools/gpu/bundle.sh packs those trained here), where there are any.
 for weights in .dev/study/*.safetensors; do
   [[ -f $weights ]] && bench "$(basename "$weights" .safetensors)" --sections network --size 256 --weights "$weights" --fp16
 done
 
-trainers=()
-if [[ $(ls data/inputs/shard_*.safetensors 2>/dev/null | wc -l) == 16 ]]; then
-  for cfg in base wide wider levels4; do
-    python3 tools/train.py --config tools/train_configs/gpu/${cfg}_long_ms.json --out data/gpu_$cfg --force \
-      >"$work/train_$cfg.log" 2>&1 &
-    trainers+=($!)
-  done
-fi
-while (($(left) > 30)) && [[ -n $(jobs -pr) ]]; do sleep 5; done
-step "trainings: $(jobs -pr | wc -l) still running (stopped now)"
-kill "${trainers[@]}" 2>/dev/null
-sleep 2
-for cfg in base wide wider levels4; do
-  dir=data/gpu_$cfg
-  [[ -d $dir ]] || continue
-  mkdir -p "$work/$cfg"
-  cp "$dir"/{config.json,log.jsonl,metrics.json,sixway-unet.safetensors} "$work/$cfg/" 2>/dev/null
-  # An unfinished training's checkpoint comes back on its own (a file may be 16 MiB at most).
-  [[ -f $dir/sixway-unet.safetensors ]] || cp "$dir/checkpoint.pt" "$out/checkpoint_$cfg.pt" 2>/dev/null
-  tail -n 3 "$work/train_$cfg.log"
-done
 tar -C .dev -czf "$out/results.tar.gz" results
 step "done"
