@@ -51,8 +51,8 @@ run_eval single --frames "$frames" --orders 1
 run_eval orbit --frames "$orbit_frames" --orders 1 --camera-orbit "$orbit_step"
 run_eval density_0.5 --frames "$frames" --orders 1 --density-scale 0.5
 run_eval density_2 --frames "$frames" --orders 1 --density-scale 2
-run_eval shadows_on --frames "$frames" --orders 1 --draw-obstacles
-run_eval shadows_off --frames "$frames" --orders 1 --draw-obstacles --no-shadows
+run_eval shadows_on --frames "$frames" --orders 1
+run_eval shadows_off --frames "$frames" --orders 1 --no-shadows
 [ -z "${SKIP_GALLERY:-}" ] && SIXWAY="$sixway" bash "$root/tools/results/gallery.sh"
 
 bench_tables=""

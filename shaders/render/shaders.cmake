@@ -13,4 +13,5 @@ list(APPEND SIXWAY_SHADERS
   render/guide_march.comp
   render/motion_field.comp
   render/guide_lightmaps.comp
+  render/obstacle_ray_probe.comp
 )

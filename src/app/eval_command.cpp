@@ -277,11 +277,11 @@ void addEvalCommand(CLI::App& app) {
   eval->add_option("--density-scale", s.densityScale,
                    "Scene: the smoke's extinction (optical density) x this");
   eval->add_flag(
-      "--draw-obstacles", s.drawObstacles,
-      "Scene: draw the obstacles in every method (the path tracer does not shadow the smoke by them)");
+      "--no-obstacles", [&s](int64_t) { s.obstacles = false; },
+      "Scene: leave the obstacles out of every image and of the truth (they still shape the flow)");
   eval->add_flag(
       "--no-shadows", [&s](int64_t) { s.shadows = false; },
-      "Scene: no obstacle shadows on the smoke (with --draw-obstacles)");
+      "Scene: no obstacle shadows, in every method and in the truth");
   eval->add_option("--camera-orbit", s.cameraOrbitDeg,
                    "Scene: replace the camera path by an orbit of this many degrees per frame");
   eval->add_option("--strip-frame", s.stripFrame,

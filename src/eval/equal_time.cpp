@@ -4,12 +4,15 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <variant>
 
 #include "eval/image_metrics.h"
 #include "reference/path_tracer.h"
 #include "render/camera.h"
+#include "render/obstacle_bvh.h"
 #include "render/scene_frame.h"
+#include "runtime/scene_volumes.h"
 
 namespace sixway::eval {
 
@@ -30,6 +33,11 @@ nlohmann::json equalTimeStudy(const gpu::Context& context, const gpu::PipelineCa
     if (const auto* sh = std::get_if<io::AmbientSh>(&*scene.ambient)) settings.environment = sh->coefficients;
   }
   render::PathTracer tracer(context, cache);
+  std::unique_ptr<render::ObstacleBvh> obstacles;
+  if (!scene.obstacles.empty()) {
+    obstacles = std::make_unique<render::ObstacleBvh>(context, scene.obstacles);
+    obstacles->update(runtime::SimulatedVolumes::frameSeconds(scene, index));
+  }
   // A render of `spp` samples in passes of `perPass` with its own random numbers; its image and its time on
   // the host's clock around the submissions (see equal_time.h on why not GPU timestamps).
   const auto trace = [&](uint32_t spp, uint32_t perPass, uint32_t seedOffset) {
@@ -37,9 +45,9 @@ nlohmann::json equalTimeStudy(const gpu::Context& context, const gpu::PipelineCa
     settings.seed = scene.render.seed + uint32_t(index) + seedOffset;
     // One untimed pass first: lavapipe compiles the tracer again for each samples-per-pass value (it
     // specializes on the uniform block, render/gpu_layout.h), which is not the tracer's time.
-    tracer.beginImage(volume, scene.smoke, camera, frame, lights, settings);
+    tracer.beginImage(volume, scene.smoke, camera, frame, lights, settings, obstacles.get());
     tracer.accumulate(perPass);
-    tracer.beginImage(volume, scene.smoke, camera, frame, lights, settings);
+    tracer.beginImage(volume, scene.smoke, camera, frame, lights, settings, obstacles.get());
     const auto started = std::chrono::steady_clock::now();
     tracer.accumulate(spp);
     const double ms =

@@ -27,8 +27,9 @@ struct EqualTimeSettings {
 // Frame `index` of `scene` (camera and lights on their paths) over the scene's background: renders of 1, 2,
 // 4, ... spp (each from the start, in passes of up to 16 samples) until one takes longer than the budget and
 // at least 16 spp; the
-// count at the budget, interpolated linearly in time, rendered and timed; all against the stand-in. `neural`:
-// the neural frame, compared with the stand-in too when given (meaningful only when it shows no obstacles).
+// count at the budget, interpolated linearly in time, rendered and timed; all against the stand-in. The
+// scene's obstacles are path-traced (at the frame's time), as in the truth. `neural`: the neural frame,
+// compared with the stand-in too when given.
 // Returns {budget_ms, reference_spp, curve: [{spp, ms, image error}], equal_time_spp, equal_time_ms,
 // equal_time (image error), neural (image error)}; image errors as ImageError::json().
 nlohmann::json equalTimeStudy(const gpu::Context& context, const gpu::PipelineCache& cache,

@@ -16,6 +16,7 @@
 #include "render/camera.h"
 #include "render/guiding_map.h"
 #include "render/lightmap_images.h"
+#include "render/obstacle_bvh.h"
 #include "render/obstacle_meshes.h"
 #include "render/obstacle_pass.h"
 #include "render/projection.h"
@@ -50,6 +51,14 @@ render::ImagePlane facingBillboard(const render::Camera& camera, const render::C
   const float scale = bakedDepth / depthNow;
   return {centreNow + (bakedPlane.min - bakedCentre) * scale,
           centreNow + (bakedPlane.max - bakedCentre) * scale};
+}
+
+// The scene the real-time passes draw: the path tracer draws the obstacles itself (opaque surfaces in the
+// truth), so its rasterized frame is the background alone.
+io::Scene rasterScene(const io::Scene& scene, RenderMode mode) {
+  io::Scene raster = scene;
+  if (mode == RenderMode::PathTrace) raster.obstacles.clear();
+  return raster;
 }
 
 bool isTraditional(RenderMode mode) {
@@ -104,18 +113,23 @@ struct FramePipeline::Passes {
          const FramePipelineOptions& options)
       : context(context),
         scene(scene),
+        raster(rasterScene(scene, options.mode)),
         options(options),
         network(options.mode == RenderMode::Neural ? loadNetwork(context, cache, scene, options) : nullptr),
-        frame(context, cache, this->scene,
+        frame(context, cache, raster,
               runtime::FrameTarget{uint32_t(scene.render.width), uint32_t(scene.render.height), {}, {}},
               !options.shadows      ? 0
               : options.shadowTiles ? *options.shadowTiles
-                                    : render::shadowTileCount(scene.lights, scene.obstacles),
+                                    : render::shadowTileCount(raster.lights, raster.obstacles),
               network ? runtime::networkGuide(scene, network->graph())
                       : render::GuideSettings::fromScene(scene)),
         sequence(context) {
     if (bakedScattering(options.mode)) baker = std::make_unique<render::ScatteredLightmaps>(context, cache);
-    if (options.mode == RenderMode::PathTrace) tracer = std::make_unique<render::PathTracer>(context, cache);
+    if (options.mode == RenderMode::PathTrace) {
+      tracer = std::make_unique<render::PathTracer>(context, cache);
+      if (!scene.obstacles.empty())
+        obstacles = std::make_unique<render::ObstacleBvh>(context, scene.obstacles);
+    }
     if (options.mode == RenderMode::GuideLit)
       guideLit = std::make_unique<render::GuideLightmaps>(context, cache,
                                                           uint32_t(frame.guiding().settings().lights.size()));
@@ -159,11 +173,13 @@ struct FramePipeline::Passes {
 
   const gpu::Context& context;
   io::Scene scene;
+  io::Scene raster;  // what the real-time passes draw (rasterScene)
   FramePipelineOptions options;
   std::unique_ptr<nn::Network> network;  // before the frame, whose guide it sets
   runtime::RealtimeFrame frame;
   std::unique_ptr<render::ScatteredLightmaps> baker;
   std::unique_ptr<render::PathTracer> tracer;
+  std::unique_ptr<render::ObstacleBvh> obstacles;  // pathtrace, with obstacles
   std::unique_ptr<render::GuideLightmaps> guideLit;
   render::RecordedSequence sequence;
   std::optional<std::pair<render::Camera, render::ImagePlane>> bakedView;  // traditional: the first frame's
@@ -239,7 +255,8 @@ RenderedFrame FramePipeline::render(const FrameView& view, int index, double sec
   result.image = downloadHalfImage(p.frame.color(), {"R", "G", "B", "A"});
   if (p.options.mode != RenderMode::PathTrace) return result;
 
-  // Ground truth: the path-traced smoke (black background, so premultiplied) over the rasterized scene.
+  // Ground truth: the path-traced smoke and obstacles (black background, so premultiplied; opaque obstacles)
+  // over the rasterized background.
   render::TraceSettings trace;
   trace.width = int(p.frame.width());
   trace.height = int(p.frame.height());
@@ -249,8 +266,12 @@ RenderedFrame FramePipeline::render(const FrameView& view, int index, double sec
     if (const auto* c = std::get_if<io::AmbientColor>(&*scene.ambient)) trace.environment = {c->color};
     if (const auto* sh = std::get_if<io::AmbientSh>(&*scene.ambient)) trace.environment = sh->coefficients;
   }
+  std::vector<io::Light> traced = lights;
+  if (!p.options.shadows)
+    for (io::Light& light : traced) light.shadows = false;
+  if (p.obstacles) p.obstacles->update(seconds);
   p.tracer->beginImage(volume, scene.smoke, camera, render::fullFrame(camera, trace.width, trace.height),
-                       lights, trace);
+                       traced, trace, p.obstacles.get());
   p.tracer->accumulate(p.options.pathTraceSamples);
   result.stages.push_back({"path trace", p.tracer->traceMilliseconds()});
   const io::Image smoke = p.tracer->image();
@@ -276,7 +297,9 @@ io::Image FramePipeline::lightmaps() const {
 }
 
 void FramePipeline::setObstacleMotion(size_t obstacle, std::optional<io::Motion> motion) {
-  passes_->frame.meshes().setMotion(obstacle, std::move(motion));
+  if (passes_->obstacles) passes_->obstacles->setMotion(obstacle, motion);
+  if (passes_->options.mode != RenderMode::PathTrace)
+    passes_->frame.meshes().setMotion(obstacle, std::move(motion));
 }
 
 const gpu::Image& FramePipeline::colorImage() const {

@@ -51,9 +51,9 @@ const char* renderModeName(RenderMode mode);
 
 struct FramePipelineOptions {
   RenderMode mode = RenderMode::Neural;
-  std::filesystem::path weights;     // neural: the network file
-  bool fp16 = false;                 // neural: fp16 feature maps where the device has 16-bit storage
-  bool shadows = true;               // obstacle shadows on the smoke
+  std::filesystem::path weights;  // neural: the network file
+  bool fp16 = false;              // neural: fp16 feature maps where the device has 16-bit storage
+  bool shadows = true;  // obstacle shadows on the smoke (pathtrace: on the smoke and on the obstacles)
   uint32_t pathTraceSamples = 64;    // pathtrace: samples per pixel
   int pathTraceOrders = 64;          // pathtrace: scattering orders (1: single scattering, like the baker)
   uint32_t pathTraceSeedOffset = 0;  // pathtrace: added to its seed (render.seed + frame): other noise

@@ -145,9 +145,9 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
   const std::unique_ptr<render::VolumeSequence> volumes =
       sources::openSceneVolumes(context, cache, scene, warmup + s.frames, s.scene.string());
   const auto* simulated = dynamic_cast<const runtime::SimulatedVolumes*>(volumes.get());
-  // What the renderers see: the obstacles only when asked (the path tracer cannot draw them).
+  // What the renderers see: the obstacles, unless left out (--no-obstacles).
   io::Scene renderScene = scene;
-  if (!s.drawObstacles) renderScene.obstacles.clear();
+  if (!s.obstacles) renderScene.obstacles.clear();
   FramePipelineOptions options;
   options.weights = s.weights;
   options.shadows = s.shadows;
@@ -173,7 +173,7 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
       "obstacles %s, on %s\n",
       scene.name.c_str(), s.frames, warmup, scene.render.width, scene.render.height,
       scene.render.lightmapSize, s.samples, s.densityScale,
-      s.drawObstacles ? (s.shadows ? "drawn, shadows" : "drawn") : "not drawn",
+      renderScene.obstacles.empty() ? "none drawn" : (s.shadows ? "drawn, shadows" : "drawn, no shadows"),
       context.properties().deviceName);
   std::fflush(stdout);
 
@@ -268,8 +268,8 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
       equal.budgetMs = median(wallTimes["neural"]);
       equal.samples = s.equalTimeReferenceSamples;
       equal.orders = s.orders;
-      equalTime = equalTimeStudy(context, cache, renderScene, index, volume, equal,
-                                 s.drawObstacles ? nullptr : &rendered["neural"].image);
+      equalTime =
+          equalTimeStudy(context, cache, renderScene, index, volume, equal, &rendered["neural"].image);
       equalTime["frame"] = i;
     }
     frames.push_back(frame);
@@ -317,10 +317,10 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
         {"downsample", s.multipleScattering.traceAllOrders ? 1 : s.multipleScattering.downsample},
         {"all_orders_traced", s.multipleScattering.traceAllOrders}}},
       {"density_scale", s.densityScale},
-      {"obstacles_drawn", s.drawObstacles},
+      {"obstacles_drawn", !renderScene.obstacles.empty()},
       {"obstacle_count", scene.obstacles.size()},
       {"source", sources::describeSource(*volumes)},
-      {"shadows", s.drawObstacles && s.shadows},
+      {"shadows", !renderScene.obstacles.empty() && s.shadows},
       {"camera_orbit_deg_per_frame", s.cameraOrbitDeg ? number(*s.cameraOrbitDeg) : nullptr},
       {"methods", kMethods},
       {"summary", summary},

@@ -8,9 +8,9 @@
 //   - GPU time per stage of every method and of the simulation;
 //   - the path tracer at the neural frame's time (equal_time.h), and a side-by-side strip of one frame;
 //   - each method's frame-to-frame change against the truth's (temporal_change.h).
-// The path tracer knows no obstacles, so by default the obstacles shape the flow but no method draws them
-// (nor their shadows); --draw-obstacles draws them in every method (the path-traced smoke then lies over them
-// unshadowed, as in `sixway render --mode pathtrace`).
+// Obstacles are drawn by every method and path-traced in the truth (opaque surfaces that hide, shadow and are
+// shadowed by the smoke); --no-obstacles leaves them out of every image (they still shape the flow), for
+// studying the lightmaps alone.
 #include <filesystem>
 #include <optional>
 
@@ -26,9 +26,9 @@ struct SceneEvalSettings {
   int orders = 64;                                // its scattering orders
   render::MultipleScattering multipleScattering;  // of reference-ms and traditional-ms
   float densityScale = 1.0f;
-  bool shadows = true, drawObstacles = false;
-  std::optional<float> cameraOrbitDeg;  // replaces the scene's camera path by an orbit (degrees per frame)
-  std::optional<int> stripFrame;        // default: the last frame
+  bool shadows = true, obstacles = true;  // obstacles: drawn, and in the truth
+  std::optional<float> cameraOrbitDeg;    // replaces the scene's camera path by an orbit (degrees per frame)
+  std::optional<int> stripFrame;          // default: the last frame
   uint32_t equalTimeReferenceSamples = 256;
   bool equalTime = true;  // false: no equal-time study (the report's equal_time is null)
   // Path-trace every frame a second time with another seed, so that the truth's frame-to-frame change can be

@@ -1,6 +1,7 @@
 #include "reference/path_tracer.h"
 
 #include <algorithm>
+#include <glm/geometric.hpp>
 #include <numbers>
 #include <string>
 #include <variant>
@@ -9,6 +10,7 @@
 #include "gpu/pipeline.h"
 #include "io/error.h"
 #include "render/gpu_layout.h"
+#include "render/obstacle_pass.h"
 #include "render/render_spec.h"
 #include "render/sixway.h"
 
@@ -31,8 +33,9 @@ void checkSettings(const TraceSettings& s, size_t lights) {
     fail(std::to_string(lights) + " lights; at most " + std::to_string(layout::kMaxLights));
 }
 
+// w of the radiance: 1 where obstacles cast shadows from the light.
 layout::PathLight pathLight(const io::Light& light) {
-  const glm::vec4 radiance(light.color * light.intensity, 0.0f);
+  const glm::vec4 radiance(light.color * light.intensity, light.shadows ? 1.0f : 0.0f);
   if (const auto* directional = std::get_if<io::DirectionalLight>(&light.source))
     return {glm::vec4(directional->direction, 0.0f), radiance};
   return {glm::vec4(std::get<io::PointLight>(light.source).position, 1.0f), radiance};
@@ -51,25 +54,32 @@ PathTracer::PathTracer(const gpu::Context& context, const gpu::PipelineCache& ca
   majorantPass_ = std::make_unique<BrickMajorantPass>(context, cache);
   const std::vector<BindingType> bindings = {BindingType::UniformBuffer, BindingType::StorageBuffer,
                                              BindingType::StorageBuffer, BindingType::StorageBuffer,
-                                             BindingType::StorageBuffer};
+                                             BindingType::StorageBuffer, BindingType::StorageBuffer,
+                                             BindingType::StorageBuffer, BindingType::StorageBuffer};
   gpu::ComputePipelineDesc desc{"render/path_trace.comp", bindings, 0};
   desc.spec.set(spec::kSixWay, false);
   imagePass_ = std::make_unique<gpu::Pipeline>(context, cache, desc);
   desc.spec = gpu::SpecConstants().set(spec::kSixWay, true);
   sixWayPass_ = std::make_unique<gpu::Pipeline>(context, cache, desc);
+  noObstacles_ = gpu::Buffer::storage(context, sizeof(BvhTriangle), "no obstacles");
 }
 
 PathTracer::~PathTracer() = default;
 
 void PathTracer::beginImage(const Volume& volume, const io::Smoke& smoke, const Camera& camera,
                             const ImagePlane& plane, const std::vector<io::Light>& lights,
-                            const TraceSettings& settings) {
+                            const TraceSettings& settings, const ObstacleBvh* obstacles) {
   checkSettings(settings, lights.size());
   layout::TraceParams& p = *static_cast<layout::TraceParams*>(params_.mapped());
   p = {};
   for (size_t i = 0; i < lights.size(); ++i) p.lights[i] = pathLight(lights[i]);
   p.image.w = int(lights.size());
   p.background = glm::vec4(settings.background, 0.0f);
+  obstacles_ = obstacles && obstacles->obstacleCount() > 0 ? obstacles : nullptr;
+  // Rays leave a surface this far along its normal (1e-5 of the volume's diagonal, about a hundred times
+  // float rounding there): they must not find the surface they left.
+  p.obstacles = glm::vec4(obstacles_ ? float(obstacles_->obstacleCount()) : 0.0f, kObstacleAlbedo.x,
+                          1e-5f * glm::length(volume.grid.bounds().size()), 0.0f);
   for (int i = 0; i < 4; ++i) p.environment[i] = glm::vec4(settings.environment[i], 0.0f);
   channels_ = {"R", "G", "B", "A"};
   begin(volume, smoke, camera, plane, settings, false);
@@ -80,6 +90,7 @@ void PathTracer::beginSixWay(const Volume& volume, const io::Smoke& smoke, const
   checkSettings(settings, kSixWayLights);
   layout::TraceParams& p = *static_cast<layout::TraceParams*>(params_.mapped());
   p = {};
+  obstacles_ = nullptr;
   const auto directions = sixWayLightDirections(camera);
   for (int i = 0; i < kSixWayLights; ++i)
     p.lights[i] = {glm::vec4(directions[i], 0.0f), glm::vec4(glm::vec3(std::numbers::pi_v<float>), float(i))};
@@ -136,7 +147,10 @@ void PathTracer::begin(const Volume& volume, const io::Smoke& smoke, const Camer
                handleKey(accumulation_.handle()),
                uint64_t(settings.width),
                uint64_t(settings.height),
-               uint64_t(sixWay)};
+               uint64_t(sixWay),
+               handleKey((obstacles_ ? obstacles_->nodes() : noObstacles_).handle()),
+               handleKey((obstacles_ ? obstacles_->triangles() : noObstacles_).handle()),
+               handleKey((obstacles_ ? obstacles_->placements() : noObstacles_).handle())};
 }
 
 void PathTracer::accumulate(uint32_t samplesPerPixel) {
@@ -144,12 +158,16 @@ void PathTracer::accumulate(uint32_t samplesPerPixel) {
   layout::TraceParams& p = *static_cast<layout::TraceParams*>(params_.mapped());
   const gpu::Buffer& density = *volume_.density;
   const gpu::Buffer& temperature = volume_.temperature ? *volume_.temperature : density;
+  const gpu::Buffer& nodes = obstacles_ ? obstacles_->nodes() : noObstacles_;
+  const gpu::Buffer& triangles = obstacles_ ? obstacles_->triangles() : noObstacles_;
+  const gpu::Buffer& placements = obstacles_ ? obstacles_->placements() : noObstacles_;
   gpu::Sequence& pass = trace_.get(traceKey_, [&](gpu::Sequence& s) {
     s.beginStage("path trace");
-    s.dispatch(sixWay_ ? *sixWayPass_ : *imagePass_,
-               {gpu::reads(params_), gpu::reads(density), gpu::reads(temperature), gpu::reads(majorants_),
-                gpu::readsWrites(accumulation_)},
-               std::span<const std::byte>(), groups(settings_.width, 8), groups(settings_.height, 8));
+    s.dispatch(
+        sixWay_ ? *sixWayPass_ : *imagePass_,
+        {gpu::reads(params_), gpu::reads(density), gpu::reads(temperature), gpu::reads(majorants_),
+         gpu::readsWrites(accumulation_), gpu::reads(nodes), gpu::reads(triangles), gpu::reads(placements)},
+        std::span<const std::byte>(), groups(settings_.width, 8), groups(settings_.height, 8));
     s.endStage();
   });
   for (uint32_t done = 0; done < samplesPerPixel; done += uint32_t(settings_.samplesPerPass)) {

@@ -16,6 +16,7 @@
 #include "io/scene.h"
 #include "render/brick_majorants.h"
 #include "render/camera.h"
+#include "render/obstacle_bvh.h"
 #include "render/recorded_sequence.h"
 #include "render/volume.h"
 
@@ -49,9 +50,12 @@ class PathTracer {
   ~PathTracer();
 
   // Starts an image of `volume` under `lights` (positioned for the frame; at most 8): channels R, G, B
-  // (radiance, including the background and emission) and A (alpha = 1 − T of the camera ray).
+  // (radiance, including the background, emission and obstacles) and A (alpha = 1 − T of the camera ray; 1
+  // where it meets an obstacle). `obstacles`, placed for the frame (ObstacleBvh::update), are opaque
+  // Lambertian surfaces of the real-time pass's albedo (kObstacleAlbedo); none when null or empty.
   void beginImage(const Volume& volume, const io::Smoke& smoke, const Camera& camera, const ImagePlane& plane,
-                  const std::vector<io::Light>& lights, const TraceSettings& settings);
+                  const std::vector<io::Light>& lights, const TraceSettings& settings,
+                  const ObstacleBvh* obstacles = nullptr);
   // Starts six-way lightmaps: the eight channels of sixway.h, each light channel lit by one white
   // directional light of irradiance π from its camera-relative direction, black world; emissive is the
   // emission seen directly. Background and environment are not used.
@@ -74,6 +78,8 @@ class PathTracer {
   std::unique_ptr<BrickMajorantPass> majorantPass_;
   std::unique_ptr<gpu::Pipeline> imagePass_, sixWayPass_;
   gpu::Buffer params_, majorants_, accumulation_, readback_;
+  gpu::Buffer noObstacles_;  // bound in place of the obstacle buffers when there are none
+  const ObstacleBvh* obstacles_ = nullptr;
   RecordedSequence prepare_, trace_;
   mutable RecordedSequence read_;
   std::vector<uint64_t> traceKey_;

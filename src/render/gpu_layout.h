@@ -58,11 +58,12 @@ struct TraceParams {  // shaders/render/path_trace.comp
   glm::ivec4 image;
   glm::uvec4 flags;
   glm::vec4 background;
+  glm::vec4 obstacles;
   glm::vec4 environment[4];
   glm::vec4 ramp[kMaxRampKeys];
   PathLight lights[kMaxLights];
 };
-static_assert(sizeof(TraceParams) == 16 * (2 + 5 + 6 + 4 + kMaxRampKeys + 2 * kMaxLights));
+static_assert(sizeof(TraceParams) == 16 * (2 + 5 + 7 + 4 + kMaxRampKeys + 2 * kMaxLights));
 
 VolumeGrid volumeGrid(const render::VolumeGrid& grid);
 CameraRays cameraRays(const Camera& camera, const ImagePlane& plane);

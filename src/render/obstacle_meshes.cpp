@@ -250,6 +250,11 @@ std::vector<gpu::VertexAttribute> ObstacleMeshes::vertexAttributes() {
           {2, VK_FORMAT_R32G32B32_SFLOAT, offsetof(ObstacleVertex, normal)}};
 }
 
+double sphereFacetDepth(double radius) {
+  const double delta = 2 * std::numbers::pi / kRoundSegments;
+  return radius * (1 - std::cos(delta / std::sqrt(2.0)));
+}
+
 Box domainBox(const io::Grid& grid) {
   return {grid.origin, grid.origin + glm::vec3(grid.size) * grid.cellSize};
 }

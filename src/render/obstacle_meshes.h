@@ -30,6 +30,11 @@ static_assert(sizeof(ObstacleVertex) == 32);
 // circle by at most r·(1 − cos(π/64)) = 0.0012·r: under a pixel while the radius spans under 800 pixels.
 inline constexpr int kRoundSegments = 64;
 
+// How far a flat triangle of a sphere's tessellation lies inside the sphere at most: its vertices are on the
+// sphere and its circumcircle spans at most the diagonal of a Δ × Δ cell (Δ = 2π / kRoundSegments), so the
+// deepest point is r·(1 − cos(Δ/√2)) below the surface (0.0024·r).
+double sphereFacetDepth(double radius);
+
 // The triangles of one obstacle around its placement point; vertices' `obstacle` is `index`. Meshes are read
 // from their OBJ file and scaled and turned as the scene says (world = translate + Rz·Ry·Rx·(scale·p));
 // their normals are smoothed across edges whose faces turn by less than 45°. Throws io::InputError for an OBJ

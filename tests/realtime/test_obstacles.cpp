@@ -30,21 +30,6 @@ constexpr double kPi = std::numbers::pi;
 const render::Box kDomain{glm::vec3(-1.0f), glm::vec3(1.0f)};
 const glm::vec3 kBackground(0.1f, 0.2f, 0.3f);
 
-// How far a flat triangle of the sphere's tessellation lies inside the sphere at most: its vertices are on
-// the sphere and its circumcircle spans at most the diagonal of a Δ × Δ cell (Δ = 2π / kRoundSegments), so
-// the deepest point is r·(1 − cos(Δ/√2)) below the surface (0.0024·r).
-double sphereFacetDepth(double radius) {
-  const double delta = 2 * kPi / render::kRoundSegments;
-  return radius * (1 - std::cos(delta / std::sqrt(2.0)));
-}
-
-io::Obstacle sphereAt(glm::vec3 centre, float radius, bool shadows = true) {
-  io::Obstacle o;
-  o.shape = io::SphereObstacle{centre, radius};
-  o.shadows = shadows;
-  return o;
-}
-
 io::Light directional(glm::vec3 towardLight, glm::vec3 color, float intensity, bool shadows = true) {
   io::Light l;
   l.source = io::DirectionalLight{glm::normalize(towardLight)};
@@ -170,7 +155,7 @@ TEST_F(ObstaclesTest, SphereDepthMatchesRayIntersection) {
       if (cosine < 0.25) continue;
       const double expected = *t * glm::dot(ray.direction, dvec3(f.camera.forward));
       const double actual = viewDepthFromDepthBuffer(f.depthAt(x, y), f.range.near, f.range.far);
-      EXPECT_NEAR(actual, expected, sphereFacetDepth(radius) / cosine + 1e-4) << x << "," << y;
+      EXPECT_NEAR(actual, expected, render::sphereFacetDepth(radius) / cosine + 1e-4) << x << "," << y;
       worst = std::max(worst, std::abs(actual - expected));
       ++compared;
     }
@@ -393,7 +378,7 @@ TEST_F(ObstaclesTest, ShadowAtlasHoldsTheFirstHitAlongEachLightRay) {
         const double cosine = -glm::dot(glm::normalize(hit - dvec3(centre)), ray.direction);
         if (cosine < 0.3) continue;
         const double expected = project(m, hit).z;
-        const double deeper = project(m, hit + sphereFacetDepth(radius) / cosine * ray.direction).z;
+        const double deeper = project(m, hit + render::sphereFacetDepth(radius) / cosine * ray.direction).z;
         EXPECT_NEAR(stored, expected, std::abs(deeper - expected) + 1e-6) << "texel " << tx << "," << ty;
         worst = std::max(worst, std::abs(stored - expected));
         ++hits;

@@ -29,4 +29,25 @@ io::Image channel(const io::Image& image, int c) {
   return one;
 }
 
+double peak(const io::Image& image, int c) {
+  double m = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) m = std::max(m, double(image.at(x, y, c)));
+  return m;
+}
+
+double rms(const io::Image& a, const io::Image& b, const std::vector<int>& channels) {
+  double sum = 0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x)
+      for (int c : channels) sum += std::pow(double(a.at(x, y, c)) - b.at(x, y, c), 2);
+  return std::sqrt(sum / (double(a.width) * a.height * channels.size()));
+}
+
+TwoSeeds meanOfTwoSeeds(const io::Image& a, const io::Image& b, const std::vector<int>& channels) {
+  TwoSeeds r{a, rms(a, b, channels) / 2};
+  for (size_t i = 0; i < a.pixels.size(); ++i) r.mean.pixels[i] = 0.5f * (a.pixels[i] + b.pixels[i]);
+  return r;
+}
+
 }  // namespace sixway::test

@@ -40,15 +40,6 @@ render::TraceSettings settings(int size, int maxOrders) {
   return s;
 }
 
-// RMS over the pixels and the given channels.
-double rms(const io::Image& a, const io::Image& b, const std::vector<int>& channels) {
-  double sum = 0;
-  for (int y = 0; y < a.height; ++y)
-    for (int x = 0; x < a.width; ++x)
-      for (int c : channels) sum += std::pow(double(a.at(x, y, c)) - b.at(x, y, c), 2);
-  return std::sqrt(sum / (double(a.width) * a.height * channels.size()));
-}
-
 TEST_F(PathTracerTest, EmptyVolumeIsBlackWithAlphaZero) {
   const CpuVolume empty = constantBox({8, 8, 8}, 0.125f, 0.0f);
   const io::Light sun{io::DirectionalLight{{0.0f, 1.0f, 0.0f}}};
@@ -170,26 +161,6 @@ TEST_F(PathTracerTest, SingleScatteringConvergesToTheBakerAsOneOverSqrtSpp) {
   const double monteCarlo = std::exp(logError[3]);
   EXPECT_LT(monteCarlo, 1.3 * std::exp(logError[0]) / 8) << "the error at 1024 spp stays on the 1/√spp line";
   EXPECT_LT(rms(tracer_.image(), baked, channels), 1.2 * std::hypot(monteCarlo, discretisation));
-}
-
-// The largest value of channel c.
-double peak(const io::Image& image, int c) {
-  double m = 0;
-  for (int y = 0; y < image.height; ++y)
-    for (int x = 0; x < image.width; ++x) m = std::max(m, double(image.at(x, y, c)));
-  return m;
-}
-
-// The mean of two renders with independent seeds, and the Monte Carlo RMS error of that mean, estimated from
-// their difference (each render's error is RMS(a − b)/√2, the mean's is half of RMS(a − b)).
-struct TwoSeeds {
-  io::Image mean;
-  double noise;
-};
-TwoSeeds meanOfTwoSeeds(const io::Image& a, const io::Image& b, const std::vector<int>& channels) {
-  TwoSeeds r{a, rms(a, b, channels) / 2};
-  for (size_t i = 0; i < a.pixels.size(); ++i) r.mean.pixels[i] = 0.5f * (a.pixels[i] + b.pixels[i]);
-  return r;
 }
 
 // Single scattering of a coloured point light (inverse-square falloff, Henyey–Greenstein phase, ratio-tracked

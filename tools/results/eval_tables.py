@@ -278,9 +278,8 @@ training), {half['frames']} frames each, single-scattering ground truth, masked 
 
 ## Obstacle shadows on and off
 
-The obstacles drawn in every method (`--draw-obstacles`), {on['frames']} frames, with and without their shadows
-on the smoke. The path tracer neither shadows the smoke by the sphere nor hides smoke behind it, so the PSNRs
-here measure how much the shadows change the image against an unshadowed truth, not their correctness.
+The obstacles drawn in every method and path-traced in the truth, {on['frames']} frames, with their shadows and
+without them (`--no-shadows`: in every method and in the truth).
 
 {shadow_table(on, off)}
 """
