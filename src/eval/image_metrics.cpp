@@ -40,28 +40,37 @@ double ImageError::mseFull() const {
   return valuesFull ? squaredFull / double(valuesFull) : std::numeric_limits<double>::quiet_NaN();
 }
 
+double ImageError::mseBand() const {
+  return valuesBand ? squaredBand / double(valuesBand) : std::numeric_limits<double>::quiet_NaN();
+}
+
 ImageError& ImageError::operator+=(const ImageError& other) {
   squaredMasked += other.squaredMasked;
   squaredFull += other.squaredFull;
+  squaredBand += other.squaredBand;
   valuesMasked += other.valuesMasked;
   valuesFull += other.valuesFull;
+  valuesBand += other.valuesBand;
   return *this;
 }
 
 nlohmann::json ImageError::json() const {
-  return {{"mse_masked", number(mseMasked())},
-          {"psnr_masked_db", number(psnrDb(mseMasked()))},
-          {"mse_full", number(mseFull())},
-          {"psnr_full_db", number(psnrDb(mseFull()))}};
+  return {{"mse_masked", number(mseMasked())}, {"psnr_masked_db", number(psnrDb(mseMasked()))},
+          {"mse_full", number(mseFull())},     {"psnr_full_db", number(psnrDb(mseFull()))},
+          {"mse_band", number(mseBand())},     {"psnr_band_db", number(psnrDb(mseBand()))}};
 }
 
-ImageError compareImages(const io::Image& predicted, const io::Image& truth) {
+ImageError compareImages(const io::Image& predicted, const io::Image& truth,
+                         const std::vector<uint8_t>* band) {
   if (predicted.width != truth.width || predicted.height != truth.height || predicted.channelCount() != 4 ||
       truth.channelCount() != 4)
     throw std::invalid_argument("compareImages: the images are not RGBA of the same size");
+  const size_t n = size_t(truth.width) * truth.height;
+  if (band && band->size() != n)
+    throw std::invalid_argument("compareImages: the band is not the images' size");
   ImageError e;
-  for (size_t p = 0, n = size_t(truth.width) * truth.height; p < n; ++p) {
-    const bool smoke = truth.pixels[p * 4 + 3] > 0.01f;
+  for (size_t p = 0; p < n; ++p) {
+    const bool smoke = truth.pixels[p * 4 + 3] > 0.01f, inBand = smoke && band && (*band)[p];
     for (int c = 0; c < 3; ++c) {
       const double d =
           double(clipped(predicted.pixels[p * 4 + c])) - double(clipped(truth.pixels[p * 4 + c]));
@@ -70,6 +79,9 @@ ImageError compareImages(const io::Image& predicted, const io::Image& truth) {
       if (!smoke) continue;
       e.squaredMasked += d * d;
       ++e.valuesMasked;
+      if (!inBand) continue;
+      e.squaredBand += d * d;
+      ++e.valuesBand;
     }
   }
   return e;

@@ -15,8 +15,10 @@
 #include "eval/equal_time.h"
 #include "eval/eval_strip.h"
 #include "eval/frame_pipeline.h"
+#include "eval/image_detail.h"
 #include "eval/image_metrics.h"
 #include "eval/lightmap_metrics.h"
+#include "eval/obstacle_band.h"
 #include "eval/summary_table.h"
 #include "eval/temporal_change.h"
 #include "gpu/context.h"
@@ -25,6 +27,7 @@
 #include "io/report.h"
 #include "io/scene.h"
 #include "render/camera.h"
+#include "render/obstacle_bvh.h"
 #include "render/scene_frame.h"
 #include "runtime/scene_volumes.h"
 #include "sources/scene_volumes.h"
@@ -166,6 +169,10 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
     options.pathTraceSeedOffset = 0x9E3779B9u;  // far from the next frames' seeds (render.seed + frame)
     truthNoisePipeline = std::make_unique<FramePipeline>(context, cache, renderScene, options);
   }
+  // The band around the obstacles (obstacle_band.h), where the images draw them.
+  std::unique_ptr<render::ObstacleBvh> bandObstacles;
+  if (!renderScene.obstacles.empty())
+    bandObstacles = std::make_unique<render::ObstacleBvh>(context, renderScene.obstacles);
   if (!s.out.empty()) fs::create_directories(s.out);
   std::printf(
       "sixway eval: %s, %d frames after %d of warm-up, %dx%d (lightmaps %d²), path tracer %u spp, density "
@@ -190,6 +197,10 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
   std::optional<TemporalChange> truthNoise;
   if (s.truthNoise) truthNoise.emplace();
   std::map<std::string, io::Image> previous;  // the last frame of every method, "truth" included
+  // High-pass energies summed over the frames (image_detail.h): each method's, and the truth's without its
+  // noise.
+  std::map<std::string, double> detailEnergy;
+  double truthDetailEnergy = 0;
   const auto started = std::chrono::steady_clock::now();
   for (int i = 0; i < s.frames; ++i) {
     const int index = warmup + i;
@@ -221,9 +232,28 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
     frame["stages_ms"]["pathtrace"] = stageTimes(truth.stages);
     frameStages["pathtrace"].push_back(frame["stages_ms"]["pathtrace"]);
     if (i > 0) truthTemporal.add(previous["truth"], truth.image, previous["truth"], truth.image);
-    if (truthNoisePipeline && i > 0) {
+    std::optional<std::vector<uint8_t>> detailMask;
+    if (truthNoisePipeline) {
       const RenderedFrame repeat = truthNoisePipeline->render(index, seconds, volume);
-      truthNoise->add(repeat.image, truth.image, previous["truth"], truth.image);
+      if (i > 0) truthNoise->add(repeat.image, truth.image, previous["truth"], truth.image);
+      detailMask = smokeMask(truth.image);
+      const double signal = highPassEnergy(truth.image, *detailMask) -
+                            0.5 * highPassEnergyOfDifference(truth.image, repeat.image, *detailMask);
+      truthDetailEnergy += signal;
+      frame["detail_truth_energy"] = number(signal);
+    }
+    std::optional<std::vector<uint8_t>> band;
+    if (bandObstacles) {
+      bandObstacles->update(seconds);
+      const int width = scene.render.width, height = scene.render.height;
+      BandSettings settings;
+      settings.radius = bandRadius(height);
+      settings.shadows = s.shadows;
+      settings.extinction = scene.smoke.extinction;
+      band = obstacleBand(*bandObstacles, camera, render::fullFrame(camera, width, height), width, height,
+                          render::sceneLights(renderScene.lights, index),
+                          HostDensity{volume.grid, volume.density->download<float>()}, settings);
+      frame["band_pixels"] = std::count(band->begin(), band->end(), uint8_t(1));
     }
     std::map<std::string, RenderedFrame> rendered;
     for (const std::string& method : kMethods) {
@@ -233,7 +263,12 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begun).count();
       frame["wall_ms"][method] = wallMs;
       wallTimes[method].push_back(wallMs);
-      const ImageError error = compareImages(rendered[method].image, truth.image);
+      const ImageError error = compareImages(rendered[method].image, truth.image, band ? &*band : nullptr);
+      if (detailMask) {
+        const double energy = highPassEnergy(rendered[method].image, *detailMask);
+        detailEnergy[method] += energy;
+        frame["detail"][method] = number(energy / frame["detail_truth_energy"].get<double>());
+      }
       imageTotal[method] += error;
       frame["image"][method] = error.json();
       framePsnrs[method].push_back(psnrDb(error.mseMasked()));
@@ -299,6 +334,12 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
   for (const auto& [method, stages] : frameStages) summary["median_ms"][method] = medianTimes(stages);
   for (const auto& [method, times] : wallTimes) summary["median_ms"][method]["wall_ms"] = median(times);
   summary["temporal"] = temporalSummary(temporal, truthTemporal, truthNoise);
+  summary["detail"] = nullptr;
+  if (truthNoisePipeline) {
+    summary["detail"] = {{"truth_energy", number(truthDetailEnergy)}, {"sigma_px", kDetailSigma}};
+    for (const std::string& method : kMethods)
+      summary["detail"]["methods"][method] = number(detailEnergy[method] / truthDetailEnergy);
+  }
 
   nlohmann::json report = {
       {"scene", fs::absolute(s.scene).string()},
@@ -321,6 +362,8 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
       {"obstacle_count", scene.obstacles.size()},
       {"source", sources::describeSource(*volumes)},
       {"shadows", !renderScene.obstacles.empty() && s.shadows},
+      {"band_radius_px",
+       bandObstacles ? nlohmann::json(bandRadius(scene.render.height)) : nlohmann::json(nullptr)},
       {"camera_orbit_deg_per_frame", s.cameraOrbitDeg ? number(*s.cameraOrbitDeg) : nullptr},
       {"methods", kMethods},
       {"summary", summary},

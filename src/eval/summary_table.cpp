@@ -26,7 +26,9 @@ const nlohmann::json& at(const nlohmann::json& object, const char* key) {
 std::string summaryTable(const nlohmann::json& summary, const nlohmann::json& equalTime,
                          const std::vector<std::string>& methods) {
   std::string table =
-      "  method           PSNR masked  mean of frames  full frame   GPU ms/frame  wall ms/frame\n";
+      "  method           PSNR masked  mean of frames  full frame  obstacle band  detail   GPU ms/frame  "
+      "wall "
+      "ms/frame\n";
   for (const std::string& method : methods) {
     const nlohmann::json& image = at(at(summary, "image"), method.c_str());
     const nlohmann::json& times = at(at(summary, "median_ms"), method.c_str());
@@ -34,10 +36,14 @@ std::string summaryTable(const nlohmann::json& summary, const nlohmann::json& eq
     std::snprintf(name, sizeof(name), "  %-15s", method.c_str());
     table += name + cell(at(image, "psnr_masked_db"), "%*.2f", 12) +
              cell(at(image, "mean_frame_psnr_masked_db"), "%*.2f", 16) +
-             cell(at(image, "psnr_full_db"), "%*.2f", 12) + cell(at(times, "total_ms"), "%*.1f", 15) +
-             cell(at(times, "wall_ms"), "%*.1f", 15) + "\n";
+             cell(at(image, "psnr_full_db"), "%*.2f", 12) + cell(at(image, "psnr_band_db"), "%*.2f", 15) +
+             cell(at(at(at(summary, "detail"), "methods"), method.c_str()), "%*.2f", 8) +
+             cell(at(times, "total_ms"), "%*.1f", 15) + cell(at(times, "wall_ms"), "%*.1f", 15) + "\n";
   }
-  table += "  (PSNR in dB against the path tracer, masked to the smoke; times are medians over the frames)\n";
+  table +=
+      "  (PSNR in dB against the path tracer, masked to the smoke; the obstacle band within it; detail: "
+      "high-pass "
+      "energy over the truth's, with --truth-noise; times are medians over the frames)\n";
   table += "  neural lightmaps: " + cell(at(at(summary, "lightmap"), "psnr_masked_db"), "%*.2f", 0) +
            " dB against the single-scattering baker's, " +
            cell(at(at(summary, "lightmap_ms"), "psnr_masked_db"), "%*.2f", 0) +

@@ -12,9 +12,10 @@ execute_process(COMMAND ${SIXWAY} eval --scene ${SCENE} --frames 2 --spp 16 --or
 if(NOT code EQUAL 0 OR err MATCHES "validation:")
   message(FATAL_ERROR "sixway eval failed (${code}):\n${out}\n${err}")
 endif()
-# The one-screen summary: a row per method with its PSNRs and times.
+# The one-screen summary: a row per method with its PSNRs (masked, mean of frames, full, obstacle band), detail
+# and times.
 foreach(method neural reference reference-ms traditional traditional-ms guide-lit)
-  if(NOT out MATCHES "\n  ${method} +[0-9]+\\.[0-9][0-9] +[0-9]+\\.[0-9][0-9] +[0-9]+\\.[0-9][0-9] +[0-9]+\\.[0-9] +[0-9]+\\.[0-9]\n")
+  if(NOT out MATCHES "\n  ${method} +[0-9]+\\.[0-9][0-9] +[0-9]+\\.[0-9][0-9] +[0-9]+\\.[0-9][0-9] +[0-9]+\\.[0-9][0-9] +[0-9]+\\.[0-9][0-9] +[0-9]+\\.[0-9] +[0-9]+\\.[0-9]\n")
     message(FATAL_ERROR "sixway eval printed no summary row for ${method}:\n${out}")
   endif()
 endforeach()
@@ -56,6 +57,21 @@ foreach(i 0 1)
   endif()
 endforeach()
 
+# The small plume's sphere: a band around it in every frame, its PSNR for every method; and every method's
+# detail against the truth's (the truth's noise taken out).
+foreach(i 0 1)
+  string(JSON band GET "${report}" per_frame ${i} band_pixels)
+  if(NOT band GREATER 20)
+    message(FATAL_ERROR "eval.json: frame ${i}: ${band} pixels in the obstacle band")
+  endif()
+endforeach()
+foreach(method neural reference reference-ms traditional traditional-ms guide-lit)
+  string(JSON band GET "${report}" summary image ${method} psnr_band_db)
+  string(JSON detail GET "${report}" summary detail methods ${method})
+  if(NOT band GREATER 0 OR NOT detail GREATER 0)
+    message(FATAL_ERROR "eval.json: ${method}: obstacle band ${band} dB, detail ${detail}")
+  endif()
+endforeach()
 string(JSON reference GET "${report}" summary image reference psnr_masked_db)
 string(JSON guide GET "${report}" summary image guide-lit psnr_masked_db)
 if(NOT reference GREATER guide)

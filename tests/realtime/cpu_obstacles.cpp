@@ -73,13 +73,6 @@ std::optional<double> hitBox(const Ray& ray, dvec3 min, dvec3 max) {
   return lo;
 }
 
-io::Obstacle sphereAt(glm::vec3 centre, float radius, bool shadows) {
-  io::Obstacle o;
-  o.shape = io::SphereObstacle{centre, radius};
-  o.shadows = shadows;
-  return o;
-}
-
 std::optional<double> hitTriangle(const Ray& ray, dvec3 a, dvec3 b, dvec3 c) {
   const dvec3 e1 = b - a, e2 = c - a;
   const dvec3 p = glm::cross(ray.direction, e2);

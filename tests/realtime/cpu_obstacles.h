@@ -48,9 +48,6 @@ class CpuMesh {
   std::vector<std::vector<unsigned>> bins_;  // per pixel of the image grown by the margin
 };
 
-// A sphere obstacle (casting shadows unless told not to).
-io::Obstacle sphereAt(glm::vec3 centre, float radius, bool shadows = true);
-
 // Möller–Trumbore, both sides.
 std::optional<double> hitTriangle(const Ray& ray, dvec3 a, dvec3 b, dvec3 c);
 

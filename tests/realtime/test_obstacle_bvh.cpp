@@ -16,6 +16,7 @@
 #include "render/obstacle_bvh.h"
 #include "render/obstacle_meshes.h"
 #include "support/gpu_fixture.h"
+#include "support/scene_parts.h"
 
 namespace sixway::test {
 namespace {

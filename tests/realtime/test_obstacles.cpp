@@ -20,6 +20,7 @@
 #include "render/projection.h"
 #include "render/shadow_maps.h"
 #include "support/gpu_fixture.h"
+#include "support/scene_parts.h"
 
 namespace sixway::test {
 namespace {
@@ -31,12 +32,7 @@ const render::Box kDomain{glm::vec3(-1.0f), glm::vec3(1.0f)};
 const glm::vec3 kBackground(0.1f, 0.2f, 0.3f);
 
 io::Light directional(glm::vec3 towardLight, glm::vec3 color, float intensity, bool shadows = true) {
-  io::Light l;
-  l.source = io::DirectionalLight{glm::normalize(towardLight)};
-  l.color = color;
-  l.intensity = intensity;
-  l.shadows = shadows;
-  return l;
+  return directionalLight(towardLight, intensity, shadows, color);
 }
 
 io::Light point(glm::vec3 position, float intensity, bool shadows = true) {

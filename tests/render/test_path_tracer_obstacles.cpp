@@ -15,6 +15,7 @@
 #include "render/obstacle_bvh.h"
 #include "render/obstacle_meshes.h"
 #include "render/obstacle_pass.h"
+#include "support/scene_parts.h"
 #include "test_volumes.h"
 
 namespace sixway::test {
@@ -36,19 +37,9 @@ io::Smoke slabOptics() {
   return smoke;
 }
 
-io::Obstacle sphereAt(glm::vec3 centre, float radius) {
-  io::Obstacle o;
-  o.shape = io::SphereObstacle{centre, radius};
-  return o;
-}
-
 // The sun straight above, irradiance 1.
 io::Light sun(bool shadows) {
-  io::Light l;
-  l.source = io::DirectionalLight{{0.0f, 1.0f, 0.0f}};
-  l.intensity = 1.0f;
-  l.shadows = shadows;
-  return l;
+  return directionalLight({0.0f, 1.0f, 0.0f}, 1.0f, shadows);
 }
 
 std::optional<double> hitSphere(dvec3 o, dvec3 d, dvec3 c, double r) {
