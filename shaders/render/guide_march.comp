@@ -16,9 +16,14 @@
 // kFineAlpha the alpha of a second, fine march (step march.z, midpoints, not jittered: the baker's alpha
 // quadrature), an input the network need not guess (issue #20). With kEmission the same fine march also
 // integrates the direct emission toward the camera into a second image, as the exact baker's emissive channel
-// does (sixway_march.comp): E += T·(1 − e^{−σ_t Δ})·(intensity / extinction)·luminance(ramp(temperature)); the
-// network learns the scattered glow from it (docs/network-study.md, "Emission in the guide").
-// Samples in empty bricks (majorant.comp) are skipped without moving the sample lattice: same sums.
+// does (sixway_march.comp): E += T·(1 − e^{−σ_t Δ})·(intensity / extinction)·luminance(ramp(temperature));
+// the network learns the scattered glow from it (docs/network-study.md, "Emission in the guide"). A second
+// image (RGBA16F) holds how the smoke's opacity builds up along the ray, for the composite with obstacles
+// (sixway_shade.frag): the view depths where the ray's opacity 1 − T first reaches each of kOpacityLevels
+// (depth.glsl), exact within a slab as the shell depth is and encoded as it is; 1 where a level is not
+// reached. With kFineAlpha from the fine march's steps (not jittered: no noise from frame to frame or pixel
+// to pixel), else from the coarse march's. Samples in empty bricks (majorant.comp) are skipped without moving
+// the sample lattice: same sums.
 #extension GL_GOOGLE_include_directive : require
 #define BAKE_PARAMS_IN_STORAGE
 #include "bake_params.glsl"
@@ -43,14 +48,27 @@ layout(std430, binding = 1) readonly buffer GuideFrame {
   vec4 shell;    // x: opacity threshold, y, z: near and far view depths of the encoding
 }
 frame;
-layout(std430, binding = 2) readonly buffer Density { float density[]; };
-layout(std430, binding = 3) readonly buffer Majorants { float brickMax[]; };
-layout(std430, binding = 4) readonly buffer Depth0 { float depth0[]; };
-layout(std430, binding = 5) readonly buffer Depth1 { float depth1[]; };
-layout(std430, binding = 6) readonly buffer Depth2 { float depth2[]; };
+layout(std430, binding = 2) readonly buffer Density {
+  float density[];
+};
+layout(std430, binding = 3) readonly buffer Majorants {
+  float brickMax[];
+};
+layout(std430, binding = 4) readonly buffer Depth0 {
+  float depth0[];
+};
+layout(std430, binding = 5) readonly buffer Depth1 {
+  float depth1[];
+};
+layout(std430, binding = 6) readonly buffer Depth2 {
+  float depth2[];
+};
 layout(binding = 7, rgba16f) uniform writeonly image2D guide;
-layout(std430, binding = 8) readonly buffer Temperature { float temperature[]; };
+layout(std430, binding = 8) readonly buffer Temperature {
+  float temperature[];
+};
 layout(binding = 9, r32f) uniform writeonly image2D emission;  // written with kEmission
+layout(binding = 10, rgba16f) uniform writeonly image2D opacityDepths;
 
 // 1 − e^{−x} without the cancellation of small x.
 float oneMinusExp(float x) {
@@ -67,9 +85,12 @@ bool atFarEnd(int k) {
 // Light grid i's optical depth, interpolated at n.
 float gridDepth(int i, Lerp8 n) {
   switch (i) {
-    case 0: return LERP8(depth0, n);
-    case 1: return LERP8(depth1, n);
-    default: return LERP8(depth2, n);
+    case 0:
+      return LERP8(depth0, n);
+    case 1:
+      return LERP8(depth1, n);
+    default:
+      return LERP8(depth2, n);
   }
 }
 
@@ -100,9 +121,23 @@ float emittedPerDepth(Lerp8 l) {
   return (params.optics.w / params.optics.x) * luminance(rampColor(params.image.z, t));
 }
 
+// The view depths where the opacity 1 − T, T falling from `before` to `after` in a slab of extinction σ that
+// starts at ray distance t, first reaches each level (T(s) = before·e^{−σ s} reaches 1 − level at s); levels
+// already reached (< 0 in `depths`: not yet) keep theirs.
+void crossLevels(inout vec4 depths, float before, float after, float sigma, float t, float slab,
+                 float viewScale) {
+  for (int k = 0; k < 4; ++k) {
+    if (depths[k] >= 0.0 || 1.0 - after < kOpacityLevels[k]) continue;
+    float s = clamp(log(before / (1.0 - kOpacityLevels[k])) / sigma, 0.0, slab);
+    depths[k] = (t + s) * viewScale;
+  }
+}
+
 // Along the ray through [span.x, span.y] by midpoint steps of length h (the last one shortened), empty bricks
-// skipped, until T < 1e-4: x = 1 − T, y = the direct emission reaching the camera (with kEmission).
-vec2 fineMarch(vec3 origin, vec3 dir, vec3 invDir, vec3 boxMin, float brickSize, vec2 span, float h) {
+// skipped, until T < 1e-4: x = 1 − T, y = the direct emission reaching the camera (with kEmission); `levels`
+// (−1: not yet) gains the view depths where the opacity reaches kOpacityLevels.
+vec2 fineMarch(vec3 origin, vec3 dir, vec3 invDir, vec3 boxMin, float brickSize, vec2 span, float h,
+               float viewScale, inout vec4 levels) {
   float tau = 0.0, emitted = 0.0;
   const bool emits = kEmission && params.image.z > 0;  // no ramp keys: the smoke does not emit
   for (float t0 = span.x; t0 < span.y && tau < 9.2; t0 += h) {
@@ -118,8 +153,9 @@ vec2 fineMarch(vec3 origin, vec3 dir, vec3 invDir, vec3 boxMin, float brickSize,
       continue;
     }
     Lerp8 l = lerp8(params.volume.size.xyz, volumeSampleCoord(params.volume, p));
-    float slab = params.optics.x * max(0.0, LERP8(density, l)) * dt;
+    float sigma = params.optics.x * max(0.0, LERP8(density, l)), slab = sigma * dt;
     if (emits && slab > 0.0) emitted += exp(-tau) * oneMinusExp(slab) * emittedPerDepth(l);
+    if (slab > 0.0) crossLevels(levels, exp(-tau), exp(-tau - slab), sigma, t0, dt, viewScale);
     tau += slab;
   }
   return vec2(oneMinusExp(tau), emitted);
@@ -145,6 +181,8 @@ void main() {
     scatter[k] = k < kShadowedLights ? albedoPi * hgPhase(dot(towardLight(k), dir), params.optics.z) : 0.0;
 
   float transmittance = 1.0, radiance = 0.0, shell = -1.0;  // shell < 0: the threshold is not reached yet
+  vec4 levels = vec4(-1.0);  // the view depths where the opacity reaches kOpacityLevels; < 0: not yet
+  const float viewScale = dot(dir, params.camera.forward.xyz);  // view depth per unit of t
   if (span.x < span.y) {
     uint state = rngSeed(frame.jitter.x, uint(pixel.y * size.x + pixel.x), frame.jitter.y);
     float u = rngNext(state);
@@ -170,6 +208,7 @@ void main() {
       for (int k = 0; k < kShadowedLights; ++k) lit += absorbed * scatter[k] * exp(-lightDepth(k, p));
       radiance += lit;
       float after = transmittance * exp(-tau);
+      crossLevels(levels, transmittance, after, sigma, t - 0.5 * h, h, viewScale);
       if (shell < 0.0 && 1.0 - after >= threshold) {
         // Within the slab [t − h/2, t + h/2], T(s) = T·e^{−σ_t s} reaches 1 − threshold at s.
         float s = clamp(log(transmittance / (1.0 - threshold)) / sigma, 0.0, h);
@@ -179,9 +218,15 @@ void main() {
     }
   }
   float depth = shell < 0.0 ? 1.0 : encodeShellDepth(shell, frame.shell.yz);
-  vec2 fine = kFineAlpha && span.x < span.y
-                  ? fineMarch(origin, dir, invDir, boxMin, brickSize, span, params.march.z)
-                  : vec2(0.0);
+  vec4 fineLevels = vec4(-1.0);
+  vec2 fine = kFineAlpha && span.x < span.y ? fineMarch(origin, dir, invDir, boxMin, brickSize, span,
+                                                        params.march.z, viewScale, fineLevels)
+                                            : vec2(0.0);
   imageStore(guide, pixel, vec4(radiance, 1.0 - transmittance, depth, fine.x));
+  if (kFineAlpha) levels = fineLevels;
+  vec4 encoded;
+  for (int k = 0; k < 4; ++k)
+    encoded[k] = levels[k] < 0.0 ? 1.0 : encodeShellDepth(levels[k], frame.shell.yz);
+  imageStore(opacityDepths, pixel, encoded);
   if (kEmission) imageStore(emission, pixel, vec4(fine.y));
 }

@@ -4,7 +4,11 @@
 // pixel: the lightmaps at the pixel's point of the billboard (bilinear), Unity's remapping controls, every
 // light with squared six-way weights (point lights toward the shaded point, inverse-square falloff), its
 // obstacle shadow (PCF in the shadow atlas at the smoke shell), ambient light from L1 spherical harmonics,
-// the emissive gradient. Where an obstacle lies nearer than the smoke, the smoke is hidden.
+// the emissive gradient. Against the obstacles the smoke is a volume, not a card
+// (docs/real-time-rendering.md, "Smoke and obstacles"): its opacity builds up over depth as the guide's
+// opacity depths say (depth.glsl, opacityInFront), the share of it in front of the obstacle is drawn and the
+// rest hidden, and each light's obstacle shadow is the mean over the depths where the opacity reaches 0.1,
+// 0.35 and 0.6 (in front of the obstacle).
 #extension GL_GOOGLE_include_directive : require
 #include "depth.glsl"
 #include "shadow.glsl"
@@ -15,6 +19,7 @@ layout(binding = 3) uniform sampler2D lightmapB;  // R Left, G Bottom, B Front, 
 layout(binding = 4) uniform sampler2D guide;      // B: encoded shell depth (1: no shell); see depth.glsl
 layout(binding = 5) uniform sampler2D obstacleDepth;  // the obstacles' depth buffer, the whole frame
 layout(binding = 6) uniform sampler2D shadowAtlas;    // shadow.glsl
+layout(binding = 7) uniform sampler2D opacityDepths;  // where the smoke's opacity builds up; see depth.glsl
 
 layout(location = 0) out vec4 outColor;
 
@@ -27,15 +32,51 @@ void main() {
 
   // The shaded point: the smoke shell where the pixel has one, else the billboard's plane.
   float viewDepth = interpolatedShadedDepth(guide, uv, params.depths.xy, params.misc.x);
-  if (push.frame.z != 0) {
-    float obstacle = viewDepthFromDepthBuffer(texelFetch(obstacleDepth, ivec2(gl_FragCoord.xy), 0).r,
-                                              params.depths.zw);
-    if (obstacle < viewDepth) {  // the obstacle hides the smoke
-      outColor = vec4(0.0);
-      return;
+  float obstacle =
+      push.frame.z != 0
+          ? viewDepthFromDepthBuffer(texelFetch(obstacleDepth, ivec2(gl_FragCoord.xy), 0).r, params.depths.zw)
+          : 3.4e38;
+  // `visible`: the share of the smoke's opacity in front of the obstacle, bilinear over the four nearest
+  // guide texels' own shares; `shadowDepths`: the depths where the opacity reaches 0.1, 0.35, 0.6,
+  // interpolated alike (a level a texel does not reach: its last one reached, or the billboard's plane), in
+  // front of the obstacle. Without opacity depths the smoke is a card at the shell.
+  float visible = float(obstacle >= viewDepth);
+  vec3 shadowDepths = vec3(viewDepth);
+  if (push.frame.w != 0) {
+    ivec2 size = textureSize(opacityDepths, 0);
+    vec2 g = uv * vec2(size) - 0.5;
+    ivec2 base = ivec2(floor(g));
+    vec2 f = g - vec2(base);
+    visible = 0.0;
+    shadowDepths = vec3(0.0);
+    for (int k = 0; k < 4; ++k) {
+      ivec2 texel = clamp(base + ivec2(k & 1, k >> 1), ivec2(0), size - 1);
+      vec2 w2 = mix(1.0 - f, f, vec2(k & 1, k >> 1));
+      vec4 encoded = texelFetch(opacityDepths, texel, 0);
+      vec4 levels;
+      for (int i = 0; i < 4; ++i)
+        levels[i] = encoded[i] < 1.0 ? decodeShellDepth(encoded[i], params.depths.xy) : -1.0;
+      vec4 g4 = texelFetch(guide, texel, 0);
+      float total = g4.a > 0.0 ? g4.a : g4.g;  // the fine alpha where the guide has it
+      visible +=
+          w2.x * w2.y *
+          (total > 0.0 ? min(opacityInFront(levels, total, obstacle, params.misc.x) / total, 1.0) : 1.0);
+      float last = params.misc.x;
+      for (int i = 0; i < 3; ++i) {
+        if (levels[i] >= 0.0) last = levels[i];
+        shadowDepths[i] += w2.x * w2.y * last;
+      }
     }
   }
+  if (visible <= 0.0) {  // the obstacle hides all of the smoke
+    outColor = vec4(0.0);
+    return;
+  }
+  viewDepth = min(viewDepth, obstacle);
   vec3 world = worldAtViewDepth(params.camera, q, viewDepth);
+  vec3 shadowPoints[3];
+  for (int i = 0; i < 3; ++i)
+    shadowPoints[i] = worldAtViewDepth(params.camera, q, min(shadowDepths[i], obstacle));
 
   vec4 a = texture(lightmapA, uv), b = texture(lightmapB, uv);
   vec3 rightTopBack = a.rgb, leftBottomFront = b.rgb;
@@ -70,22 +111,28 @@ void main() {
     }
     int tile = int(lights[i].radiance.w);
     float visibility = 1.0;
-    if (tile >= 0 && tile < push.atlas.y && push.atlas.x > 0)
-      visibility = shadowVisibility(shadowAtlas, tile, push.atlas.x, lights[i].shadowMatrix, world,
-                                    push.shadow.x, push.shadow.y);
+    if (tile >= 0 && tile < push.atlas.y && push.atlas.x > 0) {
+      visibility = 0.0;
+      for (int k = 0; k < 3; ++k)
+        visibility += shadowVisibility(shadowAtlas, tile, push.atlas.x, lights[i].shadowMatrix,
+                                       shadowPoints[k], push.shadow.x, push.shadow.y) /
+                      3.0;
+    }
     vec3 d = vec3(dot(toLight, right), dot(toLight, up), dot(toLight, forward));
     float t = sixWayTransmission(d, rightTopBack, leftBottomFront);
     radiance += (visibility / kPi) * irradiance * lightResponse(t, alpha, color, range, absorption);
   }
   radiance += sixWayAmbient(rightTopBack, leftBottomFront, params.ambient, alpha, color, range, absorption);
   // Emission (docs/real-time-rendering.md, "Emission"): Unity's gradient of the channel, or, with a straight
-  // scale s, the gradient at the straight value e / (alpha s) times alpha s: the hue of the smoke's temperature.
+  // scale s, the gradient at the straight value e / (alpha s) times alpha s: the hue of the smoke's
+  // temperature.
   float straight = params.misc.z;
-  vec3 emission = straight > 0.0 ? (alpha > 0.0 ? alpha * straight *
-                                                      gradientColor(params.gradient, params.counts.y,
-                                                                    emissive / (alpha * straight))
-                                                : vec3(0.0))
-                                 : gradientColor(params.gradient, params.counts.y, emissive);
+  vec3 emission =
+      straight > 0.0
+          ? (alpha > 0.0 ? alpha * straight *
+                               gradientColor(params.gradient, params.counts.y, emissive / (alpha * straight))
+                         : vec3(0.0))
+          : gradientColor(params.gradient, params.counts.y, emissive);
   radiance += params.misc.y * emission;
-  outColor = vec4(radiance, alpha);
+  outColor = visible * vec4(radiance, alpha);
 }

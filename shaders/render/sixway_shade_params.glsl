@@ -8,7 +8,7 @@
 #include "sixway_lighting.glsl"
 
 layout(std430, binding = 0) readonly buffer ShadeParams {
-  CameraRays camera;    // plane: the whole frame, i.e. the colour target
+  CameraRays camera;      // plane: the whole frame, i.e. the colour target
   vec4 frameToBillboard;  // the lightmaps' uv of frame uv f (both row 0 at the top): f · xy + zw
   vec4 depths;          // xy: view-depth range of the shell depth (the volume box); zw: of the obstacle depth
   vec4 clipCorners[4];  // the billboard quad in clip space: bottom-left, bottom-right, top-right, top-left
@@ -26,14 +26,18 @@ params;
 
 struct ShadeLight {
   vec4 vector;    // xyz: unit direction toward the light (w = 0, directional) or its position (w = 1, point)
-  vec4 radiance;  // rgb: colour · intensity (irradiance, or radiant intensity of a point); w: shadow tile or −1
+  vec4 radiance;  // rgb: colour · intensity (irradiance, or radiant intensity of a point); w: shadow tile or
+                  // −1
   mat4 shadowMatrix;  // world → the light's clip space (its shadow map)
 };
 
-layout(std430, binding = 1) readonly buffer ShadeLights { ShadeLight lights[]; };
+layout(std430, binding = 1) readonly buffer ShadeLights {
+  ShadeLight lights[];
+};
 
 layout(push_constant) uniform ShadePush {
-  ivec4 frame;  // xy: the colour target's size in pixels; z: 1 with an obstacle depth image
+  ivec4 frame;  // xy: the colour target's size in pixels; z: 1 with an obstacle depth image; w: 1 with
+                // opacity depths
   ivec4 atlas;  // x: shadow tile size in texels (0: no shadow atlas); y: tiles
   vec4 shadow;  // x: PCF radius in texels; y: depth bias (depth-buffer units)
 }

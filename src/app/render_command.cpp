@@ -164,12 +164,30 @@ void run(const RenderOptions& o) {
   // (guide).
   std::vector<double> coverage;
   coverage.reserve(size_t(o.frames));
+  // Per frame: pixels no renderer should make (eval::imageFaults), in the modes with alpha.
+  nlohmann::json faults = nlohmann::json::array();
+  uint64_t faultTotal = 0;
   const auto started = std::chrono::steady_clock::now();
   for (int i = 0; i < o.frames; ++i) {
     if (simulation) simulation->advance();
     const eval::RenderedFrame frame = source.render(warmup + i);
     writer.write(i, frame.image);
-    if (frame.image.channelCount() == 4) coverage.push_back(eval::alphaCoverage(frame.image));
+    if (frame.image.channelCount() == 4) {
+      coverage.push_back(eval::alphaCoverage(frame.image));
+      const eval::ImageFaults f = eval::imageFaults(frame.image);
+      faults.push_back({{"not_finite", f.notFinite},
+                        {"negative", f.negative},
+                        {"dark_dots", f.darkDots},
+                        {"first_pixels", f.first}});
+      faultTotal += f.total();
+      if (f.total() > 0)
+        std::fprintf(
+            stderr,
+            "sixway: frame %d has %llu non-finite, %llu negative and %llu pixels in dark dots (the first at "
+            "x %d, y %d)\n",
+            i, (unsigned long long)f.notFinite, (unsigned long long)f.negative,
+            (unsigned long long)f.darkDots, f.first.front()[0], f.first.front()[1]);
+    }
     for (const std::string& note : frame.notes) std::fprintf(stderr, "sixway: note: %s\n", note.c_str());
 
     std::vector<gpu::StageTime> stages;
@@ -198,9 +216,11 @@ void run(const RenderOptions& o) {
   // The last 16 frames' least coverage: a run that ends on a developed plume fills the picture there.
   const auto lastFrames = coverage.end() - std::min<ptrdiff_t>(16, ptrdiff_t(coverage.size()));
   const double leastCoverage = coverage.empty() ? 0.0 : *std::min_element(lastFrames, coverage.end());
-  if (!coverage.empty())
+  if (!coverage.empty()) {
     report["coverage"] = {
         {"alpha_threshold", 0.1}, {"per_frame", coverage}, {"least_of_last_16", leastCoverage}};
+    report["pixel_faults"] = {{"total", faultTotal}, {"per_frame", faults}};
+  }
   if (options.mode == eval::RenderMode::Neural) report["weights"] = fs::absolute(options.weights).string();
   if (playback) report["source"] = sources::describeSource(*playback);
   io::writeReport(writer.stagedPath("timings.json"), report);

@@ -1,5 +1,6 @@
 #include "eval/frame_pipeline.h"
 
+#include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/gtc/packing.hpp>
 
@@ -238,9 +239,19 @@ RenderedFrame FramePipeline::render(const FrameView& view, int index, double sec
     const render::DepthRange shellRange = render::boxDepthRange(camera, volumeBox);
     const float planeDepth = glm::dot(volumeBox.centre() - camera.position, camera.forward);
     const float encoded = (planeDepth - shellRange.near) / (shellRange.far - shellRange.near);
+    // Against obstacles the card fades over the volume's depth, as soft particles do: an opacity of 1
+    // building up evenly over the box's depth range (the guide's alpha 1, the opacity levels at their share
+    // of the range).
     std::vector<uint16_t> flat(size_t(lightmapSize) * lightmapSize * 4, 0);
-    for (size_t i = 2; i < flat.size(); i += 4) flat[i] = glm::packHalf1x16(glm::clamp(encoded, 0.0f, 1.0f));
+    for (size_t i = 0; i < flat.size(); i += 4) {
+      flat[i + 1] = glm::packHalf1x16(1.0f);
+      flat[i + 2] = glm::packHalf1x16(glm::clamp(encoded, 0.0f, 1.0f));
+    }
     p.frame.guide().upload(std::as_bytes(std::span(flat)));
+    constexpr float kLevels[4] = {0.1f, 0.35f, 0.6f, 0.85f};  // shaders/common/depth.glsl, kOpacityLevels
+    std::vector<uint16_t> levels(size_t(lightmapSize) * lightmapSize * 4);
+    for (size_t i = 0; i < levels.size(); ++i) levels[i] = glm::packHalf1x16(kLevels[i % 4]);
+    p.frame.guiding().opacityDepths().upload(std::as_bytes(std::span(levels)));
   }
   p.frame.updateShading(camera, lights, billboard, volumeBox);
 
@@ -290,6 +301,10 @@ io::Image FramePipeline::guide() const {
   for (size_t i = 0, n = size_t(g.width) * g.height; i < n; ++i)
     for (int c = 0; c < 3; ++c) out.pixels[i * 3 + c] = g.pixels[i * 4 + c];
   return out;
+}
+
+io::Image FramePipeline::opacityDepths() const {
+  return downloadHalfImage(passes_->frame.guiding().opacityDepths(), {"0.1", "0.35", "0.6", "0.85"});
 }
 
 io::Image FramePipeline::lightmaps() const {

@@ -92,6 +92,8 @@ class FramePipeline {
   // Of the last frame: the guiding map (guide, alpha, shell depth) and the lightmaps (sixWayChannelNames()
   // order; the network's, the baker's or the flipbook's), for tests and evaluation.
   io::Image guide() const;
+  // The guide's opacity depths of the last frame (render::GuidingMap::opacityDepths): four channels, encoded.
+  io::Image opacityDepths() const;
   // Moves obstacle `obstacle` along `motion` from now on (the simulation's, when a user drags it).
   void setObstacleMotion(size_t obstacle, std::optional<io::Motion> motion);
   io::Image lightmaps() const;

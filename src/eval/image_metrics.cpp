@@ -1,6 +1,7 @@
 #include "eval/image_metrics.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -24,6 +25,46 @@ double alphaCoverage(const io::Image& frame, float threshold) {
   for (int y = 0; y < frame.height; ++y)
     for (int x = 0; x < frame.width; ++x) covered += frame.at(x, y, 3) >= threshold;
   return double(covered) / double(uint64_t(frame.width) * uint64_t(frame.height));
+}
+
+ImageFaults imageFaults(const io::Image& frame) {
+  if (frame.channelCount() != 4) throw std::invalid_argument("imageFaults: the frame is not RGBA");
+  const int w = frame.width, h = frame.height;
+  ImageFaults f;
+  const auto note = [&](int x, int y) {
+    if (f.first.size() < 8) f.first.push_back({x, y});
+  };
+  std::vector<float> luminance(size_t(w) * h);
+  std::vector<uint8_t> faulty(luminance.size(), 0);
+  for (size_t p = 0; p < luminance.size(); ++p) {
+    const float* px = &frame.pixels[p * 4];
+    bool finite = true, negative = false;
+    for (int c = 0; c < 4; ++c)
+      finite = finite && std::isfinite(px[c]), negative = negative || px[c] < -1e-6f;
+    f.notFinite += !finite;
+    f.negative += finite && negative;
+    faulty[p] = !finite || negative;
+    luminance[p] = finite ? 0.2126f * px[0] + 0.7152f * px[1] + 0.0722f * px[2] : 0.0f;
+  }
+  // The darkest pixel of the ring four pixels out (the 9 × 9 square's border): a dark dot up to 7 × 7 lies
+  // inside.
+  constexpr int kRing = 4;
+  for (int y = kRing; y + kRing < h; ++y)
+    for (int x = kRing; x + kRing < w; ++x) {
+      float darkest = std::numeric_limits<float>::max();
+      for (int dy = -kRing; dy <= kRing; ++dy)
+        for (int dx = -kRing; dx <= kRing; ++dx)
+          if (std::abs(dx) == kRing || std::abs(dy) == kRing)
+            darkest = std::min(darkest, luminance[size_t(y + dy) * w + x + dx]);
+      if (darkest < 0.03f) continue;
+      const bool dark = luminance[size_t(y) * w + x] < 0.5f * darkest;
+      f.darkDots += dark;
+      faulty[size_t(y) * w + x] |= dark;
+    }
+  for (int y = 0; y < h && f.first.size() < 8; ++y)
+    for (int x = 0; x < w; ++x)
+      if (faulty[size_t(y) * w + x]) note(x, y);
+  return f;
 }
 
 double psnrDb(double mse) {

@@ -5,6 +5,7 @@
 // to it, and the band figure, masked to the band around the obstacles (obstacle_band.h) too. Alpha itself is
 // not compared: the methods composite the smoke over the same backdrop, so its colour already carries the
 // smoke's opacity.
+#include <array>
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <vector>
@@ -34,6 +35,17 @@ ImageError compareImages(const io::Image& predicted, const io::Image& truth,
 // The fraction of `frame`'s pixels (RGBA) whose alpha is at least `threshold`: how much of the picture the
 // smoke (and any opaque obstacle drawn in it) covers.
 double alphaCoverage(const io::Image& frame, float threshold = 0.1f);
+
+// Pixels that no renderer should make, in a linear RGBA frame: not finite (NaN, ±∞, in any channel), negative
+// (any channel below −1e-6), and dark dots: a pixel whose luminance is under half that of every pixel of the
+// ring four pixels around it (the 9 × 9 square's border), all at least 0.03 — a hole up to 7 × 7 pixels
+// inside lit smoke or an obstacle; not the dark background, nor an edge, which reaches the ring.
+struct ImageFaults {
+  uint64_t notFinite = 0, negative = 0, darkDots = 0;
+  std::vector<std::array<int, 2>> first;  // (x, y) of the first faulty pixels, row by row, at most 8
+  uint64_t total() const { return notFinite + negative + darkDots; }
+};
+ImageFaults imageFaults(const io::Image& frame);
 
 // 10·log10(1 / mse): +∞ for 0, NaN for NaN.
 double psnrDb(double mse);

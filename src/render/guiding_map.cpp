@@ -116,6 +116,10 @@ GuidingMap::GuidingMap(const gpu::Context& context, const gpu::PipelineCache& ca
              gpu::MemoryKind::FrameParameters, "guide frame"),
       noEmission_(context, {1, 1, 1, VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT, "no guide emission"}) {
   checkSettings(settings_);
+  opacityDepths_ = gpu::Image(
+      context, {settings.size, settings.size, 1, VK_FORMAT_R16G16B16A16_SFLOAT,
+                VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                "guide opacity depths"});
   // One light grid per axis of the six-way frame that a guide light other than front lies on; the shader's
   // kLightGrids holds, per such light k, its grid (bits 3k, 3k + 1) and whether it is the grid's opposite.
   int32_t lightGrids = 0, shadowed = 0;
@@ -131,9 +135,9 @@ GuidingMap::GuidingMap(const gpu::Context& context, const gpu::PipelineCache& ca
   majorantPass_ = std::make_unique<BrickMajorantPass>(context, cache);
   depthPass_ = lightDepthPipeline(context, cache);
   // guide_march.comp's bindings: parameters, frame, density, bricks, the light grids, the guide, temperature,
-  // the emission.
-  std::vector<BindingType> march(4 + kMaxGrids + 3, BindingType::StorageBuffer);
-  march[4 + kMaxGrids] = march.back() = BindingType::StorageImage;
+  // the emission, the opacity depths.
+  std::vector<BindingType> march(4 + kMaxGrids + 4, BindingType::StorageBuffer);
+  march[4 + kMaxGrids] = march[4 + kMaxGrids + 2] = march.back() = BindingType::StorageImage;
   gpu::SpecConstants constants;
   constants.set(spec::kShadowedLights, shadowed);
   constants.set(spec::kFrontLight, size_t(shadowed) < settings_.lights.size());
@@ -216,6 +220,7 @@ void GuidingMap::record(gpu::Sequence& sequence, const Volume& volume, const gpu
   bindings.push_back(gpu::writes(guide));
   bindings.push_back(gpu::reads(volume.temperature ? *volume.temperature : density));  // unread without one
   bindings.push_back(gpu::writes(emission ? *emission : noEmission_));
+  bindings.push_back(gpu::writes(opacityDepths_));
   sequence.dispatch(*marchPass_, bindings, std::span<const std::byte>(), groups(int(settings_.size), 8),
                     groups(int(settings_.size), 8));
   sequence.endStage();

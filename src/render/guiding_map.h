@@ -74,6 +74,13 @@ class GuidingMap {
               const io::Smoke& smoke, uint32_t frame);
 
   const GuideSettings& settings() const { return settings_; }
+  // How the smoke's opacity builds up along each guide pixel's ray, for the composite with obstacles
+  // (sixway_shade.frag): RGBA16F, size × size, the view depths where the opacity first reaches 0.1, 0.35, 0.6
+  // and 0.85 (shaders/common/depth.glsl, kOpacityLevels), encoded as the shell depth is; 1 where a level is
+  // not reached. record() writes it; a flipbook's is uploaded instead (eval::FramePipeline).
+  gpu::Image& opacityDepths() { return opacityDepths_; }
+  const gpu::Image& opacityDepths() const { return opacityDepths_; }
+
   // Of the last update: the light grids, one per axis of the six-way frame that a guide light other than
   // front lies on, pointing to the first such light in settings().lights; its opposite light uses the same
   // grid.
@@ -89,6 +96,7 @@ class GuidingMap {
   std::unique_ptr<gpu::Pipeline> depthPass_, marchPass_;
   gpu::Buffer params_, frame_, bricks_;
   gpu::Image noEmission_;  // bound in place of the emission image without settings().emission (unwritten)
+  gpu::Image opacityDepths_;
   std::vector<gpu::Buffer> depths_;  // one per light grid (one placeholder when there are none)
   VolumeGrid grid_;                  // of the last record()
   bool temperature_ = false;         // whether the volume of the last record() has a temperature grid

@@ -9,8 +9,10 @@
 #include "gpu/pipeline.h"
 #include "gpu/sequence.h"
 #include "io/error.h"
+#include "render/gpu_layout.h"
 #include "render/obstacle_meshes.h"
 #include "render/shadow_maps.h"
+#include "render/volume.h"
 
 namespace sixway::render {
 namespace {
@@ -29,6 +31,11 @@ struct ObstacleParams {  // std140 mirror of shaders/render/obstacle_params.glsl
 };
 static_assert(sizeof(ObstacleParams) == 16 * (4 + 1 + 1 + 4 + 3 * kMaxLights + 4 * kMaxLights));
 
+struct ObstaclePush {  // shaders/render/obstacle.frag
+  layout::VolumeGrid smoke;
+  glm::vec4 optics;
+};
+
 // The world distance between neighbouring texel centres of a tile of `tileSize` texels, per unit of clip w
 // (w = 1 for a directional light's orthographic projection, the distance along a point light's axis for its
 // perspective one), taken at the centre of the tile.
@@ -46,12 +53,14 @@ ObstaclePass::ObstaclePass(const gpu::Context& context, const gpu::PipelineCache
     : background_(background),
       nearest_(std::make_unique<gpu::Sampler>(context, VK_FILTER_NEAREST)),
       params_(context, sizeof(ObstacleParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-              gpu::MemoryKind::FrameParameters, "obstacle pass parameters") {
+              gpu::MemoryKind::FrameParameters, "obstacle pass parameters"),
+      noSmoke_(gpu::Buffer::storage(context, sizeof(float), "no smoke for the obstacles")) {
   gpu::GraphicsPipelineDesc desc;
   desc.vertexShader = "render/obstacle.vert";
   desc.fragmentShader = "render/obstacle.frag";
   desc.bindings = {gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
-                   gpu::BindingType::SampledImage};
+                   gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer};
+  desc.pushConstantBytes = sizeof(ObstaclePush);
   desc.vertexStride = sizeof(ObstacleVertex);
   desc.attributes = ObstacleMeshes::vertexAttributes();
   desc.colorFormats = {kColorFormat};
@@ -98,13 +107,21 @@ void ObstaclePass::update(const Camera& camera, const ImagePlane& plane, DepthRa
 }
 
 void ObstaclePass::record(gpu::Sequence& sequence, const ObstacleMeshes& meshes, const ShadowMaps& shadows,
-                          const gpu::Image& color, const gpu::Image& depth) const {
+                          const gpu::Image& color, const gpu::Image& depth, const Volume* smoke,
+                          const io::Smoke& smokeOptics) const {
+  ObstaclePush push{};
+  if (smoke) {
+    requireConsistent(*smoke);
+    push.smoke = layout::volumeGrid(smoke->grid);
+    push.optics = glm::vec4(smokeOptics.extinction, smokeOptics.albedo, smokeOptics.phaseG, 0.0f);
+  }
   std::vector<gpu::Draw> draws;
   if (!meshes.empty())
     draws.push_back(
         {pipeline_.get(),
-         {gpu::reads(params_), gpu::reads(meshes.placements()), gpu::samples(shadows.atlas(), *nearest_)},
-         {},
+         {gpu::reads(params_), gpu::reads(meshes.placements()), gpu::samples(shadows.atlas(), *nearest_),
+          gpu::reads(smoke ? *smoke->density : noSmoke_)},
+         gpu::pushBytes(push),
          &meshes.vertices(),
          &meshes.indices(),
          meshes.indexCount()});

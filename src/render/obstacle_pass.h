@@ -29,6 +29,7 @@ namespace sixway::render {
 
 class ObstacleMeshes;
 class ShadowMaps;
+struct Volume;
 
 // Diffuse albedo of every obstacle: a mid grey, so that lit faces stay well inside [0, 1] under the shipped
 // scenes' lights (irradiance π: radiance 0.6).
@@ -53,9 +54,11 @@ class ObstaclePass {
 
   // Stage "obstacles": clears `color` (kColorFormat, colour attachment) to the background and `depth`
   // (kDepthFormat, depth attachment) to 1, then draws the meshes, reading the shadow atlas (recorded
-  // before, stage "shadow maps"). The images' sizes are the frame's.
+  // before, stage "shadow maps") and, when given, the smoke's density and optics, through which the light
+  // reaches them (and the ambient light, along the normal). The images' sizes are the frame's.
   void record(gpu::Sequence& sequence, const ObstacleMeshes& meshes, const ShadowMaps& shadows,
-              const gpu::Image& color, const gpu::Image& depth) const;
+              const gpu::Image& color, const gpu::Image& depth, const Volume* smoke = nullptr,
+              const io::Smoke& smokeOptics = {}) const;
 
   // Of the last update: world → clip space of the depth buffer.
   const glm::mat4& viewProjection() const { return viewProjection_; }
@@ -65,6 +68,7 @@ class ObstaclePass {
   std::unique_ptr<gpu::Pipeline> pipeline_;
   std::unique_ptr<gpu::Sampler> nearest_;
   gpu::Buffer params_;
+  gpu::Buffer noSmoke_;  // bound in place of a density buffer when there is no smoke
   glm::mat4 viewProjection_{1.0f};
 };
 

@@ -159,7 +159,7 @@ SixWayShading::SixWayShading(const gpu::Context& context, const gpu::PipelineCac
   desc.fragmentShader = "render/sixway_shade.frag";
   desc.bindings = {BindingType::StorageBuffer, BindingType::StorageBuffer, BindingType::SampledImage,
                    BindingType::SampledImage,  BindingType::SampledImage,  BindingType::SampledImage,
-                   BindingType::SampledImage};
+                   BindingType::SampledImage,  BindingType::SampledImage};
   desc.pushConstantBytes = sizeof(ShadePush);
   desc.colorFormats = {colorFormat};
   desc.blend = gpu::Blend::PremultipliedOver;
@@ -221,11 +221,13 @@ void SixWayShading::update(const Camera& camera, const ImagePlane& frame, const 
 }
 
 void SixWayShading::record(gpu::Sequence& sequence, const gpu::Image& lightmapA, const gpu::Image& lightmapB,
-                           const gpu::Image* guide, const gpu::Image* obstacleDepth,
-                           const ShadowAtlas& shadows, const gpu::Image& colorTarget) const {
+                           const gpu::Image* guide, const gpu::Image* opacityDepths,
+                           const gpu::Image* obstacleDepth, const ShadowAtlas& shadows,
+                           const gpu::Image& colorTarget) const {
   requireSampledFloat(lightmapA, "lightmap A");
   requireSampledFloat(lightmapB, "lightmap B");
   if (guide) requireSampledFloat(*guide, "the guide");
+  if (opacityDepths) requireSampledFloat(*opacityDepths, "the opacity depths");
   const auto& target = colorTarget.desc();
   if (obstacleDepth &&
       (obstacleDepth->desc().format != VK_FORMAT_D32_SFLOAT || obstacleDepth->desc().width != target.width ||
@@ -244,14 +246,15 @@ void SixWayShading::record(gpu::Sequence& sequence, const gpu::Image& lightmapA,
     tiles = atlas.height / shadows.tileSize;
   }
 
-  const ShadePush push{glm::ivec4(target.width, target.height, obstacleDepth ? 1 : 0, 0),
+  const ShadePush push{glm::ivec4(target.width, target.height, obstacleDepth ? 1 : 0, opacityDepths ? 1 : 0),
                        glm::ivec4(shadows.depth ? shadows.tileSize : 0, tiles, 0, 0),
                        glm::vec4(shadows.pcfRadiusTexels, shadows.depthBias, 0.0f, 0.0f)};
   const gpu::Draw quad{pipeline_.get(),
                        {gpu::reads(params_), gpu::reads(lights_), gpu::samples(lightmapA, *linear_),
                         gpu::samples(lightmapB, *linear_), gpu::samples(guide ? *guide : noGuide_, *nearest_),
                         gpu::samples(obstacleDepth ? *obstacleDepth : noDepth_, *nearest_),
-                        gpu::samples(shadows.depth ? *shadows.depth : noDepth_, *nearest_)},
+                        gpu::samples(shadows.depth ? *shadows.depth : noDepth_, *nearest_),
+                        gpu::samples(opacityDepths ? *opacityDepths : noGuide_, *nearest_)},
                        gpu::pushBytes(push),
                        nullptr,
                        nullptr,

@@ -57,12 +57,12 @@ RealtimeFrame::RealtimeFrame(const gpu::Context& context, const gpu::PipelineCac
 void RealtimeFrame::record(gpu::Sequence& s, const render::Volume& volume, FrameStages stages,
                            const std::function<void(gpu::Sequence&)>& lightmapStage) {
   shadowMaps_.record(s, meshes_);
-  if (obstacles_) obstacles_->record(s, meshes_, shadowMaps_, color(), depth());
+  if (obstacles_) obstacles_->record(s, meshes_, shadowMaps_, color(), depth(), &volume, scene_->smoke);
   if (stages == FrameStages::ObstaclesOnly) return;
   if (stages != FrameStages::AllButGuide) guiding_.record(s, volume, guide_, guideEmission());
   if (stages == FrameStages::UpToGuide) return;
   if (lightmapStage) lightmapStage(s);
-  shading_.record(s, lightmaps_.a, lightmaps_.b, &guide_, &depth(),
+  shading_.record(s, lightmaps_.a, lightmaps_.b, &guide_, &guiding_.opacityDepths(), &depth(),
                   render::ShadowAtlas{&shadowMaps_.atlas(), shadowMaps_.tileSize()}, color());
 }
 

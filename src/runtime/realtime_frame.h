@@ -79,6 +79,7 @@ class RealtimeFrame {
   const render::LightmapImages& lightmaps() const { return lightmaps_; }
   render::ObstacleMeshes& meshes() { return meshes_; }
   const render::GuidingMap& guiding() const { return guiding_; }
+  render::GuidingMap& guiding() { return guiding_; }
   uint32_t width() const { return width_; }
   uint32_t height() const { return height_; }
   uint32_t lightmapSize() const { return lightmapSize_; }

@@ -2,10 +2,12 @@
 // (timestamps, median of 21 replays after a warm-up) for a 256² RGBA16F frame whose billboard (128² RGBA16F
 // lightmaps and guide) covers the projection of a unit box, with no light, then with 4 lights and L1 ambient,
 // then with an obstacle depth buffer and two of the lights shadowed from a 1024² × 2 shadow atlas (PCF
-// radius 1.5 texels: 16 fetches), then with 16 lights, all shadowed. Usage: shading_bench.
+// radius 1.5 texels: 16 fetches), then with 16 lights, all shadowed; the shadowed cases again with opacity
+// depths (the smoke composited as a volume, each shadow looked up at three depths). Usage: shading_bench.
 #include <Imath/half.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <optional>
 #include <random>
@@ -36,6 +38,21 @@ gpu::Image filled(const gpu::Context& context, uint32_t width, uint32_t height, 
     for (Imath::half& t : texels) t = value(rng);
     image.upload(std::as_bytes(std::span(texels)));
   }
+  return image;
+}
+
+// RGBA16F opacity depths: per texel four encoded depths in increasing order, some levels not reached (1).
+gpu::Image opacityLevels(const gpu::Context& context, uint32_t size, std::mt19937& rng) {
+  gpu::Image image(
+      context, {size, size, 1, VK_FORMAT_R16G16B16A16_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT, "opacity depths"});
+  std::uniform_real_distribution<float> value(0.0f, 1.0f);
+  std::vector<Imath::half> texels(size_t(size) * size * 4);
+  for (size_t t = 0; t < texels.size(); t += 4) {
+    std::array<float, 4> levels{value(rng), value(rng), value(rng), value(rng)};
+    std::sort(levels.begin(), levels.end());
+    for (int k = 0; k < 4; ++k) texels[t + k] = levels[k] > 0.8f ? 1.0f : levels[k];
+  }
+  image.upload(std::as_bytes(std::span(texels)));
   return image;
 }
 
@@ -79,6 +96,7 @@ int main() {
   const gpu::Image a = filled(context, 128, 128, half, 0.0f, 1.0f, rng, "lightmap A");
   const gpu::Image b = filled(context, 128, 128, half, 0.0f, 1.0f, rng, "lightmap B");
   const gpu::Image guide = filled(context, 128, 128, half, 0.0f, 1.0f, rng, "guide");
+  const gpu::Image opacityDepths = opacityLevels(context, 128, rng);
   const gpu::Image depth = filled(context, 256, 256, VK_FORMAT_D32_SFLOAT, 0.5f, 1.0f, rng, "obstacle depth");
   const gpu::Image atlas = filled(context, 1024, 2048, VK_FORMAT_D32_SFLOAT, 0.0f, 1.0f, rng, "shadow atlas");
   gpu::Image target(context, {256, 256, 1, half, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, "target"});
@@ -97,11 +115,13 @@ int main() {
   for (int i = 0; i < 16; ++i) sixteen[i].shadowTile = i % 2;
 
   render::SixWayShading shading(context, cache, half, 16);
-  gpu::Sequence plain(context), shadowed(context);
-  shading.record(plain, a, b, &guide, nullptr, {}, target);
-  shading.record(shadowed, a, b, &guide, &depth, {&atlas, 1024, 1.5f, 0.002f}, target);
+  gpu::Sequence plain(context), shadowed(context), volume(context);
+  shading.record(plain, a, b, &guide, nullptr, nullptr, {}, target);
+  shading.record(shadowed, a, b, &guide, nullptr, &depth, {&atlas, 1024, 1.5f, 0.002f}, target);
+  shading.record(volume, a, b, &guide, &opacityDepths, &depth, {&atlas, 1024, 1.5f, 0.002f}, target);
   plain.finish();
   shadowed.finish();
+  volume.finish();
   std::printf("no lights, no ambient:                      %.3f ms\n",
               medianMs(plain, shading, camera, frame, billboard, range, {}, false));
   std::printf("4 lights, ambient:                          %.3f ms\n",
@@ -110,5 +130,9 @@ int main() {
               medianMs(shadowed, shading, camera, frame, billboard, range, fourShadowed));
   std::printf("16 lights (all shadowed), obstacle depth:   %.3f ms\n",
               medianMs(shadowed, shading, camera, frame, billboard, range, sixteen));
+  std::printf("4 lights (2 shadowed), opacity depths:      %.3f ms\n",
+              medianMs(volume, shading, camera, frame, billboard, range, fourShadowed));
+  std::printf("16 lights (all shadowed), opacity depths:   %.3f ms\n",
+              medianMs(volume, shading, camera, frame, billboard, range, sixteen));
   return 0;
 }

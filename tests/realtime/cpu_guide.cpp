@@ -10,6 +10,7 @@ namespace sixway::test {
 namespace {
 
 constexpr double kStopTransmittance = 1e-3;  // as the GPU: stop once T < this and the shell is found
+constexpr double kOpacityLevels[4] = {0.1, 0.35, 0.6, 0.85};  // shaders/common/depth.glsl
 
 uint32_t pcgHash(uint32_t v) {
   const uint32_t state = v * 747796405u + 2891336453u;
@@ -116,12 +117,23 @@ io::Image cpuGuidingMap(const CpuVolume& volume, const io::Smoke& smoke, const r
   const double h = settings.stepCells * volume.grid.cellSize;
   const double albedoPi = smoke.albedo * std::numbers::pi;
   const dvec3 origin = camera.position, forward = camera.forward;
-  io::Image image(size, size, {"guide", "alpha", "depth"});
+  io::Image image(size, size,
+                  {"guide", "alpha", "depth", "level 0.1", "level 0.35", "level 0.6", "level 0.85"});
   for (int y = 0; y < size; ++y)
     for (int x = 0; x < size; ++x) {
       const dvec3 dir = cameraRay(camera, billboard, {x + 0.5, y + 0.5}, size, size);
       const auto [entry, exit] = rayBox(origin, dir, volume.box());
       double transmittance = 1, radiance = 0, shell = -1;
+      // The view depths where the opacity first reaches each level (−1: not yet).
+      std::array<double, 4> levels = {-1, -1, -1, -1};
+      const auto crossLevels = [&](double before, double after, double sigma, double t, double slabLength,
+                                   std::array<double, 4>& into) {
+        for (int k = 0; k < 4; ++k) {
+          if (into[k] >= 0 || 1 - after < kOpacityLevels[k]) continue;
+          into[k] = (t + std::clamp(std::log(before / (1 - kOpacityLevels[k])) / sigma, 0.0, slabLength)) *
+                    glm::dot(dir, forward);
+        }
+      };
       if (entry < exit) {
         const double u = guideJitter(settings.seed, uint32_t(y * size + x), frame);
         const int samples = std::max(0, int(std::ceil((exit - entry) / h - u)));
@@ -143,6 +155,7 @@ io::Image cpuGuidingMap(const CpuVolume& volume, const io::Smoke& smoke, const r
                         henyeyGreenstein(glm::dot(light.toLight, dir), smoke.phaseG) * std::exp(-tau);
           }
           const double after = transmittance * slab;
+          crossLevels(transmittance, after, sigma, t - h / 2, h, levels);
           if (shell < 0 && 1 - after >= settings.shellThreshold) {
             const double s =
                 std::clamp(std::log(transmittance / (1 - settings.shellThreshold)) / sigma, 0.0, h);
@@ -153,10 +166,23 @@ io::Image cpuGuidingMap(const CpuVolume& volume, const io::Smoke& smoke, const r
       }
       image.at(x, y, 0) = float(radiance);
       image.at(x, y, 1) = float(1 - transmittance);
-      image.at(x, y, 2) =
-          shell < 0
-              ? 1.0f
-              : float(std::clamp((shell - shellRange.near) / (shellRange.far - shellRange.near), 0.0, 1.0));
+      // With the fine march, the levels are its midpoint steps' (not jittered), until T < 1e-4 as the GPU's.
+      if (settings.alphaStepCells > 0 && entry < exit) {
+        const double step = settings.alphaStepCells * volume.grid.cellSize;
+        levels = {-1, -1, -1, -1};
+        double tau = 0;
+        for (double t0 = entry; t0 < exit && tau < 9.2; t0 += step) {
+          const double dt = std::min(step, exit - t0);
+          const double sigma = smoke.extinction * volume.densityAt(origin + (t0 + dt / 2) * dir);
+          if (sigma > 0) crossLevels(std::exp(-tau), std::exp(-tau - sigma * dt), sigma, t0, dt, levels);
+          tau += sigma * dt;
+        }
+      }
+      const double span = shellRange.far - shellRange.near;
+      image.at(x, y, 2) = shell < 0 ? 1.0f : float(std::clamp((shell - shellRange.near) / span, 0.0, 1.0));
+      for (int k = 0; k < 4; ++k)
+        image.at(x, y, 3 + k) =
+            levels[k] < 0 ? 1.0f : float(std::clamp((levels[k] - shellRange.near) / span, 0.0, 1.0));
     }
   return image;
 }

@@ -20,7 +20,10 @@ namespace sixway::test {
 // rngNext(rngSeed(seed, pixel, frame)).
 double guideJitter(uint32_t seed, uint32_t pixel, uint32_t frame);
 
-// Channels guide, alpha, depth (encoded as the GPU stores it). `grids` are the light grids
+// Channels guide, alpha, depth (encoded as the GPU stores it), and the opacity depths: the view depths where
+// the ray's opacity first reaches 0.1, 0.35, 0.6 and 0.85, exact within a slab (encoded as
+// GuidingMap::opacityDepths holds them; 1 where not reached), from the fine march's midpoint steps where the
+// settings have one, else from the coarse march's samples. `grids` are the light grids
 // (GuidingMap::shadowGrids()); each guide light other than front uses the one along its axis, from its near
 // end (grid pointing to it) or its far end (the column's total less the grid's depth).
 io::Image cpuGuidingMap(const CpuVolume& volume, const io::Smoke& smoke, const render::Camera& camera,

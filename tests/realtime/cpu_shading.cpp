@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -151,6 +152,81 @@ double cpuShadedViewDepth(const io::Image& guide, glm::dvec2 uv, double near, do
   return depth;
 }
 
+std::array<double, 3> cpuShadowDepths(const io::Image& levels, glm::dvec2 uv, double near, double far,
+                                      double planeDepth) {
+  const glm::dvec2 g = uv * glm::dvec2(levels.width, levels.height) - 0.5;
+  const int x0 = int(std::floor(g.x)), y0 = int(std::floor(g.y));
+  const glm::dvec2 t = g - glm::dvec2(x0, y0);
+  std::array<double, 3> depths{};
+  for (int k = 0; k < 4; ++k) {
+    const int cx = k & 1, cy = k >> 1;
+    const int tx = std::clamp(x0 + cx, 0, levels.width - 1), ty = std::clamp(y0 + cy, 0, levels.height - 1);
+    const double w = (cx ? t.x : 1.0 - t.x) * (cy ? t.y : 1.0 - t.y);
+    double last = planeDepth;
+    for (int i = 0; i < 3; ++i) {
+      const double encoded = levels.at(tx, ty, i);
+      if (encoded < 1.0) last = near + encoded * (far - near);
+      depths[i] += w * last;
+    }
+  }
+  return depths;
+}
+
+double cpuOpacityInFront(const std::array<double, 4>& levels, double total, double d, double thinDepth) {
+  constexpr double kLevels[4] = {0.1, 0.35, 0.6, 0.85};
+  if (total <= 0.0) return 0.0;
+  int reached = 0;
+  while (reached < 4 && levels[reached] >= 0.0) ++reached;
+  if (reached == 0) return d >= thinDepth ? total : 0.0;
+  // Knots (depth, opacity) of the piecewise-linear curve.
+  std::vector<std::pair<double, double>> knots;
+  if (reached >= 2) knots.push_back({levels[0] - 0.4 * (levels[1] - levels[0]), 0.0});
+  for (int k = 0; k < reached; ++k) knots.push_back({levels[k], kLevels[k]});
+  const int last = reached - 1;
+  const double slope =
+      reached >= 2 ? (levels[last] - levels[last - 1]) / (kLevels[last] - kLevels[last - 1]) : 0.0;
+  const double rest = std::max(total - kLevels[last], 0.0);
+  knots.push_back({levels[last] + rest * slope, kLevels[last] + rest});
+  if (d <= knots.front().first) return 0.0;
+  for (size_t i = 1; i < knots.size(); ++i)
+    if (d <= knots[i].first) {
+      const auto [d0, o0] = knots[i - 1];
+      const auto [d1, o1] = knots[i];
+      return d1 > d0 ? o0 + (o1 - o0) * (d - d0) / (d1 - d0) : o1;
+    }
+  return knots.back().second;
+}
+
+namespace {
+
+// The share of the smoke's opacity in front of view depth `obstacle` at `uv`: bilinear over the four nearest
+// texels of each one's own share (opacity in front / its total; 1 where it has no smoke).
+double visibleShare(const CpuShadingInputs& in, glm::dvec2 uv, double obstacle) {
+  const io::Image& levels = *in.opacityDepths;
+  const double near = in.shellRange.near, far = in.shellRange.far, plane = 0.5 * (near + far);
+  const glm::dvec2 g = uv * glm::dvec2(levels.width, levels.height) - 0.5;
+  const int x0 = int(std::floor(g.x)), y0 = int(std::floor(g.y));
+  const glm::dvec2 t = g - glm::dvec2(x0, y0);
+  double share = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const int cx = k & 1, cy = k >> 1;
+    const int tx = std::clamp(x0 + cx, 0, levels.width - 1), ty = std::clamp(y0 + cy, 0, levels.height - 1);
+    std::array<double, 4> depths;
+    for (int i = 0; i < 4; ++i) {
+      const double encoded = levels.at(tx, ty, i);
+      depths[i] = encoded < 1.0 ? near + encoded * (far - near) : -1.0;
+    }
+    const double fine = in.guide->at(tx, ty, 3);
+    const double total = fine > 0.0 ? fine : in.guide->at(tx, ty, 1);
+    const double own =
+        total > 0.0 ? std::min(cpuOpacityInFront(depths, total, obstacle, plane) / total, 1.0) : 1.0;
+    share += (cx ? t.x : 1.0 - t.x) * (cy ? t.y : 1.0 - t.y) * own;
+  }
+  return share;
+}
+
+}  // namespace
+
 glm::dvec3 cpuShadedPoint(const CpuShadingInputs& in, int width, int height, int x, int y) {
   const PixelPoint p = pixelPoint(in, width, height, x, y);
   return worldPoint(in.camera, p.q, shadedDepth(in, p.uv));
@@ -180,11 +256,22 @@ io::Image cpuSixWayShading(const CpuShadingInputs& in, const io::Image& backgrou
     for (int x = 0; x < width; ++x) {
       const PixelPoint p = pixelPoint(in, width, height, x, y);
       if (!p.covered) continue;
-      const double depth = shadedDepth(in, p.uv);
+      double depth = shadedDepth(in, p.uv);
+      double obstacle = std::numeric_limits<double>::infinity();
       if (in.obstacleDepth) {
         const double d = in.obstacleDepth->at(x, y, 0), n = in.sceneRange.near, f = in.sceneRange.far;
-        if (n * f / (f - d * (f - n)) < depth) continue;  // hidden: nothing drawn over the background
+        obstacle = n * f / (f - d * (f - n));
       }
+      // The share of the smoke drawn, and the depths where its lights' shadows are looked up.
+      double visible = obstacle >= depth ? 1.0 : 0.0;
+      std::array<double, 3> shadowDepths = {depth, depth, depth};
+      if (in.opacityDepths) {
+        visible = visibleShare(in, p.uv, obstacle);
+        shadowDepths = cpuShadowDepths(*in.opacityDepths, p.uv, in.shellRange.near, in.shellRange.far,
+                                       0.5 * (double(in.shellRange.near) + in.shellRange.far));
+      }
+      if (visible <= 0.0) continue;  // hidden: nothing drawn over the background
+      depth = std::min(depth, obstacle);
       const dvec3 world = worldPoint(cam, p.q, depth);
 
       const auto a = bilinear(*in.lightmapA, p.uv.x, p.uv.y), b = bilinear(*in.lightmapB, p.uv.x, p.uv.y);
@@ -217,9 +304,15 @@ io::Image cpuSixWayShading(const CpuShadingInputs& in, const io::Image& backgrou
           toLight /= std::sqrt(r2);
         }
         double visibility = 1.0;
-        if (light.shadowTile >= 0 && in.shadowAtlas)
-          visibility = cpuShadowVisibility(*in.shadowAtlas, in.tileSize, light.shadowTile, light.shadowMatrix,
-                                           world, in.pcfRadius, in.depthBias);
+        if (light.shadowTile >= 0 && in.shadowAtlas) {
+          visibility = 0.0;
+          for (double shadowDepth : shadowDepths)
+            visibility +=
+                cpuShadowVisibility(*in.shadowAtlas, in.tileSize, light.shadowTile, light.shadowMatrix,
+                                    worldPoint(cam, p.q, std::min(shadowDepth, obstacle)), in.pcfRadius,
+                                    in.depthBias) /
+                3.0;
+        }
         double t = 0.0;
         for (int i = 0; i < 3; ++i) {
           const double d = glm::dot(toLight, axes[i]);
@@ -242,8 +335,8 @@ io::Image cpuSixWayShading(const CpuShadingInputs& in, const io::Image& backgrou
       }
 
       for (int c = 0; c < 4; ++c) {
-        const double source = c < 3 ? radiance[c] : alpha;
-        out.at(x, y, c) = float(source + (1.0 - alpha) * background.at(x, y, c));
+        const double source = visible * (c < 3 ? radiance[c] : alpha);
+        out.at(x, y, c) = float(source + (1.0 - visible * alpha) * background.at(x, y, c));
       }
     }
   return out;

@@ -20,6 +20,8 @@
 namespace sixway::test {
 namespace {
 
+constexpr double kLevels[4] = {0.1, 0.35, 0.6, 0.85};  // shaders/common/depth.glsl, kOpacityLevels
+
 using io::GuideLight;
 
 // A smooth, uneven volume of 24 × 32 × 20 cells: overlapping blobs of compact support ((1 − r²/R²)³), zero
@@ -79,13 +81,20 @@ class GuideRun {
     box_ = volume.grid.bounds();
   }
 
-  // Channels guide, alpha, depth; the fourth, stored channel must be 0 unless the settings ask for the fine
-  // alpha.
+  // Channels guide, alpha, depth, and the four opacity depths; the guide's fourth, stored channel must be 0
+  // unless the settings ask for the fine alpha.
   io::Image frame(const render::Camera& camera, const io::Smoke& smoke, uint32_t frame) {
     const io::Image all = channels(camera, smoke, frame);
-    io::Image image(all.width, all.height, {"guide", "alpha", "depth"});
+    const io::Tensor half{"",
+                          io::DType::F16,
+                          {int64_t(map_.opacityDepths().byteSize() / 2)},
+                          map_.opacityDepths().download<uint8_t>()};
+    const std::vector<float> levels = half.toFloat();
+    io::Image image(all.width, all.height,
+                    {"guide", "alpha", "depth", "level 0.1", "level 0.35", "level 0.6", "level 0.85"});
     for (size_t i = 0; i < size_t(all.width) * all.height; ++i) {
-      for (int c = 0; c < 3; ++c) image.pixels[i * 3 + c] = all.pixels[i * 4 + c];
+      for (int c = 0; c < 3; ++c) image.pixels[i * 7 + c] = all.pixels[i * 4 + c];
+      for (int k = 0; k < 4; ++k) image.pixels[i * 7 + 3 + k] = levels[i * 4 + k];
       if (map_.settings().alphaStepCells == 0.0f) {
         EXPECT_EQ(all.pixels[i * 4 + 3], 0.0f);
       }
@@ -176,13 +185,18 @@ TEST_F(GuidingMapTest, MatchesTheCpuMarchWithTheSameJitter) {
       const std::string what = name + "_view_" + std::to_string(view);
       EXPECT_GT(guidePeak, 0.02) << what;
       EXPECT_GT(peak(ref, 1), 0.9) << what;
-      double worst[3] = {0, 0, 0};
+      double worst[4] = {0, 0, 0, 0};
       int shells = 0, ambiguous = 0;
       for (int y = 0; y < gpu.height; ++y)
         for (int x = 0; x < gpu.width; ++x) {
           const double g = gpu.at(x, y, 0), c = ref.at(x, y, 0);
           worst[0] = std::max(worst[0], std::fabs(g - c) / (1.5e-3 * c + 1e-5 * guidePeak));
           worst[1] = std::max(worst[1], std::fabs(gpu.at(x, y, 1) - ref.at(x, y, 1)) / 6e-4);
+          // The opacity depths as the shell depth, except where the ray's final alpha is within 1e-4 of a
+          // level.
+          for (int k = 0; k < 4; ++k)
+            if (std::fabs(ref.at(x, y, 1) - kLevels[k]) >= 1e-4)
+              worst[3] = std::max(worst[3], std::fabs(gpu.at(x, y, 3 + k) - ref.at(x, y, 3 + k)) / 1e-3);
           if (std::fabs(ref.at(x, y, 1) - run.map().settings().shellThreshold) < 1e-4) {
             ++ambiguous;
             continue;
@@ -190,12 +204,13 @@ TEST_F(GuidingMapTest, MatchesTheCpuMarchWithTheSameJitter) {
           shells += ref.at(x, y, 2) < 1.0f;
           worst[2] = std::max(worst[2], std::fabs(gpu.at(x, y, 2) - ref.at(x, y, 2)) / 1e-3);
         }
-      RecordProperty(
-          what + "_worst_over_tolerance",
-          std::to_string(worst[0]) + " " + std::to_string(worst[1]) + " " + std::to_string(worst[2]));
+      RecordProperty(what + "_worst_over_tolerance",
+                     std::to_string(worst[0]) + " " + std::to_string(worst[1]) + " " +
+                         std::to_string(worst[2]) + " " + std::to_string(worst[3]));
       EXPECT_LE(worst[0], 1.0) << what << ": guide";
       EXPECT_LE(worst[1], 1.0) << what << ": alpha";
       EXPECT_LE(worst[2], 1.0) << what << ": depth";
+      EXPECT_LE(worst[3], 1.0) << what << ": opacity depths";
       EXPECT_GT(shells, 200) << what;
       EXPECT_LT(ambiguous, 5) << what;
     }
@@ -378,6 +393,18 @@ TEST_F(GuidingMapTest, FineAlphaIsTheExactBakersAlpha) {
   GuideRun fine(context(), pipelineCache(), settings, device.view());
   GuideRun plain(context(), pipelineCache(), guideSettings(), device.view());
   const io::Image withFine = fine.channels(camera, smoke, 3);
+  // The opacity depths come from the fine march then: as the CPU oracle marches it.
+  const io::Image fineLevels = fine.frame(camera, smoke, 3);
+  const io::Image oracle =
+      cpuGuidingMap(volume, smoke, camera, render::billboardBounds(camera, volume.box(), 1.0f),
+                    render::boxDepthRange(camera, volume.box()), settings, fine.map().shadowGrids(), 3);
+  double levelWorst = 0;
+  for (int y = 0; y < 48; ++y)
+    for (int x = 0; x < 48; ++x)
+      for (int c = 3; c < 7; ++c)
+        levelWorst = std::max(levelWorst, double(std::abs(fineLevels.at(x, y, c) - oracle.at(x, y, c))));
+  RecordProperty("fine_opacity_depths_worst", std::to_string(levelWorst));
+  EXPECT_LE(levelWorst, 1e-3);
   const io::Image without = plain.frame(camera, smoke, 3);
   render::LightmapBaker baker(context(), pipelineCache());
   render::BakeSettings bake;

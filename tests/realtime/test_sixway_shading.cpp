@@ -186,13 +186,17 @@ class SixWayShadingTest : public GpuTest {
     if (withGuide) g.emplace(rgbaImage(guide, VK_FORMAT_R32G32B32A32_SFLOAT, "guide"));
     if (withObstacles) depth.emplace(depthImage(obstacleDepth, "obstacle depth"));
     if (withAtlas) shadowAtlas.emplace(depthImage(atlas, "shadow atlas"));
+    std::optional<gpu::Image> levels;
+    if (in.opacityDepths)
+      levels.emplace(rgbaImage(opacityDepths, VK_FORMAT_R32G32B32A32_SFLOAT, "opacity depths"));
     gpu::Image target(context(), {kWidth, kHeight, 1, VK_FORMAT_R32G32B32A32_SFLOAT,
                                   VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, "target"});
     render::SixWayShading shading(context(), pipelineCache(), VK_FORMAT_R32G32B32A32_SFLOAT, 8);
     render::ShadowAtlas shadows;
     if (withAtlas) shadows = {&*shadowAtlas, uint32_t(atlas.width), float(in.pcfRadius), float(in.depthBias)};
     gpu::Sequence sequence(context());
-    shading.record(sequence, a, b, g ? &*g : nullptr, depth ? &*depth : nullptr, shadows, target);
+    shading.record(sequence, a, b, g ? &*g : nullptr, levels ? &*levels : nullptr, depth ? &*depth : nullptr,
+                   shadows, target);
     sequence.finish();
 
     std::vector<io::Image> images;
@@ -225,7 +229,7 @@ class SixWayShadingTest : public GpuTest {
   const render::Box box{glm::vec3(-1.0f), glm::vec3(1.0f)};
   render::Camera camera;
   CpuShadingInputs in;
-  io::Image lightmapA, lightmapB, guide, background, obstacleDepth, atlas;
+  io::Image lightmapA, lightmapB, guide, background, obstacleDepth, atlas, opacityDepths;  // in.opacityDepths
   VkFormat lightmapFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 };
 
@@ -464,6 +468,118 @@ TEST_F(SixWayShadingTest, ObstaclesHideExactlyTheSmokeBehindThem) {
       else
         EXPECT_GT(difference, 1e-3) << x << ", " << y;
     }
+}
+
+// The smoke as a volume against obstacles: random opacity depths (0–4 of the levels reached, in depth order,
+// the guide's fine or coarse alpha the ray's total opacity), random obstacle depths inside the smoke's depth
+// range (a fifth without obstacle) and two lights, one shadowed by a half-plane occluder: each pixel against
+// the oracle (the share of opacity in front of the obstacle, bilinear; shadows averaged over three depths).
+// Then closed forms on uniform opacity depths: an obstacle halfway between the 0.35 and 0.6 levels of a ray
+// of total opacity 0.95 lets 0.475 / 0.95 of the smoke through, one in front of the ramp hides it all, one
+// behind the ray's end hides nothing.
+TEST_F(SixWayShadingTest, ObstaclesInsideTheSmokeShowTheShareOfItInFront) {
+  std::mt19937 rng(11);
+  randomLightmaps(rng, false);
+  randomGuide(rng, 0.8f);
+  randomBackground(rng);
+  in.guide = &guide;
+  in.opacityDepths = &opacityDepths;
+  constexpr double kLevels[4] = {0.1, 0.35, 0.6, 0.85};
+  opacityDepths = io::Image(kWidth, kHeight, {"R", "G", "B", "A"});
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      const int reached = int(rng() % 5);
+      std::array<float, 4> depths{uniform(rng, 0.02f, 0.95f), uniform(rng, 0.02f, 0.95f),
+                                  uniform(rng, 0.02f, 0.95f), uniform(rng, 0.02f, 0.95f)};
+      std::sort(depths.begin(), depths.end());
+      for (int k = 0; k < 4; ++k) opacityDepths.at(x, y, k) = k < reached ? depths[k] : 1.0f;
+      const float total = reached == 0 ? (uniform(rng, 0, 1) < 0.3f ? 0.0f : uniform(rng, 0.01f, 0.1f))
+                                       : uniform(rng, float(kLevels[reached - 1]),
+                                                 reached < 4 ? float(kLevels[reached]) : 1.0f);
+      const bool fine = uniform(rng, 0, 1) < 0.5f;
+      guide.at(x, y, 1) = fine ? uniform(rng, 0, 1) : total;
+      guide.at(x, y, 3) = fine ? total : 0.0f;
+    }
+  obstacleDepth = io::Image(kWidth, kHeight, {"depth"});
+  const double n = in.sceneRange.near, f = in.sceneRange.far;
+  const auto depthBufferValue = [&](double z) { return float(f * (z - n) / (z * (f - n))); };
+  for (float& d : obstacleDepth.pixels)
+    d = uniform(rng, 0, 1) < 0.2f
+            ? 1.0f
+            : depthBufferValue(uniform(rng, in.shellRange.near - 0.1f, in.shellRange.far));
+  constexpr int kTile = 32;
+  atlas = io::Image(kTile, kTile, {"depth"});
+  for (int y = 0; y < kTile; ++y)
+    for (int x = 0; x < kTile; ++x) atlas.at(x, y, 0) = x < 15 ? 0.1f : 1.0f;
+  const glm::vec3 toLight = glm::normalize(glm::vec3(-1.0f, 1.0f, 0.5f));
+  const glm::mat4 lightMatrix = glm::orthoRH_ZO(-1.1f, 1.1f, -1.3f, 1.3f, 2.0f, 8.0f) *
+                                glm::lookAtRH(toLight * 5.0f, glm::vec3(0.0f), glm::vec3(0, 1, 0));
+  Frame frame;
+  frame.lights = {ShadingLight{ShadingLight::Type::Directional, toLight, {3.0f, 2.5f, 2.0f}, 0, lightMatrix},
+                  ShadingLight{ShadingLight::Type::Point, {0.5f, 2.0f, 1.5f}, {4.0f, 3.0f, 2.0f}, -1, {}}};
+  frame.ambient = randomSh(rng);
+  const io::Image image = render({frame}, true, true, true)[0];
+  const Mismatch m = mismatch(image, expected(frame, true, true, true));
+  EXPECT_LT(m.worst, kTolerance) << m;
+  RecordProperty("oracle_error", scientific(m.worst));
+  // The random case mixes hidden, partly and wholly visible smoke.
+  int hidden = 0, partly = 0, whole = 0;
+  const io::Image unobstructed = [&] {
+    CpuShadingInputs c = in;
+    c.obstacleDepth = nullptr;
+    c.lights = frame.lights;
+    c.ambient = frame.ambient;
+    c.lightmapA = &lightmapA;
+    c.lightmapB = &lightmapB;
+    c.shadowAtlas = &atlas;
+    c.tileSize = atlas.width;
+    return cpuSixWayShading(c, background);
+  }();
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      if (lightmapA.at(x, y, 3) < 0.05f) continue;
+      const double drawn = image.at(x, y, 3) - background.at(x, y, 3),
+                   full = unobstructed.at(x, y, 3) - background.at(x, y, 3);
+      ++(std::abs(drawn) < 1e-6 ? hidden : std::abs(drawn - full) < 1e-6 ? whole : partly);
+    }
+  RecordProperty("pixels", std::to_string(hidden) + " hidden, " + std::to_string(partly) + " partly, " +
+                               std::to_string(whole) + " wholly visible");
+  EXPECT_GT(hidden, 50);
+  EXPECT_GT(partly, 300);
+  EXPECT_GT(whole, 50);
+
+  // Closed forms: every texel's levels at view depths 3.0, 3.2, 3.4, 3.6 m (inside the box's range), total
+  // 0.95.
+  const double near = in.shellRange.near, far = in.shellRange.far;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      for (int k = 0; k < 4; ++k) opacityDepths.at(x, y, k) = float((3.0 + 0.2 * k - near) / (far - near));
+      guide.at(x, y, 1) = 0.5f;
+      guide.at(x, y, 3) = 0.95f;
+    }
+  // Ambient light only: no term depends on the shaded point, which the obstacle moves.
+  frame.lights.clear();
+  const io::Image unhidden = render({frame}, true, false, false)[0];
+  for (const auto& [obstacle, share] :
+       {std::pair{3.3, 0.475 / 0.95}, std::pair{2.5, 0.0}, std::pair{4.5, 1.0}}) {
+    SCOPED_TRACE("obstacle at " + std::to_string(obstacle) + " m");
+    std::fill(obstacleDepth.pixels.begin(), obstacleDepth.pixels.end(), depthBufferValue(obstacle));
+    const io::Image composite = render({frame}, true, true, false)[0];
+    double worst = 0.0;
+    for (int y = 0; y < kHeight; ++y)
+      for (int x = 0; x < kWidth; ++x) {
+        // Unhidden: smoke + (1 − alpha) · background, alpha from the A channel; a share s of the smoke
+        // gives s · smoke + (1 − s · alpha) · background.
+        const double alpha = (unhidden.at(x, y, 3) - background.at(x, y, 3)) / (1.0 - background.at(x, y, 3));
+        for (int c = 0; c < 4; ++c) {
+          const double smoke = c < 3 ? unhidden.at(x, y, c) - (1.0 - alpha) * background.at(x, y, c) : alpha;
+          const double expected = share * smoke + (1.0 - share * alpha) * background.at(x, y, c);
+          worst = std::max(worst, std::abs(composite.at(x, y, c) - expected));
+        }
+      }
+    RecordProperty("closed_form_error_" + std::to_string(int(obstacle * 10)), scientific(worst));
+    EXPECT_LT(worst, 1e-5);
+  }
 }
 
 // A billboard smaller than the frame, its edges between pixel centres, with coarse 8 x 6 lightmaps stretched

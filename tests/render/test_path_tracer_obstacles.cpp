@@ -159,5 +159,61 @@ TEST_F(PathTracerObstacleTest, SphereUnderTheSlabIsLitThroughIt) {
   EXPECT_GT(onSphere, 200);
 }
 
+// A sphere half inside a slab of smoke that absorbs and does not scatter (albedo 0), seen through the smoke
+// and lit through it from above and behind: every pixel on the sphere shows the Lambertian radiance times the
+// transmittance of the camera's chord and of the light's chord through the slab, each from the surface point
+// (inside the smoke or not); within 5 binomial standard deviations of the product of the two.
+TEST_F(PathTracerObstacleTest, SphereInsideAbsorbingSmoke) {
+  const CpuVolume volume = slab();
+  const glm::dvec3 centre(0.5, 0.45, 0.5);
+  const double radius = 0.25;
+  const render::ObstacleBvh sphere(context(), {sphereAt(glm::vec3(centre), float(radius))});
+  const render::Camera camera =
+      render::Camera::lookAt({0.5f, 0.55f, 3.0f}, {0.5f, 0.45f, 0.5f}, {0.0f, 1.0f, 0.0f}, 14.0f);
+  const render::ImagePlane plane = render::fullFrame(camera, kSize, kSize);
+  io::Smoke smoke = slabOptics();
+  smoke.albedo = 0.0f;
+  const dvec3 toLight = glm::normalize(dvec3(0.0, 1.0, 0.6));
+  const io::Light light = directionalLight(glm::vec3(toLight), 1.0f);
+  const render::DeviceVolume device = upload(volume);
+  render::TraceSettings s;
+  s.width = s.height = kSize;
+  s.maxOrders = 1;
+  s.jitter = false;
+  s.samplesPerPass = 64;
+  const uint32_t n = 4096;
+  tracer_.beginImage(device.view(), smoke, camera, plane, {light}, s, &sphere);
+  tracer_.accumulate(n);
+  const io::Image image = tracer_.image();
+  const double lambert = render::kObstacleAlbedo.x / kPi;
+  const auto chord = [&](dvec3 p, dvec3 d) {
+    const auto [t0, t1] = rayBox(p, d, volume.box());
+    return std::max(0.0, t1 - std::max(0.0, t0));
+  };
+  int inside = 0, onSphere = 0;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const dvec3 o(camera.position), d = cameraRay(camera, plane, {x + 0.5, y + 0.5}, kSize, kSize);
+      const auto t = hitSphere(o, d, centre, radius);
+      if (t.has_value() != hitSphere(o, d, centre, radius - render::sphereFacetDepth(radius)).has_value())
+        continue;
+      if (!t) continue;
+      const dvec3 p = o + *t * d, normal = glm::normalize(p - centre);
+      const double cosine = glm::dot(normal, toLight);
+      if (cosine < 0.1) continue;
+      ++onSphere;
+      inside += p.y < 0.5 && p.z < 1.0;
+      const double camera = std::exp(-smoke.extinction * chord(p, -d)),
+                   lit = std::exp(-smoke.extinction * chord(p, toLight));
+      const double q = camera * lit, expected = lambert * cosine * q;
+      EXPECT_EQ(image.at(x, y, 3), 1.0f) << x << "," << y;
+      EXPECT_NEAR(image.at(x, y, 0), expected,
+                  5 * lambert * cosine * std::sqrt(q * (1 - q) / n) + 0.01 * lambert)
+          << x << "," << y;
+    }
+  EXPECT_GT(onSphere, 100);
+  EXPECT_GT(inside, 50) << "surface points inside the smoke";
+}
+
 }  // namespace
 }  // namespace sixway::test

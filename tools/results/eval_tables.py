@@ -191,8 +191,7 @@ took {machine['minutes']} minutes.
 directional light and a point light) rendered at {size} with {multiple['lightmap_size']}² lightmaps (the size
 the shipped network was trained at), {multiple['frames']} frames of its live simulation, the shipped network
 `weights/sixway-unet-ms.safetensors`. Ground truth is the volumetric path tracer at {multiple['pathtrace_spp']} spp.
-The path tracer knows no obstacles, so the obstacles shape the flow but are drawn by no method (except in the
-shadow study). Metrics follow [conventions.md, "Metrics"](conventions.md#metrics): PSNR on linear RGB clipped to [0, 1], **masked** to the pixels where
+The obstacles are drawn by every method and path-traced in the truth. Metrics follow [conventions.md, "Metrics"](conventions.md#metrics): PSNR on linear RGB clipped to [0, 1], **masked** to the pixels where
 the ground truth's alpha > 0.01, the full-frame figure next to it; "PSNR masked" pools the squared errors of all
 frames, "mean of frames" averages the frames' own PSNRs.
 

@@ -4,8 +4,9 @@
 # tracer with every scattering order, printed as a markdown table of masked PSNRs (reference-ms: the
 # multiply-scattered lightmaps through the six-way shading; reference: single scattering; neural;
 # traditional-ms: a flipbook baked with multiple scattering), then each method's frame-to-frame change over the
-# truth's (RMS where the smoke is; the truth traced twice a frame to take its noise out: `--truth-noise`).
-# No equal-time study (tools/results.sh makes it at the default size).
+# truth's (RMS where the smoke is; the truth traced twice a frame to take its noise out: `--truth-noise`). The
+# obstacles are left out of every image (`--no-obstacles`): the study is of the lightmaps. No equal-time study
+# (tools/results.sh makes it at the default size).
 # About 10-15 minutes on the 2-core lavapipe machine. FRAMES=N (default 8) SPP=N (truth, default 128)
 # LIGHTMAP=N (lightmap size, default 64: half the frame's; 128 separates the lightmaps' resolution from the
 # six-way model) WEIGHTS=ms|ss|PATH (the network, default ms); reports go to out/ms_ceiling/lightmap_N/, or
@@ -43,7 +44,7 @@ for scene in "$root"/assets/scenes/*.json; do
   "$python" "$root/tools/results/resized_scene.py" "$scene" "$small" --size 128 --lightmap "$lightmap" --warmup "$warmup"
   echo "ms_ceiling.sh: $name" >&2
   "$sixway" eval --scene "$small" --frames "$frames" --spp "$spp" --orders 64 --ms-spp "$ms_spp" --weights "$weights" \
-    --truth-noise --no-equal-time --report "$out/$name.report.json" --force >&2
+    --truth-noise --no-equal-time --no-obstacles --report "$out/$name.report.json" --force >&2
 done
 "$python" - "$out" <<'PY'
 import glob, json, os, sys
