@@ -38,33 +38,70 @@ float interpolatedShadedDepth(sampler2D guide, vec2 uv, vec2 range, float planeD
 // depths where 1 − T first reaches each of these levels.
 const float kOpacityLevels[4] = float[4](0.1, 0.35, 0.6, 0.85);
 
-// The opacity of the smoke in front of view depth d, of a ray whose opacity reaches `total` and the levels at
-// `depths` (< 0: not reached): linear in depth between the levels; before the first, from 0 over a quarter of
-// its distance to the second (or nothing); past the last reached, the rest (total − its level) over the
-// distance the last interval took per unit of opacity. Smoke too thin to reach the first level lies at
-// `thinDepth`.
-float opacityInFront(vec4 depths, float total, float d, float thinDepth) {
-  if (total <= 0.0) return 0.0;
-  if (depths.x < 0.0) return d >= thinDepth ? total : 0.0;
-  float before =
-      depths.y >= 0.0 ? 0.4 * (depths.y - depths.x) : 0.0;  // 0.1 of the 0.25 between the first two
-  if (d <= depths.x)
-    return before > 0.0 ? kOpacityLevels[0] * clamp(1.0 - (depths.x - d) / before, 0.0, 1.0) : 0.0;
-  float perOpacity = before / kOpacityLevels[0];  // depth per unit of opacity, of the last interval
-  for (int k = 1; k < 4; ++k) {
-    if (depths[k] < 0.0) {
-      float rest = max(total - kOpacityLevels[k - 1], 0.0);
-      float width = rest * perOpacity;
-      return kOpacityLevels[k - 1] +
-             (width > 0.0 ? rest * clamp((d - depths[k - 1]) / width, 0.0, 1.0) : rest);
-    }
-    perOpacity = (depths[k] - depths[k - 1]) / (kOpacityLevels[k] - kOpacityLevels[k - 1]);
-    if (d <= depths[k])
-      return mix(kOpacityLevels[k - 1], kOpacityLevels[k],
-                 (d - depths[k - 1]) / max(depths[k] - depths[k - 1], 1e-9));
+// The opacity of the smoke in front of view depth d along a ray whose opacity reaches `total` and the levels
+// at `depths` (< 0: not reached) is piecewise linear through these knots (depth, opacity), at most 6: from 0
+// a quarter of the first two levels' distance before the first (0.1 of the 0.25 between them), through the
+// levels reached, then on to `total` at the slope of the last interval; one level reached: a step there;
+// none (smoke thinner than the first level): a step at `thinDepth`. Before the first knot 0, past the last
+// its opacity.
+struct OpacityCurve {
+  float depth[6], opacity[6];
+  int count;
+};
+
+OpacityCurve opacityCurve(vec4 depths, float total, float thinDepth) {
+  OpacityCurve c;
+  c.count = 0;
+  if (total <= 0.0) return c;
+  if (depths.x < 0.0) {
+    c.depth[0] = c.depth[1] = thinDepth;
+    c.opacity[0] = 0.0;
+    c.opacity[1] = total;
+    c.count = 2;
+    return c;
   }
-  float rest = max(total - kOpacityLevels[3], 0.0), width = rest * perOpacity;
-  return kOpacityLevels[3] + (width > 0.0 ? rest * clamp((d - depths.w) / width, 0.0, 1.0) : rest);
+  int reached = 1;
+  while (reached < 4 && depths[reached] >= 0.0) ++reached;
+  c.depth[0] = reached > 1 ? depths.x - 0.4 * (depths.y - depths.x) : depths.x;
+  c.opacity[0] = 0.0;
+  for (int k = 0; k < reached; ++k) {
+    c.depth[k + 1] = depths[k];
+    c.opacity[k + 1] = kOpacityLevels[k];
+  }
+  int last = reached - 1;
+  float slope = reached > 1
+                    ? (depths[last] - depths[last - 1]) / (kOpacityLevels[last] - kOpacityLevels[last - 1])
+                    : 0.0;
+  float rest = max(total - kOpacityLevels[last], 0.0);
+  c.depth[reached + 1] = depths[last] + rest * slope;
+  c.opacity[reached + 1] = kOpacityLevels[last] + rest;
+  c.count = reached + 2;
+  return c;
+}
+
+// ∫ over (−∞, d] of the curve's opacity (exact: trapezoids).
+float opacityIntegral(OpacityCurve c, float d) {
+  if (c.count == 0 || d <= c.depth[0]) return 0.0;
+  float sum = 0.0;
+  for (int i = 1; i < c.count; ++i) {
+    float d0 = c.depth[i - 1], d1 = c.depth[i];
+    if (d <= d1) {
+      float t = d1 > d0 ? (d - d0) / (d1 - d0) : 1.0;
+      return sum + (d - d0) * (c.opacity[i - 1] + 0.5 * t * (c.opacity[i] - c.opacity[i - 1]));
+    }
+    sum += (d1 - d0) * 0.5 * (c.opacity[i - 1] + c.opacity[i]);
+  }
+  return sum + (d - c.depth[c.count - 1]) * c.opacity[c.count - 1];
+}
+
+// The opacity in front of view depth d, averaged over [d − w, d + w] (w > 0): the guide resolves depth no
+// finer than its texel, so a smoke front between texel centres is as likely a little nearer or farther, and a
+// step of the curve becomes a ramp 2w deep instead of a contour cut into whatever it meets.
+float opacityInFront(OpacityCurve c, float d, float w) {
+  if (c.count == 0 || d + w <= c.depth[0]) return 0.0;
+  if (d - w >= c.depth[c.count - 1])
+    return c.opacity[c.count - 1];  // also for d far beyond, without rounding
+  return (opacityIntegral(c, d + w) - opacityIntegral(c, d - w)) / (2.0 * w);
 }
 
 // A depth-buffer value of render::projectionMatrix(plane, {near, far}) back to view depth:

@@ -42,4 +42,29 @@ float shadowVisibility(sampler2D atlas, int tile, int tileSize, mat4 lightViewPr
   return lit / (4.0 * radius * radius);
 }
 
+// The lit fraction of `world` averaged over a square `halfWidth` metres either side of it across the light's
+// beam: a box filter as wide as what the smoke's lightmaps resolve, so a caster's edge on the smoke is not
+// sharper than the smoke's own detail. 4 × 4 taps spread evenly over the square, each the texel under it;
+// where the square is narrower than `radius` texels, shadowVisibility with that radius. Texels per metre
+// from the projection's x row at the point's w (exact for orthographic, the local scale for perspective).
+float wideShadowVisibility(sampler2D atlas, int tile, int tileSize, mat4 lightViewProjection, vec3 world,
+                           float halfWidth, float radius, float bias) {
+  vec4 clip = lightViewProjection * vec4(world, 1.0);
+  if (clip.w <= 0.0) return 1.0;
+  vec3 ndc = clip.xyz / clip.w;
+  if (any(greaterThan(abs(ndc.xy), vec2(1.0))) || ndc.z < 0.0 || ndc.z > 1.0) return 1.0;
+  vec3 row = vec3(lightViewProjection[0][0], lightViewProjection[1][0], lightViewProjection[2][0]);
+  float spread = halfWidth * 0.5 * float(tileSize) * length(row) / clip.w;  // texels
+  if (spread <= radius)
+    return shadowVisibility(atlas, tile, tileSize, lightViewProjection, world, radius, bias);
+  vec2 p = vec2(0.5 + 0.5 * ndc.x, 0.5 - 0.5 * ndc.y) * float(tileSize);
+  float depth = ndc.z - bias, lit = 0.0;
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      vec2 t = p + spread * (vec2(i, j) * 0.5 - 0.75);
+      lit += shadowTexelLit(atlas, tile, tileSize, int(floor(t.x)), int(floor(t.y)), depth);
+    }
+  return lit / 16.0;
+}
+
 #endif

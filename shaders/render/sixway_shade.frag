@@ -1,15 +1,16 @@
 #version 460
 // Six-way shading of the smoke billboard (docs/conventions.md, "Shading"; docs/real-time-rendering.md,
 // "Six-way shading"), drawn with premultiplied-over blending onto the background and the obstacles. Per
-// pixel: the lightmaps at the pixel's point of the billboard (bilinear), Unity's remapping controls, every
-// light with squared six-way weights (point lights toward the shaded point, inverse-square falloff), its
-// obstacle shadow (PCF in the shadow atlas at the smoke shell), ambient light from L1 spherical harmonics,
-// the emissive gradient. Against the obstacles the smoke is a volume, not a card
-// (docs/real-time-rendering.md, "Smoke and obstacles"): its opacity builds up over depth as the guide's
-// opacity depths say (depth.glsl, opacityInFront), the share of it in front of the obstacle is drawn and the
-// rest hidden, and each light's obstacle shadow is the mean over the depths where the opacity reaches 0.1,
-// 0.35 and 0.6 (in front of the obstacle).
+// pixel: the lightmaps at the pixel's point of the billboard (Catmull-Rom cubic, catmull_rom.glsl), Unity's
+// remapping controls, every light with squared six-way weights (point lights toward the shaded point,
+// inverse-square falloff), its obstacle shadow, ambient light from L1 spherical harmonics, the emissive
+// gradient. Against the obstacles the smoke is a volume, not a card (docs/real-time-rendering.md, "Smoke and
+// obstacles"): its opacity builds up over depth as the guide's opacity depths say (depth.glsl), the share of
+// it in front of the obstacle is drawn and the rest hidden, and each light's obstacle shadow is the mean over
+// the depths where the opacity reaches 0.1, 0.35 and 0.6 (in front of the obstacle); both are filtered over a
+// lightmap texel's width, the finest detail the smoke's lightmaps hold.
 #extension GL_GOOGLE_include_directive : require
+#include "catmull_rom.glsl"
 #include "depth.glsl"
 #include "shadow.glsl"
 #include "sixway_shade_params.glsl"
@@ -29,6 +30,9 @@ void main() {
   vec4 plane = params.camera.plane;
   vec2 q = vec2(mix(plane.x, plane.z, frameUv.x), mix(plane.w, plane.y, frameUv.y));
   vec2 uv = frameUv * params.frameToBillboard.xy + params.frameToBillboard.zw;
+  // A lightmap texel's width in the world per unit of view depth: the finest detail the smoke's lightmaps,
+  // guide and opacity depths resolve, which sets how soft its contacts with obstacles and their shadows are.
+  float texelPerDepth = (plane.z - plane.x) / params.frameToBillboard.x / float(textureSize(lightmapA, 0).x);
 
   // The shaded point: the smoke shell where the pixel has one, else the billboard's plane.
   float viewDepth = interpolatedShadedDepth(guide, uv, params.depths.xy, params.misc.x);
@@ -47,6 +51,7 @@ void main() {
     vec2 g = uv * vec2(size) - 0.5;
     ivec2 base = ivec2(floor(g));
     vec2 f = g - vec2(base);
+    float texelWidth = texelPerDepth * min(obstacle, 1e6);
     visible = 0.0;
     shadowDepths = vec3(0.0);
     for (int k = 0; k < 4; ++k) {
@@ -58,9 +63,12 @@ void main() {
         levels[i] = encoded[i] < 1.0 ? decodeShellDepth(encoded[i], params.depths.xy) : -1.0;
       vec4 g4 = texelFetch(guide, texel, 0);
       float total = g4.a > 0.0 ? g4.a : g4.g;  // the fine alpha where the guide has it
-      visible +=
-          w2.x * w2.y *
-          (total > 0.0 ? min(opacityInFront(levels, total, obstacle, params.misc.x) / total, 1.0) : 1.0);
+      float share =
+          total > 0.0
+              ? min(opacityInFront(opacityCurve(levels, total, params.misc.x), obstacle, texelWidth) / total,
+                    1.0)
+              : 1.0;
+      visible += w2.x * w2.y * share;
       float last = params.misc.x;
       for (int i = 0; i < 3; ++i) {
         if (levels[i] >= 0.0) last = levels[i];
@@ -78,7 +86,9 @@ void main() {
   for (int i = 0; i < 3; ++i)
     shadowPoints[i] = worldAtViewDepth(params.camera, q, min(shadowDepths[i], obstacle));
 
-  vec4 a = texture(lightmapA, uv), b = texture(lightmapB, uv);
+  // The cubic's overshoot clamped: light and emission not below 0, alpha within [0, 1].
+  vec4 a = clamp(textureCatmullRom(lightmapA, uv), vec4(0.0), vec4(vec3(3.4e38), 1.0));
+  vec4 b = max(textureCatmullRom(lightmapB, uv), vec4(0.0));
   vec3 rightTopBack = a.rgb, leftBottomFront = b.rgb;
   float alpha = a.a, emissive = b.a;
   int flags = params.counts.z;
@@ -114,8 +124,9 @@ void main() {
     if (tile >= 0 && tile < push.atlas.y && push.atlas.x > 0) {
       visibility = 0.0;
       for (int k = 0; k < 3; ++k)
-        visibility += shadowVisibility(shadowAtlas, tile, push.atlas.x, lights[i].shadowMatrix,
-                                       shadowPoints[k], push.shadow.x, push.shadow.y) /
+        visibility += wideShadowVisibility(shadowAtlas, tile, push.atlas.x, lights[i].shadowMatrix,
+                                           shadowPoints[k], texelPerDepth * min(shadowDepths[k], obstacle),
+                                           push.shadow.x, push.shadow.y) /
                       3.0;
     }
     vec3 d = vec3(dot(toLight, right), dot(toLight, up), dot(toLight, forward));

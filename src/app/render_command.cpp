@@ -181,12 +181,7 @@ void run(const RenderOptions& o) {
                         {"first_pixels", f.first}});
       faultTotal += f.total();
       if (f.total() > 0)
-        std::fprintf(
-            stderr,
-            "sixway: frame %d has %llu non-finite, %llu negative and %llu pixels in dark dots (the first at "
-            "x %d, y %d)\n",
-            i, (unsigned long long)f.notFinite, (unsigned long long)f.negative,
-            (unsigned long long)f.darkDots, f.first.front()[0], f.first.front()[1]);
+        std::fprintf(stderr, "sixway: frame %d has %s\n", i, eval::describeFaults(f).c_str());
     }
     for (const std::string& note : frame.notes) std::fprintf(stderr, "sixway: note: %s\n", note.c_str());
 

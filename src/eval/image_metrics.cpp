@@ -67,6 +67,15 @@ ImageFaults imageFaults(const io::Image& frame) {
   return f;
 }
 
+std::string describeFaults(const ImageFaults& f) {
+  std::string text = std::to_string(f.notFinite) + " non-finite, " + std::to_string(f.negative) +
+                     " negative and " + std::to_string(f.darkDots) + " pixels in dark dots";
+  if (!f.first.empty())
+    text += " (the first at x " + std::to_string(f.first.front()[0]) + ", y " +
+            std::to_string(f.first.front()[1]) + ")";
+  return text;
+}
+
 double psnrDb(double mse) {
   return mse > 0 ? 10.0 * std::log10(1.0 / mse)
                  : (mse == 0 ? std::numeric_limits<double>::infinity()

@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
 #include "io/image.h"
@@ -46,6 +47,8 @@ struct ImageFaults {
   uint64_t total() const { return notFinite + negative + darkDots; }
 };
 ImageFaults imageFaults(const io::Image& frame);
+// "N non-finite, N negative and N pixels in dark dots (the first at x X, y Y)", for a frame with faults.
+std::string describeFaults(const ImageFaults& faults);
 
 // 10·log10(1 / mse): +∞ for 0, NaN for NaN.
 double psnrDb(double mse);

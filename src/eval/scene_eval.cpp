@@ -201,6 +201,7 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
   // noise.
   std::map<std::string, double> detailEnergy;
   double truthDetailEnergy = 0;
+  std::map<std::string, uint64_t> faultTotals;  // pixels no renderer should make (imageFaults), per method
   const auto started = std::chrono::steady_clock::now();
   for (int i = 0; i < s.frames; ++i) {
     const int index = warmup + i;
@@ -271,6 +272,12 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
       }
       imageTotal[method] += error;
       frame["image"][method] = error.json();
+      const ImageFaults faults = imageFaults(rendered[method].image);
+      faultTotals[method] += faults.total();
+      frame["pixel_faults"][method] = faults.total();
+      if (faults.total() > 0)
+        std::fprintf(stderr, "sixway eval: frame %d, %s: %s\n", i, method.c_str(),
+                     describeFaults(faults).c_str());
       framePsnrs[method].push_back(psnrDb(error.mseMasked()));
       frame["stages_ms"][method] = stageTimes(rendered[method].stages);
       frameStages[method].push_back(frame["stages_ms"][method]);
@@ -329,6 +336,7 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
     double sum = 0;
     for (double v : psnrs) sum += std::isfinite(v) ? v : 0.0;
     image["mean_frame_psnr_masked_db"] = number(finite ? sum / double(finite) : NAN);
+    image["pixel_faults"] = faultTotals[method];
     summary["image"][method] = image;
   }
   for (const auto& [method, stages] : frameStages) summary["median_ms"][method] = medianTimes(stages);

@@ -15,17 +15,26 @@ namespace {
 using glm::dvec3;
 constexpr double kPi = std::numbers::pi;
 
-// Texture lookup with linear filtering and clamp-to-edge addressing at normalised coordinates (u, v).
-std::array<double, 4> bilinear(const io::Image& image, double u, double v) {
+// Keys' cubic convolution kernel with a = −1/2 (Catmull-Rom), at distance x in texels.
+double cubicKernel(double x) {
+  constexpr double a = -0.5;
+  x = std::abs(x);
+  if (x <= 1.0) return (a + 2.0) * x * x * x - (a + 3.0) * x * x + 1.0;
+  if (x < 2.0) return a * x * x * x - 5.0 * a * x * x + 8.0 * a * x - 4.0 * a;
+  return 0.0;
+}
+
+// Texture lookup through the Catmull-Rom cubic with clamp-to-edge addressing at normalised coordinates (u,
+// v): the sum over the 4 × 4 texels around the point of the image times the kernel at each one's distance.
+std::array<double, 4> catmullRom(const io::Image& image, double u, double v) {
   const double x = u * image.width - 0.5, y = v * image.height - 0.5;
   const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
-  const double fx = x - x0, fy = y - y0;
   std::array<double, 4> out{};
-  for (int j = 0; j < 2; ++j)
-    for (int i = 0; i < 2; ++i) {
-      const int xi = std::clamp(x0 + i, 0, image.width - 1), yj = std::clamp(y0 + j, 0, image.height - 1);
-      const double w = (i ? fx : 1.0 - fx) * (j ? fy : 1.0 - fy);
-      for (int c = 0; c < 4; ++c) out[c] += w * image.at(xi, yj, c);
+  for (int yj = y0 - 1; yj <= y0 + 2; ++yj)
+    for (int xi = x0 - 1; xi <= x0 + 2; ++xi) {
+      const double w = cubicKernel(x - xi) * cubicKernel(y - yj);
+      const int cx = std::clamp(xi, 0, image.width - 1), cy = std::clamp(yj, 0, image.height - 1);
+      for (int c = 0; c < 4; ++c) out[c] += w * image.at(cx, cy, c);
     }
   return out;
 }
@@ -104,6 +113,28 @@ double cpuShadowVisibility(const io::Image& atlas, int tileSize, int tile, const
   return sum / (4.0 * radius * radius);
 }
 
+double cpuWideShadowVisibility(const io::Image& atlas, int tileSize, int tile, const glm::mat4& shadowMatrix,
+                               const dvec3& world, double halfWidth, double radius, double bias) {
+  const glm::dmat4 m(shadowMatrix);
+  const glm::dvec4 clip = m * glm::dvec4(world, 1.0);
+  if (clip.w <= 0.0) return 1.0;
+  const dvec3 ndc = dvec3(clip) / clip.w;
+  if (std::abs(ndc.x) > 1.0 || std::abs(ndc.y) > 1.0 || ndc.z < 0.0 || ndc.z > 1.0) return 1.0;
+  // Texels per metre across the beam: d(ndc.x)/d(world) = the x row over w, half a tile per unit of ndc.
+  const double spread = halfWidth * 0.5 * tileSize * glm::length(dvec3(m[0][0], m[1][0], m[2][0])) / clip.w;
+  if (spread <= radius) return cpuShadowVisibility(atlas, tileSize, tile, shadowMatrix, world, radius, bias);
+  const double px = (0.5 + 0.5 * ndc.x) * tileSize, py = (0.5 - 0.5 * ndc.y) * tileSize;
+  const double depth = ndc.z - bias;
+  double lit = 0.0;
+  for (double oy : {-0.75, -0.25, 0.25, 0.75})
+    for (double ox : {-0.75, -0.25, 0.25, 0.75}) {
+      const int ix = std::clamp(int(std::floor(px + ox * spread)), 0, tileSize - 1);
+      const int iy = std::clamp(int(std::floor(py + oy * spread)), 0, tileSize - 1);
+      lit += depth <= atlas.at(ix, tile * tileSize + iy, 0) ? 1.0 : 0.0;
+    }
+  return lit / 16.0;
+}
+
 namespace {
 
 struct PixelPoint {
@@ -172,22 +203,30 @@ std::array<double, 3> cpuShadowDepths(const io::Image& levels, glm::dvec2 uv, do
   return depths;
 }
 
-double cpuOpacityInFront(const std::array<double, 4>& levels, double total, double d, double thinDepth) {
+namespace {
+
+// The knots (depth, opacity) of the opacity curve; empty without smoke.
+std::vector<std::pair<double, double>> opacityKnots(const std::array<double, 4>& levels, double total,
+                                                    double thinDepth) {
   constexpr double kLevels[4] = {0.1, 0.35, 0.6, 0.85};
-  if (total <= 0.0) return 0.0;
+  if (total <= 0.0) return {};
   int reached = 0;
   while (reached < 4 && levels[reached] >= 0.0) ++reached;
-  if (reached == 0) return d >= thinDepth ? total : 0.0;
-  // Knots (depth, opacity) of the piecewise-linear curve.
+  if (reached == 0) return {{thinDepth, 0.0}, {thinDepth, total}};
   std::vector<std::pair<double, double>> knots;
-  if (reached >= 2) knots.push_back({levels[0] - 0.4 * (levels[1] - levels[0]), 0.0});
+  knots.push_back({reached >= 2 ? levels[0] - 0.4 * (levels[1] - levels[0]) : levels[0], 0.0});
   for (int k = 0; k < reached; ++k) knots.push_back({levels[k], kLevels[k]});
   const int last = reached - 1;
   const double slope =
       reached >= 2 ? (levels[last] - levels[last - 1]) / (kLevels[last] - kLevels[last - 1]) : 0.0;
   const double rest = std::max(total - kLevels[last], 0.0);
   knots.push_back({levels[last] + rest * slope, kLevels[last] + rest});
-  if (d <= knots.front().first) return 0.0;
+  return knots;
+}
+
+// The curve at d: 0 before the first knot, linear between knots, the last knot's opacity after it.
+double curveAt(const std::vector<std::pair<double, double>>& knots, double d) {
+  if (knots.empty() || d <= knots.front().first) return 0.0;
   for (size_t i = 1; i < knots.size(); ++i)
     if (d <= knots[i].first) {
       const auto [d0, o0] = knots[i - 1];
@@ -197,11 +236,30 @@ double cpuOpacityInFront(const std::array<double, 4>& levels, double total, doub
   return knots.back().second;
 }
 
+}  // namespace
+
+double cpuOpacityInFront(const std::array<double, 4>& levels, double total, double d, double thinDepth,
+                         double w) {
+  const auto knots = opacityKnots(levels, total, thinDepth);
+  if (knots.empty() || d + w <= knots.front().first) return 0.0;
+  if (d - w >= knots.back().first) return knots.back().second;  // also for d = ∞ (no obstacle)
+  // The mean over [d − w, d + w]: the curve is linear between consecutive breakpoints (the interval's ends
+  // and the knots inside), so each piece's mean is its value at the piece's midpoint.
+  std::vector<double> breaks = {d - w, d + w};
+  for (const auto& knot : knots)
+    if (knot.first > d - w && knot.first < d + w) breaks.push_back(knot.first);
+  std::sort(breaks.begin(), breaks.end());
+  double area = 0.0;
+  for (size_t i = 1; i < breaks.size(); ++i)
+    area += (breaks[i] - breaks[i - 1]) * curveAt(knots, 0.5 * (breaks[i - 1] + breaks[i]));
+  return area / (2.0 * w);
+}
+
 namespace {
 
 // The share of the smoke's opacity in front of view depth `obstacle` at `uv`: bilinear over the four nearest
 // texels of each one's own share (opacity in front / its total; 1 where it has no smoke).
-double visibleShare(const CpuShadingInputs& in, glm::dvec2 uv, double obstacle) {
+double visibleShare(const CpuShadingInputs& in, glm::dvec2 uv, double obstacle, double halfWidth) {
   const io::Image& levels = *in.opacityDepths;
   const double near = in.shellRange.near, far = in.shellRange.far, plane = 0.5 * (near + far);
   const glm::dvec2 g = uv * glm::dvec2(levels.width, levels.height) - 0.5;
@@ -219,7 +277,8 @@ double visibleShare(const CpuShadingInputs& in, glm::dvec2 uv, double obstacle) 
     const double fine = in.guide->at(tx, ty, 3);
     const double total = fine > 0.0 ? fine : in.guide->at(tx, ty, 1);
     const double own =
-        total > 0.0 ? std::min(cpuOpacityInFront(depths, total, obstacle, plane) / total, 1.0) : 1.0;
+        total > 0.0 ? std::min(cpuOpacityInFront(depths, total, obstacle, plane, halfWidth) / total, 1.0)
+                    : 1.0;
     share += (cx ? t.x : 1.0 - t.x) * (cy ? t.y : 1.0 - t.y) * own;
   }
   return share;
@@ -265,8 +324,10 @@ io::Image cpuSixWayShading(const CpuShadingInputs& in, const io::Image& backgrou
       // The share of the smoke drawn, and the depths where its lights' shadows are looked up.
       double visible = obstacle >= depth ? 1.0 : 0.0;
       std::array<double, 3> shadowDepths = {depth, depth, depth};
+      // A lightmap texel's width per unit of view depth: the filter width of the composite and the shadows.
+      const double texelPerDepth = (in.billboard.max.x - in.billboard.min.x) / in.lightmapA->width;
       if (in.opacityDepths) {
-        visible = visibleShare(in, p.uv, obstacle);
+        visible = visibleShare(in, p.uv, obstacle, texelPerDepth * std::min(obstacle, 1e6));
         shadowDepths = cpuShadowDepths(*in.opacityDepths, p.uv, in.shellRange.near, in.shellRange.far,
                                        0.5 * (double(in.shellRange.near) + in.shellRange.far));
       }
@@ -274,7 +335,12 @@ io::Image cpuSixWayShading(const CpuShadingInputs& in, const io::Image& backgrou
       depth = std::min(depth, obstacle);
       const dvec3 world = worldPoint(cam, p.q, depth);
 
-      const auto a = bilinear(*in.lightmapA, p.uv.x, p.uv.y), b = bilinear(*in.lightmapB, p.uv.x, p.uv.y);
+      // The cubic's overshoot clamped as the shader does: light and emission ≥ 0, alpha in [0, 1].
+      auto a = catmullRom(*in.lightmapA, p.uv.x, p.uv.y), b = catmullRom(*in.lightmapB, p.uv.x, p.uv.y);
+      for (int c = 0; c < 4; ++c) {
+        a[c] = c == 3 ? unitClamp(a[c]) : std::max(a[c], 0.0);
+        b[c] = std::max(b[c], 0.0);
+      }
       double positive[3] = {a[0], a[1], a[2]}, negative[3] = {b[0], b[1], b[2]};
       double alpha = a[3], emissive = b[3];
       if (controls.lightmapRemap && alpha > 0.0)
@@ -306,12 +372,13 @@ io::Image cpuSixWayShading(const CpuShadingInputs& in, const io::Image& backgrou
         double visibility = 1.0;
         if (light.shadowTile >= 0 && in.shadowAtlas) {
           visibility = 0.0;
-          for (double shadowDepth : shadowDepths)
-            visibility +=
-                cpuShadowVisibility(*in.shadowAtlas, in.tileSize, light.shadowTile, light.shadowMatrix,
-                                    worldPoint(cam, p.q, std::min(shadowDepth, obstacle)), in.pcfRadius,
-                                    in.depthBias) /
-                3.0;
+          for (double shadowDepth : shadowDepths) {
+            const double z = std::min(shadowDepth, obstacle);
+            visibility += cpuWideShadowVisibility(*in.shadowAtlas, in.tileSize, light.shadowTile,
+                                                  light.shadowMatrix, worldPoint(cam, p.q, z),
+                                                  texelPerDepth * z, in.pcfRadius, in.depthBias) /
+                          3.0;
+          }
         }
         double t = 0.0;
         for (int i = 0; i < 3; ++i) {

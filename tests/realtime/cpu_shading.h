@@ -1,8 +1,8 @@
 #pragma once
 // CPU oracle of the six-way billboard shading (docs/conventions.md, "Shading"; docs/real-time-rendering.md,
 // "Six-way shading"), in double precision and written from the documented formulas, pixel by pixel: the pixel
-// centre's point of the image plane, the lightmaps there (bilinear, clamp to edge), the shell point, the
-// share of the smoke's opacity in front of the obstacle (or the obstacle test at the shell), Unity's
+// centre's point of the image plane, the lightmaps there (Catmull-Rom cubic, clamp to edge), the shell point,
+// the share of the smoke's opacity in front of the obstacle (or the obstacle test at the shell), Unity's
 // remapping, each light with squared six-way weights and its PCF shadow, L1 ambient, the emissive gradient,
 // premultiplied-over the background.
 #include <array>
@@ -66,7 +66,14 @@ std::array<double, 3> cpuShadowDepths(const io::Image& levels, glm::dvec2 uv, do
 // docs/real-time-rendering.md, "Smoke and obstacles" states it: piecewise linear through the reached levels,
 // ramping up from 0 before the first (over 0.4 of the depth between the first two) and on to `total` after
 // the last at the slope of the interval before it; a ray reaching no level holds all of `total` at
-// `thinDepth`.
-double cpuOpacityInFront(const std::array<double, 4>& levels, double total, double d, double thinDepth);
+// `thinDepth`; averaged over [d − w, d + w] (w > 0).
+double cpuOpacityInFront(const std::array<double, 4>& levels, double total, double d, double thinDepth,
+                         double w);
+
+// The lit fraction of `world` averaged over a square `halfWidth` metres either side of it across the light's
+// beam (4 × 4 taps at ±0.25 and ±0.75 of the half-width, the texel under each), or cpuShadowVisibility with
+// `radius` where that square spans fewer texels.
+double cpuWideShadowVisibility(const io::Image& atlas, int tileSize, int tile, const glm::mat4& shadowMatrix,
+                               const glm::dvec3& world, double halfWidth, double radius, double bias);
 
 }  // namespace sixway::test

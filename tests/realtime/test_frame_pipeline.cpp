@@ -279,7 +279,7 @@ TEST_F(FramePipelineTest, AUsersViewRendersLikeTheSceneViewItCopies) {
 
 // A sphere beside the blob, the light from its side: each smoke pixel's light is the unshadowed one times the
 // share of its three shadow points (where the opacity reaches 0.1, 0.35, 0.6: cpuShadowDepths) whose ray
-// toward the light misses the sphere.
+// toward the light misses the sphere, where each point's shadow lookup lies wholly on one side.
 TEST_F(FramePipelineTest, SphereShadowsTheSmokesShadowPoints) {
   // A sphere to the right of the blob, in front of its shell; the light comes from the right (+x).
   nlohmann::json j = sceneJson({1.0f, 0.0f, 0.0f}, 1);
@@ -307,8 +307,10 @@ TEST_F(FramePipelineTest, SphereShadowsTheSmokesShadowPoints) {
     return b * b - c >= 0.0f && (-b + std::sqrt(std::max(0.0f, b * b - c))) > 0.0f;
   };
   // Shadow points closer than this to the shadow's boundary are not judged: the sphere's facets lie up to
-  // 0.0024 r inside it and the PCF kernel spans 3 shadow-map texels (under 1 mm here).
+  // 0.0024 r inside it, and the shadow is looked up over a square a lightmap texel wide either side of the
+  // point across the beam (wideShadowVisibility: taps up to 0.75 √2 of that from the point).
   const float margin = 0.002f;
+  const double texelPerDepth = (billboard.max.x - billboard.min.x) / scene.render.lightmapSize;
   int partly = 0, lit = 0;
   for (int y = 0; y < shadowed.height; ++y)
     for (int x = 0; x < shadowed.width; ++x) {
@@ -327,7 +329,8 @@ TEST_F(FramePipelineTest, SphereShadowsTheSmokesShadowPoints) {
         // Distance of the shadow ray (toward +x) from the sphere's centre, against the radius.
         const glm::vec3 oc = camera.position + float(depth) * ray - centre;
         const float along = -oc.x, distance = std::sqrt(oc.y * oc.y + oc.z * oc.z);
-        boundary = boundary || std::abs(distance - radius) < margin;
+        const double reach = 0.75 * std::sqrt(2.0) * texelPerDepth * depth;
+        boundary = boundary || std::abs(distance - radius) < margin + reach;
         open += !(along > 0.0f && distance < radius);
       }
       if (boundary) continue;
