@@ -17,11 +17,12 @@ struct LightGrid {
   ivec4 nodes;   // xyz: nodes along u, along v, and away from the light
 };
 
-// A uniform block for the baker (lavapipe specializes its shaders on the values their branches test, which
-// are fixed per bake setting: 15% faster), a read-only storage buffer for the guide march, which defines
-// BAKE_PARAMS_IN_STORAGE: its camera changes every frame, and a specialized shader would be compiled again each
-// time (render/gpu_layout.h). light_depth.comp keeps the uniform block in the guide too: the per-frame values it
-// reads (lights[]) are indexed by a push constant, so they are not specialized on. The layouts agree: every
+// A read-only storage buffer for the marches, which define BAKE_PARAMS_IN_STORAGE (the guide's and the baker's
+// view march): lavapipe specializes a shader on the uniform-block values its branches test and, for the view
+// march in a process that runs other passes between bakes, compiled a fresh copy at every dispatch and kept it
+// until the pipeline was destroyed (550 KB of host memory per bake; `cli.long_run_reference`); the guide's
+// camera changes every frame anyway (render/gpu_layout.h). light_depth.comp keeps the uniform block: the values
+// it reads (lights[]) are indexed by a push constant, so they are not specialized on. The layouts agree: every
 // member is 16 bytes wide.
 #ifdef BAKE_PARAMS_IN_STORAGE
 layout(std430, binding = 0) readonly buffer BakeParams {

@@ -10,6 +10,7 @@
 // the exact integral over the slab of the emitted radiance intensity · density · ramp. Steps inside empty
 // bricks (majorant.comp) are skipped: their density is exactly zero, so the sum is the same.
 #extension GL_GOOGLE_include_directive : require
+#define BAKE_PARAMS_IN_STORAGE
 #include "bake_params.glsl"
 #include "phase.glsl"
 

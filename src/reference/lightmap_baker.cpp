@@ -58,14 +58,15 @@ bool fits(const std::array<LightGrid, 6>& grids, const gpu::Context& context) {
 
 LightmapBaker::LightmapBaker(const gpu::Context& context, const gpu::PipelineCache& cache)
     : context_(&context),
-      params_(context, sizeof(layout::BakeParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+      params_(context, sizeof(layout::BakeParams),
+              VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
               gpu::MemoryKind::HostUpload, "bake parameters"),
       sequence_(context) {
   using gpu::BindingType;
   majorantPass_ = std::make_unique<BrickMajorantPass>(context, cache);
   depthPass_ = lightDepthPipeline(context, cache);
-  std::vector<BindingType> march(11, BindingType::StorageBuffer);
-  march[0] = BindingType::UniformBuffer;
+  // Its parameters too, as a storage buffer: bake_params.glsl.
+  const std::vector<BindingType> march(11, BindingType::StorageBuffer);
   marchPass_ = std::make_unique<gpu::Pipeline>(
       context, cache, gpu::ComputePipelineDesc{"render/sixway_march.comp", march, 0});
 }

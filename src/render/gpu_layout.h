@@ -4,9 +4,10 @@
 // lavapipe (Mesa 22) specializes a shader on the uniform-block values its branches and loop bounds test and
 // compiles it again, about 0.5 s on the 2-core machine, whenever they change. So the blocks whose values
 // change every frame (the six-way shading's, the guide march's, the motion field's: the camera) are read-only
-// storage buffers, which it does not specialize on; the baker's and the path tracer's, fixed per setting,
-// stay uniform blocks, on which the specialization makes them faster (docs/benchmarks.md, "Shaders compiled
-// again every frame").
+// storage buffers, which it does not specialize on, and so is the baker's view march's (it kept a compiled
+// copy per dispatch: shaders/render/bake_params.glsl); the baker's light depths and the path tracer's, fixed
+// per setting, stay uniform blocks, on which the specialization makes them faster (docs/benchmarks.md,
+// "Shaders compiled again every frame").
 #include <glm/vec4.hpp>
 
 #include "io/scene.h"
