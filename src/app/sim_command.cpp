@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "app/device_limits.h"
 #include "app/options.h"
@@ -33,6 +34,13 @@ struct SimOptions {
 
 nlohmann::json vec(glm::vec3 v) {
   return {v.x, v.y, v.z};
+}
+
+// The file of frame 7 in --vdb-out: "<scene name>_0007.vdb", whatever the name's length.
+std::string vdbFrameName(const std::string& sceneName, int frame) {
+  std::string number = std::to_string(frame);
+  if (number.size() < 4) number.insert(0, 4 - number.size(), '0');
+  return sceneName + "_" + number + ".vdb";
 }
 
 // Outputs are checked before any work: an existing directory or report needs --force.
@@ -103,9 +111,8 @@ void run(const SimOptions& o) {
       std::fflush(stdout);
       if (!o.vdbOut.empty()) {
         auto [density, temperature] = simulation.smokeGrids();
-        char name[64];
-        std::snprintf(name, sizeof(name), "%s_%04d.vdb", scene.name.c_str(), frame);
-        io::writeVdb(o.vdbOut / name, {{"density", &density}, {"temperature", &temperature}});
+        io::writeVdb(o.vdbOut / vdbFrameName(scene.name, frame),
+                     {{"density", &density}, {"temperature", &temperature}});
       }
     }
   } catch (const sim::WatchdogError& e) {

@@ -417,7 +417,8 @@ DatasetConfig parseDatasetConfig(const nlohmann::json& j, const fs::path& file) 
   c.targets = parseTargets(r);
   r.object("guide", [&](io::JsonReader& g) {
     c.guideAlphaStepVoxels =
-        g.optional<float>("alpha_step_voxels", base.render.guideAlphaStepVoxels, io::inRange(0, 64));
+        g.optional<float>("alpha_step_voxels", base.render.guideAlphaStepVoxels,
+                          io::zeroOrInRange(io::kMinGuideStepVoxels, io::kMaxGuideStepVoxels));
     c.guideEmission = g.optional<bool>("emission", false);
     if (c.guideEmission && c.guideAlphaStepVoxels <= 0)
       g.fail("emission", "comes from the fine march: needs alpha_step_voxels > 0");

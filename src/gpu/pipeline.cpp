@@ -1,10 +1,14 @@
 #include "gpu/pipeline.h"
 
+#include <fcntl.h>
 #include <sixway/shader_registry.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <bit>
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <initializer_list>
 #include <iterator>
@@ -85,10 +89,64 @@ void checkSpecConstants(const SpecConstants& spec, std::initializer_list<std::st
   }
 }
 
-std::vector<char> readWholeFile(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return {};
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+// The largest pipeline cache read: a driver's cache of every sixway pipeline is a few MiB.
+constexpr off_t kMaxPipelineCacheBytes = off_t(256) << 20;
+
+void notePipelineCache(const std::filesystem::path& file, const std::string& problem) {
+  std::fprintf(stderr, "sixway: note: pipeline cache %s %s; starting without it\n", file.c_str(),
+               problem.c_str());
+}
+
+// What is wrong with reading the open file `fd` as a cache ("" when nothing is).
+std::string unreadableCache(int fd, off_t& size) {
+  struct stat info {};
+  if (::fstat(fd, &info) != 0) return std::string("cannot be examined: ") + std::strerror(errno);
+  if (!S_ISREG(info.st_mode))
+    return S_ISDIR(info.st_mode) ? "is a directory" : "is not a regular file (a FIFO, socket or device)";
+  if (info.st_size > kMaxPipelineCacheBytes)
+    return "holds " + std::to_string(info.st_size >> 20) + " MiB, more than " +
+           std::to_string(kMaxPipelineCacheBytes >> 20) + " MiB";
+  size = info.st_size;
+  return "";
+}
+
+// Reads up to `size` bytes of `fd`; fewer when the file shrank meanwhile.
+std::vector<char> readUpTo(int fd, off_t size) {
+  std::vector<char> data(static_cast<std::size_t>(size));
+  std::size_t done = 0;
+  while (done < data.size()) {
+    const ssize_t got = ::read(fd, data.data() + done, data.size() - done);
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0) break;
+    done += std::size_t(got);
+  }
+  data.resize(done);
+  return data;
+}
+
+// The cache file's bytes; empty when there is none. Anything but a regular file of at most
+// kMaxPipelineCacheBytes (a FIFO, which would block, a directory, a device that never ends) is left unread
+// with one note: a bad cache costs the compile time it would have saved, never the command.
+std::vector<char> readCacheFile(const std::filesystem::path& file) {
+  // O_NONBLOCK: opening a FIFO does not wait for a writer; fstat then tells what was opened.
+  const int fd = ::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    if (errno != ENOENT) notePipelineCache(file, std::string("cannot be opened: ") + std::strerror(errno));
+    return {};
+  }
+  off_t size = 0;
+  const std::string problem = unreadableCache(fd, size);
+  std::vector<char> data = problem.empty() ? readUpTo(fd, size) : std::vector<char>{};
+  ::close(fd);
+  if (!problem.empty()) notePipelineCache(file, problem);
+  return data;
+}
+
+// Whether saving may put a file at `file`: nothing there yet, or a regular file (through links).
+bool replaceable(const std::filesystem::path& file) {
+  std::error_code error;
+  const std::filesystem::file_status status = std::filesystem::status(file, error);
+  return status.type() == std::filesystem::file_type::not_found || std::filesystem::is_regular_file(status);
 }
 
 }  // namespace
@@ -138,7 +196,7 @@ std::filesystem::path defaultPipelineCacheFile(const Context& context) {
 PipelineCache::PipelineCache(const Context& context, std::filesystem::path file)
     : context_(&context), file_(std::move(file)) {
   // The driver checks the header (vendor, device, cache UUID) and ignores data that does not match.
-  std::vector<char> data = file_.empty() ? std::vector<char>{} : readWholeFile(file_);
+  std::vector<char> data = file_.empty() ? std::vector<char>{} : readCacheFile(file_);
   VkPipelineCacheCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
   info.initialDataSize = data.size();
   info.pInitialData = data.empty() ? nullptr : data.data();
@@ -159,7 +217,8 @@ PipelineCache::~PipelineCache() {
 }
 
 void PipelineCache::save() const {
-  if (file_.empty()) return;
+  // A directory, FIFO or device where the cache belongs stays as it is (its note came when it was read).
+  if (file_.empty() || !replaceable(file_)) return;
   size_t size = 0;
   SIXWAY_VK(vkGetPipelineCacheData(context_->device(), cache_, &size, nullptr));
   std::vector<char> data(size);

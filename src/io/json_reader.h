@@ -144,6 +144,14 @@ inline auto nonZero() {
   };
 }
 
+// 0 (a feature turned off) or a value in [lo, hi].
+inline auto zeroOrInRange(double lo, double hi) {
+  return [lo, hi](float v) -> std::string {
+    const bool ok = v == 0.0f || (v >= static_cast<float>(lo) && v <= static_cast<float>(hi));
+    return ok ? "" : detail::mustBe(v, "0 or in [" + show(lo) + ", " + show(hi) + "]");
+  };
+}
+
 template <class A, class B>
 auto both(A a, B b) {
   return [a, b](const auto& v) -> std::string {

@@ -35,7 +35,6 @@ constexpr std::int64_t kMaxSmokeCells = 1024LL * 1024 * 1024;
 // The largest light, emission, ambient or background value: colour × intensity stays below 1e8, so that no
 // product along a frame (phase function, emission ramp, exposure) overflows a float into inf/NaN pixels.
 constexpr double kMaxRadiometric = 1e4;
-constexpr double kMaxWorldMetres = 1e6;
 
 const Choices<BoundaryType> kBoundaryTypes = {{"no_slip", BoundaryType::NoSlip},
                                               {"free_slip", BoundaryType::FreeSlip},
@@ -105,11 +104,19 @@ std::string showCells(const glm::ivec3& size) {
   return show(size.x) + "×" + show(size.y) + "×" + show(size.z);
 }
 
+// The lattice's box, grid.size × grid.cell_size, within kMaxSceneMetres on every axis.
+void requireBoxWithinScene(JsonReader& r, const Grid& g) {
+  const glm::vec3 box = glm::vec3(g.size) * g.cellSize;  // inf beyond a float: refused all the same
+  if (std::max({box.x, box.y, box.z}) > kMaxSceneMetres)
+    r.fail("cell_size", showCells(g.size) + " cells of " + show(g.cellSize) + " m make a box of more than " +
+                            show(kMaxSceneMetres) + " m along an axis; reduce grid.cell_size");
+}
+
 Grid parseGrid(JsonReader& r) {
   Grid g;
   g.size = r.required<glm::ivec3>("size", atLeast(1));
   g.cellSize = r.required<float>("cell_size", positive());
-  g.origin = r.optional<glm::vec3>("origin", g.origin);
+  g.origin = r.optional<glm::vec3>("origin", g.origin, inRange(-kMaxSceneMetres, kMaxSceneMetres));
   g.smokeUpres = r.optional<int>("smoke_upres", g.smokeUpres, inRange(1, 4));
 
   for (int axis = 0; axis < 3; ++axis)
@@ -126,6 +133,7 @@ Grid parseGrid(JsonReader& r) {
   if (smokeCells > kMaxSmokeCells)
     r.fail("smoke_upres", "the smoke grid would have " + std::to_string(smokeCells) +
                               " cells, more than 1024³; reduce grid.smoke_upres or grid.size");
+  requireBoxWithinScene(r, g);
   return g;
 }
 
@@ -347,8 +355,8 @@ Camera parseCamera(JsonReader& r) {
   Camera c;
   // Beyond a million metres a float cannot resolve a smoke volume of metres, and |target - position|²
   // overflows (a camera at 1e20 m was reported as "up must not be parallel").
-  c.position = r.required<glm::vec3>("position", inRange(-kMaxWorldMetres, kMaxWorldMetres));
-  c.target = r.required<glm::vec3>("target", inRange(-kMaxWorldMetres, kMaxWorldMetres));
+  c.position = r.required<glm::vec3>("position", inRange(-kMaxSceneMetres, kMaxSceneMetres));
+  c.target = r.required<glm::vec3>("target", inRange(-kMaxSceneMetres, kMaxSceneMetres));
   if (glm::distance(c.position, c.target) < 1e-6f)
     r.fail("target", "must differ from camera.position (both are " + show(c.position) + ")");
   c.up = direction(r, "up", c.up);
@@ -424,9 +432,10 @@ RenderSettings parseRender(JsonReader& r) {
   s.width = r.optional<int>("width", s.width, inRange(16, 8192));
   s.height = r.optional<int>("height", s.height, inRange(16, 8192));
   s.lightmapSize = r.optional<int>("lightmap_size", s.lightmapSize, both(inRange(16, 4096), multipleOf(16)));
-  s.guideStepVoxels = r.optional<float>("guide_step_voxels", s.guideStepVoxels, positive());
-  s.guideAlphaStepVoxels =
-      r.optional<float>("guide_alpha_step_voxels", s.guideAlphaStepVoxels, inRange(0, 64));
+  s.guideStepVoxels = r.optional<float>("guide_step_voxels", s.guideStepVoxels,
+                                        inRange(kMinGuideStepVoxels, kMaxGuideStepVoxels));
+  s.guideAlphaStepVoxels = r.optional<float>("guide_alpha_step_voxels", s.guideAlphaStepVoxels,
+                                             zeroOrInRange(kMinGuideStepVoxels, kMaxGuideStepVoxels));
   if (const auto names = r.maybe<std::vector<std::string>>("guide_lights")) {
     if (names->empty()) r.fail("guide_lights", "needs at least one light");
     s.guideLights.clear();
@@ -504,10 +513,11 @@ VdbSource parseVdb(JsonReader& r, const fs::path& baseDir) {
   v.densityScale = r.optional<float>("density_scale", v.densityScale, positive());
   v.framesPerFile = r.optional<int>("frames_per_file", v.framesPerFile, inRange(1, 1000));
   v.voxels = r.optional<int>("voxels", v.voxels, inRange(8, kMaxVdbVoxels));
-  v.scale = r.optional<float>("scale", v.scale, positive());
-  v.translate = r.optional<glm::vec3>("translate", v.translate);
+  v.scale = r.optional<float>("scale", v.scale, inRange(1e-6, kMaxSceneMetres));
+  v.translate = r.optional<glm::vec3>("translate", v.translate, inRange(-kMaxSceneMetres, kMaxSceneMetres));
   v.up = r.choice("up", kVdbUps, v.up);
-  const auto boxMin = r.maybe<glm::vec3>("box_min"), boxMax = r.maybe<glm::vec3>("box_max");
+  const auto inScene = inRange(-kMaxSceneMetres, kMaxSceneMetres);
+  const auto boxMin = r.maybe<glm::vec3>("box_min", inScene), boxMax = r.maybe<glm::vec3>("box_max", inScene);
   if (boxMin.has_value() != boxMax.has_value())
     r.fail(boxMin ? "box_max" : "box_min", "box_min and box_max go together");
   if (boxMin) {

@@ -28,6 +28,16 @@ inline constexpr std::size_t kMaxSceneLights = 8;      // shaders/render/path_tr
 inline constexpr std::size_t kMaxRampKeys = 16;        // shaders/common/emission.glsl
 inline constexpr int kMaxStepsPerFrame = 10000;        // LBM steps in one frame
 
+// The farthest a scene's positions reach from the origin and the longest side of a smoke box, in metres:
+// beyond them a box's diagonal overflows a float (the renderers' light grids then have no size) long before
+// any smoke scene needs them.
+inline constexpr double kMaxSceneMetres = 1e6;
+// The guide's ray-march steps (render.guide_step_voxels, render.guide_alpha_step_voxels, a network's
+// guide_alpha_step_voxels), in smoke cells: finer, a ray has too many steps to march (and its float position
+// stops advancing); coarser, the steps jump over the smoke.
+inline constexpr double kMinGuideStepVoxels = 0.05;
+inline constexpr double kMaxGuideStepVoxels = 16;
+
 // The LBM lattice. Cell (i,j,k) has its centre at origin + (i+0.5, j+0.5, k+0.5)·cellSize.
 struct Grid {
   glm::ivec3 size{0};

@@ -97,12 +97,10 @@ io::Image LightmapBaker::bake(const Volume& volume, const io::Smoke& smoke, cons
   const float cell = volume.grid.cellSize;
   const float maxStep = settings.stepCells * cell;
   // Widen the light grids' spacing until they fit the device.
-  float spacing = settings.lightSpacingCells * cell;
+  const float spacing = widenedSpacing(settings.lightSpacingCells * cell, [&](float s) {
+    return fits(sixLightGrids(camera, volume.grid, s, maxStep), *context_);
+  });
   grids_ = sixLightGrids(camera, volume.grid, spacing, maxStep);
-  while (!fits(grids_, *context_)) {
-    spacing *= 1.25f;
-    grids_ = sixLightGrids(camera, volume.grid, spacing, maxStep);
-  }
   const uint64_t plane = uint64_t(settings.width) * uint64_t(settings.height);
   ensureCapacity(volume.grid, kSixWayChannels * plane);
   const glm::ivec3 bricks = (volume.grid.size + kBrickCells - 1) / kBrickCells;

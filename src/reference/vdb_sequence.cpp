@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "io/error.h"
+#include "io/json_reader.h"
 #include "io/vdb.h"
 
 namespace sixway::render {
@@ -44,6 +45,31 @@ VolumeGrid inScene(const VolumeGrid& file, const io::VdbSource& source) {
           source.translate + source.scale * glm::min(a, b), source.scale * file.cellSize};
 }
 
+// How far a grid's world box reaches from the scene's origin once scaled and moved (the up turn keeps it), in
+// metres: inf when it does not fit a float.
+double sceneReach(const io::VdbGridInfo& grid, const io::VdbSource& source) {
+  double reach = 0;
+  for (const glm::vec3& corner : {grid.worldMin, grid.worldMax})
+    for (int axis = 0; axis < 3; ++axis) {
+      const double p = double(source.translate[axis]) + double(source.scale) * double(corner[axis]);
+      reach = std::max(reach, std::isfinite(p) ? std::abs(p) : std::numeric_limits<double>::infinity());
+    }
+  return reach;
+}
+
+// A grid that would stretch the lattice beyond io::kMaxSceneMetres (a float box whose diagonal overflows,
+// light grids without a size) is refused, naming the file and what placed it there.
+void requireWithinScene(const std::filesystem::path& file, const io::VdbGridInfo& grid,
+                        const io::VdbSource& source) {
+  const double reach = sceneReach(grid, source);
+  if (reach <= io::kMaxSceneMetres) return;
+  throw io::InputError(file.string(),
+                       "grid '" + grid.name + "' reaches " + io::show(float(reach)) +
+                           " m from the origin (voxel size " + io::show(grid.voxelSize.x) + " × vdb.scale " +
+                           io::show(source.scale) + "), more than " + io::show(io::kMaxSceneMetres) +
+                           " m; check the file's voxel size and vdb.scale, or give vdb.box_min/box_max");
+}
+
 // The playback lattice: over the scene's box when it gives one, else over the union of the world boxes of
 // the grids read (sized in the file's own space, so that turning a file moves its cells exactly).
 VolumeGrid playbackLattice(const io::VdbSource& source, std::vector<std::string>& notes) {
@@ -63,6 +89,7 @@ VolumeGrid playbackLattice(const io::VdbSource& source, std::vector<std::string>
       const bool temperature = source.temperatureGrid && grid.name == *source.temperatureGrid;
       if (!(density || temperature) || !usable(grid)) continue;
       anyTemperature = anyTemperature || temperature;
+      if (!source.box) requireWithinScene(file, grid, source);
       if (grid.voxelSize.x != grid.voxelSize.y || grid.voxelSize.y != grid.voxelSize.z) {
         const std::string note = file.filename().string() + ": grid '" + grid.name +
                                  "' has non-uniform voxels; resampled onto cubic cells";

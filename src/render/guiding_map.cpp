@@ -189,13 +189,14 @@ void GuidingMap::record(gpu::Sequence& sequence, const Volume& volume, const gpu
   grid_ = volume.grid;
   temperature_ = volume.temperature != nullptr;
   const float diagonal = glm::length(grid_.bounds().size());
-  spacing_ = settings_.shadowSpacingCells * grid_.cellSize;
-  const auto nodesFor = [&](float spacing) { return int(std::ceil(diagonal / spacing)) + 2; };
+  const auto nodesFor = [&](float spacing) { return lightGridAxisNodes(std::ceil(diagonal / spacing)) + 2; };
   const auto bytesFor = [](int nodes) { return uint64_t(nodes) * uint64_t(nodes) * uint64_t(nodes) * 4; };
-  while (bytesFor(nodesFor(spacing_)) > context_->limits().maxStorageBufferRange ||
-         bytesFor(nodesFor(spacing_)) * std::max<size_t>(1, gridLights_.size()) >
-             context_->capabilities().deviceLocalHeapBytes / 8)
-    spacing_ *= 1.25f;
+  spacing_ = widenedSpacing(settings_.shadowSpacingCells * grid_.cellSize, [&](float spacing) {
+    const uint64_t bytes = bytesFor(nodesFor(spacing));
+    return bytes <= context_->limits().maxStorageBufferRange &&
+           bytes * std::max<size_t>(1, gridLights_.size()) <=
+               context_->capabilities().deviceLocalHeapBytes / 8;
+  });
   gridNodes_ = nodesFor(spacing_);
   depths_.clear();
   const uint64_t depthBytes = gridLights_.empty() ? sizeof(float) : bytesFor(gridNodes_);

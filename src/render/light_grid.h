@@ -4,6 +4,7 @@
 // integrated once, front to back, instead of marching from every voxel separately, and the result is
 // the same quadrature (see docs/reference-rendering.md). The GPU side is shaders/render/bake_params.glsl.
 #include <cstdint>
+#include <functional>
 #include <glm/vec3.hpp>
 #include <memory>
 
@@ -33,9 +34,24 @@ struct LightGrid {
   }
 };
 
+// The most nodes a light grid has along one axis: far more than a 2048-cell lattice's diagonal at a tenth of
+// a cell, few enough that a grid's node count (and bytes) fits 64 bits.
+inline constexpr int kMaxLightGridAxisNodes = 1 << 20;
+
+// `nodes`, a count of nodes along one axis computed in floats, as an int. A box beyond a float's range (its
+// size or diagonal inf) or a spacing of nothing give a count that is not finite or beyond
+// kMaxLightGridAxisNodes: std::invalid_argument, rather than a wrapped int that no widening can shrink.
+int lightGridAxisNodes(float nodes);
+
+// The first spacing of `spacing`, 1.25·spacing, 1.25²·spacing, ... at which `fits` holds. Throws
+// std::invalid_argument when `spacing` is not a finite positive number or nothing fits before the grids are a
+// few nodes a side (by then any device holds them: a fit that never comes is a bug, not a long wait).
+float widenedSpacing(float spacing, const std::function<bool(float)>& fits);
+
 // The grid that covers the volume's box with columns `spacing` apart and nodes `spacing` apart along the
 // light, shifted so that the projection of a cell centre falls on a node: along an axis of the volume, the
 // optical depth is piecewise smooth between cell centres, and nodes on its kinks interpolate it far better.
+// Throws std::invalid_argument for a box or spacing that gives no finite grid (lightGridAxisNodes).
 LightGrid lightGridFor(const VolumeGrid& volume, glm::vec3 toLight, glm::vec3 u, glm::vec3 v, float spacing,
                        float maxStep);
 

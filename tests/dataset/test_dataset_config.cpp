@@ -232,8 +232,8 @@ TEST_F(DatasetConfigTest, OtherMistakesAreErrors) {
                                             "multiple_scattering.downsample: must be 1, 2, 4 or 8 (got 3)"));
   j = validConfig();
   j["guide"] = {{"alpha_step_voxels", -0.5}};
-  EXPECT_THAT(error(j),
-              namesFileAndProblem(dir_ / "config.json", "guide.alpha_step_voxels: must be in [0, 64]"));
+  EXPECT_THAT(error(j), namesFileAndProblem(dir_ / "config.json",
+                                            "guide.alpha_step_voxels: must be 0 or in [0.05, 16]"));
   j["guide"] = {{"alpha_step", 0.5}};
   EXPECT_THAT(error(j), namesFileAndProblem(dir_ / "config.json", "guide.alpha_step: unknown key"));
 }

@@ -147,8 +147,8 @@ TEST(SceneParse, SparseSmokeSettings) {
                              "minimal.json", ".");
   EXPECT_FALSE(s.smoke.sparse);
   EXPECT_EQ(s.smoke.sparseThreshold, 0.0f);
-  EXPECT_TRUE(rejected(minimalWith(R"({"smoke": {"sparse_threshold": -1e-6}})"_json), "smoke.sparse_threshold",
-                       "must be"));
+  EXPECT_TRUE(rejected(minimalWith(R"({"smoke": {"sparse_threshold": -1e-6}})"_json),
+                       "smoke.sparse_threshold", "must be"));
   EXPECT_TRUE(rejected(minimalWith(R"({"smoke": {"sparse": "yes"}})"_json), "smoke.sparse", ""));
 }
 
@@ -646,7 +646,49 @@ TEST(SceneParse, DuplicateGuideLight) {
 
 TEST(SceneParse, GuideAlphaStepOutOfRange) {
   EXPECT_TRUE(rejected(minimalWith(R"({"render": {"guide_alpha_step_voxels": -1}})"_json),
-                       "render.guide_alpha_step_voxels", "must be in [0, 64]"));
+                       "render.guide_alpha_step_voxels", "must be 0 or in [0.05, 16] (got -1)"));
+}
+
+// A step of a billionth of a cell never advances a float ray; one of 1e30 cells steps past the smoke: either
+// gave an empty guide, and the smoke vanished.
+TEST(SceneParse, GuideStepsWithinWhatAMarchCanTake) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"render": {"guide_step_voxels": 1e-9}})"_json),
+                       "render.guide_step_voxels", "must be in [0.05, 16] (got 1e-09)"));
+  EXPECT_TRUE(rejected(minimalWith(R"({"render": {"guide_step_voxels": 1e30}})"_json),
+                       "render.guide_step_voxels", "must be in [0.05, 16] (got 1e+30)"));
+  EXPECT_TRUE(rejected(minimalWith(R"({"render": {"guide_alpha_step_voxels": 1e-9}})"_json),
+                       "render.guide_alpha_step_voxels", "must be 0 or in [0.05, 16] (got 1e-09)"));
+  const Scene fine = parseScene(
+      minimalWith(R"({"render": {"guide_step_voxels": 0.05, "guide_alpha_step_voxels": 16}})"_json),
+      "ok.json", ".");
+  EXPECT_FLOAT_EQ(fine.render.guideStepVoxels, 0.05f);
+  EXPECT_FLOAT_EQ(fine.render.guideAlphaStepVoxels, 16.0f);
+  EXPECT_EQ(parseScene(minimalWith(R"({"render": {"guide_alpha_step_voxels": 0}})"_json), "ok.json", ".")
+                .render.guideAlphaStepVoxels,
+            0.0f);
+}
+
+// A box beyond a float's range made the renderers' light-grid loops spin forever (the diagonal was inf): the
+// lattice's box and every placement are bounded by kMaxSceneMetres.
+TEST(SceneParse, BoxesWithinTheScenesReach) {
+  EXPECT_TRUE(rejected(minimalWith(R"({"grid": {"cell_size": 1e30}})"_json), "grid.cell_size",
+                       "16×32×16 cells of 1e+30 m make a box of more than 1000000 m along an axis; reduce "
+                       "grid.cell_size"));
+  EXPECT_TRUE(rejected(minimalWith(R"({"grid": {"cell_size": 62500}})"_json), "grid.cell_size",
+                       "more than 1000000 m along an axis"));
+  EXPECT_NO_THROW(parseScene(minimalWith(R"({"grid": {"cell_size": 31250}})"_json), "ok.json", "."));
+  EXPECT_TRUE(rejected(minimalWith(R"({"grid": {"origin": [0, -1e30, 0]}})"_json), "grid.origin",
+                       "every component must be in [-1000000, 1000000]"));
+  TempDir dir;
+  const json vdb = vdbScene(dir.path());
+  for (const char* patch : {R"({"vdb": {"scale": 1e30}})", R"({"vdb": {"translate": [1e30, 0, 0]}})",
+                            R"({"vdb": {"box_min": [-1e30, 0, 0], "box_max": [1, 1, 1]}})"}) {
+    json j = vdb;
+    j.merge_patch(json::parse(patch));
+    EXPECT_THAT(errorOf([&] { parseScene(j, "scenes/bad.json", dir.path()); }),
+                ::testing::MatchesRegex("scenes/bad.json: vdb\\.[a-z_]+: .*must be in .*1000000.*"))
+        << patch;
+  }
 }
 
 TEST(SceneParse, ZeroDirection) {

@@ -131,7 +131,15 @@ TEST_F(MalformedWeights, FourGuideChannelsNeedTheFineAlphaStep) {
   const std::string negative = errorAfter([this](std::vector<io::Tensor>&, nlohmann::json& graph) {
     node(graph, "input")["guide_alpha_step_voxels"] = -1;
   });
-  EXPECT_THAT(negative, namesFileAndProblem(path(), "guide_alpha_step_voxels: must be in [0, 64]"));
+  EXPECT_THAT(negative,
+              namesFileAndProblem(path(), "guide_alpha_step_voxels: must be 0 or in [0.05, 16] (got -1)"));
+  // A billionth of a cell never advances the fine march's float ray: an empty guide, the smoke gone.
+  const std::string tiny = errorAfter([this](std::vector<io::Tensor>&, nlohmann::json& graph) {
+    node(graph, "input")["guide_channels"] = 4;
+    node(graph, "input")["guide_alpha_step_voxels"] = 1e-9;
+  });
+  EXPECT_THAT(tiny,
+              namesFileAndProblem(path(), "guide_alpha_step_voxels: must be 0 or in [0.05, 16] (got 1e-09)"));
   io::SafetensorsFile file = io::readSafetensors(kTiny);
   nlohmann::json json = nlohmann::json::parse(file.metadata.at("sixway.graph"));
   node(json, "input")["guide_channels"] = 4;

@@ -498,6 +498,37 @@ TEST_F(GuidingMapTest, BadSettingsAreInputErrors) {
   EXPECT_THAT(message([](auto& s) { s.stepCells = 0; }), ::testing::StartsWith("guiding map: "));
 }
 
+// Cells of 1e30 m: the box is finite but its diagonal overflows a float, and the guiding map's search for a
+// light-grid spacing that fits the device spun forever (a wrapped node count no widening shrinks); cells of
+// 1e38 m overflow the box itself, which did the same to the exact baker's search. Now errors, in both and in
+// the light grid itself.
+TEST_F(GuidingMapTest, ABoxBeyondAFloatIsAnErrorNotAHang) {
+  const auto uniform = [](dvec3) { return 1.0f; };
+  const CpuVolume diagonalOverflows = makeVolume({4, 4, 4}, glm::vec3(0.0f), 1e30f, uniform);
+  const render::DeviceVolume guideVolume = upload(diagonalOverflows);
+  render::GuidingMap map(context(), pipelineCache(), guideSettings());
+  const gpu::Image guide(context(), map.imageDesc());
+  gpu::Sequence sequence(context());
+  EXPECT_THROW(map.record(sequence, guideVolume.view(), guide), std::invalid_argument);
+
+  const CpuVolume boxOverflows = makeVolume({4, 4, 4}, glm::vec3(0.0f), 1e38f, uniform);
+  const render::DeviceVolume bakeVolume = upload(boxOverflows);
+  const render::Camera camera =
+      render::Camera::lookAt({0.0f, 0.0f, 5.0f}, glm::vec3(0.0f), {0.0f, 1.0f, 0.0f}, 40.0f);
+  const render::ImagePlane billboard =
+      render::billboardBounds(camera, render::Box{{0, 0, 0}, {1, 1, 1}}, 1.0f);
+  render::LightmapBaker baker(context(), pipelineCache());
+  EXPECT_THROW(baker.bake(bakeVolume.view(), blobOptics(), camera, billboard, render::BakeSettings{}),
+               std::invalid_argument);
+
+  EXPECT_THROW(render::lightGridFor(boxOverflows.grid, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}, 1e38f, 1e38f),
+               std::invalid_argument);
+  EXPECT_THROW(render::lightGridFor(diagonalOverflows.grid, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}, 0.0f, 1.0f),
+               std::invalid_argument);
+  EXPECT_THROW(render::widenedSpacing(1.0f, [](float) { return false; }), std::invalid_argument);
+  EXPECT_EQ(render::widenedSpacing(1.0f, [](float spacing) { return spacing > 1.5f; }), 1.5625f);
+}
+
 TEST_F(GuidingMapTest, SettingsComeFromTheScene) {
   io::Scene scene;
   scene.render.lightmapSize = 64;

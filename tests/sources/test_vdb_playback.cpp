@@ -205,5 +205,24 @@ TEST_F(VdbPlaybackTest, BadFilesAndFrameCountsGetOneLine) {
               ::testing::HasSubstr("there is nothing to simulate"));
 }
 
+// A VDB of 1e30 m voxels (or one scaled up past the scene's reach) made a lattice whose diagonal overflows a
+// float: the renderers' light-grid loops never ended. The file is refused, named, before any allocation.
+TEST_F(VdbPlaybackTest, GridsBeyondTheScenesReachGetOneLine) {
+  io::DenseGrid huge{.size = {4, 4, 4}, .dx = glm::vec3(1e30f), .values = std::vector<float>(64, 1.0f)};
+  io::writeVdb(dir / "huge_voxels.vdb", {{"density", &huge}});
+  EXPECT_THAT(inputErrorMessage([&] { render::VdbSequence(context(), source({dir / "huge_voxels.vdb"})); }),
+              ::testing::MatchesRegex(
+                  ".*huge_voxels\\.vdb: grid 'density' reaches 4e\\+30 m from the origin \\(voxel "
+                  "size 1e\\+30 × vdb\\.scale 1\\), more than 1000000 m; .*"));
+  io::VdbSource scaled = source({kVdb / "smoke_000002.vdb"});
+  scaled.scale = 1e6f;
+  EXPECT_THAT(inputErrorMessage([&] { render::VdbSequence(context(), scaled); }),
+              ::testing::HasSubstr("smoke_000002.vdb: grid 'density' reaches"));
+  // A box of the scene's own places the lattice: the file's voxel size then only samples it.
+  io::VdbSource boxed = source({dir / "huge_voxels.vdb"});
+  boxed.box = std::pair(glm::vec3(0.0f), glm::vec3(1.0f));
+  EXPECT_NO_THROW(render::VdbSequence(context(), boxed));
+}
+
 }  // namespace
 }  // namespace sixway::test
