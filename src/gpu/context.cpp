@@ -8,6 +8,7 @@
 #include <cstring>
 #include <sstream>
 
+#include "gpu/address_space.h"
 #include "gpu/check.h"
 #include "gpu/device_features.h"
 
@@ -139,8 +140,14 @@ void ValidationLog::clear() {
 
 Context::Context(const ContextOptions& options) {
   createInstance(options);
-  pickPhysicalDevice(options);
-  createDevice(options);
+  try {
+    pickPhysicalDevice(options);
+    createDevice(options);
+    requireAddressSpaceHeadroom();
+  } catch (...) {
+    release();
+    throw;
+  }
 }
 
 Context::Context(const ExternalDevice& external)
@@ -189,6 +196,10 @@ Context::Context(const ExternalDevice& external)
 }
 
 Context::~Context() {
+  release();
+}
+
+void Context::release() {
   if (!ownsDevice_) return;
   if (device_) vkDestroyDevice(device_, nullptr);
   if (messenger_) {
@@ -197,6 +208,9 @@ Context::~Context() {
     destroy(instance_, messenger_, nullptr);
   }
   if (instance_) vkDestroyInstance(instance_, nullptr);
+  device_ = VK_NULL_HANDLE;
+  messenger_ = VK_NULL_HANDLE;
+  instance_ = VK_NULL_HANDLE;
 }
 
 void Context::createInstance(const ContextOptions& options) {

@@ -116,6 +116,8 @@ class Context {
 
  private:
   void createInstance(const ContextOptions& options);
+  // Destroys what this context created (nothing for an external device); safe to call twice.
+  void release();
   void pickPhysicalDevice(const ContextOptions& options);
   void readProperties();
   void createDevice(const ContextOptions& options);
