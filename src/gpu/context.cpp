@@ -95,17 +95,31 @@ std::optional<int> deviceIndexFromEnvironment() {
   return static_cast<int>(index);
 }
 
-void checkDeviceIndex(int requested, uint32_t count) {
-  if (requested < 0 || requested >= static_cast<int>(count))
-    throw GpuError("--device " + std::to_string(requested) + ": no such device; valid indices are 0.." +
-                   std::to_string(count - 1) + " (see `sixway info`)");
+// The device index asked for and where it was asked: "--device N" or "SIXWAY_DEVICE=N", so that an error
+// names what the user set.
+struct RequestedDevice {
+  int index;
+  std::string source;
+};
+
+std::optional<RequestedDevice> requestedDevice(const ContextOptions& options) {
+  if (options.deviceIndex)
+    return RequestedDevice{*options.deviceIndex, "--device " + std::to_string(*options.deviceIndex)};
+  if (const std::optional<int> index = deviceIndexFromEnvironment())
+    return RequestedDevice{*index, "SIXWAY_DEVICE=" + std::to_string(*index)};
+  return std::nullopt;
+}
+
+void checkDeviceIndex(const RequestedDevice& requested, uint32_t count) {
+  if (requested.index < 0 || requested.index >= static_cast<int>(count))
+    throw GpuError(requested.source + ": no such device; valid indices are 0.." + std::to_string(count - 1) +
+                   " (see `sixway info`)");
 }
 
 }  // namespace
 
 void checkRequestedDevice(const ContextOptions& options) {
-  const std::optional<int> requested =
-      options.deviceIndex ? options.deviceIndex : deviceIndexFromEnvironment();
+  const std::optional<RequestedDevice> requested = requestedDevice(options);
   if (!requested) return;
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.apiVersion = VK_API_VERSION_1_3;
@@ -259,12 +273,11 @@ void Context::pickPhysicalDevice(const ContextOptions& options) {
   vkEnumeratePhysicalDevices(instance_, &count, devices.data());
   if (devices.empty()) throw GpuError("no Vulkan device found (install mesa-vulkan-drivers for lavapipe)");
 
-  std::optional<int> requested = options.deviceIndex ? options.deviceIndex : deviceIndexFromEnvironment();
-  if (requested) {
+  if (const std::optional<RequestedDevice> requested = requestedDevice(options)) {
     checkDeviceIndex(*requested, count);
-    physicalDevice_ = devices[*requested];
+    physicalDevice_ = devices[requested->index];
     if (std::string why = unsuitability(physicalDevice_); !why.empty())
-      throw GpuError("--device " + std::to_string(*requested) + ": the device " + why);
+      throw GpuError(requested->source + ": the device " + why);
   } else {
     int bestRank = -1;
     for (VkPhysicalDevice device : devices) {

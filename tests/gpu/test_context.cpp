@@ -69,6 +69,17 @@ TEST(ContextSelection, MalformedEnvironmentDeviceIsAClearError) {
   unsetenv("SIXWAY_DEVICE");
 }
 
+TEST(ContextSelection, AnEnvironmentIndexWithNoDeviceNamesTheVariable) {
+  setenv("SIXWAY_DEVICE", "7", 1);
+  try {
+    gpu::Context context;
+    ADD_FAILURE() << "no error";
+  } catch (const gpu::GpuError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("SIXWAY_DEVICE=7: no such device"));
+  }
+  unsetenv("SIXWAY_DEVICE");
+}
+
 TEST(ContextSelection, EnvironmentPicksTheDevice) {
   setenv("SIXWAY_DEVICE", "0", 1);
   gpu::Context context;
