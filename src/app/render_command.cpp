@@ -117,6 +117,9 @@ void run(const RenderOptions& o) {
   const bool network = !o.weights.empty() || fs::exists(options.weights);
   options.mode = o.mode ? eval::parseRenderMode(*o.mode)
                         : (network ? eval::RenderMode::Neural : eval::RenderMode::Reference);
+  if (!o.weights.empty() && options.mode != eval::RenderMode::Neural)
+    throw std::invalid_argument("--weights " + o.weights.string() + ": --mode " +
+                                eval::renderModeName(options.mode) + " uses no network (only --mode neural does)");
   options.fp16 = o.fp16;
   options.shadows = !o.noShadows;
   options.pathTraceSamples = o.samples;
