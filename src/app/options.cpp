@@ -30,6 +30,14 @@ std::string checkFloat(const std::string& text) {
   return "";
 }
 
+// "" when `text` is a number (strtod reads all of it), else what is wrong.
+std::string checkNumber(const std::string& text) {
+  char* end = nullptr;
+  std::strtod(text.c_str(), &end);
+  if (end != text.c_str() && *end == '\0') return "";
+  return "must be a number (got " + text + ")";
+}
+
 // A lower bound on a number; "" for text that is not a number (CLI11's conversion reports that).
 CLI::Validator lowerBound(bool inclusive) {
   return CLI::Validator(
@@ -55,9 +63,15 @@ CLI::Validator nonNegativeNumber() {
 
 void requireFiniteNumbers(CLI::App& command) {
   const CLI::Validator finite(checkFloat, "");
+  const CLI::Validator number(checkNumber, "");
   for (CLI::Option* option : command.get_options()) {
     const std::string type = option->get_type_name();
-    if (type.substr(0, type.find(':')).find("FLOAT") != std::string::npos) option->check(finite);
+    const std::string base = type.substr(0, type.find(':'));
+    if (base.find("FLOAT") != std::string::npos) option->check(finite);
+    // First of all its checks (transform puts it in front), so that a range check does not call "abc" out of
+    // range.
+    if (base.find("FLOAT") != std::string::npos || base.find("INT") != std::string::npos)
+      option->transform(number);
   }
 }
 

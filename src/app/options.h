@@ -18,7 +18,9 @@ struct CommonOptions {
 
 // Adds a finiteness check to every floating-point option of `command` (call it after the options are added):
 // CLI11's range checks compare with < and >, which NaN passes, and 1e39 or 1e-46 given to a float option
-// becomes inf or 0 after the checks. Such a value is one error line naming the option.
+// becomes inf or 0 after the checks. Such a value is one error line naming the option. And, before every
+// other check of a numeric option, that its value is a number ("--albedo: must be a number (got abc)", where
+// CLI11's range check said "Value abc not in range").
 void requireFiniteNumbers(CLI::App& command);
 
 // Replace CLI11's PositiveNumber and NonNegativeNumber, whose messages print the largest double in 309

@@ -117,9 +117,10 @@ void run(const RenderOptions& o) {
   const bool network = !o.weights.empty() || fs::exists(options.weights);
   options.mode = o.mode ? eval::parseRenderMode(*o.mode)
                         : (network ? eval::RenderMode::Neural : eval::RenderMode::Reference);
+  // Not an error: scripts loop over the modes with one set of options.
   if (!o.weights.empty() && options.mode != eval::RenderMode::Neural)
-    throw std::invalid_argument("--weights " + o.weights.string() + ": --mode " +
-                                eval::renderModeName(options.mode) + " uses no network (only --mode neural does)");
+    std::fprintf(stderr, "sixway: note: --weights %s is not used: --mode %s uses no network\n",
+                 o.weights.c_str(), eval::renderModeName(options.mode));
   options.fp16 = o.fp16;
   options.shadows = !o.noShadows;
   options.pathTraceSamples = o.samples;
