@@ -17,28 +17,27 @@ class DuplicateKeyCheck {
  public:
   explicit DuplicateKeyCheck(std::string_view source) : source_(source) {}
 
-  void onEvent(nlohmann::json::parse_event_t event, const nlohmann::json& parsed) {
-    using Event = nlohmann::json::parse_event_t;
+  void onEvent(JsonEvent event, std::string_view key) {
     switch (event) {
-      case Event::object_start:
+      case JsonEvent::object_start:
         frames_.push_back({.array = false});
         break;
-      case Event::array_start:
+      case JsonEvent::array_start:
         frames_.push_back({.array = true});
         break;
-      case Event::key: {
+      case JsonEvent::key: {
         Frame& frame = frames_.back();
-        frame.key = parsed.get<std::string>();
+        frame.key = key;
         if (!frame.keys.insert(frame.key).second)
           throw InputError(source_, path() + ": key appears twice in the same object");
         break;
       }
-      case Event::object_end:
-      case Event::array_end:
+      case JsonEvent::object_end:
+      case JsonEvent::array_end:
         frames_.pop_back();
         elementDone();
         break;
-      case Event::value:
+      case JsonEvent::value:
         elementDone();
         break;
     }
@@ -69,6 +68,63 @@ class DuplicateKeyCheck {
 
   std::string source_;
   std::vector<Frame> frames_;
+};
+
+// Builds the document as nlohmann's DOM parser does and reports every event to a check first, with the depth
+// nlohmann's parse callbacks would give it. nlohmann's callback parser is not used because it searches the
+// enclosing array or object for discarded values at the end of every element that is itself an array or
+// object, which makes parsing quadratic in the length of an array of objects.
+class CheckedDomBuilder {
+ public:
+  using json = nlohmann::json;
+
+  CheckedDomBuilder(json& root, const JsonEventCheck& check) : dom_(root), check_(check) {}
+
+  bool null() { return scalar() && dom_.null(); }
+  bool boolean(bool v) { return scalar() && dom_.boolean(v); }
+  bool number_integer(json::number_integer_t v) { return scalar() && dom_.number_integer(v); }
+  bool number_unsigned(json::number_unsigned_t v) { return scalar() && dom_.number_unsigned(v); }
+  bool number_float(json::number_float_t v, const json::string_t& text) {
+    return scalar() && dom_.number_float(v, text);
+  }
+  bool string(json::string_t& v) { return scalar() && dom_.string(v); }
+  bool binary(json::binary_t& v) { return scalar() && dom_.binary(v); }
+
+  bool start_object(std::size_t count) {
+    check_(depth_++, JsonEvent::object_start, {});
+    return dom_.start_object(count);
+  }
+  bool key(json::string_t& key) {
+    check_(depth_, JsonEvent::key, key);
+    return dom_.key(key);
+  }
+  bool end_object() {
+    check_(--depth_, JsonEvent::object_end, {});
+    return dom_.end_object();
+  }
+  bool start_array(std::size_t count) {
+    check_(depth_++, JsonEvent::array_start, {});
+    return dom_.start_array(count);
+  }
+  bool end_array() {
+    check_(--depth_, JsonEvent::array_end, {});
+    return dom_.end_array();
+  }
+
+  template <class Exception>
+  bool parse_error(std::size_t position, const std::string& token, const Exception& error) {
+    return dom_.parse_error(position, token, error);
+  }
+
+ private:
+  bool scalar() {
+    check_(depth_, JsonEvent::value, {});
+    return true;
+  }
+
+  nlohmann::detail::json_sax_dom_parser<json> dom_;
+  const JsonEventCheck& check_;
+  int depth_ = 0;  // arrays and objects open around the next event
 };
 
 std::size_t editDistance(std::string_view a, std::string_view b) {
@@ -152,17 +208,22 @@ std::optional<std::vector<Element>> decodeList(const nlohmann::json& v) {
 
 }  // namespace
 
+nlohmann::json parseJsonChecked(std::string_view text, const JsonEventCheck& check) {
+  nlohmann::json root;
+  CheckedDomBuilder builder(root, check);
+  nlohmann::json::sax_parse(text.begin(), text.end(), &builder);
+  return root;
+}
+
 nlohmann::json parseJsonText(std::string_view text, std::string_view source) {
   DuplicateKeyCheck duplicates(source);
-  auto callback = [&duplicates, source](int depth, nlohmann::json::parse_event_t event,
-                                        nlohmann::json& parsed) {
+  auto check = [&duplicates, source](int depth, JsonEvent event, std::string_view key) {
     if (depth >= kMaxJsonNesting)  // depth counts from 0: N nested levels reach N − 1
       throw InputError(source, "JSON nested deeper than " + std::to_string(kMaxJsonNesting) + " levels");
-    duplicates.onEvent(event, parsed);
-    return true;
+    duplicates.onEvent(event, key);
   };
   try {
-    return nlohmann::json::parse(text.begin(), text.end(), callback);
+    return parseJsonChecked(text, check);
   } catch (const nlohmann::json::exception& e) {
     // A syntax error (parse_error) or a number beyond double (out_of_range 406, e.g. 1e999). Drop the
     // "[json.exception.parse_error.101] " prefix; the rest names line and column, or the number.

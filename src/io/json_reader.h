@@ -8,6 +8,7 @@
 //   g.cellSize = r.required<float>("cell_size", positive());
 //   s.albedo = r.optional<float>("albedo", s.albedo, inRange(0, 1));
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <set>
@@ -25,6 +26,15 @@ namespace sixway::io {
 // document is refused while it is parsed, because printing or copying it recurses once per level and would
 // overflow the stack.
 inline constexpr int kMaxJsonNesting = 64;
+
+using JsonEvent = nlohmann::json::parse_event_t;
+// Called before each event of a parse with the depth nlohmann's parse callbacks report (0 for the outermost
+// value, its keys and elements at 1) and, for a key, the key; it refuses the document by throwing.
+using JsonEventCheck = std::function<void(int depth, JsonEvent event, std::string_view key)>;
+
+// Parses JSON text in time linear in its length, calling `check` at every event. Syntax errors and numbers
+// beyond double are nlohmann's exceptions, as from nlohmann::json::parse.
+nlohmann::json parseJsonChecked(std::string_view text, const JsonEventCheck& check);
 
 // Parses JSON text. Syntax errors (with line and column), keys repeated within one object and nesting deeper
 // than kMaxJsonNesting are errors.

@@ -312,11 +312,11 @@ SafetensorsFile readSafetensors(const std::filesystem::path& path) {
   json header;
   try {
     // A header nested past kMaxJsonNesting is refused as it is read: printing it would overflow the stack.
-    header = json::parse(headerBegin, dataBegin, [&source](int depth, json::parse_event_t, json&) {
+    const std::string_view headerText(reinterpret_cast<const char*>(file.data()) + 8, headerLength);
+    header = parseJsonChecked(headerText, [&source](int depth, JsonEvent, std::string_view) {
       if (depth >= kMaxJsonNesting)  // depth counts from 0: N nested levels reach N − 1
         throw InputError(source,
                          "header is nested deeper than " + std::to_string(kMaxJsonNesting) + " levels");
-      return true;
     });
   } catch (const json::parse_error& error) {
     throw InputError(

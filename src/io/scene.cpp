@@ -529,6 +529,48 @@ VdbSource parseVdb(JsonReader& r, const fs::path& baseDir) {
   return v;
 }
 
+// Where an inlet can mark cells, in lattice coordinates (cell i's centre at i + 0.5): a disk's bounding box
+// (its radius across the normal, half a cell along it), a box between its corners.
+std::pair<glm::vec3, glm::vec3> inletLatticeBounds(const Inlet& inlet, const Grid& g) {
+  const auto toLattice = [&g](glm::vec3 p) { return (p - g.origin) / g.cellSize; };
+  if (const auto* disk = std::get_if<InletDisk>(&inlet.shape)) {
+    const glm::vec3 n = disk->normal;
+    const glm::vec3 across = disk->radius / g.cellSize * glm::sqrt(glm::max(1.0f - n * n, 0.0f));
+    const glm::vec3 reach = across + 0.5f * glm::abs(n);
+    return {toLattice(disk->center) - reach, toLattice(disk->center) + reach};
+  }
+  const auto& box = std::get<InletBox>(inlet.shape);
+  return {toLattice(box.min), toLattice(box.max)};
+}
+
+// Whether a cell centre of the lattice lies in [lo, hi) on every axis.
+bool holdsACellCentre(glm::vec3 lo, glm::vec3 hi, glm::ivec3 cells) {
+  for (int axis = 0; axis < 3; ++axis) {
+    const float first = std::max(0.0f, std::ceil(lo[axis] - 0.5f));  // the first cell centred at or after lo
+    if (first > float(cells[axis] - 1) || first + 0.5f >= hi[axis]) return false;
+  }
+  return true;
+}
+
+// An inlet that marks no cell emits no smoke: refused, as is a disk wider than the grid could hold (its box
+// of cells would overflow the simulation's integer bounds).
+void requireInletsInGrid(const JsonReader& r, const Scene& s) {
+  const Grid& g = s.grid;
+  const glm::vec3 extent = glm::vec3(g.size) * g.cellSize;
+  const float diagonal = glm::length(extent);
+  for (std::size_t i = 0; i < s.inlets.size(); ++i) {
+    const std::string key = "inlets[" + std::to_string(i) + "]";
+    if (const auto* disk = std::get_if<InletDisk>(&s.inlets[i].shape); disk && disk->radius > diagonal)
+      r.fail(key + ".radius", "must be at most the grid's diagonal, " + show(diagonal) + " m (got " +
+                                  show(disk->radius) + ")");
+    const auto [lo, hi] = inletLatticeBounds(s.inlets[i], g);
+    if (!holdsACellCentre(lo, hi, g.size))
+      r.fail(key, "covers no cell of the grid, which spans " + show(g.origin) + " to " +
+                      show(g.origin + extent) + " m in cells of " + show(g.cellSize) +
+                      " m: no smoke would enter; move the inlet into the grid");
+  }
+}
+
 }  // namespace
 
 Scene parseScene(const nlohmann::json& j, std::string_view sourceName, const fs::path& baseDir) {
@@ -571,6 +613,7 @@ Scene parseScene(const nlohmann::json& j, std::string_view sourceName, const fs:
   }
 
   // Checks that need several sections.
+  requireInletsInGrid(r, s);
   if (s.fluid.reynolds && referenceSpeed(s) <= 0)
     r.fail("fluid.reynolds", "needs a reference speed, but no inlet has a velocity and no face is inflow");
   if (const double steps = stepsForLatticeVelocity(s); steps > kMaxStepsPerFrame)

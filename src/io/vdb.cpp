@@ -18,6 +18,7 @@
 
 #include "io/error.h"
 #include "io/file_access.h"
+#include "io/json_reader.h"
 
 namespace sixway::io {
 
@@ -179,6 +180,24 @@ void resample(const openvdb::FloatGrid& grid, DenseGrid& dense) {
   });
 }
 
+bool holdsNonZero(const openvdb::FloatGrid& grid) {
+  for (auto value = grid.cbeginValueOn(); value; ++value)
+    if (*value != 0.0f) return true;
+  return false;
+}
+
+// Why a grid holding smoke resampled to zeros: its voxels lie between the lattice's samples, as when a few
+// voxels far apart stretch the lattice to cells thousands of voxels wide.
+std::string missedBetweenSamples(const openvdb::FloatGrid& grid, const DenseGrid& dense) {
+  const float voxel = static_cast<float>(grid.voxelSize()[0]);
+  const float cell = std::max({dense.dx.x, dense.dx.y, dense.dx.z});
+  return "grid '" + grid.getName() + "' holds nonzero voxels, but every sample of the " +
+         std::to_string(dense.size.x) + "×" + std::to_string(dense.size.y) + "×" +
+         std::to_string(dense.size.z) + " lattice falls between them (cells of " + show(cell) + " m, " +
+         show(cell / voxel) +
+         " voxels wide): the frame is empty (a scene can frame the smoke with vdb.box_min/box_max)";
+}
+
 void requireWritable(const std::string& source, const std::string& name, const DenseGrid* grid) {
   const std::string where = "grid '" + name + "': ";
   if (!grid) throw InputError(source, where + "no data");
@@ -284,6 +303,8 @@ VdbDenseGrids readVdbGrids(const std::filesystem::path& path, const std::vector<
   for (const auto& grid : kept) {
     DenseGrid dense = lattice;
     resample(*grid, dense);
+    if (std::ranges::all_of(dense.values, [](float v) { return v == 0.0f; }) && holdsNonZero(*grid))
+      result.notes.push_back(source + ": " + missedBetweenSamples(*grid, dense));
     result.grids[grid->getName()] = std::move(dense);
   }
   return result;

@@ -226,6 +226,9 @@ std::pair<glm::ivec3, glm::ivec3> ObstacleSet::inletBox() const {
     lo = glm::min(lo, a);
     hi = glm::max(hi, b);
   }
+  // Kept within a cell of the lattice, so that a box reaching far past it converts to integers safely.
+  lo = glm::max(lo, glm::vec3(-1.0f));
+  hi = glm::min(hi, glm::vec3(size_) + 1.0f);
   // Cell i's centre is at i + 0.5: a centre in [lo, hi] has i in [floor(lo − 0.5), ceil(hi − 0.5)]; one more
   // each way.
   const glm::ivec3 first = glm::max(glm::ivec3(glm::floor(lo - 0.5f)) - 1, glm::ivec3(0));

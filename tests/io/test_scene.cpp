@@ -1,5 +1,6 @@
 #include "io/scene.h"
 
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -248,8 +249,8 @@ TEST(SceneTest, OtherShapesLightsAndPathsAreRead) {
 TEST(SceneTest, ReynoldsUsesTheFastestInlet) {
   const Scene s = parseScene(minimalWith(R"({
     "fluid": {"viscosity": null, "reynolds": 1000, "reference_length": 0.2, "max_lattice_velocity": 0.1},
-    "inlets": [{"shape": "disk", "center": [0.4, 0, 0.4], "radius": 0.1, "normal": [0, 3, 0], "velocity": 1},
-               {"shape": "disk", "center": [0.4, 0, 0.4], "radius": 0.1, "normal": [0, 1, 0], "velocity": 2}]
+    "inlets": [{"shape": "disk", "center": [0.4, 0.1, 0.4], "radius": 0.1, "normal": [0, 3, 0], "velocity": 1},
+               {"shape": "disk", "center": [0.4, 0.1, 0.4], "radius": 0.1, "normal": [0, 1, 0], "velocity": 2}]
   })"_json),
                              "s.json", ".");
   expectVec(std::get<InletDisk>(s.inlets[0].shape).normal, {0, 1, 0});
@@ -597,7 +598,7 @@ TEST(SceneParse, AbsurdGrid) {
 
 TEST(SceneParse, TooManyStepsPerFrame) {
   const json scene = minimalWith(R"({"time": {"frame_dt": 10},
-    "inlets": [{"shape": "disk", "center": [0, 0, 0], "radius": 0.1, "normal": [0, 1, 0],
+    "inlets": [{"shape": "disk", "center": [0.4, 0.1, 0.4], "radius": 0.1, "normal": [0, 1, 0],
                 "velocity": 100}]})"_json);
   EXPECT_TRUE(rejected(scene, "time.frame_dt", "LBM steps per frame"));
 }
@@ -627,6 +628,39 @@ TEST(SceneParse, MoreListEntriesThanTheShadersHold) {
   for (std::size_t i = 0; i <= kMaxRampKeys; ++i) ramp.push_back({{"temperature", i}, {"color", {1, 1, 1}}});
   EXPECT_TRUE(rejected(minimalWith({{"smoke", {{"emission", {{"intensity", 1}, {"ramp", ramp}}}}}}),
                        "smoke.emission.ramp", "at most 16 elements are supported (got 17)"));
+}
+
+// An inlet that marks no cell of the grid gave smokeless frames without a word, and a disk of radius 1e30
+// overflowed the simulation's integer box of inlet cells. The grid here spans [0, 0, 0] to [0.8, 1.6, 0.8] m
+// in cells of 0.05 m.
+TEST(SceneParse, InletsMustEmitIntoTheGrid) {
+  const auto withInlet = [](const json& inlet) { return minimalWith({{"inlets", json::array({inlet})}}); };
+  const auto disk = [](glm::vec3 center, double radius) {
+    return json{{"shape", "disk"},
+                {"center", {center.x, center.y, center.z}},
+                {"radius", radius},
+                {"normal", {0, 1, 0}},
+                {"velocity", 0.5}};
+  };
+  const auto box = [](glm::vec3 lo, glm::vec3 hi) {
+    return json{{"shape", "box"}, {"min", {lo.x, lo.y, lo.z}}, {"max", {hi.x, hi.y, hi.z}}};
+  };
+  EXPECT_TRUE(rejected(withInlet(disk({0.4f, -0.5f, 0.4f}, 0.1)), "inlets[0]",
+                       "covers no cell of the grid, which spans [0, 0, 0] to [0.8, 1.6, 0.8] m in cells of "
+                       "0.05 m: no smoke would enter"));
+  EXPECT_TRUE(rejected(withInlet(disk({0.4f, 0.1f, 0.4f}, 1e30)), "inlets[0].radius",
+                       "must be at most the grid's diagonal"));
+  EXPECT_TRUE(rejected(withInlet(box({5, 5, 5}, {6, 6, 6})), "inlets[0]", "covers no cell of the grid"));
+  // Thinner than a cell and between two cell centres (x = 0.075 and 0.125).
+  EXPECT_TRUE(rejected(withInlet(box({0.08f, 0.1f, 0.1f}, {0.12f, 0.2f, 0.2f})), "inlets[0]",
+                       "covers no cell of the grid"));
+  // A disk on the grid's floor (its slab, half a cell either side of y = 0, holds no cell centre) emits
+  // nothing.
+  EXPECT_TRUE(rejected(withInlet(disk({0.4f, 0, 0.4f}, 0.1)), "inlets[0]", "covers no cell of the grid"));
+  // Partly outside is fine: a disk centred over the grid's corner edge, a box reaching far past the grid.
+  EXPECT_NO_THROW(parseScene(withInlet(disk({0, 0.1f, 0}, 0.1)), "ok.json", "."));
+  EXPECT_NO_THROW(parseScene(withInlet(box({-1e5f, -1e5f, -1e5f}, {0.1f, 0.1f, 0.1f})), "ok.json", "."));
+  EXPECT_NO_THROW(parseScene(withInlet(disk({0.4f, 0.1f, 0.4f}, 1.9)), "ok.json", "."));
 }
 
 TEST(SceneParse, CameraTargetEqualsPosition) {
@@ -745,6 +779,47 @@ TEST(SceneTest, DeepNestingIsOneLineNotACrash) {
   writeFile(file,
             "{\"a\":" + std::string(kMaxJsonNesting - 1, '[') + std::string(kMaxJsonNesting - 1, ']') + "}");
   EXPECT_EQ(errorOf([&] { loadScene(file); }), file.string() + ": grid.size: required key missing");
+}
+
+// An array of 1,000,000 objects is parsed in time linear in its length and refused at its element count.
+TEST(SceneTest, MillionElementArrayIsRefusedWithinSeconds) {
+  TempDir dir;
+  const fs::path file = dir / "million_lights.json";
+  std::string lights;
+  lights.reserve(3'000'000);
+  for (int i = 0; i < 1'000'000; ++i) lights += i == 0 ? "{}" : ",{}";
+  std::string text = minimalScene().dump();
+  text.insert(text.size() - 1, ",\"lights\": [" + lights + "]");
+  writeFile(file, text);
+  const auto start = std::chrono::steady_clock::now();
+  const std::string message = errorOf([&] { loadScene(file); });
+  const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+  EXPECT_EQ(message, file.string() + ": lights: at most 8 elements are supported (got 1000000)");
+  EXPECT_LT(elapsed.count(), 5.0);
+}
+
+// The same for an array without a count limit: each element is read in turn, the first one found wanting.
+TEST(SceneTest, MillionKeyframesAreReadWithinSeconds) {
+  TempDir dir;
+  const fs::path file = dir / "million_keyframes.json";
+  std::string keyframes;
+  keyframes.reserve(24'000'000);
+  for (int i = 0; i < 1'000'000; ++i)
+    keyframes +=
+        (i == 0 ? "" : ",") + std::string("{\"time\":") + std::to_string(i % 3) + ",\"position\":[0,1,0]}";
+  json scene = minimalScene();
+  scene["obstacles"] = json::array({{{"type", "sphere"}, {"radius", 0.1}, {"motion", {{"keyframes", 0}}}}});
+  std::string text = scene.dump();
+  const std::string placeholder = "\"keyframes\":0";
+  text.replace(text.find(placeholder), placeholder.size(), "\"keyframes\":[" + keyframes + "]");
+  writeFile(file, text);
+  const auto start = std::chrono::steady_clock::now();
+  const std::string message = errorOf([&] { loadScene(file); });
+  const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+  EXPECT_EQ(
+      message,
+      file.string() + ": obstacles[0].motion.keyframes[3].time: keyframe times must increase: got 0 after 2");
+  EXPECT_LT(elapsed.count(), 5.0);
 }
 
 TEST(SceneTest, MissingSceneFile) {

@@ -178,6 +178,31 @@ struct SphereScene {
   }
 };
 
+// Two voxels a million voxels apart stretch the lattice to cells of 15625 voxels, whose centres miss both:
+// the frame resamples to zeros, and says so.
+TEST(VdbRead, SmokeBetweenTheSamplesGetsANote) {
+  openvdb::initialize();
+  test::TempDir dir;
+  const fs::path file = dir / "two_far_voxels.vdb";
+  openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(0.0f);
+  grid->setName("density");
+  grid->setTransform(openvdb::math::Transform::createLinearTransform(0.01));
+  grid->tree().setValue(openvdb::Coord(0, 0, 0), 1.0f);
+  grid->tree().setValue(openvdb::Coord(1'000'000, 0, 0), 1.0f);
+  openvdb::io::File(file.string()).write({grid});
+
+  const VdbDenseGrids read = readVdbGrids(file, {"density"}, AutoBounds{64});
+  ASSERT_EQ(read.grids.count("density"), 1u);
+  EXPECT_EQ(maxValue(read.grids.at("density")), 0.0f);
+  const std::string expected =
+      file.string() +
+      ": grid 'density' holds nonzero voxels, but every sample of the 64×1×1 lattice "
+      "falls between them (cells of 156.25";
+  EXPECT_THAT(read.notes, ElementsAre(::testing::StartsWith(expected)));
+  // Smoke that the samples reach gets no such note.
+  EXPECT_TRUE(readVdbGrids(kSmoke2, {"density"}, AutoBounds{16}).notes.empty());
+}
+
 TEST(VdbWrite, RoundTripKeepsValuesAndBounds) {
   const SphereScene scene;
   test::TempDir dir;
