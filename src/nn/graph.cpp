@@ -38,7 +38,8 @@ void readConv(io::JsonReader& r, Node& n) {
   n.kernel = r.required<int>("kernel");
   n.stride = r.required<int>("stride");
   n.activation = r.choice("activation", kActivations);
-  if (n.activation == Activation::LeakyRelu) n.negativeSlope = r.required<float>("negative_slope");
+  if (n.activation == Activation::LeakyRelu)
+    n.negativeSlope = r.required<float>("negative_slope", io::inRange(0, kMaxLeakySlope));
   if (n.op == Op::Conv2d) {
     if (n.kernel != 1 && n.kernel != 3) r.fail("kernel", "must be 1 or 3 (got " + io::show(n.kernel) + ")");
     if (n.stride != 1 && n.stride != 2) r.fail("stride", "must be 1 or 2 (got " + io::show(n.stride) + ")");
@@ -119,7 +120,7 @@ Node readNode(io::JsonReader& r) {
     case Op::NafBlock:
       n.dwExpand = r.required<int>("dw_expand", io::inRange(1, 8));
       n.ffnExpand = r.required<int>("ffn_expand", io::inRange(1, 8));
-      n.eps = r.required<float>("eps", io::positive());
+      n.eps = r.required<float>("eps", io::inRange(kMinNormEpsilon, kMaxNormEpsilon));
       if (n.inChannels * n.dwExpand % 2 || n.inChannels * n.ffnExpand % 2)
         r.fail("dw_expand", "channels times dw_expand and ffn_expand must be even (SimpleGate halves them)");
       break;
@@ -208,6 +209,19 @@ std::string showShape(const std::vector<int64_t>& shape) {
   return text + "]";
 }
 
+// A diverged training exports NaN/Inf or huge weights, which would turn every frame into NaN pixels.
+void checkWeightValues(const std::string& source, const std::string& tensorName,
+                       const std::vector<float>& values) {
+  const auto broken = [](float v) { return !std::isfinite(v) || std::abs(v) > kMaxWeightMagnitude; };
+  const auto bad = std::ranges::find_if(values, broken);
+  if (bad == values.end()) return;
+  const std::string value = std::isnan(*bad) ? "NaN" : std::isinf(*bad) ? "Inf" : io::show(*bad);
+  const std::string bound = std::isfinite(*bad) ? ", beyond ±" + io::show(kMaxWeightMagnitude) : "";
+  throw io::InputError(source, "tensor '" + tensorName + "' holds " + value + " at element " +
+                                   std::to_string(bad - values.begin()) + bound +
+                                   ": the weights are broken (a diverged training?)");
+}
+
 }  // namespace
 
 const Node& Graph::node(const std::string& name) const {
@@ -278,14 +292,7 @@ Graph parseGraph(const io::SafetensorsFile& file) {
         throw io::InputError(source, "tensor '" + required.name + "' is " +
                                          std::string(io::dtypeName(tensor.dtype)) +
                                          ", weights must be F32, F16 or BF16");
-      // A diverged training exports NaN/Inf weights, which would turn every frame into NaN pixels.
-      const std::vector<float> values = tensor.toFloat();
-      if (const auto bad = std::ranges::find_if(values, [](float v) { return !std::isfinite(v); });
-          bad != values.end())
-        throw io::InputError(source, "tensor '" + required.name + "' holds " +
-                                         (std::isnan(*bad) ? "NaN" : "Inf") + " at element " +
-                                         std::to_string(bad - values.begin()) +
-                                         ": the weights are broken (a diverged training?)");
+      checkWeightValues(source, required.name, tensor.toFloat());
     }
   return graph;
 }

@@ -52,6 +52,16 @@ struct Node {
 inline constexpr int kGuideImageChannels = 4;
 inline constexpr int kMaxGuideChannels = 5;
 
+// Bounds on the values a weights file stores. Trained networks stay within a few units (the shipped ones
+// reach 2.1); a finite value near a float's limit overflows to Inf in the first layer and to NaN after it.
+inline constexpr float kMaxWeightMagnitude = 1e4f;
+// leaky_relu's negative_slope is in [0, kMaxLeakySlope].
+inline constexpr double kMaxLeakySlope = 1.0;
+// naf_block's eps is kept far from a float's denormals, which a GPU may flush to 0: a flat patch would then
+// divide 0 by 0.
+inline constexpr double kMinNormEpsilon = 1e-12;
+inline constexpr double kMaxNormEpsilon = 1.0;
+
 struct Graph {
   int version = 1;
   int sizeMultiple = 1;     // input sizes must be a multiple of it (the runner pads)

@@ -10,6 +10,7 @@
 
 #include "gpu/check.h"
 #include "gpu/pipeline.h"
+#include "io/json_reader.h"
 #include "io/safetensors.h"
 #include "nn/graph.h"
 #include "nn/network.h"
@@ -93,6 +94,44 @@ TEST_F(MalformedWeights, NotFiniteWeights) {
     });
     EXPECT_THAT(error, namesFileAndProblem(path(), std::string("tensor 'enc.0.0.weight' holds ") +
                                                        (std::isnan(bad) ? "NaN" : "Inf") + " at element 5"));
+  }
+}
+
+// Finite but huge weights overflowed to Inf in the first layer and gave NaN pixels.
+TEST_F(MalformedWeights, HugeFiniteWeights) {
+  for (const float huge : {3e38f, -2e4f}) {
+    const std::string error = errorAfter([huge](std::vector<io::Tensor>& tensors, nlohmann::json&) {
+      for (io::Tensor& t : tensors)
+        if (t.name == "adapters.1.blocks.0.beta") {
+          std::vector<float> values = t.toFloat();
+          values[3] = huge;
+          t = io::Tensor::fromFloat(t.name, io::DType::F32, t.shape, values);
+        }
+    });
+    EXPECT_THAT(error, namesFileAndProblem(path(), "tensor 'adapters.1.blocks.0.beta' holds " +
+                                                       io::show(huge) + " at element 3, beyond ±10000"));
+  }
+}
+
+TEST_F(MalformedWeights, LeakySlopeBeyondOne) {
+  for (const double slope : {1e30, -0.5}) {
+    const std::string error = errorAfter([this, slope](std::vector<io::Tensor>&, nlohmann::json& graph) {
+      node(graph, "enc.0.0")["activation"] = "leaky_relu";
+      node(graph, "enc.0.0")["negative_slope"] = slope;
+    });
+    EXPECT_THAT(error, namesFileAndProblem(path(), "negative_slope: must be in [0, 1] (got " +
+                                                       io::show(static_cast<float>(slope)) + ")"));
+  }
+}
+
+// An eps that a GPU may flush to 0 divides 0 by 0 on a flat patch.
+TEST_F(MalformedWeights, NormEpsilonOutsideItsRange) {
+  for (const double eps : {1e-30, 1e30}) {
+    const std::string error = errorAfter([this, eps](std::vector<io::Tensor>&, nlohmann::json& graph) {
+      node(graph, "adapters.0.blocks.0")["eps"] = eps;
+    });
+    EXPECT_THAT(error, namesFileAndProblem(path(), "eps: must be in [1e-12, 1] (got " +
+                                                       io::show(static_cast<float>(eps)) + ")"));
   }
 }
 
