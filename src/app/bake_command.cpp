@@ -145,7 +145,7 @@ void run(const BakeOptions& o) {
   if (o.scene.empty() && o.vdb.empty()) throw io::InputError("bake", "give --scene S or --vdb F...");
   if (o.cameraPosition.empty() != o.cameraTarget.empty())
     throw io::InputError("--camera-position", "--camera-position and --camera-target go together");
-  io::requireWritable(o.out, o.force);
+  io::requireWritableDirectory(o.out, o.force);
 
   std::optional<io::Scene> scene;
   if (!o.scene.empty()) scene = io::loadScene(o.scene);

@@ -118,7 +118,7 @@ BenchInputs prepare(BenchOptions& o) {
                          "unknown tiling \"" + o.tiling + "\" (known: device, blocks, pixels, matrix)");
   for (uint32_t size : o.sizes) requireLightmapSize("--size", size);
   requireLightmapSize("--frame-lightmaps", o.frameLightmapSize);
-  if (!o.report.empty()) io::requireWritable(o.report, o.force);
+  if (!o.report.empty()) io::requireWritableFile(o.report, o.force);
 
   BenchInputs inputs;
   for (const std::string& grid : o.grids) inputs.lattices.push_back(parseLattice(grid));

@@ -129,7 +129,7 @@ float sceneAlbedo(const fs::path& shard, const nlohmann::json& description) {
 }
 
 void evaluateDataset(const EvalOptions& o) {
-  io::requireWritable(o.scene.report, o.scene.force);
+  io::requireWritableFile(o.scene.report, o.scene.force);
   const std::vector<fs::path> shards = shardFiles(o.dataset);
   const fs::path weightsPath = o.scene.weights;
   const io::SafetensorsFile weights = io::readSafetensors(weightsPath);

@@ -3,10 +3,10 @@
 // people) and, with --exr, frame_NNNN.exr (linear half floats, for numbers); at the end a contact sheet of
 // the sequence (contact_sheet.png) and, with --video, an H.264 MP4 made by Debian's ffmpeg.
 #include <filesystem>
-#include <functional>
 #include <string>
 #include <vector>
 
+#include "app/staged_directory.h"
 #include "app/tone_map.h"
 #include "io/image.h"
 
@@ -21,17 +21,18 @@ struct FrameWriterOptions {
   // Frames the sequence will have: the contact sheet shows at most kMaxSheetCells of them, evenly spaced, so
   // a run of 10,000 frames keeps 64 thumbnails in memory, not 10,000.
   int frames = 0;
+  // Write into an existing output directory (--force); without it the run must be the one that makes it.
+  bool force = false;
 };
 inline constexpr int kMaxSheetCells = 64;
 
 class FrameWriter {
  public:
-  // Throws io::InputError naming ffmpeg when a video is asked for and ffmpeg is not installed. The run is
-  // written into a hidden staging directory inside `directory` (.render.<pid>.partial) and moved into place
-  // by commit(), so that a render interrupted or failed half-way leaves an earlier render in `directory`
-  // whole.
+  // Throws io::InputError naming ffmpeg when a video is asked for and ffmpeg is not installed, or naming
+  // `directory` when it cannot be claimed (StagedDirectory). The run is written into a hidden staging
+  // directory inside `directory` (.render.<pid>.partial) and moved into place by commit(), so that a render
+  // interrupted or failed half-way leaves an earlier render in `directory` whole.
   FrameWriter(std::filesystem::path directory, const FrameWriterOptions& options);
-  ~FrameWriter();  // removes the staging directory unless committed
   FrameWriter(const FrameWriter&) = delete;
   FrameWriter& operator=(const FrameWriter&) = delete;
 
@@ -40,26 +41,21 @@ class FrameWriter {
   // The contact sheet and the video; returns the files written (relative to the directory).
   std::vector<std::string> finish();
   // Where another output of the run (timings.json) is written before commit().
-  std::filesystem::path stagedPath(const std::string& name) const { return staging_ / name; }
-  // Moves every staged file onto its name in the directory, then removes the outputs of an earlier render
-  // that this one did not replace (frame_NNNN.png/.exr, contact_sheet.png, video.mp4, timings.json). Other
-  // files in the directory are never touched.
-  void commit();
+  std::filesystem::path stagedPath(const std::string& name) const { return output_.stagedPath(name); }
+  // All or nothing (StagedDirectory::commit): moves every staged file onto its name in the directory, then
+  // removes the outputs of an earlier render that this one did not replace (frame_NNNN.png/.exr,
+  // contact_sheet.png, video.mp4, timings.json); a directory or special file under one of those names is an
+  // error before anything is moved. Other files in the directory are never touched.
+  void commit() { output_.commit(); }
 
   static std::string frameName(int index);  // "frame_0007"
   // Whether `name` is a file that `sixway render` writes.
   static bool isRenderOutput(const std::string& name);
 
  private:
-  void removeStagingOfKilledRuns() const;
-  void underFinalNames(const std::function<void()>& write) const;
-
-  std::filesystem::path directory_;
-  std::filesystem::path staging_;
   FrameWriterOptions options_;
+  StagedDirectory output_;
   std::vector<io::Image> thumbnails_;
-  bool committed_ = false;
-  bool createdDirectory_ = false;
 };
 
 }  // namespace sixway::app

@@ -96,7 +96,7 @@ void addInfoCommand(CLI::App& app) {
   command->add_option("--report", options->report, "Also write the device description as JSON");
   command->add_flag("--force", options->force, "Overwrite an existing report");
   command->callback([options] {
-    if (!options->report.empty()) io::requireWritable(options->report, options->force);
+    if (!options->report.empty()) io::requireWritableFile(options->report, options->force);
     gpu::Context context(options->common.contextOptions());
     nlohmann::json info = describe(context);
     printInfo(info);

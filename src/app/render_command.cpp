@@ -19,6 +19,7 @@
 #include "app/options.h"
 #include "app/process_memory.h"
 #include "app/shipped_weights.h"
+#include "app/staged_directory.h"
 #include "app/timings_log.h"
 #include "eval/frame_pipeline.h"
 #include "eval/image_metrics.h"
@@ -126,7 +127,9 @@ void run(const RenderOptions& o) {
   options.pathTraceSamples = o.samples;
   options.pathTraceOrders = o.orders;
   options.multipleScattering = o.multiple;
-  io::requireWritable(o.out, o.force);
+  io::requireWritableDirectory(o.out, o.force);
+  // A directory or special file under a name the render replaces stops it here, before any work.
+  StagedDirectory::requireReplaceableOutputs(o.out, FrameWriter::isRenderOutput);
 
   const gpu::ContextOptions contextOptions = o.common.contextOptions();
   sixway::Device device(sixway::DeviceOptions{contextOptions.validate, contextOptions.deviceIndex});
@@ -151,6 +154,7 @@ void run(const RenderOptions& o) {
   writerOptions.fps = o.fps;
   writerOptions.display = {scene.render.toneMap, scene.render.exposureStops};
   writerOptions.frames = o.frames;
+  writerOptions.force = o.force;
   FrameWriter writer(o.out, writerOptions);
   std::printf("sixway render: %s, %d frames, mode %s, %dx%d (lightmaps %d²), on %s\n", scene.name.c_str(),
               o.frames, eval::renderModeName(options.mode), scene.render.width, scene.render.height,

@@ -2,15 +2,18 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "app/device_limits.h"
 #include "app/options.h"
+#include "app/staged_directory.h"
 #include "gpu/bandwidth.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
@@ -43,21 +46,37 @@ std::string vdbFrameName(const std::string& sceneName, int frame) {
   return sceneName + "_" + number + ".vdb";
 }
 
-// Outputs are checked before any work: an existing directory or report needs --force.
-void prepareOutputs(const SimOptions& o) {
+// Whether `fileName` is a frame that `sim --vdb-out` writes for the scene `sceneName`:
+// "<scene name>_NNNN.vdb", four digits or more.
+bool isVdbFrameOf(const std::string& sceneName, const std::string& fileName) {
+  const std::string prefix = sceneName + "_", suffix = ".vdb";
+  if (fileName.size() < prefix.size() + 4 + suffix.size()) return false;
+  if (!fileName.starts_with(prefix) || !fileName.ends_with(suffix)) return false;
+  const std::string number = fileName.substr(prefix.size(), fileName.size() - prefix.size() - suffix.size());
+  return std::all_of(number.begin(), number.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+// Outputs are checked before any work: an existing directory or report needs --force, and nothing there may
+// be a special file where sixway writes a file.
+void checkOutputs(const SimOptions& o, const StagedDirectory::OutputNames& vdbFrames) {
   if (!o.vdbOut.empty()) {
-    io::requireWritable(o.vdbOut, o.force);
-    std::error_code error;
-    fs::create_directories(o.vdbOut, error);
-    if (error) throw io::InputError(o.vdbOut.string(), "cannot create the directory: " + error.message());
+    io::requireWritableDirectory(o.vdbOut, o.force);
+    StagedDirectory::requireReplaceableOutputs(o.vdbOut, vdbFrames);
   }
-  if (!o.report.empty()) io::requireWritable(o.report, o.force);
+  if (!o.report.empty()) io::requireWritableFile(o.report, o.force);
 }
 
 void run(const SimOptions& o) {
   const io::Scene scene = io::loadScene(o.scene);
   io::requireSimulated(scene, o.scene.string());
-  prepareOutputs(o);
+  // --vdb-out is staged: an earlier run's frames stay whole until this run has succeeded; then those of this
+  // scene name that this run did not replace go.
+  const StagedDirectory::OutputNames vdbFrames = [&](const std::string& f) {
+    return isVdbFrameOf(scene.name, f);
+  };
+  checkOutputs(o, vdbFrames);
+  std::optional<StagedDirectory> vdbOut;
+  if (!o.vdbOut.empty()) vdbOut.emplace(o.vdbOut, "sim", o.force, vdbFrames);
   gpu::Context context(o.common.contextOptions());
   gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));
   sim::Simulation simulation = withinDeviceLimits(o.scene.string(), gridSetting(scene.grid),
@@ -109,10 +128,12 @@ void run(const SimOptions& o) {
           terminal ? "\r" : "", (unsigned long long)simulation.step(), o.steps, frame, r.maxSpeed,
           r.maxLatticeSpeed, r.smokeMass, mlups, terminal ? "" : "\n");
       std::fflush(stdout);
-      if (!o.vdbOut.empty()) {
+      if (vdbOut) {
         auto [density, temperature] = simulation.smokeGrids();
-        io::writeVdb(o.vdbOut / vdbFrameName(scene.name, frame),
-                     {{"density", &density}, {"temperature", &temperature}});
+        vdbOut->underFinalNames([&] {
+          io::writeVdb(vdbOut->stagedPath(vdbFrameName(scene.name, frame)),
+                       {{"density", &density}, {"temperature", &temperature}});
+        });
       }
     }
   } catch (const sim::WatchdogError& e) {
@@ -155,13 +176,10 @@ void run(const SimOptions& o) {
          {"obstacles", obstacles},
          {"frames", frames}});
   }
-  if (watchdog != "ok") {
-    // Nothing written yet: the output directory made for this run goes again (remove() leaves a non-empty
-    // one).
-    std::error_code ignored;
-    if (!o.vdbOut.empty()) fs::remove(o.vdbOut, ignored);
-    throw sim::WatchdogError(o.scene.string() + ": " + watchdog);
-  }
+  // A stopped simulation's frames are not moved in: an earlier run's stay whole, and a directory made for
+  // this run goes again.
+  if (watchdog != "ok") throw sim::WatchdogError(o.scene.string() + ": " + watchdog);
+  if (vdbOut) vdbOut->commit();
 }
 
 }  // namespace

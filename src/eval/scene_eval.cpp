@@ -136,8 +136,8 @@ void check(const SceneEvalSettings& s) {
 void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s) {
   check(s);
   io::Scene scene = evaluatedScene(s);
-  io::requireWritable(s.report, s.force);
-  if (!s.out.empty()) io::requireWritable(s.out, s.force);
+  io::requireWritableFile(s.report, s.force);
+  if (!s.out.empty()) io::requireWritableDirectory(s.out, s.force);
   const int stripFrame = s.stripFrame.value_or(s.frames - 1);
   // The scene's warm-up frames (render.warmup_frames) are simulated but not evaluated, as `sixway render`
   // skips them: evaluated frame i is scene frame warmup + i (its smoke, camera and lights).

@@ -15,6 +15,27 @@ namespace sixway::io {
 
 namespace fs = std::filesystem;
 
+std::string describeFileType(fs::file_type type) {
+  switch (type) {
+    case fs::file_type::regular:
+      return "a regular file";
+    case fs::file_type::directory:
+      return "a directory";
+    case fs::file_type::symlink:
+      return "a symbolic link";
+    case fs::file_type::block:
+      return "a block device";
+    case fs::file_type::character:
+      return "a character device";
+    case fs::file_type::fifo:
+      return "a FIFO";
+    case fs::file_type::socket:
+      return "a socket";
+    default:
+      return "a special file";
+  }
+}
+
 void requireRegularFile(const fs::path& path) {
   std::error_code error;
   const fs::file_status status = fs::status(path, error);
@@ -53,6 +74,15 @@ void appendBytes(void* context, void* data, int size) {
   auto& out = *static_cast<std::vector<uint8_t>*>(context);
   const auto* bytes = static_cast<const uint8_t*>(data);
   out.insert(out.end(), bytes, bytes + size);
+}
+
+void requireReplaceable(const fs::path& path) {
+  std::error_code error;
+  const fs::file_type type = fs::symlink_status(path, error).type();
+  if (error) return;  // nothing there, or it cannot be looked at: the rename then fails on its own
+  if (type == fs::file_type::not_found || type == fs::file_type::regular || type == fs::file_type::symlink)
+    return;
+  throw InputError(path.string(), "is " + describeFileType(type) + ", not a regular file; not replaced");
 }
 
 AtomicFile::AtomicFile(fs::path target) : target_(std::move(target)) {
@@ -99,6 +129,7 @@ void AtomicFile::writeAll(std::span<const uint8_t> bytes) const {
 void AtomicFile::commit() {
   std::error_code error;
   if (!fs::is_regular_file(temporary_, error)) throw InputError(target_.string(), "cannot write the file");
+  requireReplaceable(target_);
   fs::rename(temporary_, target_, error);
   if (error) throw InputError(target_.string(), "cannot write the file: " + error.message());
   committed_ = true;

@@ -7,9 +7,18 @@
 #include <functional>
 #include <regex>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace sixway::io {
+
+// "a directory", "a FIFO", "a socket", "a character device", …: what a file of type `type` is, for messages.
+std::string describeFileType(std::filesystem::file_type type);
+
+// Throws InputError naming `path` and what it is when something other than a regular file or a symbolic link
+// is there (a directory, FIFO, socket or device): an output is renamed onto its name only when that replaces
+// a file, never a special file. Nothing there is fine.
+void requireReplaceable(const std::filesystem::path& path);
 
 // Throws InputError naming `path` when it does not exist or is not a regular file.
 void requireRegularFile(const std::filesystem::path& path);
@@ -40,7 +49,8 @@ class AtomicFile {
   // (ENOSPC) or a short write throws InputError naming the target and the system's reason. For writers that
   // can encode into memory (PNG, TGA, VDB), whose libraries do not report failed writes themselves.
   void writeAll(std::span<const uint8_t> bytes) const;
-  // Throws InputError naming the target when the temporary file is missing or cannot be renamed.
+  // Throws InputError naming the target when the temporary file is missing or cannot be renamed, or when the
+  // target is a directory or special file (requireReplaceable).
   void commit();
 
  private:

@@ -12,31 +12,81 @@
 
 namespace sixway::io {
 
-void requireWritable(const std::filesystem::path& path, bool force) {
-  namespace fs = std::filesystem;
+namespace fs = std::filesystem;
+
+namespace {
+
+// The directory a new output at `path` would be made in: `path` itself when it is an existing directory
+// (written into), else its nearest existing ancestor. Throws unless that is a writable directory.
+void requireWritableAncestor(const fs::path& path) {
   std::error_code error;
-  if (fs::exists(path, error) && !force)
-    throw io::InputError(path.string(), "exists already; pass --force to overwrite it");
-  // An existing output directory (render --out with --force) is written into; anything else is made in the
-  // nearest directory that exists.
   const fs::path absolute = fs::absolute(path, error);
   fs::path ancestor = fs::is_directory(absolute, error) ? absolute : absolute.parent_path();
   while (!fs::exists(ancestor, error) && ancestor.has_relative_path()) ancestor = ancestor.parent_path();
   if (!fs::is_directory(ancestor, error))
-    throw io::InputError(path.string(), "cannot write here: '" + ancestor.string() + "' is not a directory");
+    throw InputError(path.string(), "cannot write here: '" + ancestor.string() + "' is not a directory");
   if (::access(ancestor.c_str(), W_OK | X_OK) != 0)
-    throw io::InputError(path.string(), "cannot write here: directory '" + ancestor.string() +
-                                            "' is not writable (" + std::strerror(errno) + ")");
+    throw InputError(path.string(), "cannot write here: directory '" + ancestor.string() +
+                                        "' is not writable (" + std::strerror(errno) + ")");
 }
 
-void writeReport(const std::filesystem::path& path, const nlohmann::json& report) {
+// Throws unless `path` is absent, or present and `force` is set.
+void requireAbsentOrForced(const fs::path& path, fs::file_type type, bool force) {
+  if (type == fs::file_type::not_found || force) return;
+  throw InputError(path.string(), "exists already; pass --force to overwrite it");
+}
+
+// The type of the file at `path`, links followed: not_found when absent, when a link leads nowhere, or when
+// it cannot be looked at (a directory without search permission: the writable-ancestor check says so).
+fs::file_type typeAt(const fs::path& path) {
+  std::error_code error;
+  const fs::file_type type = fs::status(path, error).type();
+  return error ? fs::file_type::not_found : type;
+}
+
+}  // namespace
+
+void requireWritableFile(const fs::path& path, bool force) {
+  const fs::file_type type = typeAt(path);
+  if (type != fs::file_type::not_found && type != fs::file_type::regular)
+    throw InputError(path.string(),
+                     "is " + describeFileType(type) + ", not a regular file; give a file's path");
+  requireAbsentOrForced(path, type, force);
+  requireWritableAncestor(path);
+}
+
+void requireWritableDirectory(const fs::path& path, bool force) {
+  const fs::file_type type = typeAt(path);
+  if (type != fs::file_type::not_found && type != fs::file_type::directory)
+    throw InputError(path.string(),
+                     "is " + describeFileType(type) + ", not a directory; give a directory's path");
+  requireAbsentOrForced(path, type, force);
+  requireWritableAncestor(path);
+}
+
+bool claimOutputDirectory(const fs::path& path, bool force) {
+  std::error_code error;
+  fs::path absolute = fs::absolute(path, error);
+  if (!absolute.has_filename()) absolute = absolute.parent_path();  // "out/" names "out"
+  if (!error) fs::create_directories(absolute.parent_path(), error);
+  const bool made = !error && fs::create_directory(absolute, error);
+  if (error) throw InputError(path.string(), "cannot create the output directory: " + error.message());
+  if (!made && !force)
+    throw InputError(
+        path.string(),
+        "exists already: another run made it after this one started; pass --force to write into it");
+  if (!made) requireWritableDirectory(path, force);  // something else may have appeared there meanwhile
+  return made;
+}
+
+void writeReport(const fs::path& path, const nlohmann::json& report) {
   std::string text;
   try {
     text = report.dump(2) + '\n';
   } catch (const nlohmann::json::type_error& e) {  // a string that is not UTF-8
-    throw io::InputError(path.string(), std::string("cannot write the report: ") + e.what());
+    throw InputError(path.string(), std::string("cannot write the report: ") + e.what());
   }
-  io::AtomicFile file(path);
+  AtomicFile file(path);
   file.writeAll(std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
   file.commit();
 }

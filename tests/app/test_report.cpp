@@ -2,6 +2,7 @@
 // neither a truncated report nor the temporary file.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <fstream>
@@ -49,10 +50,48 @@ TEST(ReportTest, AFailedRewriteKeepsTheEarlierReport) {
 TEST(ReportTest, ExistingOutputsNeedForce) {
   TempDir dir;
   io::writeReport(dir / "r.json", {{"run", 1}});
-  EXPECT_THAT(inputErrorMessage([&] { io::requireWritable(dir / "r.json", false); }),
+  EXPECT_THAT(inputErrorMessage([&] { io::requireWritableFile(dir / "r.json", false); }),
               namesFileAndProblem(dir / "r.json", "exists already; pass --force"));
-  EXPECT_NO_THROW(io::requireWritable(dir / "r.json", true));
-  EXPECT_NO_THROW(io::requireWritable(dir / "absent.json", false));
+  EXPECT_NO_THROW(io::requireWritableFile(dir / "r.json", true));
+  EXPECT_NO_THROW(io::requireWritableFile(dir / "absent.json", false));
+}
+
+TEST(ReportTest, SpecialFilesAreNeverOutputs) {
+  TempDir dir;
+  ASSERT_EQ(::mkfifo((dir / "fifo").c_str(), 0644), 0);
+  fs::create_directory(dir / "folder");
+  io::writeReport(dir / "r.json", {{"run", 1}});
+  for (bool force : {false, true}) {
+    EXPECT_THAT(inputErrorMessage([&] { io::requireWritableFile(dir / "fifo", force); }),
+                namesFileAndProblem(dir / "fifo", "is a FIFO, not a regular file"));
+    EXPECT_THAT(inputErrorMessage([&] { io::requireWritableFile(dir / "folder", force); }),
+                namesFileAndProblem(dir / "folder", "is a directory, not a regular file"));
+    EXPECT_THAT(inputErrorMessage([&] { io::requireWritableDirectory(dir / "fifo", force); }),
+                namesFileAndProblem(dir / "fifo", "is a FIFO, not a directory"));
+    EXPECT_THAT(inputErrorMessage([&] { io::requireWritableDirectory(dir / "r.json", force); }),
+                namesFileAndProblem(dir / "r.json", "is a regular file, not a directory"));
+  }
+  EXPECT_NO_THROW(io::requireWritableDirectory(dir / "folder", true));
+}
+
+TEST(ReportTest, AFileIsNeverRenamedOverAFifo) {
+  TempDir dir;
+  ASSERT_EQ(::mkfifo((dir / "fifo").c_str(), 0644), 0);
+  EXPECT_THAT(inputErrorMessage([&] {
+                io::writeReport(dir / "fifo", {{"run", 1}});
+              }),
+              namesFileAndProblem(dir / "fifo", "is a FIFO, not a regular file; not replaced"));
+  EXPECT_TRUE(fs::is_fifo(dir / "fifo"));
+  EXPECT_EQ(entriesIn(dir.path()), 1);
+}
+
+TEST(ReportTest, AnOutputDirectoryIsClaimedOnce) {
+  TempDir dir;
+  EXPECT_TRUE(io::claimOutputDirectory(dir / "a" / "new", false));
+  EXPECT_THAT(inputErrorMessage([&] { io::claimOutputDirectory(dir / "a" / "new", false); }),
+              namesFileAndProblem(dir / "a" / "new", "exists already: another run made it"));
+  EXPECT_FALSE(io::claimOutputDirectory(dir / "a" / "new", true));
+  EXPECT_TRUE(io::claimOutputDirectory(dir / "b/", false));
 }
 
 }  // namespace
