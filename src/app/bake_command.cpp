@@ -12,6 +12,7 @@
 
 #include "app/device_limits.h"
 #include "app/options.h"
+#include "app/scene_errors.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "io/error.h"
@@ -234,10 +235,17 @@ void run(const BakeOptions& o) {
               tileWidth, tileHeight, render::scatteringName(job.scattering), o.packing.c_str(),
               describePacking(job.packing).c_str());
   std::fflush(stdout);
-  const render::FlipbookBakeResult result = withinDeviceLimits("--tile", "--tile", [&] {
-    return render::bakeFlipbook(context, cache, *sequence, job, [](const std::string& line) {
-      std::printf("  %s\n", line.c_str());
-      std::fflush(stdout);
+  // The camera's errors name where it came from: the --camera-* options, else the scene (or the VDB files'
+  // framing, which sees the whole volume).
+  const fs::path cameraSource = !o.cameraPosition.empty() ? fs::path("--camera-position")
+                                : !o.scene.empty()        ? o.scene
+                                                          : fs::path("--vdb");
+  const render::FlipbookBakeResult result = namingScene(o.scene, cameraSource, [&] {
+    return withinDeviceLimits("--tile", "--tile", [&] {
+      return render::bakeFlipbook(context, cache, *sequence, job, [](const std::string& line) {
+        std::printf("  %s\n", line.c_str());
+        std::fflush(stdout);
+      });
     });
   });
   removeFramesOfAnEarlierBake(o.out / "frames", job.firstFrame, job.frameCount);

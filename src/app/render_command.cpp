@@ -18,6 +18,7 @@
 #include "app/frame_writer.h"
 #include "app/options.h"
 #include "app/process_memory.h"
+#include "app/scene_errors.h"
 #include "app/shipped_weights.h"
 #include "app/staged_directory.h"
 #include "app/timings_log.h"
@@ -160,13 +161,6 @@ void run(const RenderOptions& o) {
               o.frames, eval::renderModeName(options.mode), scene.render.width, scene.render.height,
               scene.render.lightmapSize, device.name().c_str());
   std::fflush(stdout);
-  if (simulation)
-    for (int w = 0; w < warmup; ++w) {
-      simulation->advance();
-      std::printf("  warm-up %d/%d\n", w + 1, warmup);
-      std::fflush(stdout);
-    }
-
   TimingsLog timings(o.frames);
   // Per frame: the fraction of pixels the smoke covers (alpha ≥ 0.1); none in the modes without alpha
   // (guide).
@@ -175,37 +169,47 @@ void run(const RenderOptions& o) {
   // Per frame: pixels no renderer should make (eval::imageFaults), in the modes with alpha.
   nlohmann::json faults = nlohmann::json::array();
   uint64_t faultTotal = 0;
-  const auto started = std::chrono::steady_clock::now();
-  for (int i = 0; i < o.frames; ++i) {
-    if (simulation) simulation->advance();
-    const eval::RenderedFrame frame = source.render(warmup + i);
-    writer.write(i, frame.image);
-    if (frame.image.channelCount() == 4) {
-      coverage.push_back(eval::alphaCoverage(frame.image));
-      const eval::ImageFaults f = eval::imageFaults(frame.image);
-      faults.push_back({{"not_finite", f.notFinite},
-                        {"negative", f.negative},
-                        {"dark_dots", f.darkDots},
-                        {"first_pixels", f.first}});
-      faultTotal += f.total();
-      if (f.total() > 0)
-        std::fprintf(stderr, "sixway: frame %d has %s\n", i, eval::describeFaults(f).c_str());
-    }
-    for (const std::string& note : frame.notes) std::fprintf(stderr, "sixway: note: %s\n", note.c_str());
-
-    std::vector<gpu::StageTime> stages;
+  namingScene(o.scene, [&] {
     if (simulation)
-      for (const sixway::StageTime& t : simulation->stageTimes()) stages.push_back({t.name, t.milliseconds});
-    stages.insert(stages.end(), frame.stages.begin(), frame.stages.end());
-    // Memory in use, for long-run checks: flat from the first frames on, or something leaks.
-    const sixway::Device::MemoryUse memory = device.memoryUse();
-    const double total = timings.add(i, runtime::SimulatedVolumes::frameSeconds(scene, warmup + i), stages,
-                                     {memory.allocations, memory.bytes}, residentSetBytes());
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    std::printf("  frame %d/%d: %.1f ms GPU, %.1f s elapsed, ETA %.0f s\n", i + 1, o.frames, total, elapsed,
-                elapsed / (i + 1) * (o.frames - i - 1));
-    std::fflush(stdout);
-  }
+      for (int w = 0; w < warmup; ++w) {
+        simulation->advance();
+        std::printf("  warm-up %d/%d\n", w + 1, warmup);
+        std::fflush(stdout);
+      }
+    const auto started = std::chrono::steady_clock::now();
+    for (int i = 0; i < o.frames; ++i) {
+      if (simulation) simulation->advance();
+      const eval::RenderedFrame frame = source.render(warmup + i);
+      writer.write(i, frame.image);
+      if (frame.image.channelCount() == 4) {
+        coverage.push_back(eval::alphaCoverage(frame.image));
+        const eval::ImageFaults f = eval::imageFaults(frame.image);
+        faults.push_back({{"not_finite", f.notFinite},
+                          {"negative", f.negative},
+                          {"dark_dots", f.darkDots},
+                          {"first_pixels", f.first}});
+        faultTotal += f.total();
+        if (f.total() > 0)
+          std::fprintf(stderr, "sixway: frame %d has %s\n", i, eval::describeFaults(f).c_str());
+      }
+      for (const std::string& note : frame.notes) std::fprintf(stderr, "sixway: note: %s\n", note.c_str());
+
+      std::vector<gpu::StageTime> stages;
+      if (simulation)
+        for (const sixway::StageTime& t : simulation->stageTimes())
+          stages.push_back({t.name, t.milliseconds});
+      stages.insert(stages.end(), frame.stages.begin(), frame.stages.end());
+      // Memory in use, for long-run checks: flat from the first frames on, or something leaks.
+      const sixway::Device::MemoryUse memory = device.memoryUse();
+      const double total = timings.add(i, runtime::SimulatedVolumes::frameSeconds(scene, warmup + i), stages,
+                                       {memory.allocations, memory.bytes}, residentSetBytes());
+      const double elapsed =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+      std::printf("  frame %d/%d: %.1f ms GPU, %.1f s elapsed, ETA %.0f s\n", i + 1, o.frames, total, elapsed,
+                  elapsed / (i + 1) * (o.frames - i - 1));
+      std::fflush(stdout);
+    }
+  });
   const std::vector<std::string> extras = writer.finish();
 
   nlohmann::json report = {{"scene", fs::absolute(o.scene).string()},

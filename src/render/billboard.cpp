@@ -4,7 +4,7 @@
 #include <glm/geometric.hpp>
 #include <limits>
 
-#include "io/error.h"
+#include "render/camera_error.h"
 
 namespace sixway::render {
 
@@ -16,8 +16,7 @@ ImagePlane billboardBounds(const Camera& camera, const Box& box, float aspect) {
     const glm::vec3 q = p - camera.position;
     const float depth = glm::dot(q, camera.forward);
     if (depth <= 1e-4f * glm::length(q))
-      throw io::InputError("camera",
-                           "the volume's box reaches behind the camera; move the camera away from it");
+      throw CameraError("the volume's box reaches behind the camera; move the camera away from it");
     const glm::vec2 projected(glm::dot(q, camera.right) / depth, glm::dot(q, camera.up) / depth);
     r.min = glm::min(r.min, projected);
     r.max = glm::max(r.max, projected);

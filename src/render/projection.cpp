@@ -5,7 +5,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 
-#include "io/error.h"
+#include "render/camera_error.h"
 #include "render/volume.h"
 
 namespace sixway::render {
@@ -29,7 +29,7 @@ DepthRange boxDepthRange(const Camera& camera, const Box& box, float margin, flo
     lo = std::min(lo, z);
     hi = std::max(hi, z);
   }
-  if (hi <= minNear) throw io::InputError("camera", "the volume is behind the camera");
+  if (hi <= minNear) throw CameraError("the volume is behind the camera");
   const float pad = margin * (hi - lo);
   return {std::max(lo - pad, minNear), hi + pad};
 }
