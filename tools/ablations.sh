@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The ablations of issue #9 that need retrained networks (docs/results.md, "Ablations"): the guide lights
+# The ablations that need retrained networks (docs/results.md, "Ablations"): the guide lights
 # (front only; front, left and right; front, top and bottom as shipped) and the NAFBlock channel adapters
 # (with, without). Every variant trains for the same budget (tools/train_configs/ablations/*.json: 1,000 steps of
 # the shipped network's recipe) on the same sequences, cameras and targets (tools/datasets/cpu_small.json and its

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The long fuzz pass of issue #10: configures build-fuzz (clang, libFuzzer, ASan + UBSan), builds every target
+# The long fuzz pass: configures build-fuzz (clang, libFuzzer, ASan + UBSan), builds every target
 # of tests/fuzz/ and runs each for SECONDS (default 600) over its committed seeds, one after the other. New
 # inputs collect in build-fuzz/tests/fuzz/work/<target>/corpus (kept between runs); a crash, hang, leak or
 # sanitizer report stops the pass with the input saved there. docs/robustness.md, "Fuzzing".

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Plots of `sixway eval --scene` reports (issue #9), for docs/results.md.
+"""Plots of `sixway eval --scene` reports, for docs/results.md.
 
   plot_eval.py frames REPORT OUT.png        final-image PSNR vs the path tracer over the frames, per method
   plot_eval.py stages REPORT OUT.png        median GPU time per stage, stacked, per method (and the simulation)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates docs/results.md and its plots (docs/results/*.png) from scratch on this machine (issue #9): builds
+# Regenerates docs/results.md and its plots (docs/results/*.png) from scratch on this machine: builds
 # sixway if needed, runs the `sixway eval --scene` studies into out/results/, plots them, writes the tables, and
 # appends the `sixway bench` tables (to docs/results.md and, between its markers, docs/benchmarks.md) when
 # tools/results/bench_tables.py exists.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The whole test suite under AddressSanitizer + UndefinedBehaviorSanitizer (issue #10): configures build-asan
+# The whole test suite under AddressSanitizer + UndefinedBehaviorSanitizer: configures build-asan
 # (GCC, -DSIXWAY_SANITIZE=ON), builds it and runs every test of the default suite (ctest -LE long) with leak
 # detection on, a UB report or any sanitizer report failing its test. Too slow for CI (about twice the suite's
 # time); docs/robustness.md, "Sanitizers", has the last run. Extra arguments go to ctest, e.g. -R Scene.

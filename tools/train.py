@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Trains the sixway lightmap network (tools/nn/sixway_net.py) on the shards of `sixway dataset` (issue #7).
+"""Trains the sixway lightmap network (tools/nn/sixway_net.py) on the shards of `sixway dataset`.
 
     /usr/bin/python3 tools/train.py --config tools/train_configs/cpu_small.json --out /work/data/train_cpu_small
     /usr/bin/python3 tools/train.py --out DIR --resume              # continues exactly where the checkpoint is

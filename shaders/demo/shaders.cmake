@@ -1,4 +1,4 @@
-# The interactive demo (#8): its view of the frame pipeline's images.
+# The interactive demo: its view of the frame pipeline's images.
 list(APPEND SIXWAY_SHADERS
   demo/display.vert
   demo/display.frag

@@ -14,7 +14,7 @@
 // Output (RGBA16F): R = the sum over the guide lights, G = alpha = 1 − T, B = the encoded view depth where
 // alpha first reaches the shell threshold (exact within the slab; 1 where it never does), A = 0, or with
 // kFineAlpha the alpha of a second, fine march (step march.z, midpoints, not jittered: the baker's alpha
-// quadrature), an input the network need not guess (issue #20). With kEmission the same fine march also
+// quadrature), an input the network need not guess. With kEmission the same fine march also
 // integrates the direct emission toward the camera into a second image, as the exact baker's emissive channel
 // does (sixway_march.comp): E += T·(1 − e^{−σ_t Δ})·(intensity / extinction)·luminance(ramp(temperature));
 // the network learns the scattered glow from it (docs/network-study.md, "Emission in the guide"). A second

@@ -1,4 +1,4 @@
-// `sixway bench` section "network": the lightmap network alone (issue #6) with a timed stage per layer (a
+// `sixway bench` section "network": the lightmap network alone with a timed stage per layer (a
 // NAFBlock is four), on a synthetic guide (the network's cost does not depend on the values), FLOPs counted
 // from the graph (docs/benchmarks.md, "Neural inference"). The same network recorded as one timed stage runs
 // alternately with it: on lavapipe the per-layer stages were seen to add up to much less than the whole.

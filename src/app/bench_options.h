@@ -1,5 +1,5 @@
 #pragma once
-// `sixway bench` (docs/conventions.md, "Command line"; issue #9): its options and its sections, each timing
+// `sixway bench` (docs/conventions.md, "Command line"): its options and its sections, each timing
 // one group of stages at fixed sizes and returning its part of the JSON report.
 #include <filesystem>
 #include <glm/vec3.hpp>

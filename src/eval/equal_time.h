@@ -1,5 +1,5 @@
 #pragma once
-// The path tracer at equal time (issue #9 item 2; the paper's comparison with Monte Carlo rendering): how
+// The path tracer at equal time (the paper's comparison with Monte Carlo rendering): how
 // many samples per pixel the path tracer takes in the neural frame's GPU time on this device, and how noisy
 // its image is then, measured against a high-sample render of the same frame traced with other random
 // numbers. Time is the host's clock around the work, on both sides: what a user waits for, submissions and

@@ -92,8 +92,8 @@ nlohmann::json lightmapFrame(const LightmapMetrics& m) {
   return out;
 }
 
-// Each method's frame-to-frame change next to the truth's (issue #20: within 20% of it); the truth's with its
-// Monte Carlo noise taken out where that was measured (--truth-noise). Null for a single frame.
+// Each method's frame-to-frame change next to the truth's (the target: within 20% of it); the truth's with
+// its Monte Carlo noise taken out where that was measured (--truth-noise). Null for a single frame.
 nlohmann::json temporalSummary(const std::map<std::string, TemporalChange>& methods,
                                const TemporalChange& truth, const std::optional<TemporalChange>& noise) {
   if (truth.values == 0) return nullptr;

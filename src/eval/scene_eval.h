@@ -1,6 +1,6 @@
 #pragma once
 // `sixway eval --scene`: a scene's sequence (its own camera and light paths; the simulation live) rendered
-// frame by frame by every method and measured (issue #9, docs/results.md):
+// frame by frame by every method and measured (docs/results.md):
 //   - the network's lightmaps against the reference baker's, same view (lightmap PSNR,
 //     docs/conventions.md, "Metrics");
 //   - the final images of neural, reference-lightmap (single and multiple scattering), traditional-flipbook

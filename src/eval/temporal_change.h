@@ -1,7 +1,7 @@
 #pragma once
-// Temporal stability of final images (docs/conventions.md, "Metrics"; issue #20's "temporal difference within
-// 20% of the reference's"): the change between consecutive frames of one camera, over the pixels where the
-// ground truth's alpha > 0.01 in either frame, on linear R, G, B clipped to [0, 1] as the PSNR is.
+// Temporal stability of final images (docs/conventions.md, "Metrics"; the target is a temporal difference
+// within 20% of the reference's): the change between consecutive frames of one camera, over the pixels where
+// the ground truth's alpha > 0.01 in either frame, on linear R, G, B clipped to [0, 1] as the PSNR is.
 //
 // A path-traced truth's change holds its Monte Carlo noise too: with independent seeds per frame,
 // E[(a_i − a_{i−1})²] = (true change)² + 2σ². Rendering the same frame again with another seed measures

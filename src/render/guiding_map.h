@@ -39,7 +39,7 @@ struct GuideSettings {
   // jittered, as the exact baker's alpha); 0: A = 0 (the shipped network's input has no such channel).
   float alphaStepCells = 0.0f;
   // With alphaStepCells > 0: the fine march also integrates the emission reaching the camera directly (the
-  // exact baker's emissive channel) into emissionDesc()'s image, a 5th network input (issue #20).
+  // exact baker's emissive channel) into emissionDesc()'s image, a 5th network input.
   bool emission = false;
 
   // render.lightmap_size, guide_step_voxels, guide_alpha_step_voxels, guide_lights, shell_threshold, seed;

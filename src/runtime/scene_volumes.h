@@ -1,6 +1,6 @@
 #pragma once
 // The volumes of a scene's simulation, frame after frame, for `sixway bake --scene` and `sixway render`. This
-// is the one place where the renderers meet the simulation (issue #3): the smoke goes from the simulation's
+// is the one place where the renderers meet the simulation: the smoke goes from the simulation's
 // grid to the renderers' volume buffers on the GPU.
 #include <memory>
 

@@ -1,4 +1,4 @@
-# Issue #22: `bake --packing`. A bake in the rlt-bbf preset over an earlier Unity-packed bake (--force) leaves
+# `bake --packing`. A bake in the rlt-bbf preset over an earlier Unity-packed bake (--force) leaves
 # the RLT/BBF textures with their .meta files, a sidecar whose channels say where each one is, and none of
 # the earlier A/B textures (a directory never holds two packings).
 file(REMOVE_RECURSE ${OUT})

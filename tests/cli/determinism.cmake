@@ -1,4 +1,4 @@
-# Determinism (issue #10): the same sixway command run twice with the same seed writes bit-identical files on
+# Determinism: the same sixway command run twice with the same seed writes bit-identical files on
 # the same device and driver. Usage:
 #   cmake -DSIXWAY=... -DCOMMAND="render;--scene;s.json;..." -DOUT=dir [-DSKIP="timings.json"] -P determinism.cmake
 # Runs `sixway COMMAND --out OUT/run_a` and `... --out OUT/run_b`, then compares every file of run_a with the

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue #21: a full disk is one error line naming the file and the reason, with a non-zero exit; no empty or
+# A full disk is one error line naming the file and the reason, with a non-zero exit; no empty or
 # truncated file is left under a final name, and a good file that a --force rerun fails to replace stays as it
 # was. Each case runs in a private mount namespace on a tmpfs of a few KiB (unshare: as root, or through user
 # namespaces; where neither works the test is skipped, exit 77).

@@ -22,7 +22,7 @@ foreach(split train heldout_sequence heldout_camera)
   endif()
 endforeach()
 
-# Issue #21: a shard that dataset.json lists but that is gone is one line, not a silently smaller split.
+# A shard that dataset.json lists but that is gone is one line, not a silently smaller split.
 file(GLOB shards ${OUT}/dataset/shard_*.safetensors)
 list(SORT shards)
 list(GET shards -1 last)

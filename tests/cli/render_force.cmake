@@ -1,4 +1,4 @@
-# Issue #21: `render --force` into an earlier render's directory. A rerun killed half-way leaves the earlier
+# `render --force` into an earlier render's directory. A rerun killed half-way leaves the earlier
 # render as it was (no mix of old and new frames); a finished rerun replaces what sixway wrote and nothing else.
 file(REMOVE_RECURSE ${OUT})
 execute_process(COMMAND ${SIXWAY} render --scene ${SCENE} --frames 3 --out ${OUT} --mode reference

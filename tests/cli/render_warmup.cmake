@@ -1,4 +1,4 @@
-# Issue #22: `render --warmup N` runs the scene's first N frames without writing them, so its first frame is the
+# `render --warmup N` runs the scene's first N frames without writing them, so its first frame is the
 # plain render's frame N (bit for bit: same simulation, camera and lights); the display transform changes the
 # PNG, never the linear EXR; timings.json records the warm-up and the smoke's coverage. A scene's
 # render.warmup_frames does the same for `eval --scene`.

@@ -54,7 +54,8 @@ TEST(ContextSelection, OutOfRangeDeviceIndexIsAClearError) {
   }
 }
 
-// 99999999999999999999 (issue #21) was read as "--device -1"; 4294967296 wrapped to 0.
+// Device numbers out of range are errors, not wrapped: 99999999999999999999 must not read as "--device -1",
+// nor 4294967296 wrap to 0.
 TEST(ContextSelection, MalformedEnvironmentDeviceIsAClearError) {
   for (const char* value : {"first", "99999999999999999999", "4294967296", "-1"}) {
     setenv("SIXWAY_DEVICE", value, 1);

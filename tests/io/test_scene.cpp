@@ -120,7 +120,7 @@ TEST(SceneTest, ShippedPlumeLoads) {
   EXPECT_EQ(lbmStepsPerFrame(s), 20);
 }
 
-// Issue #22: the default run's scene starts after a warm-up and shows its frames through the ACES fit.
+// The default run's scene starts after a warm-up and shows its frames through the ACES fit.
 TEST(SceneTest, ShowcaseWarmsUpAndToneMaps) {
   const Scene s = loadScene(fs::path(SIXWAY_ASSETS_DIR) / "scenes" / "showcase.json");
   EXPECT_EQ(s.render.warmupFrames, 90);
@@ -491,8 +491,8 @@ TEST(SceneParse, AlbedoOutOfRange) {
                        "must be in [0, 1] (got 1.5)"));
 }
 
-// Issue #21: a light colour of 3.4e38 gave inf/NaN pixels; numbers a float cannot hold were reported as
-// "expected a number" (1e308) or read as 0 and then "must be > 0 (got 0)" (1e-308).
+// A light colour of 3.4e38 would give inf/NaN pixels; numbers a float cannot hold must be named as such, not
+// reported as "expected a number" (1e308) or read as 0 and then "must be > 0 (got 0)" (1e-308).
 TEST(SceneParse, NumbersBeyondWhatAFrameCanHold) {
   EXPECT_TRUE(rejected(minimalWith(R"({"lights": [{"type": "point", "position": [0, 0, 0],
                                                    "color": [3.4e38, 1, 1]}]})"_json),
@@ -513,7 +513,7 @@ TEST(SceneParse, NumbersBeyondWhatAFrameCanHold) {
                "ambient.sh", "every component must be in [-10000, 10000] (got [0, -20000, 0])"));
 }
 
-// Issue #22: Unity's light-probe L1 is 2/3 of the radiance's; "unity_probe" takes it as it is.
+// Unity's light-probe L1 is 2/3 of the radiance's; "unity_probe" takes it as it is.
 TEST(SceneParse, AmbientShInUnitysProbeConvention) {
   const json radiance =
       minimalWith(R"({"ambient": {"sh": [[1, 1, 1], [0.3, 0, 0], [0, 0.6, 0], [0, 0, -0.9]]}})"_json);
@@ -759,7 +759,7 @@ TEST(SceneTest, DuplicateJsonKeyNamesItsPath) {
                                 "key appears twice"));
 }
 
-// Issue #21: 70,000 nested arrays (140 KB) crashed the error path, which printed the value recursively. A
+// 70,000 nested arrays (140 KB) would crash an error path that printed the value recursively. A
 // document nested past kMaxJsonNesting is refused while it is parsed, arrays and objects alike.
 TEST(SceneTest, DeepNestingIsOneLineNotACrash) {
   TempDir dir;

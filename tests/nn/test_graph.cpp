@@ -81,7 +81,7 @@ TEST_F(MalformedWeights, WrongShape) {
                                          "needs [7, 4, 3, 3]"));
 }
 
-// Issue #21: weights holding NaN or Inf were accepted, and every frame came out NaN.
+// Weights holding NaN or Inf are refused: accepted, every frame would come out NaN.
 TEST_F(MalformedWeights, NotFiniteWeights) {
   for (const float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
     const std::string error = errorAfter([bad](std::vector<io::Tensor>& tensors, nlohmann::json&) {

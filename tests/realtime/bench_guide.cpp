@@ -167,7 +167,7 @@ int main(int argc, char** argv) {
     std::printf("%-30s %9.2f %10.4f / %-10.4f %10.4f / %-10.4f\n", v.name, r.ms, r.oneRms, r.oneMax,
                 r.meanRms, r.meanMax);
   }
-  // The fine alpha in channel A (GuideSettings::alphaStepCells, issue #20) at the sizes the network runs at,
+  // The fine alpha in channel A (GuideSettings::alphaStepCells) at the sizes the network runs at,
   // and with it the direct emission (GuideSettings::emission), which reads the file's temperature grid (its
   // "heat", or temperature 0 without one) under a two-key ramp.
   const io::VdbFile info = io::readVdbInfo(file);

@@ -1,4 +1,4 @@
-// Timings of the reference renderers for docs/benchmarks.md ("Reference rendering (#4)"): the full
+// Timings of the reference renderers for docs/benchmarks.md ("Reference rendering"): the full
 // eight-channel bake of a 256² lightmap from a 128³ volume, and the path tracer's samples per second.
 // GPU timestamps of the gpu::Sequence stages, median of 5 runs after a warm-up run.
 // The volume: tests/data/vdb/densityAndHeat.vdb resampled onto a 128³ cube of cubic cells around it.

@@ -90,7 +90,7 @@ TEST_F(BakeFlipbookTest, FrameMatchesTheCpuOracleOnTheResampledGrid) {
   }
 }
 
-// Issue #22: the flipbook's emissive component is Unity's Single Channel mask. Unity's formula (VFXLit.hlsl:
+// The flipbook's emissive component is Unity's Single Channel mask. Unity's formula (VFXLit.hlsl:
 // multiplier · gradient(mask) · opacity, its gradient constant outside its keys) with the sidecar's settings
 // gives the emission sixway shades from the premultiplied luminance of the per-frame EXR (SixWayShading's
 // straight value: alpha · s · ramp gradient(e / (alpha · s)), black at 0 and proportional beyond the last

@@ -162,7 +162,7 @@ TEST_F(FlipbookFilesTest, WritesExrPngTgaAndASidecarThatReadsBack) {
   expectFramesNear(render::readFlipbook(dir / "book.json").frames, frames, 6e-3f);
 }
 
-// Issue #22: by default the emissive component is Unity's Single Channel mask e / (alpha · luminance scale),
+// By default the emissive component is Unity's Single Channel mask e / (alpha · luminance scale),
 // which Unity multiplies by opacity; the sidecar holds the scale and Unity's settings, and readFlipbook turns
 // the mask back into the premultiplied luminance.
 TEST_F(FlipbookFilesTest, AnEmissiveMaskReadsBackAsPremultipliedLuminance) {
@@ -218,7 +218,7 @@ std::string metaValue(const std::filesystem::path& file, const std::string& key,
   return "(no " + key + ")";
 }
 
-// Issue #22: each texture has Unity's import settings beside it: linear, no rescale, uncompressed RGBA half
+// Each texture has Unity's import settings beside it: linear, no rescale, uncompressed RGBA half
 // for EXR (BC6H would drop alpha) and RGBA 8-bit for PNG/TGA, the flipbook grid; a stable id per texture.
 TEST_F(FlipbookFilesTest, WritesUnityImportSettingsBesideEachTexture) {
   const FlipbookLayout layout = render::flipbookLayout(5, 48, 40);  // 3 × 2 tiles: 144 × 80 pixels

@@ -183,7 +183,7 @@ TEST_F(VdbPlaybackTest, BadFilesAndFrameCountsGetOneLine) {
   wrongName.densityGrid = "smoke";
   EXPECT_THAT(inputErrorMessage([&] { render::VdbSequence(context(), wrongName); }),
               ::testing::HasSubstr("smoke_000002.vdb: has no float grid 'smoke' (set vdb.density_grid"));
-  // Issue #21: one file of a sequence without the density grid played as an empty frame, said only in a note.
+  // One file of a sequence without the density grid is an error, not an empty frame said only in a note.
   io::DenseGrid heat{.size = {4, 4, 4}, .values = std::vector<float>(64, 1.0f)};
   io::writeVdb(dir / "heat_only.vdb", {{"heat", &heat}});
   io::VdbSource oneWithout = source({kVdb / "smoke_000002.vdb", dir / "heat_only.vdb"});

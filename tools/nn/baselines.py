@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""What the cheap methods score on a dataset's held-out splits, with no network: the yardsticks of issue #20.
+"""What the cheap methods score on a dataset's held-out splits, with no network: the yardsticks a network must beat.
 
 Per split, masked lightmap PSNR (docs/conventions.md, "Metrics"; network channel order):
 - `single_vs_multiple`: the exact single-scattering baker (`target`) against the multiple-scattering targets

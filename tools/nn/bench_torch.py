@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""PyTorch CPU side of the inference benchmark (docs/benchmarks.md, "Neural inference (#6)"): the same network
+"""PyTorch CPU side of the inference benchmark (docs/benchmarks.md, "Neural inference"): the same network
 (read from the same safetensors file as `sixway bench`), the same sizes, 2 threads, warm-up then the median of
 repeated runs, in total and per layer, with GFLOP/s counted from the graph by the rule of the GLSL side
 (2 FLOPs per multiply-add of the convolutions over the real channels; normalisation and elementwise work are

@@ -1,4 +1,4 @@
-"""The training loss (issue #7): MSE in sRGB space, a perceptual term and a temporal term.
+"""The training loss: MSE in sRGB space, a perceptual term and a temporal term.
 
 Everything is compared in the "loss space": the six lightmaps and emissive sRGB-encoded (as the paper's MSE
 in sRGB), alpha linear. Channels are in the network's output order (sixway_net.ADAPTERS; alpha is channel 6).

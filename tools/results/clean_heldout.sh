@@ -1,5 +1,5 @@
 #!/bin/bash
-# Issue #20's held-out figure on the data with full-resolution all-orders targets, against cleaner targets: the
+# The held-out figure on the data with full-resolution all-orders targets, against cleaner targets: the
 # held-out sequences of every `young_full*` config made again with the orders >= 2 traced at SPP samples per
 # texel (default 64; the training data's are 16, whose noise the network is not meant to reproduce), then each
 # network named on the command line evaluated on them in GLSL (`sixway eval --dataset DIR --split

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Would a fixed bound on the all-orders network's emissive help on emissive smoke? (docs/network-study.md, session 22)
+"""Would a fixed bound on the all-orders network's emissive help on emissive smoke? (docs/network-study.md, "A gate for emissive scenes")
 
 Runs a network in PyTorch on every sample of the given dataset directories and compares its emissive channel with
 the all-orders targets (masked PSNR, as tools/nn/metrics.py) as it is and bounded two ways by the guide's direct

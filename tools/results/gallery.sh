@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The gallery that opens docs/results.md (issue #22): one side-by-side strip per shipped scene
+# The gallery that opens docs/results.md: one side-by-side strip per shipped scene
 # (assets/scenes/*.json but bench.json) at a size where the smoke's detail shows: `sixway eval --scene` of three
 # frames after a warm-up, the camera orbiting 45 degrees a frame (0, 45, 90), at SIZE x SIZE pixels (default 256)
 # with the default run's 64x64 lightmaps, against the path tracer with every scattering order (GALLERY_SPP

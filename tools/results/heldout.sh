@@ -1,5 +1,5 @@
 #!/bin/bash
-# Issue #20's held-out table: each network named on the command line, evaluated in GLSL (`sixway eval --dataset
+# The held-out table: each network named on the command line, evaluated in GLSL (`sixway eval --dataset
 # DIR --target multiple`) on the held-out splits of every family dataset the MS networks train on, plus the
 # unseen family (data/families/chimney_wind); then one markdown table, a column per network
 # (tools/results/heldout_table.py). A family whose dataset is not on this machine is skipped and named.

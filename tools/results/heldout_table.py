@@ -6,7 +6,7 @@ Usage: heldout_table.py REPORT_DIR LABEL [LABEL ...]
 REPORT_DIR/LABEL/ holds one `sixway eval --dataset` report per family (named after its data directory). A row per
 family: masked PSNR on the unseen sequences / the unseen camera, with the emissive channel's (E) where the family
 emits; then the samples pooled (squared errors weighted by sample count, as one set): over the trained families'
-held-out splits (issue #20's 33 dB target) and over every family with the unseen one (its own target is to be
+held-out splits (the 33 dB target) and over every family with the unseen one (its own target is to be
 within 2 dB of the first).
 """
 import json

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Issue #20's model study (docs/network-study.md, "The model study"): for the base network and each variant
+# The model study (docs/network-study.md, "The model study"): for the base network and each variant
 # trained by tools/train_configs/studies/model_<variant>_ms.json into data/study_model_<variant>_ms, the held-out
 # PSNR in GLSL (`sixway eval --dataset data/inputs --target multiple`) and the network's time on this device
 # (`sixway bench --sections network`), then the table (tools/results/model_study_table.py); a variant also trained

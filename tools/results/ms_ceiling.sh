@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The six-way ceiling under full transport on every shipped scene (issue #19): `sixway eval --scene` of each
+# The six-way ceiling under full transport on every shipped scene: `sixway eval --scene` of each
 # assets/scenes/*.json (but bench.json) at a small size (128x128 frames, 64x64 lightmaps), against the path
 # tracer with every scattering order, printed as a markdown table of masked PSNRs (reference-ms: the
 # multiply-scattered lightmaps through the six-way shading; reference: single scattering; neural;
