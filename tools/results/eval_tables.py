@@ -304,8 +304,12 @@ of a few tenths of a dB are no evidence of a difference.
     else:
         out += "Not run yet on this machine: `tools/ablations.sh`.\n"
     if len(argv) == 4 and os.path.exists(argv[3]):
+        # The tables themselves go to docs/benchmarks.md (results.sh writes them between its markers); here the
+        # run's device, date and load, and where the tables are.
         with open(argv[3]) as f:
-            out += "\n## Benchmarks (`sixway bench`)\n\n" + f.read()
+            head = f.read().split("### Simulation", 1)[0].rstrip()
+        out += ("\n## Benchmarks (`sixway bench`)\n\n" + head + "\n\nThe tables of this run: "
+                "[benchmarks.md](benchmarks.md#the-latest-run-on-lavapipe-toolsresultssh).\n")
     print(out, end="")
 
 
