@@ -19,6 +19,7 @@
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "io/error.h"
+#include "io/json_text.h"
 #include "io/report.h"
 #include "nn/graph.h"
 
@@ -173,7 +174,7 @@ void run(BenchOptions& o) {
   std::printf("device: %s (%s %s), Vulkan %s; %s, %u logical cores, load average %s\n",
               context.properties().deviceName, context.driver().driverName, context.driver().driverInfo,
               vulkan.c_str(), host["cpu"].get<std::string>().c_str(), host["logical_cores"].get<unsigned>(),
-              loadStart.dump().c_str());
+              io::jsonText(loadStart).c_str());
   std::printf("bench scene %s; warm-up %d, repeats %d (%d for lattices over %.1f M cells)\n\n",
               o.scene.string().c_str(), o.warmup, o.repeats, o.repeatsLarge, kLargeLatticeCells * 1e-6);
   std::fflush(stdout);

@@ -10,6 +10,7 @@
 #include "gpu/image.h"
 #include "gpu/pipeline.h"
 #include "gpu/sequence.h"
+#include "io/json_text.h"
 #include "reference/scattered_lightmaps.h"
 #include "render/billboard.h"
 #include "render/guiding_map.h"
@@ -226,7 +227,7 @@ DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCa
 }
 
 void writeShard(const std::filesystem::path& file, const DatasetShard& shard) {
-  io::writeSafetensors(file, shard.tensors, {{kShardMetadataKey, shard.metadata.dump()}});
+  io::writeSafetensors(file, shard.tensors, {{kShardMetadataKey, io::jsonText(shard.metadata)}});
 }
 
 nlohmann::json shardConfig(const std::filesystem::path& file) {

@@ -9,6 +9,7 @@
 
 #include "io/error.h"
 #include "io/file_access.h"
+#include "io/json_text.h"
 
 namespace sixway::io {
 
@@ -80,12 +81,7 @@ bool claimOutputDirectory(const fs::path& path, bool force) {
 }
 
 void writeReport(const fs::path& path, const nlohmann::json& report) {
-  std::string text;
-  try {
-    text = report.dump(2) + '\n';
-  } catch (const nlohmann::json::type_error& e) {  // a string that is not UTF-8
-    throw InputError(path.string(), std::string("cannot write the report: ") + e.what());
-  }
+  const std::string text = jsonText(report, 2) + '\n';
   AtomicFile file(path);
   file.writeAll(std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
   file.commit();

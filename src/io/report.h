@@ -21,7 +21,8 @@ void requireWritableDirectory(const std::filesystem::path& path, bool force);
 // whether this call made the directory.
 bool claimOutputDirectory(const std::filesystem::path& path, bool force);
 
-// Writes under a temporary name, then renames, so a report is never left half written.
+// Writes under a temporary name, then renames, so a report is never left half written. Strings that are not
+// UTF-8 (paths) are written with U+FFFD in place of their invalid bytes (io::jsonText).
 void writeReport(const std::filesystem::path& path, const nlohmann::json& report);
 
 }  // namespace sixway::io

@@ -12,6 +12,7 @@
 #include "io/exr.h"
 #include "io/file_access.h"
 #include "io/json_reader.h"
+#include "io/json_text.h"
 #include "io/png.h"
 #include "io/tga.h"
 #include "reference/unity_meta.h"
@@ -262,7 +263,7 @@ std::filesystem::path writeFlipbook(const std::filesystem::path& directory, cons
     for (const char* extension : {".exr", ".png", ".tga"}) {
       const std::string file = base + extension;
       // The id is seeded by what the texture is: a re-bake of the same source keeps Unity's references.
-      const std::string meta = unityTextureMeta({.guid = unityGuid(provenance.dump() + "/" + file),
+      const std::string meta = unityTextureMeta({.guid = unityGuid(io::jsonText(provenance) + "/" + file),
                                                  .halfFloat = std::string_view(extension) == ".exr",
                                                  .srgb = std::string_view(extension) != ".exr",
                                                  .width = textures[t].width,
@@ -300,7 +301,7 @@ std::filesystem::path writeFlipbook(const std::filesystem::path& directory, cons
   };
   if (scattering) sidecar["scattering"] = scatteringName(*scattering);
   const std::filesystem::path path = directory / (stem + ".json");
-  const std::string text = sidecar.dump(2) + '\n';
+  const std::string text = io::jsonText(sidecar, 2) + '\n';
   io::AtomicFile file(path);
   file.writeAll(std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
   file.commit();

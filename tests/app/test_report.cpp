@@ -3,10 +3,12 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "io/report.h"
 #include "support/input_error.h"
@@ -29,21 +31,41 @@ TEST(ReportTest, IsWrittenWhole) {
   EXPECT_EQ(entriesIn(dir.path()), 1);
 }
 
-TEST(ReportTest, AWriteThatThrowsMidwayLeavesNoFile) {
+// A directory where the report's temporary file goes: its write fails after the report was encoded.
+void blockTemporaryFile(const fs::path& report) {
+  const fs::path temporary = report.parent_path() / ("." + report.filename().string() + "." +
+                                                     std::to_string(::getpid()) + ".partial");
+  fs::create_directories(temporary / "inside");  // not empty: the failed write's clean-up leaves it
+}
+
+TEST(ReportTest, AFailedWriteLeavesNoReport) {
   TempDir dir;
-  // Not UTF-8: nlohmann throws while the report is being written, after its temporary file is open.
-  const nlohmann::json bad = {{"name", std::string("\xff\xfe")}};
-  EXPECT_THAT(inputErrorMessage([&] { io::writeReport(dir / "r.json", bad); }),
-              namesFileAndProblem(dir / "r.json", "cannot write the report"));
-  EXPECT_EQ(entriesIn(dir.path()), 0);
+  blockTemporaryFile(dir / "r.json");
+  EXPECT_THAT(inputErrorMessage([&] {
+                io::writeReport(dir / "r.json", {{"run", 1}});
+              }),
+              namesFileAndProblem(dir / "r.json", "cannot write the file"));
+  EXPECT_FALSE(fs::exists(dir / "r.json"));
+  EXPECT_EQ(entriesIn(dir.path()), 1);  // the blocking directory alone
 }
 
 TEST(ReportTest, AFailedRewriteKeepsTheEarlierReport) {
   TempDir dir;
   io::writeReport(dir / "r.json", {{"run", 1}});
-  EXPECT_THROW(io::writeReport(dir / "r.json", {{"name", std::string("\xff")}}), io::InputError);
+  blockTemporaryFile(dir / "r.json");
+  EXPECT_THROW(io::writeReport(dir / "r.json", {{"run", 2}}), io::InputError);
   std::ifstream in(dir / "r.json");
   EXPECT_EQ(nlohmann::json::parse(in)["run"], 1);
+}
+
+// A path may hold any bytes; JSON holds UTF-8. The report is written, each invalid byte as U+FFFD.
+TEST(ReportTest, StringsThatAreNotUtf8AreWrittenWithReplacementCharacters) {
+  TempDir dir;
+  io::writeReport(dir / "r.json", {{"out", std::string("/tmp/x\xff\xfey")}, {"frames", 2}});
+  std::ifstream in(dir / "r.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_EQ(report["out"], "/tmp/x\uFFFD\uFFFDy");
+  EXPECT_EQ(report["frames"], 2);
   EXPECT_EQ(entriesIn(dir.path()), 1);
 }
 
