@@ -13,20 +13,38 @@ uint32_t texelBytes(Precision precision) {
   return precision == Precision::Fp16 ? 8 : 16;
 }
 
+// The layout's texels per row and rows, in 64 bits: a huge map (a graph's channels or size_multiple) must
+// not wrap to a size that looks allocatable.
+uint64_t rowTexelsOf(const MapShape& shape) {
+  return (uint64_t(shape.width) + kMapSlack - 1) / kMapSlack * kMapSlack + 2;
+}
+uint64_t rowsOf(const MapShape& shape) {
+  return uint64_t(shape.groups()) * (uint64_t(shape.height) + 2) + kMapSlackRows;
+}
+
+// The buffer's bytes; the largest uint64 when they do not fit in one (no device holds that).
+uint64_t bufferBytes(const MapShape& shape, Precision precision) {
+  uint64_t bytes = 0;
+  if (__builtin_mul_overflow(rowTexelsOf(shape), rowsOf(shape), &bytes) ||
+      __builtin_mul_overflow(bytes, uint64_t(texelBytes(precision)), &bytes))
+    return UINT64_MAX;
+  return bytes;
+}
+
 }  // namespace
 
 FeatureMap::FeatureMap(const gpu::Context& context, MapShape shape, Precision precision, std::string name)
-    : shape_(shape),
-      precision_(precision),
-      rowTexels_((shape.width + kMapSlack - 1) / kMapSlack * kMapSlack + 2),
-      rows_(shape.groups() * (shape.height + 2) + kMapSlackRows) {
+    : shape_(shape), precision_(precision) {
   if (precision == Precision::Fp16 && !context.capabilities().storage16Bit)
     throw gpu::GpuError(name + ": fp16 feature maps need 16-bit storage buffers, which " +
                         context.properties().deviceName + " lacks; use fp32");
-  buffer_ = gpu::Buffer(context, uint64_t(rowTexels_) * rows_ * texelBytes(precision),
+  // The device refuses a buffer beyond its storage-buffer range (at most 4 GiB), so the counts fit 32 bits.
+  buffer_ = gpu::Buffer(context, bufferBytes(shape, precision),
                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT |
                             VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                         gpu::MemoryKind::Device, std::move(name));
+  rowTexels_ = uint32_t(rowTexelsOf(shape));
+  rows_ = uint32_t(rowsOf(shape));
   view_ = gpu::BufferView(
       context, buffer_,
       precision == Precision::Fp16 ? VK_FORMAT_R16G16B16A16_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT);

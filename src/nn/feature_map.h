@@ -50,7 +50,7 @@ class FeatureMap {
 
   MapShape shape_;
   Precision precision_;
-  uint32_t rowTexels_, rows_;
+  uint32_t rowTexels_ = 0, rows_ = 0;
   gpu::Buffer buffer_;
   gpu::BufferView view_;
 };

@@ -78,7 +78,7 @@ Node readNode(io::JsonReader& r) {
   Node n;
   n.name = r.required<std::string>("name");
   n.op = readOp(r);
-  n.scale = r.required<int>("scale", io::positive());
+  n.scale = r.required<int>("scale", io::inRange(1, kMaxSizeMultiple));
   n.outChannels = r.optional<int>("out_channels", 0, io::positive());
   if (n.op == Op::Input) {
     n.outChannels = r.required<int>("out_channels", io::inRange(1, 8));
@@ -179,7 +179,7 @@ Graph readGraph(io::JsonReader& r) {
   g.version = r.required<int>("version");
   if (g.version != 1)
     r.fail("version", "this sixway reads graph version 1 (got " + io::show(g.version) + ")");
-  g.sizeMultiple = r.required<int>("size_multiple", io::positive());
+  g.sizeMultiple = r.required<int>("size_multiple", io::inRange(1, kMaxSizeMultiple));
   r.requiredObjects(
       "nodes",
       [&g](io::JsonReader& nr) {

@@ -62,6 +62,11 @@ inline constexpr double kMaxLeakySlope = 1.0;
 inline constexpr double kMinNormEpsilon = 1e-12;
 inline constexpr double kMaxNormEpsilon = 1.0;
 
+// size_multiple and every node's scale are at most the largest lightmap side (a scene's
+// render.lightmap_size): beyond it a map is one pixel, or a guide is padded past any lightmap. It also keeps
+// the sizes computed from them far from overflow.
+inline constexpr int kMaxSizeMultiple = 4096;
+
 struct Graph {
   int version = 1;
   int sizeMultiple = 1;     // input sizes must be a multiple of it (the runner pads)

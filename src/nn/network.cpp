@@ -7,6 +7,7 @@
 #include "gpu/check.h"
 #include "gpu/context.h"
 #include "gpu/sequence.h"
+#include "io/error.h"
 #include "nn/conv_kernel.h"
 #include "nn/conv_matrix_kernel.h"
 #include "nn/io_kernels.h"
@@ -40,7 +41,30 @@ ParameterMap nafParameters(const io::SafetensorsFile& file, const Node& node) {
 }
 
 uint32_t roundUp(uint32_t n, uint32_t multiple) {
-  return (n + multiple - 1) / multiple * multiple;
+  const uint64_t rounded = (uint64_t(n) + multiple - 1) / multiple * multiple;
+  if (rounded > UINT32_MAX)
+    throw gpu::GpuError("network: a guide side of " + std::to_string(n) + " pixels padded to a multiple of " +
+                        std::to_string(multiple) + " is beyond 32 bits");
+  return uint32_t(rounded);
+}
+
+// The smallest lightmaps the command line gives a network (a scene's or a dataset's lightmap_size): a network
+// that the device cannot hold at this size is the weights' fault, not the lightmaps'.
+constexpr uint32_t kSmallestGuide = 16;
+
+// The line for a network too big for the device at the smallest lightmaps: `problem` (node `node`'s) blamed
+// on the graph's size_multiple when it pads the guide past its size, else on the node's channels.
+[[noreturn]] void blameTheGraph(const std::string& file, const Graph& graph, size_t node,
+                                const std::string& problem, uint32_t guideWidth, uint32_t guideHeight,
+                                uint32_t mapWidth, uint32_t mapHeight) {
+  const std::string guide = std::to_string(guideWidth) + "×" + std::to_string(guideHeight);
+  if (uint32_t(graph.sizeMultiple) > std::max(guideWidth, guideHeight))
+    throw io::InputError(file, "sixway.graph.size_multiple is " + std::to_string(graph.sizeMultiple) +
+                                   ": it pads " + guide + " lightmaps to " + std::to_string(mapWidth) + "×" +
+                                   std::to_string(mapHeight) + ", where " + problem + "; reduce it");
+  throw io::InputError(file, "sixway.graph.nodes[" + std::to_string(node) + "].out_channels is " +
+                                 std::to_string(graph.nodes[node].outChannels) + ": at " + guide +
+                                 " lightmaps, " + problem + "; reduce it");
 }
 
 // For each node, the 1x1 conv fused into it (or -1): a NAFBlock's only consumer, when it is a 1x1 stride-1
@@ -80,11 +104,28 @@ Network::Network(const gpu::Context& context, const gpu::PipelineCache& cache,
   pipelines_ = std::make_unique<PipelinePool>(context, cache);
   tiling_ = resolveTiling(options.tiling, context);
   const KernelSetup setup{&context, pipelines_.get(), options.precision, tiling_};
-
-  const std::vector<int> fused =
-      options.fuseProjections ? fusedProjections(graph_) : std::vector<int>(graph_.nodes.size(), -1);
   layers_.reserve(graph_.nodes.size());
   mapOf_.assign(graph_.nodes.size(), -1);
+  try {
+    addLayers(context, weights, options, setup);
+  } catch (const gpu::LimitError& e) {
+    const size_t node = layers_.size();  // the one being built
+    layers_.clear();                     // its memory, before a retry
+    if (guideWidth > kSmallestGuide || guideHeight > kSmallestGuide) {
+      // Throws, blaming the weights, when even the smallest lightmaps do not fit.
+      const Network smallest(context, cache, weights, std::min(guideWidth, kSmallestGuide),
+                             std::min(guideHeight, kSmallestGuide), options);
+      throw;  // the lightmaps' size is to blame: the caller names its setting
+    }
+    blameTheGraph(weights.path.string(), graph_, node, e.problem(), guideWidth, guideHeight, mapWidth_,
+                  mapHeight_);
+  }
+}
+
+void Network::addLayers(const gpu::Context& context, const io::SafetensorsFile& weights,
+                        const NetworkOptions& options, const KernelSetup& setup) {
+  const std::vector<int> fused =
+      options.fuseProjections ? fusedProjections(graph_) : std::vector<int>(graph_.nodes.size(), -1);
   for (const Node& node : graph_.nodes) {
     const int index = int(layers_.size());
     std::vector<int> inputs, channels;
@@ -111,7 +152,7 @@ Network::Network(const gpu::Context& context, const gpu::PipelineCache& cache,
     switch (node.op) {
       case Op::Input: {
         const MapShape out{mapWidth_, mapHeight_, uint32_t(node.outChannels)};
-        addLayer(InputKernel(setup, out, guideWidth, guideHeight, node.guideChannels, node.albedoChannel),
+        addLayer(InputKernel(setup, out, guideWidth_, guideHeight_, node.guideChannels, node.albedoChannel),
                  out, 0.0);
         break;
       }
@@ -155,9 +196,9 @@ Network::Network(const gpu::Context& context, const gpu::PipelineCache& cache,
         break;
       }
       case Op::Output:
-        addLayer(
-            OutputKernel(setup, outputLayout(node, channels, options.emission), in, guideWidth, guideHeight),
-            std::nullopt, 0.0);
+        addLayer(OutputKernel(setup, outputLayout(node, channels, options.emission), in, guideWidth_,
+                              guideHeight_),
+                 std::nullopt, 0.0);
         break;
     }
   }

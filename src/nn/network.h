@@ -59,7 +59,9 @@ struct GuideImages {
 
 class Network {
  public:
-  // Throws io::InputError naming the file when the graph or a tensor is wrong.
+  // Throws io::InputError naming the file when the graph or a tensor is wrong, or when the device cannot
+  // hold the network even at 16×16 lightmaps (naming the graph's size_multiple or a node's channels);
+  // gpu::LimitError when it cannot at this guide's size but can at 16×16.
   Network(const gpu::Context& context, const gpu::PipelineCache& cache, const io::SafetensorsFile& weights,
           uint32_t guideWidth, uint32_t guideHeight, const NetworkOptions& options = {});
   ~Network();
@@ -102,6 +104,8 @@ class Network {
   std::vector<Layer> layers_;                // one per node
   std::vector<int> mapOf_;                   // per node: the layer whose feature map holds its values, or -1
   const FeatureMap& valuesOf(int node) const;
+  void addLayers(const gpu::Context& context, const io::SafetensorsFile& weights,
+                 const NetworkOptions& options, const KernelSetup& setup);
 };
 
 }  // namespace sixway::nn

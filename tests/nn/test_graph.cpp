@@ -237,7 +237,44 @@ TEST_F(MalformedWeights, NoGraph) {
               namesFileAndProblem(path(), "no \"sixway.graph\" in the metadata"));
 }
 
-class MalformedWeightsOnGpu : public GpuTest {};
+// A size multiple past the largest lightmap padded a 16² guide to a map whose size wrapped 32 bits.
+TEST_F(MalformedWeights, SizeMultipleAndScaleWithinTheLargestLightmap) {
+  std::string error = errorAfter(
+      [](std::vector<io::Tensor>&, nlohmann::json& graph) { graph["size_multiple"] = 1000000000; });
+  EXPECT_THAT(error, namesFileAndProblem(
+                         path(), "sixway.graph.size_multiple: must be in [1, 4096] (got 1000000000)"));
+  error = errorAfter(
+      [this](std::vector<io::Tensor>&, nlohmann::json& graph) { node(graph, "down.0")["scale"] = 8192; });
+  EXPECT_THAT(error, namesFileAndProblem(path(), "scale: must be in [1, 4096] (got 8192)"));
+}
+
+class MalformedWeightsOnGpu : public GpuTest {
+ protected:
+  // The tiny network with an unused 1x1 conv of `channels` channels on its input, and `sizeMultiple`.
+  std::filesystem::path widened(int channels, int sizeMultiple = 4) {
+    io::SafetensorsFile file = io::readSafetensors(kTiny);
+    nlohmann::json graph = nlohmann::json::parse(file.metadata.at("sixway.graph"));
+    graph["size_multiple"] = sizeMultiple;
+    const nlohmann::json wide = {
+        {"name", "wide"},           {"op", "conv2d"}, {"inputs", {"input"}}, {"in_channels", 4},
+        {"out_channels", channels}, {"kernel", 1},    {"stride", 1},         {"scale", 1},
+        {"activation", "none"}};
+    graph["nodes"].insert(graph["nodes"].begin() + 1, wide);
+    file.tensors.push_back(io::Tensor::fromFloat("wide.weight", io::DType::F32, {channels, 4, 1, 1},
+                                                 std::vector<float>(size_t(channels) * 4, 0.0f)));
+    file.tensors.push_back(
+        io::Tensor::fromFloat("wide.bias", io::DType::F32, {channels}, std::vector<float>(channels, 0.0f)));
+    file.metadata["sixway.graph"] = graph.dump();
+    io::writeSafetensors(dir_ / "net.safetensors", file.tensors, file.metadata);
+    return dir_ / "net.safetensors";
+  }
+  std::string buildError(const std::filesystem::path& weights, uint32_t guide) {
+    return inputErrorMessage(
+        [&] { nn::Network(context(), pipelineCache(), io::readSafetensors(weights), guide, guide); });
+  }
+
+  TempDir dir_;
+};
 
 TEST_F(MalformedWeightsOnGpu, NetworkRefusesTheFileBeforeBuildingAnything) {
   TempDir dir;
@@ -268,6 +305,43 @@ TEST_F(MalformedWeightsOnGpu, AlbedoNetworkNeedsTheAlbedo) {
   EXPECT_THROW(network.setAlbedo(1.5f), gpu::GpuError);
   EXPECT_THROW(network.setAlbedo(std::numeric_limits<float>::quiet_NaN()), gpu::GpuError);
   EXPECT_FALSE(nn::Network(context(), pipelineCache(), io::readSafetensors(kTiny), 16, 16).readsAlbedo());
+}
+
+// A network that the device cannot hold even at the smallest lightmaps is the weights' fault: the line names
+// the file and the graph's field, with the size the map needs (it was blamed on render.lightmap_size, with a
+// size that had wrapped 32 bits).
+TEST_F(MalformedWeightsOnGpu, ANetworkBeyondTheDeviceAtTheSmallestLightmapsBlamesTheGraph) {
+  // A 16x16 map: 18 texels a row (slack and border), 18 rows a group of 4 channels, 16 bytes a texel.
+  const uint64_t groupBytes = 18 * 18 * 16;
+  const uint64_t groups = 2 * (uint64_t(context().limits().maxStorageBufferRange) / groupBytes + 1);
+  if (groups > 200000) GTEST_SKIP() << "the device binds maps too large for a small test file";
+  const std::filesystem::path weights = widened(int(groups * 4));
+  const std::string channels = "sixway.graph.nodes[1].out_channels is " + std::to_string(groups * 4) +
+                               ": at 16×16 lightmaps, net.safetensors wide needs a storage buffer of ";
+  EXPECT_THAT(buildError(weights, 16), namesFileAndProblem(weights, channels));
+  EXPECT_THAT(buildError(weights, 16), ::testing::EndsWith("; reduce it"));
+  // A larger guide: built again at 16x16, which does not fit either.
+  EXPECT_THAT(buildError(weights, 64), namesFileAndProblem(weights, channels));
+}
+
+TEST_F(MalformedWeightsOnGpu, ASizeMultiplePaddingTheGuideBeyondTheDeviceBlamesTheGraph) {
+  // At 4096x4096, 64 channels take more than 4 GiB, beyond any device's storage-buffer range.
+  const std::filesystem::path weights = widened(64, 4096);
+  EXPECT_THAT(buildError(weights, 16),
+              namesFileAndProblem(weights,
+                                  "sixway.graph.size_multiple is 4096: it pads 16×16 lightmaps to "
+                                  "4096×4096, where net.safetensors "));
+}
+
+// What fits at the smallest lightmaps but not at these is the lightmaps' fault: a gpu::LimitError, for the
+// caller to name its setting (render.lightmap_size).
+TEST_F(MalformedWeightsOnGpu, ANetworkBeyondTheDeviceOnlyAtLargeLightmapsIsALimitError) {
+  try {
+    nn::Network(context(), pipelineCache(), io::readSafetensors(kTiny), 16384, 16384);
+    ADD_FAILURE() << "a 16384x16384 network was built";
+  } catch (const gpu::LimitError& e) {
+    EXPECT_THAT(e.problem(), ::testing::HasSubstr("tiny.safetensors input needs"));
+  }
 }
 
 }  // namespace
