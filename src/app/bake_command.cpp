@@ -267,9 +267,10 @@ void addBakeCommand(CLI::App& app) {
   auto o = std::make_shared<BakeOptions>();
   CLI::App* bake = app.add_subcommand("bake", "Reference six-way lightmaps and a Unity-packed flipbook");
   o->common.addTo(*bake);
-  auto* sceneOption = bake->add_option("--scene", o->scene, "Scene JSON: bake its simulation");
-  bake->add_option("--vdb", o->vdb, "OpenVDB files, one per frame")->excludes(sceneOption);
-  bake->add_option("--out", o->out, "Output directory")->required();
+  auto* sceneOption =
+      bake->add_option("--scene", o->scene, "Scene JSON: bake its simulation")->check(filePath());
+  bake->add_option("--vdb", o->vdb, "OpenVDB files, one per frame")->excludes(sceneOption)->check(filePath());
+  bake->add_option("--out", o->out, "Output directory")->required()->check(directoryPath());
   bake->add_flag("--force", o->force, "Write into an existing output directory");
   bake->add_option("--first", o->first, "First frame baked (default 0)")->check(CLI::Range(0, 100000));
   bake->add_option("--frames", o->frames, "Frames baked (default: every VDB file; 16 for a scene)")

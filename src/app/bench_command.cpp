@@ -19,6 +19,7 @@
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "io/error.h"
+#include "io/file_access.h"
 #include "io/json_text.h"
 #include "io/report.h"
 #include "nn/graph.h"
@@ -128,8 +129,7 @@ BenchInputs prepare(BenchOptions& o) {
     return s.needsWeights && std::find(sections.begin(), sections.end(), s.name) != sections.end();
   });
   if (needsWeights) {
-    if (!std::filesystem::is_regular_file(o.weights))
-      throw io::InputError(o.weights.string(), "no such weights file");
+    io::requireRegularFile(o.weights, "no such weights file");
     inputs.weights = io::readSafetensors(o.weights);
     nn::parseGraph(inputs.weights);  // the graph is valid
   }
@@ -211,7 +211,7 @@ void addBenchCommand(CLI::App& app) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* command = app.add_subcommand("bench", "Per-stage GPU timings at fixed sizes");
   o->common.addTo(*command);
-  command->add_option("--report", o->report, "JSON report");
+  command->add_option("--report", o->report, "JSON report")->check(filePath());
   command->add_flag("--force", o->force, "Overwrite an existing report");
   command->add_option("--sections", o->sections, "What to time: " + knownSections())
       ->delimiter(',')
@@ -224,7 +224,7 @@ void addBenchCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--frame-lightmaps", o->frameLightmapSize, "Lightmap size of the end-to-end frame")
       ->capture_default_str();
-  command->add_option("--weights", o->weights, kWeightsHelp);
+  command->add_option("--weights", o->weights, kWeightsHelp)->check(filePath());
   command->add_option("--warmup", o->warmup, "Untimed runs first (at most 1 for the large lattices)")
       ->capture_default_str();
   command->add_option("--repeats", o->repeats, "Timed runs (median, min and max are reported)")

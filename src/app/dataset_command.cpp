@@ -166,8 +166,12 @@ void addDatasetCommand(CLI::App& app) {
   CLI::App* dataset =
       app.add_subcommand("dataset", "Training pairs: guiding map → reference lightmaps, per sequence");
   o->common.addTo(*dataset);
-  dataset->add_option("--config", o->config, "Dataset config JSON (docs/dataset-format.md)")->required();
-  dataset->add_option("--out", o->out, "Output directory (shared by the workers of one dataset)")->required();
+  dataset->add_option("--config", o->config, "Dataset config JSON (docs/dataset-format.md)")
+      ->required()
+      ->check(filePath());
+  dataset->add_option("--out", o->out, "Output directory (shared by the workers of one dataset)")
+      ->required()
+      ->check(directoryPath());
   dataset->add_option("--shard", o->shard, "I/N: make the sequences S with S mod N = I");
   dataset->add_flag("--force", o->force, "Remake shards that exist, and overwrite those of another config");
   dataset->callback([o] { run(*o); });

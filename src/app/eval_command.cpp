@@ -250,15 +250,18 @@ void addEvalCommand(CLI::App& app) {
   CLI::App* eval = app.add_subcommand(
       "eval", "Quality and speed: the network on a dataset, or every method on a scene's sequence");
   o->common.addTo(*eval);
-  eval->add_option("--dataset", o->dataset, "Dataset directory (sixway dataset): evaluate its samples");
+  eval->add_option("--dataset", o->dataset, "Dataset directory (sixway dataset): evaluate its samples")
+      ->check(directoryPath());
   eval->add_option("--split", o->splits,
                    "Dataset: splits evaluated (default heldout_sequence heldout_camera)");
   eval->add_option("--target", o->target,
                    "Dataset: the targets compared with, single (default) or multiple scattering");
   eval::SceneEvalSettings& s = o->scene;
-  eval->add_option("--scene", s.scene, "Scene JSON: evaluate its sequence against the path tracer");
+  eval->add_option("--scene", s.scene, "Scene JSON: evaluate its sequence against the path tracer")
+      ->check(filePath());
   eval->add_option("--frames", s.frames, "Scene: frames evaluated")->check(CLI::Range(1, 100000));
-  eval->add_option("--out", s.out, "Scene: directory for the side-by-side strip (strip.png)");
+  eval->add_option("--out", s.out, "Scene: directory for the side-by-side strip (strip.png)")
+      ->check(directoryPath());
   eval->add_option("--spp", s.samples,
                    "Scene: path-tracer samples per pixel of the ground truth (default 64)")
       ->check(CLI::Range(1, 1 << 20));
@@ -295,8 +298,8 @@ void addEvalCommand(CLI::App& app) {
   eval->add_flag(
       "--truth-noise", s.truthNoise,
       "Scene: path-trace each frame twice to take the truth's noise out of its frame-to-frame change");
-  eval->add_option("--weights", s.weights, kWeightsHelp);
-  eval->add_option("--report", s.report, "JSON report")->required();
+  eval->add_option("--weights", s.weights, kWeightsHelp)->check(filePath());
+  eval->add_option("--report", s.report, "JSON report")->required()->check(filePath());
   eval->add_flag("--force", s.force, "Overwrite an existing report (and --out directory)");
   eval->callback([o] { run(*o); });
 }

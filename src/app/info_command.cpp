@@ -93,7 +93,8 @@ void addInfoCommand(CLI::App& app) {
   auto options = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand("info", "The Vulkan device sixway uses and the limits that matter");
   options->common.addTo(*command);
-  command->add_option("--report", options->report, "Also write the device description as JSON");
+  command->add_option("--report", options->report, "Also write the device description as JSON")
+      ->check(filePath());
   command->add_flag("--force", options->force, "Overwrite an existing report");
   command->callback([options] {
     if (!options->report.empty()) io::requireWritableFile(options->report, options->force);

@@ -51,7 +51,23 @@ CLI::Validator lowerBound(bool inclusive) {
       inclusive ? "NUMBER >= 0" : "NUMBER > 0");
 }
 
+CLI::Validator nonEmptyPath(const std::string& kind) {
+  return CLI::Validator(
+      [kind](const std::string& text) -> std::string {
+        return text.empty() ? "an empty path; give " + kind + "'s path" : "";
+      },
+      "");
+}
+
 }  // namespace
+
+CLI::Validator filePath() {
+  return nonEmptyPath("a file");
+}
+
+CLI::Validator directoryPath() {
+  return nonEmptyPath("a directory");
+}
 
 CLI::Validator positiveNumber() {
   return lowerBound(false);

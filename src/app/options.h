@@ -29,4 +29,9 @@ void requireFiniteNumbers(CLI::App& command);
 CLI::Validator positiveNumber();
 CLI::Validator nonNegativeNumber();
 
+// For the options that take a file's or a directory's path: an empty value is refused, "--out: an empty
+// path; give a directory's path" (an empty path was "'' is not a directory", "no such file", or no report).
+CLI::Validator filePath();
+CLI::Validator directoryPath();
+
 }  // namespace sixway::app

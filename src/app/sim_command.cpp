@@ -189,12 +189,16 @@ void addSimCommand(CLI::App& app) {
   CLI::App* command =
       app.add_subcommand("sim", "Run the smoke simulation (LBM + smoke transport) of a scene");
   o->common.addTo(*command);
-  command->add_option("--scene", o->scene, "Scene JSON")->required();
+  command->add_option("--scene", o->scene, "Scene JSON")->required()->check(filePath());
   command->add_option("--steps", o->steps, "Lattice steps")->required()->check(CLI::Range(1u, 100000000u));
-  command->add_option("--vdb-out", o->vdbOut,
-                      "Write density and temperature per frame as OpenVDB into this directory");
-  command->add_option("--report", o->report,
-                      "JSON report: forces on each obstacle, mass, max velocity, MLUPs, watchdog");
+  command
+      ->add_option("--vdb-out", o->vdbOut,
+                   "Write density and temperature per frame as OpenVDB into this directory")
+      ->check(directoryPath());
+  command
+      ->add_option("--report", o->report,
+                   "JSON report: forces on each obstacle, mass, max velocity, MLUPs, watchdog")
+      ->check(filePath());
   command->add_flag("--force", o->force, "Overwrite an existing output directory or report");
   command->callback([o] { run(*o); });
 }

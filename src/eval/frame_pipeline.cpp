@@ -8,6 +8,7 @@
 #include "gpu/image.h"
 #include "gpu/pipeline.h"
 #include "io/error.h"
+#include "io/file_access.h"
 #include "io/safetensors.h"
 #include "nn/network.h"
 #include "reference/guide_lightmaps.h"
@@ -139,8 +140,7 @@ struct FramePipeline::Passes {
   static std::unique_ptr<nn::Network> loadNetwork(const gpu::Context& context,
                                                   const gpu::PipelineCache& cache, const io::Scene& scene,
                                                   const FramePipelineOptions& options) {
-    if (!std::filesystem::exists(options.weights))
-      throw io::InputError(options.weights.string(),
+    io::requireRegularFile(options.weights,
                            "no such weights file (train one with tools/train.py, or pass --weights)");
     nn::NetworkOptions networkOptions;
     networkOptions.precision = options.fp16 ? nn::Precision::Fp16 : nn::Precision::Fp32;

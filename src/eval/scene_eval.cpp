@@ -24,6 +24,7 @@
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "io/error.h"
+#include "io/file_access.h"
 #include "io/report.h"
 #include "io/scene.h"
 #include "render/camera.h"
@@ -126,8 +127,7 @@ void check(const SceneEvalSettings& s) {
   if (s.stripFrame && (*s.stripFrame < 0 || *s.stripFrame >= s.frames))
     throw io::InputError("--strip-frame", "frame " + std::to_string(*s.stripFrame) + " is outside 0.." +
                                               std::to_string(s.frames - 1));
-  if (!fs::exists(s.weights))
-    throw io::InputError(s.weights.string(),
+  io::requireRegularFile(s.weights,
                          "no such weights file (train one with tools/train.py, or pass --weights)");
 }
 

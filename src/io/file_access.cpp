@@ -3,7 +3,9 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <climits>
 #include <cstring>
 #include <fstream>
 #include <string>
@@ -36,11 +38,32 @@ std::string describeFileType(fs::file_type type) {
   }
 }
 
-void requireRegularFile(const fs::path& path) {
+std::string lookupProblem(const fs::path& path, const std::error_code& error) {
+  if (error != std::errc::filename_too_long) return error.message();
+  const auto tooLong = [](std::string_view what, std::size_t length, long limit) {
+    return std::string(what) + " is longer than the system allows (" + std::to_string(length) +
+           " characters, at most " + std::to_string(limit) + ")";
+  };
+  const std::size_t length = path.native().size();
+  if (length >= PATH_MAX) return tooLong("path", length, PATH_MAX - 1);
+  std::size_t longest = 0;
+  for (const fs::path& name : path) longest = std::max(longest, name.native().size());
+  if (longest > NAME_MAX) return tooLong("a name in the path", longest, NAME_MAX);
+  return error.message();
+}
+
+std::string regularFileProblem(const fs::path& path, std::string_view missing) {
   std::error_code error;
-  const fs::file_status status = fs::status(path, error);
-  if (!fs::exists(status)) throw InputError(path.string(), "no such file");
-  if (!fs::is_regular_file(status)) throw InputError(path.string(), "not a regular file");
+  const fs::file_type type = fs::status(path, error).type();
+  if (type == fs::file_type::not_found) return std::string(missing);
+  if (type == fs::file_type::none) return lookupProblem(path, error);
+  if (type != fs::file_type::regular) return "is " + describeFileType(type) + ", not a regular file";
+  return "";
+}
+
+void requireRegularFile(const fs::path& path, std::string_view missing) {
+  if (const std::string problem = regularFileProblem(path, missing); !problem.empty())
+    throw InputError(path.string(), problem);
 }
 
 std::vector<uint8_t> readFileBytes(const fs::path& path) {

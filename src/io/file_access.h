@@ -8,6 +8,8 @@
 #include <regex>
 #include <span>
 #include <string>
+#include <string_view>
+#include <system_error>
 #include <vector>
 
 namespace sixway::io {
@@ -20,8 +22,18 @@ std::string describeFileType(std::filesystem::file_type type);
 // a file, never a special file. Nothing there is fine.
 void requireReplaceable(const std::filesystem::path& path);
 
-// Throws InputError naming `path` when it does not exist or is not a regular file.
-void requireRegularFile(const std::filesystem::path& path);
+// Why `path` cannot be looked at when fs::status failed with `error` for a reason other than its absence:
+// "path is longer than the system allows (5000 characters, at most 4095)" (std::filesystem::exists says
+// false then, as if the file were missing), or the system's words ("Permission denied").
+std::string lookupProblem(const std::filesystem::path& path, const std::error_code& error);
+
+// "" when `path` is a regular file (links followed); else why not, for "<path>: <problem>": `missing` when
+// nothing is there, "is a FIFO, not a regular file" (a directory, device or socket likewise), or
+// lookupProblem. Never opens the file, so a FIFO or a device is not read.
+std::string regularFileProblem(const std::filesystem::path& path, std::string_view missing = "no such file");
+
+// Throws InputError naming `path` and regularFileProblem unless it is a regular file.
+void requireRegularFile(const std::filesystem::path& path, std::string_view missing = "no such file");
 
 // The whole file; throws InputError naming `path` when it cannot be read.
 std::vector<uint8_t> readFileBytes(const std::filesystem::path& path);

@@ -38,10 +38,12 @@ void requireAbsentOrForced(const fs::path& path, fs::file_type type, bool force)
 }
 
 // The type of the file at `path`, links followed: not_found when absent, when a link leads nowhere, or when
-// it cannot be looked at (a directory without search permission: the writable-ancestor check says so).
+// it cannot be looked at (a directory without search permission: the writable-ancestor check says so). A path
+// longer than the system allows throws.
 fs::file_type typeAt(const fs::path& path) {
   std::error_code error;
   const fs::file_type type = fs::status(path, error).type();
+  if (error == std::errc::filename_too_long) throw InputError(path.string(), lookupProblem(path, error));
   return error ? fs::file_type::not_found : type;
 }
 

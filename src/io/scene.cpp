@@ -22,6 +22,7 @@ namespace {
 std::string notARegularFile(const fs::path& path) {
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
+  if (status.type() == fs::file_type::none) return lookupProblem(path, ec);  // a path beyond PATH_MAX, ...
   if (!fs::exists(status)) return "not found";
   if (fs::is_regular_file(status)) return "";
   if (fs::is_directory(status)) return "is a directory";

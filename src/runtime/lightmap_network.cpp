@@ -8,6 +8,7 @@
 #include "gpu/image.h"
 #include "gpu/sequence.h"
 #include "io/error.h"
+#include "io/file_access.h"
 #include "io/safetensors.h"
 #include "io/scene.h"
 #include "nn/network.h"
@@ -23,8 +24,7 @@ struct LightmapNetwork::Impl {
                                 VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "guiding map"}),
         lightmaps(*device.context, size, size),
         sequence(*device.context) {
-    if (!std::filesystem::is_regular_file(weights))
-      throw io::InputError(weights.string(), "no such weights file");
+    io::requireRegularFile(weights, "no such weights file");
     nn::NetworkOptions options;
     options.precision = fp16 ? nn::Precision::Fp16 : nn::Precision::Fp32;
     options.albedo = io::Smoke{}.albedo;  // run() sets each run's

@@ -1,11 +1,11 @@
 #include <sixway/smoke_renderer.h>
 
 #include <algorithm>
-#include <filesystem>
 #include <glm/gtc/packing.hpp>
 #include <stdexcept>
 
 #include "io/error.h"
+#include "io/file_access.h"
 #include "io/safetensors.h"
 #include "render/scene_frame.h"
 #include "render/shadow_maps.h"
@@ -17,8 +17,7 @@ namespace {
 
 std::unique_ptr<nn::Network> loadNetwork(const gpu::Context& context, const gpu::PipelineCache& cache,
                                          const RendererOptions& options, const io::Scene& scene) {
-  if (!std::filesystem::is_regular_file(options.weights))
-    throw io::InputError(options.weights.string(), "no such weights file");
+  io::requireRegularFile(options.weights, "no such weights file");
   nn::NetworkOptions networkOptions;
   networkOptions.precision = options.fp16 ? nn::Precision::Fp16 : nn::Precision::Fp32;
   networkOptions.emission = scene.smoke.emission.intensity > 0.0f;
