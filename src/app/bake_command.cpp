@@ -13,10 +13,11 @@
 #include "app/device_limits.h"
 #include "app/options.h"
 #include "app/scene_errors.h"
+#include "app/staged_directory.h"
+#include "app/stop_on_signal.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "io/error.h"
-#include "io/file_access.h"
 #include "io/report.h"
 #include "io/scene.h"
 #include "reference/bake_flipbook.h"
@@ -91,26 +92,21 @@ io::Emission defaultRamp(float intensity) {
   return e;
 }
 
-// After a bake with --force into an earlier one: the earlier bake's frames that this one did not rewrite
-// (frames/frame_NNNN.exr outside first..first+count-1) go; nothing else in frames/ is touched. Done once the
-// bake has finished, so an interrupted rerun loses none of the earlier frames.
-void removeFramesOfAnEarlierBake(const fs::path& frames, int first, int count) {
-  static const std::regex name(R"(frame_([0-9]{4,9})\.exr)");
-  io::removeNumberedEntries(frames, name, fs::file_type::regular,
-                            [&](long index) { return index < first || index >= long(first) + count; });
-}
+// The folder of the baked frames inside the output directory.
+const StagedDirectory::OutputFolders kBakeFolders{"frames"};
 
-// The textures of the presets this bake did not use, left by an earlier bake into the directory with another
-// --packing: removed, so the directory never holds two packings' textures.
-void removeTexturesOfOtherPackings(const fs::path& out, const render::ChannelPacking& used) {
+// Whether `name` (relative to the output directory) is a file `sixway bake` writes: the sidecar, the textures
+// of every packing preset with their Unity .meta files, and the frames. A bake removes those an earlier bake
+// left and it did not replace (another packing's textures, frames outside its range).
+bool isBakeOutput(const std::string& name) {
+  static const std::regex frame(R"(frames/frame_[0-9]{4,}\.exr)");
+  static const std::regex texture(R"(flipbook_([A-Za-z0-9]+)\.(exr|png|tga)(\.meta)?)");
+  std::smatch match;
+  if (name == "flipbook.json" || std::regex_match(name, frame)) return true;
+  if (!std::regex_match(name, match, texture)) return false;
   for (const std::string& preset : render::packingPresetNames())
-    for (const std::string& texture : render::packingPreset(preset).textures) {
-      if (std::ranges::count(used.textures, texture) > 0) continue;
-      for (const char* extension : {".exr", ".png", ".tga", ".exr.meta", ".png.meta", ".tga.meta"}) {
-        std::error_code ignored;
-        fs::remove(out / ("flipbook_" + texture + extension), ignored);
-      }
-    }
+    if (std::ranges::count(render::packingPreset(preset).textures, match[1].str()) > 0) return true;
+  return false;
 }
 
 // "A = (Right, Top, Back, alpha), B = (Left, Bottom, Front, emissive)"
@@ -143,10 +139,12 @@ void printEmissiveSettings(const std::optional<render::EmissiveMask>& mask, bool
 }
 
 void run(const BakeOptions& o) {
+  const StopOnSignal stopOnSignal;
   if (o.scene.empty() && o.vdb.empty()) throw io::InputError("bake", "give --scene S or --vdb F...");
   if (o.cameraPosition.empty() != o.cameraTarget.empty())
     throw io::InputError("--camera-position", "--camera-position and --camera-target go together");
-  io::requireWritableDirectory(o.out, o.force);
+  // A directory or special file under a name the bake replaces stops it here, before any work.
+  StagedDirectory::requireWritable(o.out, o.force, isBakeOutput, kBakeFolders);
 
   std::optional<io::Scene> scene;
   if (!o.scene.empty()) scene = io::loadScene(o.scene);
@@ -204,7 +202,6 @@ void run(const BakeOptions& o) {
   }
 
   render::FlipbookBake job;
-  job.out = o.out;
   job.firstFrame = o.first;
   job.frameCount = frameCount;
   job.columns = o.columns.value_or(0);
@@ -231,6 +228,10 @@ void run(const BakeOptions& o) {
   job.multiple.seed = o.seed.value_or(scene ? scene->render.seed : 1u);
   job.provenance = provenance;
 
+  // The bake is written into a staging directory and moved in when it has succeeded: an earlier bake stays
+  // whole until then, and a directory made for this bake goes again if it fails or is stopped.
+  StagedDirectory output(o.out, "bake", o.force, isBakeOutput, kBakeFolders);
+  job.out = output.staging();
   std::printf("sixway bake: %d frames, tiles of %dx%d, %s scattering, packing %s: %s\n", job.frameCount,
               tileWidth, tileHeight, render::scatteringName(job.scattering), o.packing.c_str(),
               describePacking(job.packing).c_str());
@@ -240,19 +241,23 @@ void run(const BakeOptions& o) {
   const fs::path cameraSource = !o.cameraPosition.empty() ? fs::path("--camera-position")
                                 : !o.scene.empty()        ? o.scene
                                                           : fs::path("--vdb");
-  const render::FlipbookBakeResult result = namingScene(o.scene, cameraSource, [&] {
-    return withinDeviceLimits("--tile", "--tile", [&] {
-      return render::bakeFlipbook(context, cache, *sequence, job, [](const std::string& line) {
-        std::printf("  %s\n", line.c_str());
-        std::fflush(stdout);
+  render::FlipbookBakeResult result;
+  throwIfStopped();  // a signal while the sequence was being loaded or simulated
+  output.underFinalNames([&] {
+    result = namingScene(o.scene, cameraSource, [&] {
+      return withinDeviceLimits("--tile", "--tile", [&] {
+        return render::bakeFlipbook(context, cache, *sequence, job, [&](const std::string& line) {
+          std::printf("  %s\n", line.c_str());
+          std::fflush(stdout);
+          throwIfStopped();
+        });
       });
     });
   });
-  removeFramesOfAnEarlierBake(o.out / "frames", job.firstFrame, job.frameCount);
-  removeTexturesOfOtherPackings(o.out, job.packing);
+  output.commit();
   if (const auto* vdb = dynamic_cast<const render::VdbSequence*>(sequence.get()))
     for (const std::string& note : vdb->notes()) std::fprintf(stderr, "sixway: note: %s\n", note.c_str());
-  std::printf("sixway bake: wrote %s\n", result.sidecar.string().c_str());
+  std::printf("sixway bake: wrote %s\n", (output.directory() / result.sidecar.filename()).string().c_str());
   // What a Unity VFX Graph output needs besides the textures (their .meta files hold the import settings).
   std::printf("sixway bake: Unity: Flip Book Size %d x %d, %d frames; textures linear, RGBA half (EXR)\n",
               result.layout.columns, result.layout.rows, result.layout.frames);

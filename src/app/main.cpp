@@ -1,7 +1,8 @@
 // sixway: the command line (docs/conventions.md, "Command line"). Every failure ends in one line on stderr
-// and exit 1.
+// and exit 1; a run stopped by SIGINT or SIGTERM ends by that signal.
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -15,6 +16,7 @@
 #include "app/options.h"
 #include "app/render_command.h"
 #include "app/sim_command.h"
+#include "app/stop_on_signal.h"
 
 int main(int argc, char** argv) {
   CLI::App app("sixway: real-time smoke rendering with neural six-way lightmaps");
@@ -43,6 +45,12 @@ int main(int argc, char** argv) {
     // A bad option is one line too (CLI11's own adds "Run with --help ..."); CLI11's exit code is kept.
     std::fprintf(stderr, "sixway: error: %s\n", e.what());
     return e.get_exit_code();
+  } catch (const sixway::app::Stopped& e) {
+    // The outputs are cleaned up by now: end by the signal, as a shell expects of an interrupted command.
+    std::fprintf(stderr, "sixway: %s\n", e.what());
+    std::signal(e.signal(), SIG_DFL);
+    std::raise(e.signal());
+    return 128 + e.signal();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "sixway: error: %s\n", e.what());
     return 1;

@@ -21,6 +21,7 @@
 #include "app/scene_errors.h"
 #include "app/shipped_weights.h"
 #include "app/staged_directory.h"
+#include "app/stop_on_signal.h"
 #include "app/timings_log.h"
 #include "eval/frame_pipeline.h"
 #include "eval/image_metrics.h"
@@ -104,6 +105,7 @@ class FrameSource {
 };
 
 void run(const RenderOptions& o) {
+  const StopOnSignal stopOnSignal;
   io::Scene scene = io::loadScene(o.scene);
   if (o.warmup) scene.render.warmupFrames = *o.warmup;
   if (o.toneMap) scene.render.toneMap = *o.toneMap == "aces" ? io::ToneMap::Aces : io::ToneMap::Clamp;
@@ -128,9 +130,8 @@ void run(const RenderOptions& o) {
   options.pathTraceSamples = o.samples;
   options.pathTraceOrders = o.orders;
   options.multipleScattering = o.multiple;
-  io::requireWritableDirectory(o.out, o.force);
   // A directory or special file under a name the render replaces stops it here, before any work.
-  StagedDirectory::requireReplaceableOutputs(o.out, FrameWriter::isRenderOutput);
+  StagedDirectory::requireWritable(o.out, o.force, FrameWriter::isRenderOutput);
 
   const gpu::ContextOptions contextOptions = o.common.contextOptions();
   sixway::Device device(sixway::DeviceOptions{contextOptions.validate, contextOptions.deviceIndex});
@@ -172,12 +173,14 @@ void run(const RenderOptions& o) {
   namingScene(o.scene, [&] {
     if (simulation)
       for (int w = 0; w < warmup; ++w) {
+        throwIfStopped();
         simulation->advance();
         std::printf("  warm-up %d/%d\n", w + 1, warmup);
         std::fflush(stdout);
       }
     const auto started = std::chrono::steady_clock::now();
     for (int i = 0; i < o.frames; ++i) {
+      throwIfStopped();
       if (simulation) simulation->advance();
       const eval::RenderedFrame frame = source.render(warmup + i);
       writer.write(i, frame.image);

@@ -14,6 +14,7 @@
 #include "app/device_limits.h"
 #include "app/options.h"
 #include "app/staged_directory.h"
+#include "app/stop_on_signal.h"
 #include "gpu/bandwidth.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
@@ -59,14 +60,12 @@ bool isVdbFrameOf(const std::string& sceneName, const std::string& fileName) {
 // Outputs are checked before any work: an existing directory or report needs --force, and nothing there may
 // be a special file where sixway writes a file.
 void checkOutputs(const SimOptions& o, const StagedDirectory::OutputNames& vdbFrames) {
-  if (!o.vdbOut.empty()) {
-    io::requireWritableDirectory(o.vdbOut, o.force);
-    StagedDirectory::requireReplaceableOutputs(o.vdbOut, vdbFrames);
-  }
+  if (!o.vdbOut.empty()) StagedDirectory::requireWritable(o.vdbOut, o.force, vdbFrames);
   if (!o.report.empty()) io::requireWritableFile(o.report, o.force);
 }
 
 void run(const SimOptions& o) {
+  const StopOnSignal stopOnSignal;
   const io::Scene scene = io::loadScene(o.scene);
   io::requireSimulated(scene, o.scene.string());
   // --vdb-out is staged: an earlier run's frames stay whole until this run has succeeded; then those of this
@@ -98,6 +97,7 @@ void run(const SimOptions& o) {
   const bool terminal = isatty(fileno(stdout));
   try {
     while (simulation.step() < o.steps) {
+      throwIfStopped();
       const uint32_t n = std::min<uint64_t>(units.stepsPerFrame, o.steps - simulation.step());
       simulation.advance(n);
       ++frame;

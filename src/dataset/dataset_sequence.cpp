@@ -10,6 +10,7 @@
 #include "gpu/image.h"
 #include "gpu/pipeline.h"
 #include "gpu/sequence.h"
+#include "io/file_access.h"
 #include "io/json_text.h"
 #include "reference/scattered_lightmaps.h"
 #include "render/billboard.h"
@@ -227,6 +228,7 @@ DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCa
 }
 
 void writeShard(const std::filesystem::path& file, const DatasetShard& shard) {
+  io::removePartialsOfEndedRuns(file);
   io::writeSafetensors(file, shard.tensors, {{kShardMetadataKey, io::jsonText(shard.metadata)}});
 }
 

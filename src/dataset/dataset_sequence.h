@@ -29,7 +29,8 @@ DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCa
                               const DatasetConfig& config, const SequencePlan& plan,
                               const FrameProgress& progress = {});
 
-// Written under a temporary name and renamed (io::writeSafetensors).
+// Written under a temporary name and renamed (io::writeSafetensors), after removing the temporary files of
+// `file` that killed runs left (io::removePartialsOfEndedRuns).
 void writeShard(const std::filesystem::path& file, const DatasetShard& shard);
 
 // The metadata key of a shard, and the "config" a shard file was made from (null when the file has no

@@ -1,6 +1,7 @@
 #include "io/file_access.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -79,6 +80,16 @@ std::vector<uint8_t> readFileBytes(const fs::path& path) {
   return bytes;
 }
 
+bool processEnded(long pid) {
+  if (pid <= 0) return false;
+  if (::kill(pid_t(pid), 0) != 0) return errno == ESRCH;
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  std::getline(stat, line);
+  const size_t command = line.rfind(')');  // the state follows the command name, which may hold spaces
+  return command != std::string::npos && line.compare(command, 3, ") Z") == 0;
+}
+
 void removeNumberedEntries(const fs::path& directory, const std::regex& pattern, fs::file_type type,
                            const std::function<bool(long)>& stale) {
   std::error_code error;
@@ -91,6 +102,14 @@ void removeNumberedEntries(const fs::path& directory, const std::regex& pattern,
       doomed.push_back(entry.path());
   }
   for (const fs::path& path : doomed) fs::remove_all(path, error);
+}
+
+void removePartialsOfEndedRuns(const fs::path& target) {
+  static const std::regex special(R"([.^$|()\[\]{}*+?\\])");
+  const std::string name = std::regex_replace(target.filename().string(), special, R"(\$&)");
+  const fs::path directory = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  removeNumberedEntries(directory, std::regex("\\." + name + "\\.([0-9]{1,9})\\.partial"),
+                        fs::file_type::regular, processEnded);
 }
 
 void appendBytes(void* context, void* data, int size) {

@@ -38,16 +38,29 @@ void requireRegularFile(const std::filesystem::path& path, std::string_view miss
 // The whole file; throws InputError naming `path` when it cannot be read.
 std::vector<uint8_t> readFileBytes(const std::filesystem::path& path);
 
+// Whether process `pid` has ended: it no longer exists (kill(pid, 0) fails with ESRCH), or it is a zombie (it
+// has exited and only its exit status waits for a parent that may never collect it). A live process, or one
+// that cannot be looked at, has not.
+bool processEnded(long pid);
+
 // Clean-up of numbered outputs: removes (recursively) each entry of `directory` of the given type whose name
 // matches `pattern`, a regex whose first group is 1 to 9 digits, and whose number `stale` accepts. Errors are
 // ignored.
 void removeNumberedEntries(const std::filesystem::path& directory, const std::regex& pattern,
                            std::filesystem::file_type type, const std::function<bool(long)>& stale);
 
+// Removes the temporary files of `target` (AtomicFile's `.<name>.<pid>.partial`, from C++ or Python) whose
+// process has ended: a run killed between its write and the rename leaves one, and the next run that writes
+// `target` calls this. Never a live process's. It reads the whole directory, so writers of many files into
+// one directory (frames in a staging directory, which goes whole) do not call it.
+void removePartialsOfEndedRuns(const std::filesystem::path& target);
+
 // stb_image_write's write callback (stbi_write_*_to_func): appends to the std::vector<uint8_t> `context`.
 void appendBytes(void* context, void* data, int size);
 
-// A temporary file next to `target`, renamed onto it by commit(); removed if commit() is never reached.
+// A temporary file next to `target` (`.<name>.<pid>.partial`), renamed onto it by commit(); removed if
+// commit() is never reached. A process killed between its write and the rename leaves it behind: see
+// removePartialsOfEndedRuns.
 class AtomicFile {
  public:
   // Throws InputError naming `target` when its directory does not exist.

@@ -84,6 +84,7 @@ bool claimOutputDirectory(const fs::path& path, bool force) {
 
 void writeReport(const fs::path& path, const nlohmann::json& report) {
   const std::string text = jsonText(report, 2) + '\n';
+  removePartialsOfEndedRuns(path);
   AtomicFile file(path);
   file.writeAll(std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
   file.commit();

@@ -22,7 +22,8 @@ void requireWritableDirectory(const std::filesystem::path& path, bool force);
 bool claimOutputDirectory(const std::filesystem::path& path, bool force);
 
 // Writes under a temporary name, then renames, so a report is never left half written. Strings that are not
-// UTF-8 (paths) are written with U+FFFD in place of their invalid bytes (io::jsonText).
+// UTF-8 (paths) are written with U+FFFD in place of their invalid bytes (io::jsonText). The temporary files
+// of `path` that killed runs left go first (io::removePartialsOfEndedRuns).
 void writeReport(const std::filesystem::path& path, const nlohmann::json& report);
 
 }  // namespace sixway::io

@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -66,6 +67,18 @@ TEST(ReportTest, StringsThatAreNotUtf8AreWrittenWithReplacementCharacters) {
   const nlohmann::json report = nlohmann::json::parse(in);
   EXPECT_EQ(report["out"], "/tmp/x\uFFFD\uFFFDy");
   EXPECT_EQ(report["frames"], 2);
+  EXPECT_EQ(entriesIn(dir.path()), 1);
+}
+
+TEST(ReportTest, ARewriteRemovesTheTemporaryFileOfAKilledWriter) {
+  TempDir dir;
+  const pid_t child = fork();
+  if (child == 0) _exit(0);
+  waitpid(child, nullptr, 0);
+  const fs::path killed = dir / (".r.json." + std::to_string(child) + ".partial");
+  std::ofstream(killed) << "{\"half";
+  io::writeReport(dir / "r.json", {{"psnr", 30.5}});
+  EXPECT_FALSE(fs::exists(killed));
   EXPECT_EQ(entriesIn(dir.path()), 1);
 }
 
