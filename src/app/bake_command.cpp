@@ -12,6 +12,7 @@
 
 #include "app/device_limits.h"
 #include "app/options.h"
+#include "app/process_memory.h"
 #include "app/scene_errors.h"
 #include "app/staged_directory.h"
 #include "app/stop_on_signal.h"
@@ -33,7 +34,7 @@ namespace fs = std::filesystem;
 
 struct BakeOptions {
   CommonOptions common;
-  fs::path scene, out;
+  fs::path scene, out, report;
   std::vector<fs::path> vdb;
   bool force = false, traceAllOrders = false;
   std::string scattering = "multiple";
@@ -109,6 +110,25 @@ bool isBakeOutput(const std::string& name) {
   return false;
 }
 
+// Host and device memory after a baked frame, for long-run checks (docs/robustness.md, "Long runs"): the
+// resident set grows by the frame the bake holds until it packs the flipbook, and by nothing else. Kept as
+// numbers in a vector reserved for the whole bake, so the record itself does not grow the heap.
+struct MemoryRow {
+  uint64_t deviceBytes = 0, deviceAllocations = 0, hostResidentBytes = 0;
+};
+
+nlohmann::json frameRows(const std::vector<MemoryRow>& rows, const render::FlipbookBakeResult& result,
+                         int firstFrame) {
+  nlohmann::json frames = nlohmann::json::array();
+  for (size_t i = 0; i < rows.size(); ++i)
+    frames.push_back({{"frame", firstFrame + int(i)},
+                      {"gpu_ms", result.frameMilliseconds[i]},
+                      {"device_bytes", rows[i].deviceBytes},
+                      {"device_allocations", rows[i].deviceAllocations},
+                      {"host_resident_bytes", rows[i].hostResidentBytes}});
+  return frames;
+}
+
 // "A = (Right, Top, Back, alpha), B = (Left, Bottom, Front, emissive)"
 std::string describePacking(const render::ChannelPacking& packing) {
   std::string text;
@@ -145,6 +165,7 @@ void run(const BakeOptions& o) {
     throw io::InputError("--camera-position", "--camera-position and --camera-target go together");
   // A directory or special file under a name the bake replaces stops it here, before any work.
   StagedDirectory::requireWritable(o.out, o.force, isBakeOutput, kBakeFolders);
+  if (!o.report.empty()) io::requireWritableFile(o.report, o.force);
 
   std::optional<io::Scene> scene;
   if (!o.scene.empty()) scene = io::loadScene(o.scene);
@@ -241,6 +262,8 @@ void run(const BakeOptions& o) {
   const fs::path cameraSource = !o.cameraPosition.empty() ? fs::path("--camera-position")
                                 : !o.scene.empty()        ? o.scene
                                                           : fs::path("--vdb");
+  std::vector<MemoryRow> memory;
+  memory.reserve(size_t(frameCount));
   render::FlipbookBakeResult result;
   throwIfStopped();  // a signal while the sequence was being loaded or simulated
   output.underFinalNames([&] {
@@ -249,6 +272,8 @@ void run(const BakeOptions& o) {
         return render::bakeFlipbook(context, cache, *sequence, job, [&](const std::string& line) {
           std::printf("  %s\n", line.c_str());
           std::fflush(stdout);
+          const gpu::MemoryUse device = context.memoryUse();
+          memory.push_back({device.bytes, device.allocations, residentSetBytes()});
           throwIfStopped();
         });
       });
@@ -262,6 +287,16 @@ void run(const BakeOptions& o) {
   std::printf("sixway bake: Unity: Flip Book Size %d x %d, %d frames; textures linear, RGBA half (EXR)\n",
               result.layout.columns, result.layout.rows, result.layout.frames);
   printEmissiveSettings(result.emissiveMask, job.emissiveMask);
+  if (!o.report.empty()) {
+    const uint64_t heldPerFrame =
+        uint64_t(tileWidth) * uint64_t(tileHeight) * render::sixWayChannelNames().size() * sizeof(float);
+    io::writeReport(o.report, {{"out", fs::absolute(o.out).string()},
+                               {"device", context.properties().deviceName},
+                               {"tile", {tileWidth, tileHeight}},
+                               {"scattering", render::scatteringName(job.scattering)},
+                               {"held_bytes_per_frame", heldPerFrame},
+                               {"frames", frameRows(memory, result, job.firstFrame)}});
+  }
   if (context.validationMessageCount() > 0)
     throw std::runtime_error(std::to_string(context.validationMessageCount()) + " validation messages");
 }
@@ -276,7 +311,11 @@ void addBakeCommand(CLI::App& app) {
       bake->add_option("--scene", o->scene, "Scene JSON: bake its simulation")->check(filePath());
   bake->add_option("--vdb", o->vdb, "OpenVDB files, one per frame")->excludes(sceneOption)->check(filePath());
   bake->add_option("--out", o->out, "Output directory")->required()->check(directoryPath());
-  bake->add_flag("--force", o->force, "Write into an existing output directory");
+  bake->add_flag("--force", o->force,
+                 "Write into an existing output directory, overwrite an existing report");
+  bake->add_option("--report", o->report,
+                   "JSON report: per frame the GPU time and the host and device memory in use")
+      ->check(filePath());
   bake->add_option("--first", o->first, "First frame baked (default 0)")->check(CLI::Range(0, 100000));
   bake->add_option("--frames", o->frames, "Frames baked (default: every VDB file; 16 for a scene)")
       ->check(CLI::Range(1, 100000));
