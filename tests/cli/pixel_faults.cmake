@@ -1,4 +1,4 @@
-# The showcase where the smoke has met the cylinder (scene frame 150, 512² frame, 256² lightmaps: where a
+# The showcase where the smoke has met the cylinder (scene frame 150, 512² frame, its own lightmap size: where a
 # composite of the smoke as a card at its shell depth left black dots of the background beside the cylinder, 12
 # pixels of them): no pixel may be non-finite, negative or in a dark dot (eval::imageFaults), in `sixway render`'s
 # neural frame (timings.json's pixel_faults) and in every method of `sixway eval` (the report's
@@ -7,7 +7,6 @@
 file(REMOVE_RECURSE ${OUT})
 file(MAKE_DIRECTORY ${OUT})
 file(READ ${SCENE} scene)
-string(JSON scene SET "${scene}" render lightmap_size 256)
 string(JSON scene SET "${scene}" render warmup_frames 150)
 file(WRITE ${OUT}/showcase_150.json "${scene}")
 
