@@ -234,7 +234,7 @@ std::filesystem::path glowingNetwork() {
 }
 
 // Smoke without emission, no light and no ambient is black, whatever the network's head holds: a network
-// may predict some glow on any smoke (an earlier shipped one did: docs/research/2026-11-28-network-study.md,
+// may predict some glow on any smoke (the shipped one does: docs/research/2026-11-28-network-study.md,
 // "A spurious glow"), and neither the lightmaps nor the frame may show it. The same smoke in a scene with
 // emission (but no temperature, so nothing to emit) shows that glow, and lightmaps otherwise the same.
 TEST_F(FramePipelineTest, SmokeWithoutEmissionShowsNoGlowFromTheNetwork) {
