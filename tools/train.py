@@ -51,7 +51,8 @@ DEFAULTS = {
     "model": {},  # sixway_net.DEFAULT_CONFIG overrides
     "data": {
         "dir": None,  # the shards: a directory or a list of them; relative paths are relative to the repository root
-        "crop": None,  # random square crops of this size (None: whole maps, one size per batch)
+        "crop": None,  # random square crops of this size, or whole maps where smaller (None: whole maps); with
+        # several sizes, a crop larger than the smallest size takes batches of one size
         "mirror": True,  # random left-right mirroring (swaps the Left and Right lightmaps)
         "target": "single",  # the shards' targets learnt: single or multiple scattering (target_ms)
     },
@@ -202,8 +203,9 @@ class SizedBatchOrder:
 
 
 def batch_order(data, pairs, crop, train):
-    """BatchOrder, or SizedBatchOrder for whole maps of several sizes (one size per batch)."""
-    if len(data.sizes()) == 1 or crop:
+    """BatchOrder, or SizedBatchOrder for several sizes taken whole or in crops larger than the smallest size
+    (one size per batch; each batch cropped to the smaller of the crop and its size)."""
+    if len(data.sizes()) == 1 or (crop and crop <= min(data.sizes())):
         return BatchOrder(pairs, train["batch"], train["seed"])
     pair_sizes = data.sample_sizes[pairs]
     small = [size for size in data.sizes() if np.sum(pair_sizes == size) < train["batch"]]
@@ -447,9 +449,6 @@ class Trainer:
         if (crop or 0) % multiple or any(size % multiple for size in self.data.sizes()):
             raise ConfigError(f"data.crop {crop} or a lightmap size {self.data.sizes()} is not a multiple of the "
                               f"network's size multiple {multiple}")
-        if len(self.data.sizes()) > 1 and crop and crop > self.data.size:
-            raise ConfigError(f"the shards' lightmap sizes differ ({self.data.sizes()}): data.crop {crop} is larger "
-                              f"than the smallest ({self.data.size})")
         self.order = batch_order(self.data, self.pairs, crop, self.train)
         self.encodings = output_encodings(self.net.config)
         self.optimizer = torch.optim.Adam(self.net.parameters(), lr=self.train["lr"],

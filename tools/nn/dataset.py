@@ -280,8 +280,8 @@ class ShardDataset:
     def pair_batch(self, indices, crop, rng, mirror=False):
         """(current, previous) batches of the samples `indices` and their previous frames, with the same
         random crop (when crop < a sample's size) and the same random mirroring (when `mirror`) drawn from
-        `rng`. Without `crop`, whole maps of one size."""
-        c = min(crop, self.size) if crop else self._whole_map_size(indices)
+        `rng`. The crop is at most the smallest sample's size. Without `crop`, whole maps of one size."""
+        c = min(crop, int(self.sample_sizes[indices].min())) if crop else self._whole_map_size(indices)
         offsets = rng.integers(0, self.sample_sizes[indices][:, None] - c + 1, size=(len(indices), 2))
         flips = rng.random(len(indices)) < 0.5 if mirror else None
         current = self.batch(indices, c, offsets, flips)

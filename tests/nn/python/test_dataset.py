@@ -85,6 +85,12 @@ class DatasetTest(unittest.TestCase):
             pairs = both.pairs("train")
             current, previous = both.pair_batch(pairs, 16, np.random.default_rng(1), mirror=True)
             self.assertEqual(tuple(current["target"].shape), (len(pairs), 8, 16, 16))
+            # A crop larger than the smallest sample's size: batches of one size, cropped to at most that size.
+            large_pairs = pairs[both.sample_sizes[pairs] == 32]
+            current, _ = both.pair_batch(large_pairs, 24, np.random.default_rng(1))
+            self.assertEqual(tuple(current["target"].shape), (len(large_pairs), 8, 24, 24))
+            current, _ = both.pair_batch(pairs[both.sample_sizes[pairs] == 16], 24, np.random.default_rng(1))
+            self.assertEqual(tuple(current["target"].shape[2:]), (16, 16))
             with self.assertRaisesRegex(ValueError, r"whole maps of sizes \[16, 32\]"):
                 both.batch(np.array([1, big]))
             with self.assertRaisesRegex(ValueError, "not one array"):

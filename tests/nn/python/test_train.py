@@ -467,16 +467,14 @@ class TrainTest(unittest.TestCase):
                               "--out", os.path.join(WORK, "whole"), "--force"], capture_output=True, text=True)
         self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
         self.assertIn("training pairs of 16x16/32x32", run.stdout)
-        # A crop larger than the smaller size is one line.
+        # A crop larger than the smaller size trains in batches of one size: the 16² maps whole, the 32² cropped.
         config["data"]["crop"] = 32
         with open(whole, "w") as f:
             json.dump(config, f)
         run = subprocess.run([sys.executable, TRAIN, "--config", whole, "--data", os.path.join(WORK, "data"), large,
                               "--out", os.path.join(WORK, "whole"), "--force"], capture_output=True, text=True)
-        self.assertNotEqual(run.returncode, 0)
-        self.assertEqual(run.stderr.strip().count("\n"), 0, run.stderr)
-        self.assertIn("the shards' lightmap sizes differ ([16, 32]): data.crop 32 is larger than the smallest (16)",
-                      run.stderr)
+        self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
+        self.assertIn("training pairs of 16x16/32x32", run.stdout)
 
     def test_sized_batches_have_one_size_and_cover_every_size(self):
         pairs = np.arange(40)
@@ -498,7 +496,9 @@ class TrainTest(unittest.TestCase):
                                                               r"train.batch \(16\)"):
             train_module.batch_order(data, pairs, None, {"batch": 16, "seed": 5})
         self.assertIsInstance(train_module.batch_order(data, pairs, 32, {"batch": 16, "seed": 5}),
-                              train_module.BatchOrder)  # crops: any batch may mix sizes
+                              train_module.BatchOrder)  # crops every size allows: any batch may mix sizes
+        self.assertIsInstance(train_module.batch_order(data, pairs, 96, {"batch": 4, "seed": 5}),
+                              train_module.SizedBatchOrder)  # a crop larger than 64²: batches of one size
 
     def test_bad_input_is_one_line(self):
         run = train(os.path.join(WORK, "straight"))  # exists, no --resume or --force
