@@ -11,6 +11,10 @@
 
 namespace sixway {
 
+namespace runtime {
+struct Access;
+}  // namespace runtime
+
 // sixway's own device.
 struct DeviceOptions {
   bool validate = false;     // the Khronos validation layer; every message is counted
@@ -73,12 +77,10 @@ class Device {
   };
   MemoryUse memoryUse() const;
 
-  struct Impl;  // the implementation's (src/runtime/device_impl.h)
-  Impl& impl() const { return *impl_; }
-  // sixway's own tools: a Device over an implementation they made (e.g. around the demo's window device).
-  explicit Device(std::unique_ptr<Impl> impl);
-
  private:
+  friend runtime::Access;  // sixway's own tools (src/runtime/internal.h, not installed)
+  struct Impl;
+  explicit Device(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
 };
 

@@ -18,6 +18,10 @@
 
 namespace sixway {
 
+namespace runtime {
+struct Access;
+}  // namespace runtime
+
 class Device;
 class SmokeSimulation;
 
@@ -93,10 +97,9 @@ class SmokeRenderer {
   VkImage lightmapA() const;
   VkImage lightmapB() const;
 
-  struct Impl;  // the implementation's (src/runtime/smoke_renderer_impl.h)
-  Impl& impl() const { return *impl_; }
-
  private:
+  friend runtime::Access;  // sixway's own tools (src/runtime/internal.h, not installed)
+  struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 

@@ -14,6 +14,10 @@
 
 namespace sixway {
 
+namespace runtime {
+struct Access;
+}  // namespace runtime
+
 class Device;
 
 // The smoke on the device, for engines that march or shade it themselves: density and temperature as one
@@ -65,10 +69,9 @@ class SmokeSimulation {
   float inletStrength() const;
   float maxInletStrength() const;
 
-  struct Impl;  // the implementation's (src/runtime/smoke_simulation_impl.h)
-  Impl& impl() const { return *impl_; }
-
  private:
+  friend runtime::Access;  // sixway's own tools (src/runtime/internal.h, not installed)
+  struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 

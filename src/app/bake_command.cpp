@@ -25,6 +25,7 @@
 #include "reference/flipbook.h"
 #include "reference/vdb_sequence.h"
 #include "render/scene_frame.h"
+#include "runtime/internal.h"
 #include "sources/scene_volumes.h"
 
 namespace sixway::app {
@@ -195,8 +196,9 @@ void run(const BakeOptions& o) {
   render::requireFlipbookFits(
       render::flipbookLayout(frameCount, tileWidth, tileHeight, o.columns.value_or(0)), "--frames/--tile");
 
-  gpu::Context context(o.common.contextOptions());
-  gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));
+  const Device device(o.common.deviceOptions());
+  const gpu::Context& context = runtime::Access::context(device);
+  const gpu::PipelineCache& cache = runtime::Access::pipelineCache(device);
   std::unique_ptr<render::VolumeSequence> sequence;
   nlohmann::json provenance;
   if (scene) {
@@ -297,8 +299,7 @@ void run(const BakeOptions& o) {
                                {"held_bytes_per_frame", heldPerFrame},
                                {"frames", frameRows(memory, result, job.firstFrame)}});
   }
-  if (context.validationMessageCount() > 0)
-    throw std::runtime_error(std::to_string(context.validationMessageCount()) + " validation messages");
+  requireNoValidationMessages(device);
 }
 
 }  // namespace

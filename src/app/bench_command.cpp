@@ -23,6 +23,8 @@
 #include "io/json_text.h"
 #include "io/report.h"
 #include "nn/graph.h"
+#include "runtime/internal.h"
+#include "runtime/network_weights.h"
 
 namespace sixway::app {
 namespace {
@@ -129,8 +131,7 @@ BenchInputs prepare(BenchOptions& o) {
     return s.needsWeights && std::find(sections.begin(), sections.end(), s.name) != sections.end();
   });
   if (needsWeights) {
-    io::requireRegularFile(o.weights, "no such weights file");
-    inputs.weights = io::readSafetensors(o.weights);
+    inputs.weights = runtime::readWeights(o.weights);
     nn::parseGraph(inputs.weights);  // the graph is valid
   }
   return inputs;
@@ -164,8 +165,9 @@ std::string utcNow() {
 void run(BenchOptions& o) {
   o.weights = resolveWeights(o.weights);
   const BenchInputs inputs = prepare(o);
-  gpu::Context context(o.common.contextOptions());
-  gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));
+  const Device device(o.common.deviceOptions());
+  const gpu::Context& context = runtime::Access::context(device);
+  const gpu::PipelineCache& cache = runtime::Access::pipelineCache(device);
   const uint32_t api = context.properties().apiVersion;
   const std::string vulkan = std::to_string(VK_API_VERSION_MAJOR(api)) + "." +
                              std::to_string(VK_API_VERSION_MINOR(api)) + "." +
@@ -201,8 +203,7 @@ void run(BenchOptions& o) {
     io::writeReport(o.report, report);
     std::printf("\nwrote %s\n", o.report.string().c_str());
   }
-  if (context.validationMessageCount() > 0)
-    throw std::runtime_error(std::to_string(context.validationMessageCount()) + " validation messages");
+  requireNoValidationMessages(device);
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 #include "io/json_reader.h"
 #include "io/report.h"
 #include "render/obstacle_meshes.h"
+#include "runtime/internal.h"
 #include "sim/watchdog.h"
 
 namespace sixway::app {
@@ -99,8 +100,9 @@ void run(const DatasetOptions& o) {
     plans.push_back(std::move(plan));
   }
 
-  gpu::Context context(o.common.contextOptions());
-  gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));
+  const Device device(o.common.deviceOptions());
+  const gpu::Context& context = runtime::Access::context(device);
+  const gpu::PipelineCache& cache = runtime::Access::pipelineCache(device);
   fs::create_directories(o.out);
   io::writeReport(indexFile, index);
   long totalFrames = 0;
@@ -155,8 +157,7 @@ void run(const DatasetOptions& o) {
   std::printf("sixway dataset: wrote %zu shards (%s) to %s in %s\n", plans.size(),
               counts.empty() ? "no samples" : counts.c_str(), o.out.string().c_str(),
               formatDuration(progress.elapsedSeconds()).c_str());
-  if (context.validationMessageCount() > 0)
-    throw std::runtime_error(std::to_string(context.validationMessageCount()) + " validation messages");
+  requireNoValidationMessages(device);
 }
 
 }  // namespace

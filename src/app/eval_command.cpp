@@ -26,6 +26,8 @@
 #include "io/scene.h"
 #include "nn/network.h"
 #include "render/lightmap_images.h"
+#include "runtime/internal.h"
+#include "runtime/network_weights.h"
 
 namespace sixway::app {
 namespace {
@@ -132,11 +134,12 @@ void evaluateDataset(const EvalOptions& o) {
   io::requireWritableFile(o.scene.report, o.scene.force);
   const std::vector<fs::path> shards = shardFiles(o.dataset);
   const fs::path weightsPath = o.scene.weights;
-  const io::SafetensorsFile weights = io::readSafetensors(weightsPath);
+  const io::SafetensorsFile weights = runtime::readWeights(weightsPath);
   const std::set<std::string> splits(o.splits.begin(), o.splits.end());
 
-  gpu::Context context(o.common.contextOptions());
-  gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));
+  const Device device(o.common.deviceOptions());
+  const gpu::Context& context = runtime::Access::context(device);
+  const gpu::PipelineCache& cache = runtime::Access::pipelineCache(device);
   std::unique_ptr<nn::Network> network;
   std::unique_ptr<render::LightmapImages> lightmaps;
   std::unique_ptr<gpu::Image> guide, emission;
@@ -230,8 +233,7 @@ void evaluateDataset(const EvalOptions& o) {
   std::sort(inferenceMs.begin(), inferenceMs.end());
   report["inference_ms_median"] = inferenceMs[inferenceMs.size() / 2];
   io::writeReport(o.scene.report, report);
-  if (context.validationMessageCount() > 0)
-    throw std::runtime_error(std::to_string(context.validationMessageCount()) + " validation messages");
+  requireNoValidationMessages(device);
 }
 
 void run(EvalOptions o) {
@@ -240,7 +242,7 @@ void run(EvalOptions o) {
     throw io::InputError("eval", "give --dataset DIR or --scene S, not both");
   if (!o.dataset.empty()) return evaluateDataset(o);
   if (o.scene.scene.empty()) throw io::InputError("eval", "give --dataset DIR or --scene S");
-  eval::evaluateScene(o.common.contextOptions(), o.scene);
+  eval::evaluateScene(o.common.deviceOptions(), o.scene);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include "app/options.h"
 #include "gpu/context.h"
 #include "io/report.h"
+#include "runtime/internal.h"
 
 namespace sixway::app {
 namespace {
@@ -98,12 +99,11 @@ void addInfoCommand(CLI::App& app) {
   command->add_flag("--force", options->force, "Overwrite an existing report");
   command->callback([options] {
     if (!options->report.empty()) io::requireWritableFile(options->report, options->force);
-    gpu::Context context(options->common.contextOptions());
-    nlohmann::json info = describe(context);
+    const Device device(options->common.deviceOptions());
+    nlohmann::json info = describe(runtime::Access::context(device));
     printInfo(info);
     if (!options->report.empty()) io::writeReport(options->report, info);
-    if (context.validationMessageCount() > 0)
-      throw std::runtime_error(std::to_string(context.validationMessageCount()) + " validation messages");
+    requireNoValidationMessages(device);
   });
 }
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <stdexcept>
 #include <string>
 
 namespace sixway::app {
@@ -91,13 +92,14 @@ void requireFiniteNumbers(CLI::App& command) {
   }
 }
 
-gpu::ContextOptions CommonOptions::contextOptions() const {
-  gpu::ContextOptions options;
-  options.deviceIndex = device;
-  // Tests set SIXWAY_VALIDATE=1 so that every GPU run they make is validated.
+DeviceOptions CommonOptions::deviceOptions() const {
   const char* forced = std::getenv("SIXWAY_VALIDATE");
-  options.validate = validate || (forced && std::string(forced) == "1");
-  return options;
+  return {validate || (forced && std::string(forced) == "1"), device};
+}
+
+void requireNoValidationMessages(const Device& device) {
+  if (device.validationMessages() > 0)
+    throw std::runtime_error(std::to_string(device.validationMessages()) + " validation messages");
 }
 
 }  // namespace sixway::app

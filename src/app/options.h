@@ -1,10 +1,9 @@
 #pragma once
 // Options every sixway command takes (docs/conventions.md, "Command line").
+#include <sixway/device.h>
 #include <CLI/CLI.hpp>
 
 #include <optional>
-
-#include "gpu/context.h"
 
 namespace sixway::app {
 
@@ -13,8 +12,12 @@ struct CommonOptions {
   bool validate = false;      // --validate: Vulkan validation layers on
 
   void addTo(CLI::App& command);
-  gpu::ContextOptions contextOptions() const;
+  // The device every command runs on (SIXWAY_VALIDATE=1 validates it too: the tests set it).
+  DeviceOptions deviceOptions() const;
 };
+
+// A command's last check: throws when the validation layer reported anything on `device`.
+void requireNoValidationMessages(const Device& device);
 
 // Adds a finiteness check to every floating-point option of `command` (call it after the options are added):
 // CLI11's range checks compare with < and >, which NaN passes, and 1e39 or 1e-46 given to a float option

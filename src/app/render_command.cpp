@@ -25,13 +25,11 @@
 #include "app/timings_log.h"
 #include "eval/frame_pipeline.h"
 #include "eval/image_metrics.h"
-#include "gpu/context.h"
 #include "io/error.h"
 #include "io/report.h"
 #include "io/scene.h"
-#include "runtime/device_impl.h"
+#include "runtime/internal.h"
 #include "runtime/scene_volumes.h"
-#include "runtime/smoke_simulation_impl.h"
 #include "sources/scene_volumes.h"
 
 namespace sixway::app {
@@ -73,9 +71,9 @@ class FrameSource {
         return std::make_unique<sixway::SmokeRenderer>(device, *simulation, rendererOptions);
       });
     } else {
-      const sixway::Device::Impl& d = device.impl();
       pipeline_ = withinDeviceLimits(scenePath.string(), settings, [&] {
-        return std::make_unique<eval::FramePipeline>(*d.context, *d.cache, scene, options);
+        return std::make_unique<eval::FramePipeline>(runtime::Access::context(device),
+                                                     runtime::Access::pipelineCache(device), scene, options);
       });
     }
   }
@@ -85,7 +83,7 @@ class FrameSource {
     if (pipeline_)
       return pipeline_->render(
           index, runtime::SimulatedVolumes::frameSeconds(scene_, index),
-          playback_ ? playback_->volume(index) : simulation_->impl().volumes->currentVolume());
+          playback_ ? playback_->volume(index) : runtime::Access::volumes(*simulation_).currentVolume());
     renderer_->render();
     eval::RenderedFrame frame;
     frame.image = io::Image(int(renderer_->width()), int(renderer_->height()), {"R", "G", "B", "A"});
@@ -133,14 +131,14 @@ void run(const RenderOptions& o) {
   // A directory or special file under a name the render replaces stops it here, before any work.
   StagedDirectory::requireWritable(o.out, o.force, FrameWriter::isRenderOutput);
 
-  const gpu::ContextOptions contextOptions = o.common.contextOptions();
-  sixway::Device device(sixway::DeviceOptions{contextOptions.validate, contextOptions.deviceIndex});
+  sixway::Device device(o.common.deviceOptions());
   std::optional<sixway::SmokeSimulation> simulation;
   std::unique_ptr<render::VolumeSequence> playback;
   if (scene.vdb) {
-    const sixway::Device::Impl& d = device.impl();
     playback = withinDeviceLimits(o.scene.string(), "vdb.voxels", [&] {
-      return sources::openSceneVolumes(*d.context, *d.cache, scene, warmup + o.frames, o.scene.string());
+      return sources::openSceneVolumes(runtime::Access::context(device),
+                                       runtime::Access::pipelineCache(device), scene, warmup + o.frames,
+                                       o.scene.string());
     });
   } else {
     withinDeviceLimits(o.scene.string(), gridSetting(scene.grid), [&] {
@@ -241,8 +239,7 @@ void run(const RenderOptions& o) {
   if (!coverage.empty())
     std::printf("sixway render: the smoke covers %.1f%% of the picture at least, over the last %td frames\n",
                 100.0 * leastCoverage, coverage.end() - lastFrames);
-  if (device.validationMessages() > 0)
-    throw std::runtime_error(std::to_string(device.validationMessages()) + " validation messages");
+  requireNoValidationMessages(device);
 }
 
 }  // namespace

@@ -21,6 +21,7 @@
 #include "io/error.h"
 #include "io/report.h"
 #include "io/vdb.h"
+#include "runtime/internal.h"
 #include "sim/simulation.h"
 #include "sim/watchdog.h"
 
@@ -76,8 +77,9 @@ void run(const SimOptions& o) {
   checkOutputs(o, vdbFrames);
   std::optional<StagedDirectory> vdbOut;
   if (!o.vdbOut.empty()) vdbOut.emplace(o.vdbOut, "sim", o.force, vdbFrames);
-  gpu::Context context(o.common.contextOptions());
-  gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));
+  const Device device(o.common.deviceOptions());
+  const gpu::Context& context = runtime::Access::context(device);
+  const gpu::PipelineCache& cache = runtime::Access::pipelineCache(device);
   sim::Simulation simulation = withinDeviceLimits(o.scene.string(), gridSetting(scene.grid),
                                                   [&] { return sim::Simulation(context, cache, scene); });
   const sim::LatticeUnits& units = simulation.units();

@@ -8,8 +8,6 @@
 #include "gpu/image.h"
 #include "gpu/pipeline.h"
 #include "io/error.h"
-#include "io/file_access.h"
-#include "io/safetensors.h"
 #include "nn/network.h"
 #include "reference/guide_lightmaps.h"
 #include "reference/path_tracer.h"
@@ -26,6 +24,7 @@
 #include "render/scene_frame.h"
 #include "render/shadow_maps.h"
 #include "render/sixway_shading.h"
+#include "runtime/network_weights.h"
 #include "runtime/realtime_frame.h"
 
 namespace sixway::eval {
@@ -117,7 +116,11 @@ struct FramePipeline::Passes {
         scene(scene),
         raster(rasterScene(scene, options.mode)),
         options(options),
-        network(options.mode == RenderMode::Neural ? loadNetwork(context, cache, scene, options) : nullptr),
+        network(options.mode == RenderMode::Neural
+                    ? runtime::loadNetwork(context, cache, options.weights,
+                                           uint32_t(scene.render.lightmapSize),
+                                           runtime::sceneNetworkOptions(scene, options.fp16))
+                    : nullptr),
         frame(context, cache, raster,
               runtime::FrameTarget{uint32_t(scene.render.width), uint32_t(scene.render.height), {}, {}},
               !options.shadows      ? 0
@@ -135,20 +138,6 @@ struct FramePipeline::Passes {
     if (options.mode == RenderMode::GuideLit)
       guideLit = std::make_unique<render::GuideLightmaps>(context, cache,
                                                           uint32_t(frame.guiding().settings().lights.size()));
-  }
-
-  static std::unique_ptr<nn::Network> loadNetwork(const gpu::Context& context,
-                                                  const gpu::PipelineCache& cache, const io::Scene& scene,
-                                                  const FramePipelineOptions& options) {
-    io::requireRegularFile(options.weights,
-                           "no such weights file (train one with tools/train.py, or pass --weights)");
-    nn::NetworkOptions networkOptions;
-    networkOptions.precision = options.fp16 ? nn::Precision::Fp16 : nn::Precision::Fp32;
-    networkOptions.emission = scene.smoke.emission.intensity > 0.0f;
-    networkOptions.albedo = scene.smoke.albedo;
-    const uint32_t size = uint32_t(scene.render.lightmapSize);
-    return std::make_unique<nn::Network>(context, cache, io::readSafetensors(options.weights), size, size,
-                                         networkOptions);
   }
 
   // The real-time stages of the mode, recorded once for the volume's buffers.

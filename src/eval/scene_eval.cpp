@@ -30,6 +30,8 @@
 #include "render/camera.h"
 #include "render/obstacle_bvh.h"
 #include "render/scene_frame.h"
+#include "runtime/internal.h"
+#include "runtime/network_weights.h"
 #include "runtime/scene_volumes.h"
 #include "sources/scene_volumes.h"
 
@@ -127,13 +129,12 @@ void check(const SceneEvalSettings& s) {
   if (s.stripFrame && (*s.stripFrame < 0 || *s.stripFrame >= s.frames))
     throw io::InputError("--strip-frame", "frame " + std::to_string(*s.stripFrame) + " is outside 0.." +
                                               std::to_string(s.frames - 1));
-  io::requireRegularFile(s.weights,
-                         "no such weights file (train one with tools/train.py, or pass --weights)");
+  runtime::readWeights(s.weights);  // a missing or malformed file fails before any work
 }
 
 }  // namespace
 
-void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s) {
+void evaluateScene(const DeviceOptions& device, const SceneEvalSettings& s) {
   check(s);
   io::Scene scene = evaluatedScene(s);
   io::requireWritableFile(s.report, s.force);
@@ -143,8 +144,9 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
   // skips them: evaluated frame i is scene frame warmup + i (its smoke, camera and lights).
   const int warmup = scene.render.warmupFrames;
 
-  gpu::Context context(device);
-  gpu::PipelineCache cache(context, gpu::defaultPipelineCacheFile(context));
+  const Device gpuDevice(device);
+  const gpu::Context& context = runtime::Access::context(gpuDevice);
+  const gpu::PipelineCache& cache = runtime::Access::pipelineCache(gpuDevice);
   const std::unique_ptr<render::VolumeSequence> volumes =
       sources::openSceneVolumes(context, cache, scene, warmup + s.frames, s.scene.string());
   const auto* simulated = dynamic_cast<const runtime::SimulatedVolumes*>(volumes.get());
@@ -384,8 +386,8 @@ void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& s
       "wrote %s\n%s",
       scene.name.c_str(), warmup, warmup + s.frames - 1, s.samples, s.orders, s.report.string().c_str(),
       summaryTable(summary, equalTime, kMethods).c_str());
-  if (context.validationMessageCount() > 0)
-    throw std::runtime_error(std::to_string(context.validationMessageCount()) + " validation messages");
+  if (gpuDevice.validationMessages() > 0)
+    throw std::runtime_error(std::to_string(gpuDevice.validationMessages()) + " validation messages");
 }
 
 }  // namespace sixway::eval

@@ -11,10 +11,11 @@
 // Obstacles are drawn by every method and path-traced in the truth (opaque surfaces that hide, shadow and are
 // shadowed by the smoke); --no-obstacles leaves them out of every image (they still shape the flow), for
 // studying the lightmaps alone.
+#include <sixway/device.h>
+
 #include <filesystem>
 #include <optional>
 
-#include "gpu/context.h"
 #include "reference/scattered_lightmaps.h"
 
 namespace sixway::eval {
@@ -37,6 +38,7 @@ struct SceneEvalSettings {
   bool force = false;
 };
 
-void evaluateScene(const gpu::ContextOptions& device, const SceneEvalSettings& settings);
+// On sixway's own device of `device`.
+void evaluateScene(const DeviceOptions& device, const SceneEvalSettings& settings);
 
 }  // namespace sixway::eval

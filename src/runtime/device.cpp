@@ -3,6 +3,7 @@
 #include "gpu/cooperative_matrix.h"
 #include "gpu/device_features.h"
 #include "runtime/device_impl.h"
+#include "runtime/internal.h"
 
 namespace sixway {
 
@@ -41,12 +42,8 @@ VkPhysicalDeviceFeatures2* DeviceRequirements::features() {
   return impl_->features.chain();
 }
 
-Device::Device(const DeviceOptions& options) {
-  gpu::ContextOptions contextOptions;
-  contextOptions.validate = options.validate;
-  contextOptions.deviceIndex = options.index;
-  impl_ = std::make_unique<Impl>(std::make_unique<gpu::Context>(contextOptions));
-}
+Device::Device(const DeviceOptions& options)
+    : impl_(std::make_unique<Impl>(std::make_unique<gpu::Context>(runtime::contextOptions(options)))) {}
 
 Device::Device(const EngineDevice& engine) {
   gpu::ExternalDevice external{engine.instance,        engine.physicalDevice, engine.device,

@@ -7,34 +7,30 @@
 
 #include "gpu/image.h"
 #include "gpu/sequence.h"
-#include "io/error.h"
-#include "io/file_access.h"
-#include "io/safetensors.h"
 #include "io/scene.h"
 #include "nn/network.h"
 #include "render/lightmap_images.h"
-#include "runtime/device_impl.h"
+#include "runtime/internal.h"
+#include "runtime/network_weights.h"
 
 namespace sixway {
 
 struct LightmapNetwork::Impl {
-  Impl(Device::Impl& device, const std::filesystem::path& weights, uint32_t size, bool fp16)
+  Impl(const gpu::Context& context, const gpu::PipelineCache& cache, const std::filesystem::path& weights,
+       uint32_t size, bool fp16)
       : size(size),
-        guide(*device.context, {size, size, 1, VK_FORMAT_R16G16B16A16_SFLOAT,
-                                VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "guiding map"}),
-        lightmaps(*device.context, size, size),
-        sequence(*device.context) {
-    io::requireRegularFile(weights, "no such weights file");
+        guide(context, {size, size, 1, VK_FORMAT_R16G16B16A16_SFLOAT,
+                        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "guiding map"}),
+        lightmaps(context, size, size),
+        sequence(context) {
     nn::NetworkOptions options;
     options.precision = fp16 ? nn::Precision::Fp16 : nn::Precision::Fp32;
     options.albedo = io::Smoke{}.albedo;  // run() sets each run's
-    network = std::make_unique<nn::Network>(*device.context, *device.cache, io::readSafetensors(weights),
-                                            size, size, options);
+    network = runtime::loadNetwork(context, cache, weights, size, options);
     if (network->graph().nodes.front().guideChannels > nn::kGuideImageChannels)
       emission.emplace(
-          *device.context,
-          gpu::ImageDesc{size, size, 1, VK_FORMAT_R32_SFLOAT,
-                         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "guide emission"});
+          context, gpu::ImageDesc{size, size, 1, VK_FORMAT_R32_SFLOAT,
+                                  VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "guide emission"});
     network->record(sequence, {guide, emission ? &*emission : nullptr}, lightmaps.a, lightmaps.b);
     sequence.finish();
   }
@@ -50,7 +46,8 @@ LightmapNetwork::LightmapNetwork(Device& device, const std::filesystem::path& we
                                  bool fp16) {
   if (size == 0 || size % 16 != 0)
     throw std::invalid_argument("LightmapNetwork: size must be a multiple of 16");
-  impl_ = std::make_unique<Impl>(device.impl(), weights, size, fp16);
+  impl_ = std::make_unique<Impl>(runtime::Access::context(device), runtime::Access::pipelineCache(device),
+                                 weights, size, fp16);
 }
 
 LightmapNetwork::~LightmapNetwork() = default;

@@ -4,28 +4,15 @@
 #include <glm/gtc/packing.hpp>
 #include <stdexcept>
 
-#include "io/error.h"
-#include "io/file_access.h"
-#include "io/safetensors.h"
 #include "render/scene_frame.h"
 #include "render/shadow_maps.h"
+#include "runtime/internal.h"
+#include "runtime/network_weights.h"
 #include "runtime/scene_lights.h"
 #include "runtime/smoke_renderer_impl.h"
 
 namespace sixway {
 namespace {
-
-std::unique_ptr<nn::Network> loadNetwork(const gpu::Context& context, const gpu::PipelineCache& cache,
-                                         const RendererOptions& options, const io::Scene& scene) {
-  io::requireRegularFile(options.weights, "no such weights file");
-  nn::NetworkOptions networkOptions;
-  networkOptions.precision = options.fp16 ? nn::Precision::Fp16 : nn::Precision::Fp32;
-  networkOptions.emission = scene.smoke.emission.intensity > 0.0f;
-  networkOptions.albedo = scene.smoke.albedo;
-  const uint32_t size = uint32_t(scene.render.lightmapSize);
-  return std::make_unique<nn::Network>(context, cache, io::readSafetensors(options.weights), size, size,
-                                       networkOptions);
-}
 
 runtime::FrameTarget frameTarget(const gpu::Context& context, const io::Scene& scene,
                                  const RenderTarget* target) {
@@ -50,39 +37,41 @@ uint32_t shadowTiles(const io::Scene& scene, const RendererOptions& options) {
 
 }  // namespace
 
-SmokeRenderer::Impl::Impl(Device::Impl& device, SmokeSimulation::Impl& simulation,
-                          const RendererOptions& options, const RenderTarget* target)
+SmokeRenderer::Impl::Impl(const gpu::Context& context, const gpu::PipelineCache& cache,
+                          const SmokeSimulation& simulation, const RendererOptions& options,
+                          const RenderTarget* target)
     : simulation(simulation),
+      scene(runtime::Access::scene(simulation)),
       engineTarget(target != nullptr),
-      network(loadNetwork(*device.context, *device.cache, options, simulation.scene)),
-      frame(*device.context, *device.cache, simulation.scene,
-            frameTarget(*device.context, simulation.scene, target), shadowTiles(simulation.scene, options),
-            runtime::networkGuide(simulation.scene, network->graph())),
-      sequence(*device.context) {}
+      network(runtime::loadNetwork(context, cache, options.weights, uint32_t(scene.render.lightmapSize),
+                                   runtime::sceneNetworkOptions(scene, options.fp16))),
+      frame(context, cache, scene, frameTarget(context, scene, target), shadowTiles(scene, options),
+            runtime::networkGuide(scene, network->graph())),
+      sequence(context) {}
 
 gpu::Sequence& SmokeRenderer::Impl::prepare() {
-  const render::Volume volume = simulation.volumes->currentVolume();
+  const runtime::SimulatedVolumes& volumes = runtime::Access::volumes(simulation);
+  const render::Volume volume = volumes.currentVolume();
   // A restarted simulation may reuse a handle value: the start count tells its volume apart.
   gpu::Sequence& s =
-      sequence.get({render::handleKey(volume.density->handle()), simulation.starts}, [&](gpu::Sequence& s) {
-        frame.record(s, volume, runtime::FrameStages::All, [&](gpu::Sequence& s) {
-          s.beginStage("network");
-          network->record(s, {frame.guide(), frame.guideEmission()}, frame.lightmaps().a,
-                          frame.lightmaps().b);
-          s.endStage();
-        });
-      });
-  const sim::Simulation& sim = simulation.volumes->simulation();
-  for (size_t o = 0; o < simulation.scene.obstacles.size(); ++o)
-    frame.meshes().setMotion(o, sim.obstacleMotion(o));
+      sequence.get({render::handleKey(volume.density->handle()), runtime::Access::starts(simulation)},
+                   [&](gpu::Sequence& s) {
+                     frame.record(s, volume, runtime::FrameStages::All, [&](gpu::Sequence& s) {
+                       s.beginStage("network");
+                       network->record(s, {frame.guide(), frame.guideEmission()}, frame.lightmaps().a,
+                                       frame.lightmaps().b);
+                       s.endStage();
+                     });
+                   });
+  const sim::Simulation& sim = volumes.simulation();
+  for (size_t o = 0; o < scene.obstacles.size(); ++o) frame.meshes().setMotion(o, sim.obstacleMotion(o));
 
-  const int index =
-      std::max(0, simulation.frames - 1);  // the smoke after `frames` frames is frame frames − 1
+  // The smoke after `frames` frames is frame frames − 1.
+  const int index = std::max(0, simulation.framesSimulated() - 1);
   const render::Camera view =
       camera ? render::Camera::lookAt(camera->position, camera->target, camera->up, camera->fovYDegrees)
-             : render::sceneCamera(simulation.scene.camera, index);
-  const std::vector<io::Light> frameLights =
-      lights ? *lights : render::sceneLights(simulation.scene.lights, index);
+             : render::sceneCamera(scene.camera, index);
+  const std::vector<io::Light> frameLights = lights ? *lights : render::sceneLights(scene.lights, index);
   // An engine's depth buffer holds its projection's depth; sixway's own, the obstacle pass's.
   frame.updateScene(
       view, frameLights, sim.seconds(),
@@ -94,11 +83,13 @@ gpu::Sequence& SmokeRenderer::Impl::prepare() {
 }
 
 SmokeRenderer::SmokeRenderer(Device& device, SmokeSimulation& simulation, const RendererOptions& options)
-    : impl_(std::make_unique<Impl>(device.impl(), simulation.impl(), options, nullptr)) {}
+    : impl_(std::make_unique<Impl>(runtime::Access::context(device), runtime::Access::pipelineCache(device),
+                                   simulation, options, nullptr)) {}
 
 SmokeRenderer::SmokeRenderer(Device& device, SmokeSimulation& simulation, const RendererOptions& options,
                              const RenderTarget& target)
-    : impl_(std::make_unique<Impl>(device.impl(), simulation.impl(), options, &target)) {}
+    : impl_(std::make_unique<Impl>(runtime::Access::context(device), runtime::Access::pipelineCache(device),
+                                   simulation, options, &target)) {}
 
 SmokeRenderer::~SmokeRenderer() = default;
 

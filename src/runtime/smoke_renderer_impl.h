@@ -1,7 +1,7 @@
 #pragma once
 // What a sixway::SmokeRenderer holds: the real-time frame with the network as its lightmap stage, recorded
 // once per simulation volume and replayed, and this frame's camera and lights. sixway's own tools reach the
-// frame's images through it (the demo displays them).
+// frame's images through runtime::Access (the demo displays them).
 #include <sixway/smoke_renderer.h>
 
 #include <memory>
@@ -10,18 +10,18 @@
 #include "nn/network.h"
 #include "render/recorded_sequence.h"
 #include "runtime/realtime_frame.h"
-#include "runtime/smoke_simulation_impl.h"
 
 namespace sixway {
 
 struct SmokeRenderer::Impl {
-  Impl(Device::Impl& device, SmokeSimulation::Impl& simulation, const RendererOptions& options,
-       const RenderTarget* target);
+  Impl(const gpu::Context& context, const gpu::PipelineCache& cache, const SmokeSimulation& simulation,
+       const RendererOptions& options, const RenderTarget* target);
 
   // Records the passes for the simulation's volume (once) and writes this frame's values.
   gpu::Sequence& prepare();
 
-  SmokeSimulation::Impl& simulation;
+  const SmokeSimulation& simulation;
+  const io::Scene& scene;  // the simulation's
   bool engineTarget;
   std::unique_ptr<nn::Network> network;  // before the frame, whose guide it sets
   runtime::RealtimeFrame frame;

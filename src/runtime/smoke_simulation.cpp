@@ -4,18 +4,20 @@
 #include <stdexcept>
 #include <string>
 
+#include "runtime/internal.h"
 #include "runtime/smoke_simulation_impl.h"
 
 namespace sixway {
 
-SmokeSimulation::Impl::Impl(Device::Impl& device, io::Scene scene) : device(device), scene(std::move(scene)) {
+SmokeSimulation::Impl::Impl(const gpu::Context& context, const gpu::PipelineCache& cache, io::Scene scene)
+    : context(context), cache(cache), scene(std::move(scene)) {
   start();
 }
 
 void SmokeSimulation::Impl::start() {
   volumes.reset();
-  volumes = std::make_unique<runtime::SimulatedVolumes>(*device.context, *device.cache, scene,
-                                                        std::numeric_limits<int>::max());
+  volumes =
+      std::make_unique<runtime::SimulatedVolumes>(context, cache, scene, std::numeric_limits<int>::max());
   frames = 0;
   advanced = false;
   ++starts;
@@ -33,7 +35,8 @@ io::Scene simulatedScene(const std::filesystem::path& file) {
 }  // namespace
 
 SmokeSimulation::SmokeSimulation(Device& device, const std::filesystem::path& scene)
-    : impl_(std::make_unique<Impl>(device.impl(), simulatedScene(scene))) {}
+    : impl_(std::make_unique<Impl>(runtime::Access::context(device), runtime::Access::pipelineCache(device),
+                                   simulatedScene(scene))) {}
 
 SmokeSimulation::~SmokeSimulation() = default;
 

@@ -4,18 +4,20 @@
 
 #include <memory>
 
+#include "gpu/context.h"
+#include "gpu/pipeline.h"
 #include "io/scene.h"
-#include "runtime/device_impl.h"
 #include "runtime/scene_volumes.h"
 
 namespace sixway {
 
 struct SmokeSimulation::Impl {
-  Impl(Device::Impl& device, io::Scene scene);
+  Impl(const gpu::Context& context, const gpu::PipelineCache& cache, io::Scene scene);
   // A fresh simulation of the scene (the previous one's memory freed first).
   void start();
 
-  Device::Impl& device;
+  const gpu::Context& context;
+  const gpu::PipelineCache& cache;
   io::Scene scene;
   std::unique_ptr<runtime::SimulatedVolumes> volumes;
   int frames = 0;         // frames simulated (or recorded) since the start

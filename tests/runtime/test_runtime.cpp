@@ -23,11 +23,9 @@
 #include "io/safetensors.h"
 #include "io/scene.h"
 #include "render/scene_frame.h"
-#include "runtime/device_impl.h"
+#include "runtime/internal.h"
 #include "runtime/scene_lights.h"
 #include "runtime/scene_volumes.h"
-#include "runtime/smoke_renderer_impl.h"
-#include "runtime/smoke_simulation_impl.h"
 #include "support/temp_dir.h"
 
 namespace sixway::test {
@@ -64,12 +62,13 @@ double maxDifference(const std::vector<float>& a, const std::vector<float>& b) {
 
 // The evaluation's neural frame 1 of small_plume with `weights`, simulated afresh on the device.
 std::vector<float> pipelineFrame(Device& device, const std::filesystem::path& weights) {
-  const gpu::Context& context = *device.impl().context;
+  const gpu::Context& context = runtime::Access::context(device);
+  const gpu::PipelineCache& cache = runtime::Access::pipelineCache(device);
   const io::Scene scene = io::loadScene(kScene);
-  runtime::SimulatedVolumes volumes(context, *device.impl().cache, scene, 2);
+  runtime::SimulatedVolumes volumes(context, cache, scene, 2);
   eval::FramePipelineOptions options;
   options.weights = weights;
-  eval::FramePipeline pipeline(context, *device.impl().cache, scene, options);
+  eval::FramePipeline pipeline(context, cache, scene, options);
   return pipeline.render(1, runtime::SimulatedVolumes::frameSeconds(scene, 1), volumes.volume(1))
       .image.pixels;
 }
@@ -115,7 +114,7 @@ TEST(Runtime, EngineLightsRestartAndReports) {
   const std::vector<float> sceneLit = renderer.image();
   ASSERT_EQ(renderer.notes().size(), 1u);
   float light = 0.0f, emissive = 0.0f;
-  const std::vector<uint16_t> b = renderer.impl().frame.lightmaps().b.download<uint16_t>();
+  const std::vector<uint16_t> b = runtime::Access::frame(renderer).lightmaps().b.download<uint16_t>();
   for (size_t i = 0; i < b.size(); i += 4) {  // B = left, bottom, front, emissive
     light = std::max(light, glm::unpackHalf1x16(b[i]));
     emissive = std::max(emissive, std::abs(glm::unpackHalf1x16(b[i + 3])));
@@ -208,7 +207,7 @@ struct EngineTargets {
 // fence, one frame at a time.
 struct BorrowingEngine {
   explicit BorrowingEngine(const Device& own)
-      : context(*own.impl().context),
+      : context(runtime::Access::context(own)),
         features(gpu::DeviceFeatures::toEnable(gpu::DeviceFeatures::supportedBy(context.physicalDevice()))),
         device(engineDevice(context, features)) {
     VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
@@ -321,7 +320,7 @@ TEST(Runtime, AnEngineSteersAnObstacleBetweenFrames) {
   EXPECT_EQ(volume.cells, glm::ivec3(24, 32, 24) * io::loadScene(kScene).grid.smokeUpres);
   EXPECT_FLOAT_EQ(volume.cellSize, 0.04f / float(io::loadScene(kScene).grid.smokeUpres));
   // The measurements read so far are of frames recorded two frames before the last ones: the smoke is there.
-  const sim::AdvanceReport& report = simulation.impl().volumes->simulation().report();
+  const sim::AdvanceReport& report = runtime::Access::volumes(simulation).simulation().report();
   EXPECT_GT(report.smokeMass, 0.0);
   EXPECT_EQ(report.forces.size(), size_t(io::lbmStepsPerFrame(io::loadScene(kScene))));
   EXPECT_EQ(own.validationMessages(), 0u);
@@ -371,7 +370,7 @@ TEST(Runtime, ANetworkThatReadsTheFineAlphaGetsIt) {
   Device device({.validate = true});
   SmokeSimulation simulation(device, kScene);
   SmokeRenderer renderer(device, simulation, {.weights = weights});
-  EXPECT_FLOAT_EQ(renderer.impl().frame.guiding().settings().alphaStepCells, 1.0f);
+  EXPECT_FLOAT_EQ(runtime::Access::frame(renderer).guiding().settings().alphaStepCells, 1.0f);
   for (int frame = 0; frame < 2; ++frame) simulation.advance();
   renderer.render();
   const std::vector<float> image = renderer.image();

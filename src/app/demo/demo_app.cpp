@@ -18,6 +18,7 @@
 #include "io/error.h"
 #include "io/png.h"
 #include "render/sixway.h"
+#include "runtime/internal.h"
 #include "sim/watchdog.h"
 
 namespace sixway::app::demo {
@@ -45,9 +46,9 @@ io::Image downloadFrame(const gpu::Image& image) {
 Demo::Demo(const DemoOptions& options) : options_(options), vsync_(options.vsync) {
   if (options.script) script_.emplace(loadScript(*options.script));
   const io::Scene scene = io::loadScene(options.scene);  // bad input fails before a window opens
-  gpu::checkRequestedDevice(options.context);
+  gpu::ContextOptions contextOptions = runtime::contextOptions(options.device);
+  gpu::checkRequestedDevice(contextOptions);
   window_ = std::make_unique<Window>(options.width, options.height, "sixway-demo");
-  gpu::ContextOptions contextOptions = options.context;
   contextOptions.instanceExtensions = Window::requiredInstanceExtensions();
   contextOptions.presentation = true;
   context_ = std::make_unique<gpu::Context>(contextOptions);

@@ -4,6 +4,8 @@
 // the chosen mode from the user's camera and lights → the display image → the panel on top → present.
 // Everything the user can do is an action of this class, so a script drives exactly what a person does.
 // docs/demo.md.
+#include <sixway/device.h>
+
 #include <chrono>
 #include <filesystem>
 #include <memory>
@@ -40,7 +42,7 @@ struct DemoOptions {
   bool fp16 = false;
   bool vsync = true;
   int width = 1280, height = 720;
-  gpu::ContextOptions context;
+  DeviceOptions device;
 };
 
 // What the display shows of the chosen mode.

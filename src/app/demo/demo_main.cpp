@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
     if (!script.empty()) options.script = script;
     options.weights = sixway::app::resolveWeights(options.weights);
     options.vsync = !noVsync;
-    options.context = common.contextOptions();
+    options.device = common.deviceOptions();
     demo::Demo demo(options);
     return demo.run();
   } catch (const std::exception& e) {

@@ -3,11 +3,9 @@
 #include <algorithm>
 
 #include "render/scene_frame.h"
-#include "runtime/device_impl.h"
+#include "runtime/internal.h"
 #include "runtime/scene_lights.h"
 #include "runtime/scene_volumes.h"
-#include "runtime/smoke_renderer_impl.h"
-#include "runtime/smoke_simulation_impl.h"
 #include "sources/scene_volumes.h"
 
 namespace sixway::app::demo {
@@ -20,7 +18,7 @@ std::vector<io::Light> startingLights(const io::Scene& scene) {
 
 LiveScene::LiveScene(gpu::Context& context, gpu::PipelineCache& cache, const std::filesystem::path& scene,
                      const LiveSceneOptions& options)
-    : device_(std::make_unique<Device::Impl>(context, cache)), options_(options) {
+    : device_(runtime::Access::borrowDevice(context, cache)), options_(options) {
   playedScene_ = io::loadScene(scene);
   if (playedScene_.vdb) {
     playback_ = sources::openSceneVolumes(context, cache, playedScene_, io::sceneFrameCount(playedScene_),
@@ -32,7 +30,7 @@ LiveScene::LiveScene(gpu::Context& context, gpu::PipelineCache& cache, const std
 }
 
 const io::Scene& LiveScene::scene() const {
-  return simulation_ ? simulation_->impl().scene : playedScene_;
+  return simulation_ ? runtime::Access::scene(*simulation_) : playedScene_;
 }
 
 double LiveScene::seconds() const {
@@ -65,7 +63,7 @@ void LiveScene::steerObstacle(size_t obstacle, glm::vec3 target) {
 
 void LiveScene::followObstacles() {
   if (!simulation_) return;
-  const sim::Simulation& simulation = simulation_->impl().volumes->simulation();
+  const sim::Simulation& simulation = runtime::Access::volumes(*simulation_).simulation();
   for (auto& [key, pipeline] : pipelines_)
     for (size_t i = 0; i < obstacleCount(); ++i) pipeline->setObstacleMotion(i, simulation.obstacleMotion(i));
 }
@@ -93,8 +91,8 @@ eval::FramePipeline& LiveScene::pipelineFor(eval::RenderMode mode, bool shadows)
     options.shadowTiles = kMaxDemoLights;
     options.download = false;
     try {
-      const Device::Impl& d = device_.impl();
-      slot = std::make_unique<eval::FramePipeline>(*d.context, *d.cache, scene(), options);
+      slot = std::make_unique<eval::FramePipeline>(runtime::Access::context(device_),
+                                                   runtime::Access::pipelineCache(device_), scene(), options);
     } catch (...) {
       pipelines_.erase({mode, shadows});
       throw;
@@ -125,7 +123,7 @@ LiveFrame LiveScene::renderNeural(const Camera& camera, const std::vector<io::Li
   for (const io::Light& l : lights) converted.push_back(runtime::publicLight(l));
   renderer.setLights(converted);
   renderer.render();
-  const runtime::RealtimeFrame& f = renderer.impl().frame;
+  const runtime::RealtimeFrame& f = runtime::Access::frame(renderer);
   LiveFrame out{&f.color(), &f.guide(), &f.lightmaps().a, &f.lightmaps().b, {}};
   for (const StageTime& t : renderer.stageTimes()) out.stages.push_back({t.name, t.milliseconds});
   return out;
@@ -139,7 +137,7 @@ LiveFrame LiveScene::render(eval::RenderMode mode, const Camera& camera, const s
       render::Camera::lookAt(camera.position, camera.target, camera.up, camera.fovYDegrees), lights};
   eval::RenderedFrame r = pipeline.render(
       view, frame(), seconds(),
-      simulation_ ? simulation_->impl().volumes->currentVolume() : playback_->volume(frame()));
+      simulation_ ? runtime::Access::volumes(*simulation_).currentVolume() : playback_->volume(frame()));
   return {&pipeline.colorImage(), &pipeline.guideImage(), &pipeline.lightmapImageA(),
           &pipeline.lightmapImageB(), std::move(r.stages)};
 }
