@@ -1,5 +1,5 @@
 // `sixway bench` sections "lightmaps" and "frame": the real-time stages of the neural render mode
-// (app/frame_pipeline.h: shadow maps, obstacles, guiding map, network, six-way shading) at fixed lightmap
+// (runtime/frame_renderer.h: shadow maps, obstacles, guiding map, network, six-way shading) at fixed lightmap
 // sizes, beside the exact single-scattering baker they replace (the same volume, camera and size, in the same
 // run), and the whole frame of the paper's setting: one frame of simulation plus those stages.
 #include <chrono>
@@ -10,19 +10,19 @@
 #include "app/bench_options.h"
 #include "app/bench_scene.h"
 #include "app/bench_stats.h"
-#include "eval/frame_pipeline.h"
 #include "gpu/check.h"
 #include "gpu/context.h"
 #include "io/error.h"
 #include "render/volume.h"
+#include "runtime/modes/mode_renderer.h"
 #include "sim/simulation.h"
 
 namespace sixway::app {
 namespace {
 
-eval::FramePipelineOptions neural(const BenchOptions& o, bool fp16) {
-  eval::FramePipelineOptions options;
-  options.mode = eval::RenderMode::Neural;
+modes::ModeOptions neuralMode(const BenchOptions& o, bool fp16) {
+  modes::ModeOptions options;
+  options.mode = modes::RenderMode::Neural;
   options.weights = o.weights;
   options.fp16 = fp16;
   return options;
@@ -73,17 +73,17 @@ nlohmann::json benchLightmaps(const gpu::Context& context, const gpu::PipelineCa
   nlohmann::json sizes = nlohmann::json::array();
   for (uint32_t size : o.sizes) {
     scene.render.lightmapSize = int(size);
-    eval::FramePipeline pipeline(context, cache, scene, neural(o, false));
-    std::unique_ptr<eval::FramePipeline> half;
-    if (fp16) half = std::make_unique<eval::FramePipeline>(context, cache, scene, neural(o, true));
-    eval::FramePipelineOptions exact;
-    exact.mode = eval::RenderMode::Reference;
-    eval::FramePipeline baker(context, cache, scene, exact);
+    modes::ModeRenderer neural(context, cache, scene, neuralMode(o, false));
+    std::unique_ptr<modes::ModeRenderer> half;
+    if (fp16) half = std::make_unique<modes::ModeRenderer>(context, cache, scene, neuralMode(o, true));
+    modes::ModeOptions exact;
+    exact.mode = modes::RenderMode::Reference;
+    modes::ModeRenderer baker(context, cache, scene, exact);
     const auto render = [&](StageTimes* times) {
-      const eval::RenderedFrame frame = pipeline.render(0, 0.0, volume.view());
+      const modes::RenderedFrame frame = neural.render(0, 0.0, volume.view());
       const std::vector<gpu::StageTime> halfStages =
           half ? half->render(0, 0.0, volume.view()).stages : std::vector<gpu::StageTime>{};
-      const eval::RenderedFrame baked = baker.render(0, 0.0, volume.view());
+      const modes::RenderedFrame baked = baker.render(0, 0.0, volume.view());
       if (!times) return;
       times->beginRun();
       addFrameStages(*times, frame.stages);
@@ -144,13 +144,13 @@ nlohmann::json benchFrame(const gpu::Context& context, const gpu::PipelineCache&
   simulation->smoke().recordExport(exportSmoke, volume.density(), volume.temperature());
   exportSmoke.endStage();
   exportSmoke.finish();
-  eval::FramePipeline pipeline(context, cache, scene, neural(o, fp16));
+  modes::ModeRenderer neural(context, cache, scene, neuralMode(o, fp16));
 
   int index = 0;
   const auto frame = [&](StageTimes* times) {
     simulation->advance(steps);
     exportSmoke.submit();
-    const eval::RenderedFrame rendered = pipeline.render(index, simulation->seconds(), volume.view());
+    const modes::RenderedFrame rendered = neural.render(index, simulation->seconds(), volume.view());
     ++index;
     if (!times) return;
     const sim::StepTimes& t = simulation->report().times;

@@ -23,12 +23,12 @@
 #include "app/staged_directory.h"
 #include "app/stop_on_signal.h"
 #include "app/timings_log.h"
-#include "eval/frame_pipeline.h"
-#include "eval/image_metrics.h"
 #include "io/error.h"
 #include "io/report.h"
 #include "io/scene.h"
+#include "metrics/image_metrics.h"
 #include "runtime/internal.h"
+#include "runtime/modes/mode_renderer.h"
 #include "runtime/scene_volumes.h"
 #include "sources/scene_volumes.h"
 
@@ -52,17 +52,17 @@ struct RenderOptions {
   render::MultipleScattering multiple;
 };
 
-// The frames of one mode: neural through the public SmokeRenderer (the product's path, as an engine runs
-// it); the evaluation's modes through eval::FramePipeline on the same simulation. A VDB scene has no
-// simulation for the public API to run: every mode, neural included, goes through FramePipeline on the
-// played-back volumes.
+// The frames of one mode, all from the runtime's one real-time frame: neural through the public
+// SmokeRenderer (the product's path, as an engine runs it); the evaluation's modes through
+// modes::ModeRenderer on the same simulation. A VDB scene has no simulation for the public API to run: every
+// mode, neural included, goes through ModeRenderer on the played-back volumes.
 class FrameSource {
  public:
   FrameSource(sixway::Device& device, sixway::SmokeSimulation* simulation, render::VolumeSequence* playback,
-              const io::Scene& scene, const fs::path& scenePath, const eval::FramePipelineOptions& options)
+              const io::Scene& scene, const fs::path& scenePath, const modes::ModeOptions& options)
       : simulation_(simulation), playback_(playback), scene_(scene) {
     const std::string settings = "render.lightmap_size, render.width or render.height";
-    if (options.mode == eval::RenderMode::Neural && simulation) {
+    if (options.mode == modes::RenderMode::Neural && simulation) {
       sixway::RendererOptions rendererOptions;
       rendererOptions.weights = options.weights;
       rendererOptions.fp16 = options.fp16;
@@ -71,21 +71,21 @@ class FrameSource {
         return std::make_unique<sixway::SmokeRenderer>(device, *simulation, rendererOptions);
       });
     } else {
-      pipeline_ = withinDeviceLimits(scenePath.string(), settings, [&] {
-        return std::make_unique<eval::FramePipeline>(runtime::Access::context(device),
+      modeRenderer_ = withinDeviceLimits(scenePath.string(), settings, [&] {
+        return std::make_unique<modes::ModeRenderer>(runtime::Access::context(device),
                                                      runtime::Access::pipelineCache(device), scene, options);
       });
     }
   }
 
   // Frame `index`: its image, GPU stage times and notes (the simulation has been advanced to it).
-  eval::RenderedFrame render(int index) {
-    if (pipeline_)
-      return pipeline_->render(
+  modes::RenderedFrame render(int index) {
+    if (modeRenderer_)
+      return modeRenderer_->render(
           index, runtime::SimulatedVolumes::frameSeconds(scene_, index),
           playback_ ? playback_->volume(index) : runtime::Access::volumes(*simulation_).currentVolume());
     renderer_->render();
-    eval::RenderedFrame frame;
+    modes::RenderedFrame frame;
     frame.image = io::Image(int(renderer_->width()), int(renderer_->height()), {"R", "G", "B", "A"});
     frame.image.pixels = renderer_->image();
     for (const sixway::StageTime& t : renderer_->stageTimes())
@@ -99,7 +99,7 @@ class FrameSource {
   render::VolumeSequence* playback_;
   const io::Scene& scene_;
   std::unique_ptr<sixway::SmokeRenderer> renderer_;
-  std::unique_ptr<eval::FramePipeline> pipeline_;
+  std::unique_ptr<modes::ModeRenderer> modeRenderer_;
 };
 
 void run(const RenderOptions& o) {
@@ -111,18 +111,18 @@ void run(const RenderOptions& o) {
   // Warm-up frames run the scene's clock (simulation, camera and light paths) without writing; frame_0000 is
   // the scene's frame `warmup`.
   const int warmup = scene.render.warmupFrames;
-  eval::FramePipelineOptions options;
+  modes::ModeOptions options;
   options.weights = resolveWeights(o.weights);
   // Without --mode: the network when the shipped weights exist, else the reference lightmaps (said on the
   // terminal). Weights named with --weights always mean the network, so a missing file is an error, not a
   // silent change of mode.
   const bool network = !o.weights.empty() || fs::exists(options.weights);
-  options.mode = o.mode ? eval::parseRenderMode(*o.mode)
-                        : (network ? eval::RenderMode::Neural : eval::RenderMode::Reference);
+  options.mode = o.mode ? modes::parseRenderMode(*o.mode)
+                        : (network ? modes::RenderMode::Neural : modes::RenderMode::Reference);
   // Not an error: scripts loop over the modes with one set of options.
-  if (!o.weights.empty() && options.mode != eval::RenderMode::Neural)
+  if (!o.weights.empty() && options.mode != modes::RenderMode::Neural)
     std::fprintf(stderr, "sixway: note: --weights %s is not used: --mode %s uses no network\n",
-                 o.weights.c_str(), eval::renderModeName(options.mode));
+                 o.weights.c_str(), modes::renderModeName(options.mode));
   options.fp16 = o.fp16;
   options.shadows = !o.noShadows;
   options.pathTraceSamples = o.samples;
@@ -157,7 +157,7 @@ void run(const RenderOptions& o) {
   writerOptions.force = o.force;
   FrameWriter writer(o.out, writerOptions);
   std::printf("sixway render: %s, %d frames, mode %s, %dx%d (lightmaps %d²), on %s\n", scene.name.c_str(),
-              o.frames, eval::renderModeName(options.mode), scene.render.width, scene.render.height,
+              o.frames, modes::renderModeName(options.mode), scene.render.width, scene.render.height,
               scene.render.lightmapSize, device.name().c_str());
   std::fflush(stdout);
   TimingsLog timings(o.frames);
@@ -165,7 +165,7 @@ void run(const RenderOptions& o) {
   // (guide).
   std::vector<double> coverage;
   coverage.reserve(size_t(o.frames));
-  // Per frame: pixels no renderer should make (eval::imageFaults), in the modes with alpha.
+  // Per frame: pixels no renderer should make (metrics::imageFaults), in the modes with alpha.
   nlohmann::json faults = nlohmann::json::array();
   uint64_t faultTotal = 0;
   namingScene(o.scene, [&] {
@@ -180,18 +180,18 @@ void run(const RenderOptions& o) {
     for (int i = 0; i < o.frames; ++i) {
       throwIfStopped();
       if (simulation) simulation->advance();
-      const eval::RenderedFrame frame = source.render(warmup + i);
+      const modes::RenderedFrame frame = source.render(warmup + i);
       writer.write(i, frame.image);
       if (frame.image.channelCount() == 4) {
-        coverage.push_back(eval::alphaCoverage(frame.image));
-        const eval::ImageFaults f = eval::imageFaults(frame.image);
+        coverage.push_back(metrics::alphaCoverage(frame.image));
+        const metrics::ImageFaults f = metrics::imageFaults(frame.image);
         faults.push_back({{"not_finite", f.notFinite},
                           {"negative", f.negative},
                           {"dark_dots", f.darkDots},
                           {"first_pixels", f.first}});
         faultTotal += f.total();
         if (f.total() > 0)
-          std::fprintf(stderr, "sixway: frame %d has %s\n", i, eval::describeFaults(f).c_str());
+          std::fprintf(stderr, "sixway: frame %d has %s\n", i, metrics::describeFaults(f).c_str());
       }
       for (const std::string& note : frame.notes) std::fprintf(stderr, "sixway: note: %s\n", note.c_str());
 
@@ -214,7 +214,7 @@ void run(const RenderOptions& o) {
   const std::vector<std::string> extras = writer.finish();
 
   nlohmann::json report = {{"scene", fs::absolute(o.scene).string()},
-                           {"mode", eval::renderModeName(options.mode)},
+                           {"mode", modes::renderModeName(options.mode)},
                            {"device", device.name()},
                            {"size", {scene.render.width, scene.render.height}},
                            {"lightmap_size", scene.render.lightmapSize},
@@ -229,7 +229,7 @@ void run(const RenderOptions& o) {
         {"alpha_threshold", 0.1}, {"per_frame", coverage}, {"least_of_last_16", leastCoverage}};
     report["pixel_faults"] = {{"total", faultTotal}, {"per_frame", faults}};
   }
-  if (options.mode == eval::RenderMode::Neural) report["weights"] = fs::absolute(options.weights).string();
+  if (options.mode == modes::RenderMode::Neural) report["weights"] = fs::absolute(options.weights).string();
   if (playback) report["source"] = sources::describeSource(*playback);
   io::writeReport(writer.stagedPath("timings.json"), report);
   writer.commit();

@@ -7,7 +7,7 @@
 #include <memory>
 #include <variant>
 
-#include "eval/image_metrics.h"
+#include "metrics/image_metrics.h"
 #include "reference/path_tracer.h"
 #include "render/camera.h"
 #include "render/obstacle_bvh.h"
@@ -93,7 +93,7 @@ nlohmann::json equalTimeStudy(const gpu::Context& context, const gpu::PipelineCa
 
   nlohmann::json curve = nlohmann::json::array();
   for (size_t k = 0; k < times.size(); ++k) {
-    nlohmann::json point = compareImages(images[k], truth).json();
+    nlohmann::json point = metrics::compareImages(images[k], truth).json();
     point["spp"] = times[k].first;
     point["ms"] = times[k].second;
     curve.push_back(point);
@@ -101,8 +101,8 @@ nlohmann::json equalTimeStudy(const gpu::Context& context, const gpu::PipelineCa
   nlohmann::json result = {
       {"budget_ms", budgetMs},    {"reference_spp", referenceSpp},
       {"curve", curve},           {"equal_time_spp", equalSpp},
-      {"equal_time_ms", equalMs}, {"equal_time", compareImages(equalImage, truth).json()}};
-  if (neural) result["neural"] = compareImages(*neural, truth).json();
+      {"equal_time_ms", equalMs}, {"equal_time", metrics::compareImages(equalImage, truth).json()}};
+  if (neural) result["neural"] = metrics::compareImages(*neural, truth).json();
   return result;
 }
 

@@ -31,7 +31,7 @@ struct EqualTimeSettings {
 // scene's obstacles are path-traced (at the frame's time), as in the truth. `neural`: the neural frame,
 // compared with the stand-in too when given.
 // Returns {budget_ms, reference_spp, curve: [{spp, ms, image error}], equal_time_spp, equal_time_ms,
-// equal_time (image error), neural (image error)}; image errors as ImageError::json().
+// equal_time (image error), neural (image error)}; image errors as metrics::ImageError::json().
 nlohmann::json equalTimeStudy(const gpu::Context& context, const gpu::PipelineCache& cache,
                               const io::Scene& scene, int index, const render::Volume& volume,
                               const EqualTimeSettings& study, const io::Image* neural);

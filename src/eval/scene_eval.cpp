@@ -14,9 +14,7 @@
 
 #include "eval/equal_time.h"
 #include "eval/eval_strip.h"
-#include "eval/frame_pipeline.h"
 #include "eval/image_detail.h"
-#include "eval/image_metrics.h"
 #include "eval/lightmap_metrics.h"
 #include "eval/obstacle_band.h"
 #include "eval/summary_table.h"
@@ -27,10 +25,12 @@
 #include "io/file_access.h"
 #include "io/report.h"
 #include "io/scene.h"
+#include "metrics/image_metrics.h"
 #include "render/camera.h"
 #include "render/obstacle_bvh.h"
 #include "render/scene_frame.h"
 #include "runtime/internal.h"
+#include "runtime/modes/mode_renderer.h"
 #include "runtime/network_weights.h"
 #include "runtime/scene_volumes.h"
 #include "sources/scene_volumes.h"
@@ -40,9 +40,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The methods measured against the path tracer, by their render-mode names (frame_pipeline.h). guide-lit is
-// the guide-only baseline: the guiding map's light as all six lightmaps; reference-ms the six-way ceiling
-// under full transport (multiply-scattered lightmaps); traditional-ms the flipbook users bake in DCC tools.
+// The methods measured against the path tracer, by their render-mode names (runtime/modes/render_mode.h).
+// guide-lit is the guide-only baseline: the guiding map's light as all six lightmaps; reference-ms the
+// six-way ceiling under full transport (multiply-scattered lightmaps); traditional-ms the flipbook users bake
+// in DCC tools.
 const std::vector<std::string> kMethods{"neural",      "reference",      "reference-ms",
                                         "traditional", "traditional-ms", "guide-lit"};
 
@@ -153,23 +154,23 @@ void evaluateScene(const DeviceOptions& device, const SceneEvalSettings& s) {
   // What the renderers see: the obstacles, unless left out (--no-obstacles).
   io::Scene renderScene = scene;
   if (!s.obstacles) renderScene.obstacles.clear();
-  FramePipelineOptions options;
+  modes::ModeOptions options;
   options.weights = s.weights;
   options.shadows = s.shadows;
   options.pathTraceSamples = s.samples;
   options.pathTraceOrders = s.orders;
   options.multipleScattering = s.multipleScattering;
-  std::map<std::string, std::unique_ptr<FramePipeline>> pipelines;
+  std::map<std::string, std::unique_ptr<modes::ModeRenderer>> renderers;
   for (const std::string& method : kMethods) {
-    options.mode = parseRenderMode(method);
-    pipelines[method] = std::make_unique<FramePipeline>(context, cache, renderScene, options);
+    options.mode = modes::parseRenderMode(method);
+    renderers[method] = std::make_unique<modes::ModeRenderer>(context, cache, renderScene, options);
   }
-  options.mode = RenderMode::PathTrace;
-  FramePipeline truthPipeline(context, cache, renderScene, options);
-  std::unique_ptr<FramePipeline> truthNoisePipeline;  // the same frames with other noise
+  options.mode = modes::RenderMode::PathTrace;
+  modes::ModeRenderer truthRenderer(context, cache, renderScene, options);
+  std::unique_ptr<modes::ModeRenderer> truthNoiseRenderer;  // the same frames with other noise
   if (s.truthNoise) {
     options.pathTraceSeedOffset = 0x9E3779B9u;  // far from the next frames' seeds (render.seed + frame)
-    truthNoisePipeline = std::make_unique<FramePipeline>(context, cache, renderScene, options);
+    truthNoiseRenderer = std::make_unique<modes::ModeRenderer>(context, cache, renderScene, options);
   }
   // The band around the obstacles (obstacle_band.h), where the images draw them.
   std::unique_ptr<render::ObstacleBvh> bandObstacles;
@@ -188,7 +189,7 @@ void evaluateScene(const DeviceOptions& device, const SceneEvalSettings& s) {
 
   const render::Camera firstCamera = render::sceneCamera(scene.camera, warmup);
   LightmapMetrics lightmapTotal, lightmapMsTotal;
-  std::map<std::string, ImageError> imageTotal;
+  std::map<std::string, metrics::ImageError> imageTotal;
   std::map<std::string, std::vector<double>> framePsnrs;
   std::map<std::string, std::vector<nlohmann::json>> frameStages;
   std::map<std::string, std::vector<double>>
@@ -203,7 +204,8 @@ void evaluateScene(const DeviceOptions& device, const SceneEvalSettings& s) {
   // noise.
   std::map<std::string, double> detailEnergy;
   double truthDetailEnergy = 0;
-  std::map<std::string, uint64_t> faultTotals;  // pixels no renderer should make (imageFaults), per method
+  std::map<std::string, uint64_t>
+      faultTotals;  // pixels no renderer should make (metrics::imageFaults), per method
   const auto started = std::chrono::steady_clock::now();
   for (int i = 0; i < s.frames; ++i) {
     const int index = warmup + i;
@@ -228,7 +230,7 @@ void evaluateScene(const DeviceOptions& device, const SceneEvalSettings& s) {
     }
 
     const auto traced = std::chrono::steady_clock::now();
-    const RenderedFrame truth = truthPipeline.render(index, seconds, volume);
+    const modes::RenderedFrame truth = truthRenderer.render(index, seconds, volume);
     frame["wall_ms"]["pathtrace"] =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - traced).count();
     wallTimes["pathtrace"].push_back(frame["wall_ms"]["pathtrace"].get<double>());
@@ -236,8 +238,8 @@ void evaluateScene(const DeviceOptions& device, const SceneEvalSettings& s) {
     frameStages["pathtrace"].push_back(frame["stages_ms"]["pathtrace"]);
     if (i > 0) truthTemporal.add(previous["truth"], truth.image, previous["truth"], truth.image);
     std::optional<std::vector<uint8_t>> detailMask;
-    if (truthNoisePipeline) {
-      const RenderedFrame repeat = truthNoisePipeline->render(index, seconds, volume);
+    if (truthNoiseRenderer) {
+      const modes::RenderedFrame repeat = truthNoiseRenderer->render(index, seconds, volume);
       if (i > 0) truthNoise->add(repeat.image, truth.image, previous["truth"], truth.image);
       detailMask = smokeMask(truth.image);
       const double signal = highPassEnergy(truth.image, *detailMask) -
@@ -258,15 +260,16 @@ void evaluateScene(const DeviceOptions& device, const SceneEvalSettings& s) {
                           HostDensity{volume.grid, volume.density->download<float>()}, settings);
       frame["band_pixels"] = std::count(band->begin(), band->end(), uint8_t(1));
     }
-    std::map<std::string, RenderedFrame> rendered;
+    std::map<std::string, modes::RenderedFrame> rendered;
     for (const std::string& method : kMethods) {
       const auto begun = std::chrono::steady_clock::now();
-      rendered[method] = pipelines[method]->render(index, seconds, volume);
+      rendered[method] = renderers[method]->render(index, seconds, volume);
       const double wallMs =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begun).count();
       frame["wall_ms"][method] = wallMs;
       wallTimes[method].push_back(wallMs);
-      const ImageError error = compareImages(rendered[method].image, truth.image, band ? &*band : nullptr);
+      const metrics::ImageError error =
+          metrics::compareImages(rendered[method].image, truth.image, band ? &*band : nullptr);
       if (detailMask) {
         const double energy = highPassEnergy(rendered[method].image, *detailMask);
         detailEnergy[method] += energy;
@@ -274,27 +277,27 @@ void evaluateScene(const DeviceOptions& device, const SceneEvalSettings& s) {
       }
       imageTotal[method] += error;
       frame["image"][method] = error.json();
-      const ImageFaults faults = imageFaults(rendered[method].image);
+      const metrics::ImageFaults faults = metrics::imageFaults(rendered[method].image);
       faultTotals[method] += faults.total();
       frame["pixel_faults"][method] = faults.total();
       if (faults.total() > 0)
         std::fprintf(stderr, "sixway eval: frame %d, %s: %s\n", i, method.c_str(),
-                     describeFaults(faults).c_str());
-      framePsnrs[method].push_back(psnrDb(error.mseMasked()));
+                     metrics::describeFaults(faults).c_str());
+      framePsnrs[method].push_back(metrics::psnrDb(error.mseMasked()));
       frame["stages_ms"][method] = stageTimes(rendered[method].stages);
       frameStages[method].push_back(frame["stages_ms"][method]);
       if (i > 0)
         temporal[method].add(previous[method], rendered[method].image, previous["truth"], truth.image);
     }
     LightmapMetrics lightmaps;
-    const io::Image predicted = pipelines["neural"]->lightmaps(),
-                    reference = pipelines["reference"]->lightmaps();
+    const io::Image predicted = renderers["neural"]->lightmaps(),
+                    reference = renderers["reference"]->lightmaps();
     lightmaps.add(predicted.pixels, reference.pixels);
     lightmapTotal.add(predicted.pixels, reference.pixels);
     frame["lightmap"] = lightmapFrame(lightmaps);
     // The same against the multiply-scattered lightmaps: what a network trained on the truth should match.
     LightmapMetrics lightmapsMs;
-    const io::Image referenceMs = pipelines["reference-ms"]->lightmaps();
+    const io::Image referenceMs = renderers["reference-ms"]->lightmaps();
     lightmapsMs.add(predicted.pixels, referenceMs.pixels);
     lightmapMsTotal.add(predicted.pixels, referenceMs.pixels);
     frame["lightmap_ms"] = lightmapFrame(lightmapsMs);
@@ -345,7 +348,7 @@ void evaluateScene(const DeviceOptions& device, const SceneEvalSettings& s) {
   for (const auto& [method, times] : wallTimes) summary["median_ms"][method]["wall_ms"] = median(times);
   summary["temporal"] = temporalSummary(temporal, truthTemporal, truthNoise);
   summary["detail"] = nullptr;
-  if (truthNoisePipeline) {
+  if (truthNoiseRenderer) {
     summary["detail"] = {{"truth_energy", number(truthDetailEnergy)}, {"sigma_px", kDetailSigma}};
     for (const std::string& method : kMethods)
       summary["detail"]["methods"][method] = number(detailEnergy[method] / truthDetailEnergy);

@@ -77,7 +77,7 @@ class GuidingMap {
   // How the smoke's opacity builds up along each guide pixel's ray, for the composite with obstacles
   // (sixway_shade.frag): RGBA16F, size × size, the view depths where the opacity first reaches 0.1, 0.35, 0.6
   // and 0.85 (shaders/common/depth.glsl, kOpacityLevels), encoded as the shell depth is; 1 where a level is
-  // not reached. record() writes it; a flipbook's is uploaded instead (eval::FramePipeline).
+  // not reached. record() writes it; a flipbook's is uploaded instead (modes::FlipbookLightmaps).
   gpu::Image& opacityDepths() { return opacityDepths_; }
   const gpu::Image& opacityDepths() const { return opacityDepths_; }
 

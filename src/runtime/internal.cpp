@@ -38,7 +38,7 @@ uint64_t Access::starts(const SmokeSimulation& simulation) {
 }
 
 const RealtimeFrame& Access::frame(const SmokeRenderer& renderer) {
-  return renderer.impl_->frame;
+  return renderer.impl_->renderer.frame();
 }
 
 }  // namespace sixway::runtime

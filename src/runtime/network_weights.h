@@ -6,7 +6,6 @@
 #include <memory>
 
 #include "io/safetensors.h"
-#include "io/scene.h"
 #include "nn/network.h"
 
 namespace sixway::gpu {
@@ -22,9 +21,5 @@ io::SafetensorsFile readWeights(const std::filesystem::path& weights);
 std::unique_ptr<nn::Network> loadNetwork(const gpu::Context& context, const gpu::PipelineCache& cache,
                                          const std::filesystem::path& weights, uint32_t size,
                                          const nn::NetworkOptions& options);
-
-// A scene's network: fp16 or fp32 feature maps, an emissive output only for smoke that glows, the smoke's
-// albedo.
-nn::NetworkOptions sceneNetworkOptions(const io::Scene& scene, bool fp16);
 
 }  // namespace sixway::runtime

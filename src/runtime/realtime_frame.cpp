@@ -15,14 +15,6 @@ gpu::Image ownImage(const gpu::Context& context, uint32_t width, uint32_t height
 
 }  // namespace
 
-render::GuideSettings networkGuide(const io::Scene& scene, const nn::Graph& graph) {
-  render::GuideSettings guide = render::GuideSettings::fromScene(scene);
-  const nn::Node& input = graph.nodes.front();
-  if (input.guideAlphaStepVoxels > 0.0f) guide.alphaStepCells = input.guideAlphaStepVoxels;
-  guide.emission = input.guideChannels > nn::kGuideImageChannels;
-  return guide;
-}
-
 RealtimeFrame::RealtimeFrame(const gpu::Context& context, const gpu::PipelineCache& cache,
                              const io::Scene& scene, FrameTarget target, uint32_t shadowTiles,
                              const render::GuideSettings& guide)

@@ -2,8 +2,7 @@
 // The passes of the real-time frame (docs/real-time-rendering.md) for one scene, and their per-frame values:
 // obstacle shadow maps, the obstacles drawn into the target (sixway's own image only; an engine draws its
 // own), the guiding map, a lightmap stage (the network's, or whatever the caller records), and six-way
-// shading over the colour target. The public SmokeRenderer and the evaluation's FramePipeline both build
-// their frames from it.
+// shading over the colour target. FrameRenderer (frame_renderer.h) drives them.
 #include <functional>
 #include <memory>
 #include <optional>
@@ -12,7 +11,6 @@
 #include "gpu/image.h"
 #include "gpu/sequence.h"
 #include "io/scene.h"
-#include "nn/graph.h"
 #include "render/camera.h"
 #include "render/guiding_map.h"
 #include "render/lightmap_images.h"
@@ -41,15 +39,10 @@ struct FrameTarget {
 // guiding map (a flipbook's shell depth is uploaded into guide() instead).
 enum class FrameStages { All, UpToGuide, ObstaclesOnly, AllButGuide };
 
-// The guiding map a network reads: the scene's, with the fine alpha (channel A) when the network's input
-// takes it (the graph's guide_alpha_step_voxels wins over the scene's render.guide_alpha_step_voxels: the
-// network was trained on that step), and the emission image when its guide has a 5th channel.
-render::GuideSettings networkGuide(const io::Scene& scene, const nn::Graph& graph);
-
 class RealtimeFrame {
  public:
-  // `shadowTiles`: the shadow atlas's tiles (0: no shadows); `guide`: the guiding map's settings, the scene's
-  // (GuideSettings::fromScene) or a network's (networkGuide).
+  // `shadowTiles`: the shadow atlas's tiles (0: no shadows); `guide`: the guiding map's settings (a lightmap
+  // source's, LightmapSource::guide).
   RealtimeFrame(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
                 FrameTarget target, uint32_t shadowTiles, const render::GuideSettings& guide);
 

@@ -7,7 +7,7 @@
 #include "render/scene_frame.h"
 #include "render/shadow_maps.h"
 #include "runtime/internal.h"
-#include "runtime/network_weights.h"
+#include "runtime/network_lightmaps.h"
 #include "runtime/scene_lights.h"
 #include "runtime/smoke_renderer_impl.h"
 
@@ -43,43 +43,27 @@ SmokeRenderer::Impl::Impl(const gpu::Context& context, const gpu::PipelineCache&
     : simulation(simulation),
       scene(runtime::Access::scene(simulation)),
       engineTarget(target != nullptr),
-      network(runtime::loadNetwork(context, cache, options.weights, uint32_t(scene.render.lightmapSize),
-                                   runtime::sceneNetworkOptions(scene, options.fp16))),
-      frame(context, cache, scene, frameTarget(context, scene, target), shadowTiles(scene, options),
-            runtime::networkGuide(scene, network->graph())),
-      sequence(context) {}
+      renderer(
+          context, cache, scene, frameTarget(context, scene, target), shadowTiles(scene, options),
+          std::make_unique<runtime::NetworkLightmaps>(context, cache, scene, options.weights, options.fp16)) {
+}
 
 gpu::Sequence& SmokeRenderer::Impl::prepare() {
   const runtime::SimulatedVolumes& volumes = runtime::Access::volumes(simulation);
-  const render::Volume volume = volumes.currentVolume();
-  // A restarted simulation may reuse a handle value: the start count tells its volume apart.
-  gpu::Sequence& s =
-      sequence.get({render::handleKey(volume.density->handle()), runtime::Access::starts(simulation)},
-                   [&](gpu::Sequence& s) {
-                     frame.record(s, volume, runtime::FrameStages::All, [&](gpu::Sequence& s) {
-                       s.beginStage("network");
-                       network->record(s, {frame.guide(), frame.guideEmission()}, frame.lightmaps().a,
-                                       frame.lightmaps().b);
-                       s.endStage();
-                     });
-                   });
   const sim::Simulation& sim = volumes.simulation();
-  for (size_t o = 0; o < scene.obstacles.size(); ++o) frame.meshes().setMotion(o, sim.obstacleMotion(o));
-
+  for (size_t o = 0; o < scene.obstacles.size(); ++o)
+    renderer.frame().meshes().setMotion(o, sim.obstacleMotion(o));
   // The smoke after `frames` frames is frame frames − 1.
   const int index = std::max(0, simulation.framesSimulated() - 1);
-  const render::Camera view =
+  runtime::FrameView view{
       camera ? render::Camera::lookAt(camera->position, camera->target, camera->up, camera->fovYDegrees)
-             : render::sceneCamera(scene.camera, index);
-  const std::vector<io::Light> frameLights = lights ? *lights : render::sceneLights(scene.lights, index);
-  // An engine's depth buffer holds its projection's depth; sixway's own, the obstacle pass's.
-  frame.updateScene(
-      view, frameLights, sim.seconds(),
-      engineTarget ? std::optional(render::DepthRange{camera->near, camera->far}) : std::nullopt);
-  notes = frame.takeNotes();
-  const render::Box volumeBox = volume.grid.bounds();
-  frame.updateShading(view, frameLights, frame.updateGuide(view, volumeBox, index), volumeBox);
-  return s;
+             : render::sceneCamera(scene.camera, index),
+      lights ? *lights : render::sceneLights(scene.lights, index)};
+  // A restarted simulation may reuse a handle value: the start count tells its volume apart. An engine's
+  // depth buffer holds its projection's depth; sixway's own, the obstacle pass's.
+  return renderer.prepare(
+      {volumes.currentVolume(), runtime::Access::starts(simulation), std::move(view), index, sim.seconds(),
+       engineTarget ? std::optional(render::DepthRange{camera->near, camera->far}) : std::nullopt});
 }
 
 SmokeRenderer::SmokeRenderer(Device& device, SmokeSimulation& simulation, const RendererOptions& options)
@@ -130,35 +114,35 @@ std::vector<StageTime> SmokeRenderer::stageTimes() const {
 }
 
 std::vector<std::string> SmokeRenderer::notes() const {
-  return impl_->notes;
+  return impl_->renderer.notes();
 }
 
 std::vector<float> SmokeRenderer::image() const {
   if (impl_->engineTarget) throw std::invalid_argument("SmokeRenderer::image: the engine owns the target");
-  const std::vector<uint16_t> halves = impl_->frame.color().download<uint16_t>();
+  const std::vector<uint16_t> halves = impl_->renderer.frame().color().download<uint16_t>();
   std::vector<float> pixels(halves.size());
   for (size_t i = 0; i < halves.size(); ++i) pixels[i] = glm::unpackHalf1x16(halves[i]);
   return pixels;
 }
 
 uint32_t SmokeRenderer::maxLights() const {
-  return impl_->frame.maxLights();
+  return impl_->renderer.frame().maxLights();
 }
 
 uint32_t SmokeRenderer::width() const {
-  return impl_->frame.width();
+  return impl_->renderer.frame().width();
 }
 
 uint32_t SmokeRenderer::height() const {
-  return impl_->frame.height();
+  return impl_->renderer.frame().height();
 }
 
 VkImage SmokeRenderer::lightmapA() const {
-  return impl_->frame.lightmaps().a.handle();
+  return impl_->renderer.frame().lightmaps().a.handle();
 }
 
 VkImage SmokeRenderer::lightmapB() const {
-  return impl_->frame.lightmaps().b.handle();
+  return impl_->renderer.frame().lightmaps().b.handle();
 }
 
 }  // namespace sixway

@@ -1,15 +1,15 @@
 #pragma once
-// What a sixway::SmokeRenderer holds: the real-time frame with the network as its lightmap stage, recorded
-// once per simulation volume and replayed, and this frame's camera and lights. sixway's own tools reach the
-// frame's images through runtime::Access (the demo displays them).
+// What a sixway::SmokeRenderer holds: the real-time frame with the network as its lightmap source, and this
+// frame's camera and lights. sixway's own tools reach the frame's images through runtime::Access (the demo
+// displays them).
 #include <sixway/smoke_renderer.h>
+#include <sixway/smoke_simulation.h>
 
-#include <memory>
 #include <optional>
+#include <vector>
 
-#include "nn/network.h"
-#include "render/recorded_sequence.h"
-#include "runtime/realtime_frame.h"
+#include "io/scene.h"
+#include "runtime/frame_renderer.h"
 
 namespace sixway {
 
@@ -17,18 +17,15 @@ struct SmokeRenderer::Impl {
   Impl(const gpu::Context& context, const gpu::PipelineCache& cache, const SmokeSimulation& simulation,
        const RendererOptions& options, const RenderTarget* target);
 
-  // Records the passes for the simulation's volume (once) and writes this frame's values.
+  // This frame of the simulation's volume: the sequence to submit or record.
   gpu::Sequence& prepare();
 
   const SmokeSimulation& simulation;
   const io::Scene& scene;  // the simulation's
   bool engineTarget;
-  std::unique_ptr<nn::Network> network;  // before the frame, whose guide it sets
-  runtime::RealtimeFrame frame;
-  render::RecordedSequence sequence;
+  runtime::FrameRenderer renderer;
   std::optional<Camera> camera;
   std::optional<std::vector<io::Light>> lights;
-  std::vector<std::string> notes;  // of the last frame
   gpu::Sequence* last = nullptr;
 };
 

@@ -1,10 +1,10 @@
-// The pixels `sixway render` counts as faults (eval::imageFaults): not finite, negative, and a dark dot (up
-// to 5 × 5 pixels) in lit smoke, but not a dark pixel of the background or a dark edge.
+// The pixels `sixway render` counts as faults (metrics::imageFaults): not finite, negative, and a dark dot
+// (up to 5 × 5 pixels) in lit smoke, but not a dark pixel of the background or a dark edge.
 #include <gtest/gtest.h>
 
 #include <limits>
 
-#include "eval/image_metrics.h"
+#include "metrics/image_metrics.h"
 
 namespace sixway::test {
 namespace {
@@ -20,9 +20,9 @@ io::Image grey(float value) {
 
 TEST(ImageFaultsTest, DarkPixelInLitSmoke) {
   io::Image lit = grey(0.4f);
-  EXPECT_EQ(eval::imageFaults(lit).total(), 0u);
+  EXPECT_EQ(metrics::imageFaults(lit).total(), 0u);
   for (int c = 0; c < 3; ++c) lit.at(5, 6, c) = 0.0f;
-  const eval::ImageFaults f = eval::imageFaults(lit);
+  const metrics::ImageFaults f = metrics::imageFaults(lit);
   EXPECT_EQ(f.darkDots, 1u);
   EXPECT_EQ(f.notFinite + f.negative, 0u);
 }
@@ -33,7 +33,7 @@ TEST(ImageFaultsTest, DarkDotOfFiveByFour) {
     for (int x = 5; x < 10; ++x)
       for (int c = 0; c < 3; ++c) lit.at(x, y, c) = 0.02f;
   // Counted are the pixels whose ring four pixels out clears the dot: x 6 to 8, y 4 to 7.
-  EXPECT_EQ(eval::imageFaults(lit).darkDots, 12u);
+  EXPECT_EQ(metrics::imageFaults(lit).darkDots, 12u);
 }
 
 TEST(ImageFaultsTest, DarkBackgroundAndEdgesAreNoFaults) {
@@ -42,7 +42,7 @@ TEST(ImageFaultsTest, DarkBackgroundAndEdgesAreNoFaults) {
   for (int y = 0; y < 12; ++y)  // a lit half with a dark column at its edge
     for (int x = 9; x < 16; ++x)
       for (int c = 0; c < 3; ++c) image.at(x, y, c) = 0.5f;
-  EXPECT_EQ(eval::imageFaults(image).total(), 0u);
+  EXPECT_EQ(metrics::imageFaults(image).total(), 0u);
 }
 
 TEST(ImageFaultsTest, NotFiniteAndNegative) {
@@ -50,7 +50,7 @@ TEST(ImageFaultsTest, NotFiniteAndNegative) {
   image.at(1, 1, 0) = std::numeric_limits<float>::quiet_NaN();
   image.at(2, 1, 3) = std::numeric_limits<float>::infinity();
   image.at(3, 1, 2) = -0.01f;
-  const eval::ImageFaults f = eval::imageFaults(image);
+  const metrics::ImageFaults f = metrics::imageFaults(image);
   EXPECT_EQ(f.notFinite, 2u);
   EXPECT_EQ(f.negative, 1u);
 }

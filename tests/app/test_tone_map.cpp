@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "app/tone_map.h"
-#include "eval/image_metrics.h"
+#include "metrics/image_metrics.h"
 
 namespace sixway::test {
 namespace {
@@ -50,9 +50,9 @@ TEST(ToneMapTest, ExposureInStopsThenTheCurveOrTheClamp) {
 TEST(ToneMapTest, CoverageCountsThePixelsWithAlphaAtTheThreshold) {
   io::Image frame(4, 1, {"R", "G", "B", "A"});
   for (int x = 0; x < 4; ++x) frame.at(x, 0, 3) = std::vector<float>{0.0f, 0.05f, 0.1f, 1.0f}[x];
-  EXPECT_DOUBLE_EQ(eval::alphaCoverage(frame), 0.5);
-  EXPECT_DOUBLE_EQ(eval::alphaCoverage(frame, 0.01f), 0.75);
-  EXPECT_THROW(eval::alphaCoverage(io::Image(1, 1, {"R", "G", "B"})), std::invalid_argument);
+  EXPECT_DOUBLE_EQ(metrics::alphaCoverage(frame), 0.5);
+  EXPECT_DOUBLE_EQ(metrics::alphaCoverage(frame, 0.01f), 0.75);
+  EXPECT_THROW(metrics::alphaCoverage(io::Image(1, 1, {"R", "G", "B"})), std::invalid_argument);
 }
 
 }  // namespace

@@ -1,18 +1,18 @@
 // One end-to-end frame per mode of `sixway render` (tests/data/scenes/small_plume.json, frame 3: simulation,
 // obstacles, shadows, guiding map, network or baker or path tracer, shading) against tests/golden/<mode>.exr.
-// The images come from lavapipe, which renders the same bits every run; there the tolerance (max-abs 2e-3, about
-// one half-float step at 1) only absorbs rounding differences between driver builds. Any change of an algorithm
-// shows far beyond it. Another driver rounds differently (FMA contraction, exp precision) and four frames of
-// simulation carry that on: NVIDIA's H200 measured max |diff| 2.1e-3 (73.8 dB) on the deterministic modes and,
-// for the path tracer whose random walks then diverge, 0.065 (61.7 dB). Off lavapipe the test asks for 50 dB
-// PSNR: the same picture, not the same bits.
+// The images come from lavapipe, which renders the same bits every run; there the tolerance (max-abs 2e-3,
+// about one half-float step at 1) only absorbs rounding differences between driver builds. Any change of an
+// algorithm shows far beyond it. Another driver rounds differently (FMA contraction, exp precision) and four
+// frames of simulation carry that on: NVIDIA's H200 measured max |diff| 2.1e-3 (73.8 dB) on the deterministic
+// modes and, for the path tracer whose random walks then diverge, 0.065 (61.7 dB). Off lavapipe the test asks
+// for 50 dB PSNR: the same picture, not the same bits.
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 
-#include "eval/frame_pipeline.h"
 #include "io/exr.h"
 #include "io/scene.h"
+#include "runtime/modes/mode_renderer.h"
 #include "runtime/scene_volumes.h"
 #include "support/gpu_fixture.h"
 #include "support/image_compare.h"
@@ -24,22 +24,22 @@ namespace fs = std::filesystem;
 
 constexpr int kFrame = 3;
 
-class GoldenFrame : public GpuTest, public ::testing::WithParamInterface<eval::RenderMode> {};
+class GoldenFrame : public GpuTest, public ::testing::WithParamInterface<modes::RenderMode> {};
 
 TEST_P(GoldenFrame, MatchesTheCommittedImage) {
-  const eval::RenderMode mode = GetParam();
+  const modes::RenderMode mode = GetParam();
   const io::Scene scene = io::loadScene(fs::path(SIXWAY_TEST_DATA_DIR) / "scenes" / "small_plume.json");
-  eval::FramePipelineOptions options;
+  modes::ModeOptions options;
   options.mode = mode;
   options.weights = fs::path(SIXWAY_TEST_DATA_DIR) / "nn" / "default.safetensors";  // untrained, fixed
   options.pathTraceSamples = 16;
   runtime::SimulatedVolumes volumes(context(), pipelineCache(), scene, kFrame + 1);
-  eval::FramePipeline pipeline(context(), pipelineCache(), scene, options);
+  modes::ModeRenderer renderer(context(), pipelineCache(), scene, options);
   io::Image frame;
   for (int i = 0; i <= kFrame; ++i)
-    frame = pipeline.render(i, runtime::SimulatedVolumes::frameSeconds(scene, i), volumes.volume(i)).image;
+    frame = renderer.render(i, runtime::SimulatedVolumes::frameSeconds(scene, i), volumes.volume(i)).image;
 
-  const fs::path golden = fs::path(SIXWAY_GOLDEN_DIR) / (std::string(eval::renderModeName(mode)) + ".exr");
+  const fs::path golden = fs::path(SIXWAY_GOLDEN_DIR) / (std::string(modes::renderModeName(mode)) + ".exr");
   if (std::getenv("SIXWAY_UPDATE_GOLDEN")) {
     io::writeExr(golden, frame, io::ExrPixelType::Half, {{"origin", "tests/golden/test_golden_frames.cpp"}});
     GTEST_SKIP() << "rewrote " << golden;
@@ -54,16 +54,17 @@ TEST_P(GoldenFrame, MatchesTheCommittedImage) {
       for (int x = 0; x < frame.width; ++x) actual.at(x, y, c) = frame.at(x, y, from);
   }
   const bool goldenDriver = context().driver().driverID == VK_DRIVER_ID_MESA_LLVMPIPE;
-  const ImageTolerance tolerance = goldenDriver ? ImageTolerance{.maxAbs = 2e-3} : ImageTolerance{.minPsnr = 50};
-  EXPECT_TRUE(imagesMatch(actual, expected, tolerance, eval::renderModeName(mode)));
+  const ImageTolerance tolerance =
+      goldenDriver ? ImageTolerance{.maxAbs = 2e-3} : ImageTolerance{.minPsnr = 50};
+  EXPECT_TRUE(imagesMatch(actual, expected, tolerance, modes::renderModeName(mode)));
 }
 
 INSTANTIATE_TEST_SUITE_P(Modes, GoldenFrame,
-                         ::testing::Values(eval::RenderMode::Neural, eval::RenderMode::Reference,
-                                           eval::RenderMode::Traditional, eval::RenderMode::Guide,
-                                           eval::RenderMode::GuideLit, eval::RenderMode::PathTrace),
+                         ::testing::Values(modes::RenderMode::Neural, modes::RenderMode::Reference,
+                                           modes::RenderMode::Traditional, modes::RenderMode::Guide,
+                                           modes::RenderMode::GuideLit, modes::RenderMode::PathTrace),
                          [](const auto& info) {
-                           std::string name = eval::renderModeName(info.param);
+                           std::string name = modes::renderModeName(info.param);
                            std::replace(name.begin(), name.end(), '-', '_');  // test names are identifiers
                            return name;
                          });

@@ -1,5 +1,6 @@
-// The public API (include/sixway/) against the evaluation's frame pipeline, and the engine path against
-// sixway's own: the same smoke, the same pixels, and no host waits per frame when an engine records.
+// The public API (include/sixway/) against the neural mode of `sixway render` (modes::ModeRenderer), and the
+// engine path against sixway's own: the same smoke, the same pixels, and no host waits per frame when an
+// engine records.
 #include <gtest/gtest.h>
 #include <sixway/device.h>
 #include <sixway/errors.h>
@@ -16,7 +17,6 @@
 #include <string>
 #include <vector>
 
-#include "eval/frame_pipeline.h"
 #include "gpu/check.h"
 #include "gpu/device_features.h"
 #include "gpu/image.h"
@@ -24,6 +24,7 @@
 #include "io/scene.h"
 #include "render/scene_frame.h"
 #include "runtime/internal.h"
+#include "runtime/modes/mode_renderer.h"
 #include "runtime/scene_lights.h"
 #include "runtime/scene_volumes.h"
 #include "support/temp_dir.h"
@@ -60,20 +61,20 @@ double maxDifference(const std::vector<float>& a, const std::vector<float>& b) {
   return worst;
 }
 
-// The evaluation's neural frame 1 of small_plume with `weights`, simulated afresh on the device.
-std::vector<float> pipelineFrame(Device& device, const std::filesystem::path& weights) {
+// The neural mode's frame 1 of small_plume with `weights`, simulated afresh on the device.
+std::vector<float> neuralModeFrame(Device& device, const std::filesystem::path& weights) {
   const gpu::Context& context = runtime::Access::context(device);
   const gpu::PipelineCache& cache = runtime::Access::pipelineCache(device);
   const io::Scene scene = io::loadScene(kScene);
   runtime::SimulatedVolumes volumes(context, cache, scene, 2);
-  eval::FramePipelineOptions options;
+  modes::ModeOptions options;
   options.weights = weights;
-  eval::FramePipeline pipeline(context, cache, scene, options);
-  return pipeline.render(1, runtime::SimulatedVolumes::frameSeconds(scene, 1), volumes.volume(1))
+  modes::ModeRenderer renderer(context, cache, scene, options);
+  return renderer.render(1, runtime::SimulatedVolumes::frameSeconds(scene, 1), volumes.volume(1))
       .image.pixels;
 }
 
-TEST(Runtime, OwnImageIsTheFramePipelinesNeuralFrame) {
+TEST(Runtime, OwnImageIsTheNeuralModesFrame) {
   Device device({.validate = true});
   SmokeSimulation simulation(device, kScene);
   SmokeRenderer renderer(device, simulation, {.weights = kWeights});
@@ -81,7 +82,7 @@ TEST(Runtime, OwnImageIsTheFramePipelinesNeuralFrame) {
   renderer.render();
   const std::vector<float> image = renderer.image();
 
-  const std::vector<float> expected = pipelineFrame(device, kWeights);
+  const std::vector<float> expected = neuralModeFrame(device, kWeights);
   ASSERT_EQ(image.size(), expected.size());
   EXPECT_EQ(maxDifference(image, expected), 0.0);
   EXPECT_GT(*std::max_element(image.begin(), image.end()), 0.05f) << "no smoke in the image";
@@ -363,7 +364,7 @@ std::filesystem::path fineAlphaNetwork(const std::filesystem::path& dir, float s
 }
 
 // A network that reads the fine alpha turns it on in the frame's guiding map, in the public renderer and in
-// the evaluation's pipeline alike (same pixels), and its frame differs from the 3-channel network's.
+// the neural mode alike (same pixels), and its frame differs from the 3-channel network's.
 TEST(Runtime, ANetworkThatReadsTheFineAlphaGetsIt) {
   TempDir dir;
   const std::filesystem::path weights = fineAlphaNetwork(dir.path(), 1.0f);
@@ -375,8 +376,8 @@ TEST(Runtime, ANetworkThatReadsTheFineAlphaGetsIt) {
   renderer.render();
   const std::vector<float> image = renderer.image();
 
-  EXPECT_EQ(maxDifference(image, pipelineFrame(device, weights)), 0.0);
-  EXPECT_GT(maxDifference(image, pipelineFrame(device, kWeights)), 1e-3);
+  EXPECT_EQ(maxDifference(image, neuralModeFrame(device, weights)), 0.0);
+  EXPECT_GT(maxDifference(image, neuralModeFrame(device, kWeights)), 1e-3);
 
   EXPECT_FLOAT_EQ(LightmapNetwork(device, weights, 16).fineAlphaStepVoxels(), 1.0f);
   EXPECT_FLOAT_EQ(LightmapNetwork(device, kWeights, 16).fineAlphaStepVoxels(), 0.0f);

@@ -8,11 +8,11 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 
-#include "eval/frame_pipeline.h"
 #include "io/error.h"
 #include "io/scene.h"
 #include "io/vdb.h"
 #include "reference/vdb_sequence.h"
+#include "runtime/modes/mode_renderer.h"
 #include "runtime/scene_volumes.h"
 #include "sim/simulation.h"
 #include "sources/scene_volumes.h"
@@ -85,10 +85,10 @@ TEST_F(VdbPlaybackTest, SimExportPlaysBackAsTheSameVolumesAndImages) {
 
   io::Scene renderScene = simulated;
   renderScene.obstacles.clear();  // the played-back scene has none to draw
-  eval::FramePipelineOptions options;
-  options.mode = eval::RenderMode::Reference;
-  eval::FramePipeline fromSimulation(context(), pipelineCache(), renderScene, options);
-  eval::FramePipeline fromFiles(context(), pipelineCache(), played, options);
+  modes::ModeOptions options;
+  options.mode = modes::RenderMode::Reference;
+  modes::ModeRenderer fromSimulation(context(), pipelineCache(), renderScene, options);
+  modes::ModeRenderer fromFiles(context(), pipelineCache(), played, options);
   for (int i = 0; i < kFrames; ++i) {
     const render::Volume a = live.volume(i), b = playback->volume(i);
     // On the simulation's own lattice, cell for cell.

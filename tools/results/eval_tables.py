@@ -235,7 +235,7 @@ the six basis directions, the glow's hue) are measured in
 ## Time per stage
 
 Median per frame over the multiple-scattering run, milliseconds of GPU timestamps (`gpu::Sequence` stages; the
-simulation's `StepTimes`), and the wall clock of each method's `FramePipeline::render` call (upload, submit, wait,
+simulation's `StepTimes`), and the wall clock of each method's `ModeRenderer::render` call (upload, submit, wait,
 readback). The timestamps are taken as each stage ends (on lavapipe too, since `gpu::Sequence` resolves each
 one at once, docs/benchmarks.md), so the wall clock exceeds their sum by the host's uploads, waits and readbacks.
 

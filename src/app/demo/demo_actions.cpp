@@ -15,8 +15,8 @@ namespace sixway::app::demo {
 
 namespace fs = std::filesystem;
 
-void Demo::setMode(eval::RenderMode mode) {
-  if (mode == eval::RenderMode::PathTrace)
+void Demo::setMode(modes::RenderMode mode) {
+  if (mode == modes::RenderMode::PathTrace)
     throw std::invalid_argument("the path tracer is not interactive: use `sixway render --mode pathtrace`");
   mode_ = mode;
   split_ = false;
@@ -152,7 +152,7 @@ void Demo::runScriptCommand(const ScriptCommand& c) {
   } else if (c.name == "pan") {
     pan(c.number(0), c.number(1));
   } else if (c.name == "mode") {
-    setMode(eval::parseRenderMode(c.words[0]));
+    setMode(modes::parseRenderMode(c.words[0]));
   } else if (c.name == "view") {
     const auto& names = render::sixWayChannelNames();
     const auto lower = [](std::string text) {

@@ -13,10 +13,10 @@
 #include "app/demo/live_scene.h"
 #include "app/demo/presenter.h"
 #include "app/demo/window.h"
-#include "eval/image_metrics.h"
 #include "gpu/pipeline.h"
 #include "io/error.h"
 #include "io/png.h"
+#include "metrics/image_metrics.h"
 #include "render/sixway.h"
 #include "runtime/internal.h"
 #include "sim/watchdog.h"
@@ -64,7 +64,7 @@ Demo::Demo(const DemoOptions& options) : options_(options), vsync_(options.vsync
   camera_ = OrbitCamera::fromScene(scene.camera);
   lights_ = startingLights(scene);
   if (!fs::exists(options.weights)) {
-    mode_ = eval::RenderMode::Reference;
+    mode_ = modes::RenderMode::Reference;
     say("no network at " + options.weights.string() + ": neural mode is off (train one, or pass --weights)",
         true);
   }
@@ -167,19 +167,19 @@ std::vector<gpu::StageTime> Demo::renderViews() {
   const Camera camera = camera_.view();
   std::vector<gpu::StageTime> stages;
   std::vector<Panel> panels;
-  const auto renderMode = [&](eval::RenderMode mode) {
+  const auto renderMode = [&](modes::RenderMode mode) {
     LiveFrame f = live_->render(mode, camera, lights_, shadows_);
     stages.insert(stages.end(), f.stages.begin(), f.stages.end());
     return f;
   };
   try {
     if (split_) {
-      const LiveFrame neural = renderMode(eval::RenderMode::Neural);
-      const LiveFrame reference = renderMode(eval::RenderMode::Reference);
+      const LiveFrame neural = renderMode(modes::RenderMode::Neural);
+      const LiveFrame reference = renderMode(modes::RenderMode::Reference);
       panels = {{neural.color}, {reference.color}};
-      const eval::ImageError error =
-          eval::compareImages(downloadFrame(*neural.color), downloadFrame(*reference.color));
-      splitPsnr_ = eval::psnrDb(error.mseMasked());
+      const metrics::ImageError error =
+          metrics::compareImages(downloadFrame(*neural.color), downloadFrame(*reference.color));
+      splitPsnr_ = metrics::psnrDb(error.mseMasked());
     } else {
       const LiveFrame f = renderMode(mode_);
       if (view_ == ViewKind::Frame) panels = {{f.color}};
@@ -190,10 +190,10 @@ std::vector<gpu::StageTime> Demo::renderViews() {
       }
     }
   } catch (const io::InputError& e) {  // neural mode without weights: fall back once to reference
-    if (mode_ == eval::RenderMode::Reference && !split_) throw;
+    if (mode_ == modes::RenderMode::Reference && !split_) throw;
     say(e.what(), true);
     split_ = false;
-    mode_ = eval::RenderMode::Reference;
+    mode_ = modes::RenderMode::Reference;
     return renderViews();
   }
   display_->draw(panels, exposure_);

@@ -1,6 +1,6 @@
 #pragma once
 // `sixway-demo`: the window in which the smoke simulates, is lit by neural lightmaps and reacts to the user.
-// One loop: input (mouse, keys, the panel or a script) → the simulation's next frame → the frame pipeline in
+// One loop: input (mouse, keys, the panel or a script) → the simulation's next frame → the real-time frame in
 // the chosen mode from the user's camera and lights → the display image → the panel on top → present.
 // Everything the user can do is an action of this class, so a script drives exactly what a person does.
 // docs/demo.md.
@@ -16,9 +16,9 @@
 #include "app/demo/demo_script.h"
 #include "app/demo/orbit_camera.h"
 #include "app/demo/stage_timings.h"
-#include "eval/frame_pipeline.h"
 #include "gpu/context.h"
 #include "io/scene.h"
+#include "runtime/modes/render_mode.h"
 
 struct GLFWwindow;
 
@@ -63,7 +63,7 @@ class Demo {
   void orbit(float yawDegrees, float pitchDegrees) { camera_.orbit(yawDegrees, pitchDegrees); }
   void zoom(float factor) { camera_.zoom(factor); }
   void pan(float right, float up) { camera_.pan(right, up); }
-  void setMode(eval::RenderMode mode);
+  void setMode(modes::RenderMode mode);
   void setView(ViewKind view, int channel = 0);
   void setSplit(bool split);
   void setShadows(bool shadows) { shadows_ = shadows; }
@@ -88,7 +88,7 @@ class Demo {
   void runScriptCommand(const ScriptCommand& command);
   void installInput();
   void frame();
-  // Renders what the display shows into it; the frame pipeline's stage times.
+  // Renders what the display shows into it; the frame's stage times.
   std::vector<gpu::StageTime> renderViews();
   void drawPanel();
   void drawHelp();
@@ -117,7 +117,7 @@ class Demo {
 
   OrbitCamera camera_;
   std::vector<io::Light> lights_;
-  eval::RenderMode mode_ = eval::RenderMode::Neural;
+  modes::RenderMode mode_ = modes::RenderMode::Neural;
   ViewKind view_ = ViewKind::Frame;
   int channel_ = 0;  // sixWayChannelNames() index for ViewKind::Channel
   bool split_ = false, shadows_ = true, paused_ = false, stepOnce_ = false, vsync_ = true;

@@ -114,19 +114,19 @@ void Demo::onKey(GLFWwindow* window, int key, int, int action, int mods) {
         d.reset();
         break;
       case GLFW_KEY_1:
-        d.setMode(eval::RenderMode::Neural);
+        d.setMode(modes::RenderMode::Neural);
         break;
       case GLFW_KEY_2:
-        d.setMode(eval::RenderMode::Reference);
+        d.setMode(modes::RenderMode::Reference);
         break;
       case GLFW_KEY_3:
-        d.setMode(eval::RenderMode::Traditional);
+        d.setMode(modes::RenderMode::Traditional);
         break;
       case GLFW_KEY_4:
-        d.setMode(eval::RenderMode::Guide);
+        d.setMode(modes::RenderMode::Guide);
         break;
       case GLFW_KEY_5:
-        d.setMode(eval::RenderMode::GuideLit);
+        d.setMode(modes::RenderMode::GuideLit);
         break;
       case GLFW_KEY_F:
         d.setView(ViewKind::Frame);

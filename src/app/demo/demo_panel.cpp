@@ -79,12 +79,12 @@ void Demo::drawPanel() {
 
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
     int mode = int(mode_);
-    const eval::RenderMode modes[] = {eval::RenderMode::Neural, eval::RenderMode::Reference,
-                                      eval::RenderMode::Traditional, eval::RenderMode::Guide,
-                                      eval::RenderMode::GuideLit};
+    const modes::RenderMode modes[] = {modes::RenderMode::Neural, modes::RenderMode::Reference,
+                                       modes::RenderMode::Traditional, modes::RenderMode::Guide,
+                                       modes::RenderMode::GuideLit};
     for (int i = 0; i < 5; ++i) {
       char label[32];
-      std::snprintf(label, sizeof(label), "%s (%d)", eval::renderModeName(modes[i]), i + 1);
+      std::snprintf(label, sizeof(label), "%s (%d)", modes::renderModeName(modes[i]), i + 1);
       if (ImGui::RadioButton(label, mode == int(modes[i]))) act([&] { setMode(modes[i]); });
       if (i % 3 != 2 && i != 4) ImGui::SameLine();
     }

@@ -1,5 +1,5 @@
 #pragma once
-// The demo's view: panels of the frame pipeline's images (the frame, the guiding map, one lightmap channel)
+// The demo's view: panels of the frame's images (the frame, the guiding map, one lightmap channel)
 // drawn side by side into one 8-bit display image of the window's size (shaders/demo/display.frag). The
 // display image is what the window shows under the user interface, and what screenshots and recordings save.
 #include <cstdint>

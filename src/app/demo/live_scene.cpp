@@ -64,8 +64,8 @@ void LiveScene::steerObstacle(size_t obstacle, glm::vec3 target) {
 void LiveScene::followObstacles() {
   if (!simulation_) return;
   const sim::Simulation& simulation = runtime::Access::volumes(*simulation_).simulation();
-  for (auto& [key, pipeline] : pipelines_)
-    for (size_t i = 0; i < obstacleCount(); ++i) pipeline->setObstacleMotion(i, simulation.obstacleMotion(i));
+  for (auto& [key, renderer] : modeRenderers_)
+    for (size_t i = 0; i < obstacleCount(); ++i) renderer->setObstacleMotion(i, simulation.obstacleMotion(i));
 }
 
 void LiveScene::setInletStrength(float strength) {
@@ -80,10 +80,10 @@ std::vector<gpu::StageTime> LiveScene::simulationTimes() const {
   return times;
 }
 
-eval::FramePipeline& LiveScene::pipelineFor(eval::RenderMode mode, bool shadows) {
-  auto& slot = pipelines_[{mode, shadows}];
+modes::ModeRenderer& LiveScene::modeRendererFor(modes::RenderMode mode, bool shadows) {
+  auto& slot = modeRenderers_[{mode, shadows}];
   if (!slot) {
-    eval::FramePipelineOptions options;
+    modes::ModeOptions options;
     options.mode = mode;
     options.weights = options_.weights;
     options.fp16 = options_.fp16;
@@ -91,10 +91,10 @@ eval::FramePipeline& LiveScene::pipelineFor(eval::RenderMode mode, bool shadows)
     options.shadowTiles = kMaxDemoLights;
     options.download = false;
     try {
-      slot = std::make_unique<eval::FramePipeline>(runtime::Access::context(device_),
+      slot = std::make_unique<modes::ModeRenderer>(runtime::Access::context(device_),
                                                    runtime::Access::pipelineCache(device_), scene(), options);
     } catch (...) {
-      pipelines_.erase({mode, shadows});
+      modeRenderers_.erase({mode, shadows});
       throw;
     }
     followObstacles();
@@ -129,17 +129,17 @@ LiveFrame LiveScene::renderNeural(const Camera& camera, const std::vector<io::Li
   return out;
 }
 
-LiveFrame LiveScene::render(eval::RenderMode mode, const Camera& camera, const std::vector<io::Light>& lights,
-                            bool shadows) {
-  if (mode == eval::RenderMode::Neural && simulation_) return renderNeural(camera, lights, shadows);
-  eval::FramePipeline& pipeline = pipelineFor(mode, shadows);
-  const eval::FrameView view{
+LiveFrame LiveScene::render(modes::RenderMode mode, const Camera& camera,
+                            const std::vector<io::Light>& lights, bool shadows) {
+  if (mode == modes::RenderMode::Neural && simulation_) return renderNeural(camera, lights, shadows);
+  modes::ModeRenderer& renderer = modeRendererFor(mode, shadows);
+  const runtime::FrameView view{
       render::Camera::lookAt(camera.position, camera.target, camera.up, camera.fovYDegrees), lights};
-  eval::RenderedFrame r = pipeline.render(
+  modes::RenderedFrame r = renderer.render(
       view, frame(), seconds(),
       simulation_ ? runtime::Access::volumes(*simulation_).currentVolume() : playback_->volume(frame()));
-  return {&pipeline.colorImage(), &pipeline.guideImage(), &pipeline.lightmapImageA(),
-          &pipeline.lightmapImageB(), std::move(r.stages)};
+  return {&renderer.colorImage(), &renderer.guideImage(), &renderer.lightmapImageA(),
+          &renderer.lightmapImageB(), std::move(r.stages)};
 }
 
 }  // namespace sixway::app::demo

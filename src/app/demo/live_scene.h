@@ -2,9 +2,9 @@
 // The demo's scene, as an engine holds it through the public API (include/sixway/): a SmokeSimulation
 // running frame by frame (pause, step, reset, inlet strength, obstacles dragged by the user) and a
 // SmokeRenderer for neural mode; the evaluation's other modes (reference, traditional, guide, ...) through
-// eval::FramePipeline on the same simulation. Renderers are built on first use, one per mode and shadow
+// modes::ModeRenderer on the same simulation. Renderers are built on first use, one per mode and shadow
 // setting, and all see the simulation's obstacle motions. A scene that plays OpenVDB files back has no
-// simulation for the public API to run: its frames loop, and every mode (neural too) is a FramePipeline.
+// simulation for the public API to run: its frames loop, and every mode (neural too) is a ModeRenderer.
 #include <sixway/device.h>
 #include <sixway/smoke_renderer.h>
 #include <sixway/smoke_simulation.h>
@@ -15,10 +15,10 @@
 #include <utility>
 #include <vector>
 
-#include "eval/frame_pipeline.h"
 #include "gpu/sequence.h"
 #include "io/scene.h"
 #include "render/volume_sequence.h"
+#include "runtime/modes/mode_renderer.h"
 
 namespace sixway::gpu {
 class Context;
@@ -73,12 +73,12 @@ class LiveScene {
 
   // Renders the current frame in `mode` from `camera` under `lights`, with or without obstacle shadows.
   // Throws io::InputError when neural mode has no weights file.
-  LiveFrame render(eval::RenderMode mode, const Camera& camera, const std::vector<io::Light>& lights,
+  LiveFrame render(modes::RenderMode mode, const Camera& camera, const std::vector<io::Light>& lights,
                    bool shadows);
 
  private:
   LiveFrame renderNeural(const Camera& camera, const std::vector<io::Light>& lights, bool shadows);
-  eval::FramePipeline& pipelineFor(eval::RenderMode mode, bool shadows);
+  modes::ModeRenderer& modeRendererFor(modes::RenderMode mode, bool shadows);
   void followObstacles();
 
   Device device_;  // around the demo's context
@@ -88,7 +88,7 @@ class LiveScene {
   std::unique_ptr<render::VolumeSequence> playback_;  // its files
   int playedFrame_ = 0;
   std::map<bool, std::unique_ptr<SmokeRenderer>> renderers_;  // neural, by shadows
-  std::map<std::pair<eval::RenderMode, bool>, std::unique_ptr<eval::FramePipeline>> pipelines_;
+  std::map<std::pair<modes::RenderMode, bool>, std::unique_ptr<modes::ModeRenderer>> modeRenderers_;
 };
 
 }  // namespace sixway::app::demo

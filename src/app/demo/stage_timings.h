@@ -1,5 +1,5 @@
 #pragma once
-// The demo's per-stage GPU time graph: each frame's stage times (the simulation's and the frame pipeline's
+// The demo's per-stage GPU time graph: each frame's stage times (the simulation's and the frame's
 // timestamps) summed into the stages of docs/conventions.md, "The frame", with a history for the plots.
 #include <array>
 #include <deque>

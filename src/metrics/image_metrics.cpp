@@ -1,4 +1,4 @@
-#include "eval/image_metrics.h"
+#include "metrics/image_metrics.h"
 
 #include <algorithm>
 #include <array>
@@ -6,7 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
-namespace sixway::eval {
+namespace sixway::metrics {
 namespace {
 
 float clipped(float v) {
@@ -137,4 +137,4 @@ ImageError compareImages(const io::Image& predicted, const io::Image& truth,
   return e;
 }
 
-}  // namespace sixway::eval
+}  // namespace sixway::metrics

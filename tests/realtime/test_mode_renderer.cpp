@@ -1,5 +1,5 @@
-// Whole frames of the real-time pipeline (src/eval/frame_pipeline.h) against independent references, on a
-// static blob of smoke (no simulation):
+// Whole frames in the modes of `sixway render` (src/runtime/modes/mode_renderer.h) against independent
+// references, on a static blob of smoke (no simulation):
 // - reference mode vs pathtrace mode with single scattering and one directional light along a six-way axis.
 //   For such a light the six-way model is exact (t = the one lightmap facing it, weight 1), so the two differ
 //   only by the path tracer's Monte Carlo noise and the sampling of the lightmaps (bilinear, half floats, the
@@ -17,7 +17,6 @@
 #include <nlohmann/json.hpp>
 
 #include "cpu_shading.h"
-#include "eval/frame_pipeline.h"
 #include "io/safetensors.h"
 #include "io/scene.h"
 #include "io/vdb.h"
@@ -26,6 +25,7 @@
 #include "render/projection.h"
 #include "render/scene_frame.h"
 #include "render/volume.h"
+#include "runtime/modes/mode_renderer.h"
 #include "support/gpu_fixture.h"
 
 namespace sixway::test {
@@ -66,20 +66,20 @@ nlohmann::json sceneJson(glm::vec3 lightDirection, uint32_t seed) {
           {"render", {{"width", 64}, {"height", 64}, {"lightmap_size", 64}, {"seed", seed}}}};
 }
 
-class FramePipelineTest : public GpuTest {
+class ModeRendererTest : public GpuTest {
  protected:
-  io::Image render(const io::Scene& scene, eval::RenderMode mode, eval::FramePipeline** keep = nullptr) {
-    eval::FramePipelineOptions options;
+  io::Image render(const io::Scene& scene, modes::RenderMode mode, modes::ModeRenderer** keep = nullptr) {
+    modes::ModeOptions options;
     options.mode = mode;
     options.pathTraceSamples = 256;
     options.pathTraceOrders = 1;
-    pipeline_ = std::make_unique<eval::FramePipeline>(context(), pipelineCache(), scene, options);
-    if (keep) *keep = pipeline_.get();
-    return pipeline_->render(0, 0.0, volume_.view()).image;
+    renderer_ = std::make_unique<modes::ModeRenderer>(context(), pipelineCache(), scene, options);
+    if (keep) *keep = renderer_.get();
+    return renderer_->render(0, 0.0, volume_.view()).image;
   }
 
   render::DeviceVolume volume_ = render::uploadVolume(context(), blobDensity());
-  std::unique_ptr<eval::FramePipeline> pipeline_;
+  std::unique_ptr<modes::ModeRenderer> renderer_;
 };
 
 // Mean squared difference of the RGB channels over the pixels where `mask` has alpha > 0.01.
@@ -103,12 +103,12 @@ struct ModelError {
 };
 
 ModelError modelError(glm::vec3 lightDirection,
-                      const std::function<io::Image(const io::Scene&, eval::RenderMode)>& render) {
+                      const std::function<io::Image(const io::Scene&, modes::RenderMode)>& render) {
   const io::Scene first = io::parseScene(sceneJson(lightDirection, 1), "frame_test.json", ".");
   const io::Scene second = io::parseScene(sceneJson(lightDirection, 1000), "frame_test.json", ".");
-  const io::Image reference = render(first, eval::RenderMode::Reference);
-  const io::Image traced = render(first, eval::RenderMode::PathTrace);
-  const io::Image tracedAgain = render(second, eval::RenderMode::PathTrace);
+  const io::Image reference = render(first, modes::RenderMode::Reference);
+  const io::Image traced = render(first, modes::RenderMode::PathTrace);
+  const io::Image tracedAgain = render(second, modes::RenderMode::PathTrace);
   ModelError e;
   e.mse = maskedMse(reference, traced, reference, &e.pixels);
   // Two independent estimates differ by twice the variance of one.
@@ -116,8 +116,8 @@ ModelError modelError(glm::vec3 lightDirection,
   return e;
 }
 
-TEST_F(FramePipelineTest, ReferenceMatchesThePathTracerForAnAxisLight) {
-  const auto renderer = [this](const io::Scene& s, eval::RenderMode m) { return render(s, m); };
+TEST_F(ModeRendererTest, ReferenceMatchesThePathTracerForAnAxisLight) {
+  const auto renderer = [this](const io::Scene& s, modes::RenderMode m) { return render(s, m); };
   const ModelError axis = modelError({1.0f, 0.0f, 0.0f}, renderer);
   const ModelError diagonal = modelError(glm::normalize(glm::vec3(1.0f, 1.0f, 0.0f)), renderer);
   const double axisBias = std::sqrt(std::max(0.0, axis.mse - axis.noise));
@@ -137,7 +137,7 @@ TEST_F(FramePipelineTest, ReferenceMatchesThePathTracerForAnAxisLight) {
 // emissive channel holds the direct emission exactly and the emission the smoke scatters traced, shaded by
 // the straight gradient lookup. At one temperature the scattered glow has the direct glow's colour, so the
 // six-way image has nothing to approximate: what remains is noise (of both) and the lightmaps' sampling.
-TEST_F(FramePipelineTest, ReferenceMsGlowMatchesThePathTracerAtOneTemperature) {
+TEST_F(ModeRendererTest, ReferenceMsGlowMatchesThePathTracerAtOneTemperature) {
   io::DenseGrid temperature = blobDensity();
   for (float& t : temperature.values) t = 0.75f;
   volume_ = render::uploadVolume(context(), blobDensity(), &temperature);
@@ -151,20 +151,20 @@ TEST_F(FramePipelineTest, ReferenceMsGlowMatchesThePathTracerAtOneTemperature) {
                                 {{"temperature", 1.0}, {"color", {1.0, 0.8, 0.5}}}}}};
     return io::parseScene(j, "frame_test.json", ".");
   };
-  auto renderWith = [&](const io::Scene& scene, eval::RenderMode mode) {
-    eval::FramePipelineOptions options;
+  auto renderWith = [&](const io::Scene& scene, modes::RenderMode mode) {
+    modes::ModeOptions options;
     options.mode = mode;
     options.pathTraceSamples = 256;
     options.pathTraceOrders = 64;
     options.multipleScattering.samples = 256;
-    return eval::FramePipeline(context(), pipelineCache(), scene, options)
+    return modes::ModeRenderer(context(), pipelineCache(), scene, options)
         .render(0, 0.0, volume_.view())
         .image;
   };
-  const io::Image sixway = renderWith(glowing(1), eval::RenderMode::ReferenceMs);
-  const io::Image direct = renderWith(glowing(1), eval::RenderMode::Reference);
-  const io::Image traced = renderWith(glowing(1), eval::RenderMode::PathTrace);
-  const io::Image tracedAgain = renderWith(glowing(1000), eval::RenderMode::PathTrace);
+  const io::Image sixway = renderWith(glowing(1), modes::RenderMode::ReferenceMs);
+  const io::Image direct = renderWith(glowing(1), modes::RenderMode::Reference);
+  const io::Image traced = renderWith(glowing(1), modes::RenderMode::PathTrace);
+  const io::Image tracedAgain = renderWith(glowing(1000), modes::RenderMode::PathTrace);
   int pixels = 0;
   const double mse = maskedMse(sixway, traced, sixway, &pixels);
   const double noise = 0.5 * maskedMse(traced, tracedAgain, sixway);
@@ -198,12 +198,12 @@ TEST_F(FramePipelineTest, ReferenceMsGlowMatchesThePathTracerAtOneTemperature) {
   EXPECT_LT(bias, 0.5 * directBias);
 }
 
-TEST_F(FramePipelineTest, GuideLitLightmapsAreTheGuidesMeanLight) {
+TEST_F(ModeRendererTest, GuideLitLightmapsAreTheGuidesMeanLight) {
   const io::Scene scene = io::parseScene(sceneJson({1.0f, 0.0f, 0.0f}, 1), "frame_test.json", ".");
-  eval::FramePipeline* pipeline = nullptr;
-  render(scene, eval::RenderMode::GuideLit, &pipeline);
-  const io::Image guide = pipeline->guide();
-  const io::Image lightmaps = pipeline->lightmaps();
+  modes::ModeRenderer* renderer = nullptr;
+  render(scene, modes::RenderMode::GuideLit, &renderer);
+  const io::Image guide = renderer->guide();
+  const io::Image lightmaps = renderer->lightmaps();
   // sixWayChannelNames(): right, left, top, bottom, back, front, alpha, emissive.
   int smoke = 0;
   for (int y = 0; y < guide.height; ++y)
@@ -237,7 +237,7 @@ std::filesystem::path glowingNetwork() {
 // may predict some glow on any smoke (the shipped one does: docs/research/2026-11-28-network-study.md,
 // "A spurious glow"), and neither the lightmaps nor the frame may show it. The same smoke in a scene with
 // emission (but no temperature, so nothing to emit) shows that glow, and lightmaps otherwise the same.
-TEST_F(FramePipelineTest, SmokeWithoutEmissionShowsNoGlowFromTheNetwork) {
+TEST_F(ModeRendererTest, SmokeWithoutEmissionShowsNoGlowFromTheNetwork) {
   const std::filesystem::path weights = glowingNetwork();
   auto neural = [&](bool emission) {
     nlohmann::json dark = sceneJson({1.0f, 0.0f, 0.0f}, 1);
@@ -247,13 +247,13 @@ TEST_F(FramePipelineTest, SmokeWithoutEmissionShowsNoGlowFromTheNetwork) {
                                    {"ramp",
                                     {{{"temperature", 0.0}, {"color", {0.0, 0.0, 0.0}}},
                                      {{"temperature", 1.0}, {"color", {1.0, 0.8, 0.5}}}}}};
-    eval::FramePipelineOptions options;
-    options.mode = eval::RenderMode::Neural;
+    modes::ModeOptions options;
+    options.mode = modes::RenderMode::Neural;
     options.weights = weights;
-    eval::FramePipeline pipeline(context(), pipelineCache(), io::parseScene(dark, "frame_test.json", "."),
+    modes::ModeRenderer renderer(context(), pipelineCache(), io::parseScene(dark, "frame_test.json", "."),
                                  options);
-    io::Image image = pipeline.render(0, 0.0, volume_.view()).image;
-    return std::pair{std::move(image), pipeline.lightmaps()};
+    io::Image image = renderer.render(0, 0.0, volume_.view()).image;
+    return std::pair{std::move(image), renderer.lightmaps()};
   };
   const auto [image, lightmaps] = neural(false);
   const io::Image glowingLightmaps = neural(true).second;
@@ -283,22 +283,22 @@ TEST_F(FramePipelineTest, SmokeWithoutEmissionShowsNoGlowFromTheNetwork) {
   EXPECT_EQ(light, 0.0f);
 }
 
-TEST_F(FramePipelineTest, AUsersViewRendersLikeTheSceneViewItCopies) {
+TEST_F(ModeRendererTest, AUsersViewRendersLikeTheSceneViewItCopies) {
   const io::Scene scene = io::parseScene(sceneJson({1.0f, 0.0f, 0.0f}, 1), "frame_test.json", ".");
-  const io::Image ofScene = render(scene, eval::RenderMode::Reference);
-  eval::FrameView view = eval::sceneView(scene, 0);
-  const io::Image ofView = pipeline_->render(view, 0, 0.0, volume_.view()).image;
+  const io::Image ofScene = render(scene, modes::RenderMode::Reference);
+  runtime::FrameView view = runtime::sceneView(scene, 0);
+  const io::Image ofView = renderer_->render(view, 0, 0.0, volume_.view()).image;
   EXPECT_EQ(ofScene.pixels, ofView.pixels);
   // Turning the light to the other side changes the frame.
   view.lights[0].source = io::DirectionalLight{glm::vec3(-1.0f, 0.0f, 0.0f)};
-  const io::Image turned = pipeline_->render(view, 0, 0.0, volume_.view()).image;
+  const io::Image turned = renderer_->render(view, 0, 0.0, volume_.view()).image;
   EXPECT_NE(ofScene.pixels, turned.pixels);
 }
 
 // A sphere beside the blob, the light from its side: each smoke pixel's light is the unshadowed one times the
 // share of its three shadow points (where the opacity reaches 0.1, 0.35, 0.6: cpuShadowDepths) whose ray
 // toward the light misses the sphere, where each point's shadow lookup lies wholly on one side.
-TEST_F(FramePipelineTest, SphereShadowsTheSmokesShadowPoints) {
+TEST_F(ModeRendererTest, SphereShadowsTheSmokesShadowPoints) {
   // A sphere to the right of the blob, in front of its shell; the light comes from the right (+x).
   nlohmann::json j = sceneJson({1.0f, 0.0f, 0.0f}, 1);
   const glm::vec3 centre(0.42f, 0.6f, 0.15f);
@@ -309,10 +309,10 @@ TEST_F(FramePipelineTest, SphereShadowsTheSmokesShadowPoints) {
   unshadowedJson["obstacles"][0]["shadows"] = false;
   const io::Scene unshadowedScene = io::parseScene(unshadowedJson, "frame_test.json", ".");
 
-  const io::Image unshadowed = render(unshadowedScene, eval::RenderMode::Reference);
-  eval::FramePipeline* pipeline = nullptr;
-  const io::Image shadowed = render(scene, eval::RenderMode::Reference, &pipeline);
-  const io::Image levels = pipeline->opacityDepths();
+  const io::Image unshadowed = render(unshadowedScene, modes::RenderMode::Reference);
+  modes::ModeRenderer* renderer = nullptr;
+  const io::Image shadowed = render(scene, modes::RenderMode::Reference, &renderer);
+  const io::Image levels = renderer->opacityDepths();
 
   const render::Camera camera = render::sceneCamera(scene.camera, 0);
   const render::Box box = volume_.grid().bounds();

@@ -1,10 +1,10 @@
 #pragma once
-// Final-image quality as docs/conventions.md, "Metrics" defines it, for `sixway eval --scene`:
-// PSNR = 10·log10(1 / MSE) on linear R, G, B clipped to [0, 1]; the headline figure masked to the pixels
-// where the ground truth's alpha > 0.01 (the smoke, and the obstacles it draws), the full-frame figure next
-// to it, and the band figure, masked to the band around the obstacles (obstacle_band.h) too. Alpha itself is
-// not compared: the methods composite the smoke over the same backdrop, so its colour already carries the
-// smoke's opacity.
+// Final-image quality as docs/conventions.md, "Metrics" defines it (`sixway eval --scene`, the demo's split
+// view): PSNR = 10·log10(1 / MSE) on linear R, G, B clipped to [0, 1]; the headline figure masked to the
+// pixels where the ground truth's alpha > 0.01 (the smoke, and the obstacles it draws), the full-frame figure
+// next to it, and the band figure, masked to the band around the obstacles (eval/obstacle_band.h) too. Alpha
+// itself is not compared: the methods composite the smoke over the same backdrop, so its colour already
+// carries the smoke's opacity.
 #include <array>
 #include <cstdint>
 #include <nlohmann/json.hpp>
@@ -13,7 +13,7 @@
 
 #include "io/image.h"
 
-namespace sixway::eval {
+namespace sixway::metrics {
 
 struct ImageError {
   double squaredMasked = 0, squaredFull = 0, squaredBand = 0;  // sums over the R, G, B values
@@ -53,4 +53,4 @@ std::string describeFaults(const ImageFaults& faults);
 // 10·log10(1 / mse): +∞ for 0, NaN for NaN.
 double psnrDb(double mse);
 
-}  // namespace sixway::eval
+}  // namespace sixway::metrics

@@ -1,0 +1,69 @@
+#pragma once
+// The real-time frame of docs/real-time-rendering.md, the one frame every tool renders: RealtimeFrame's
+// passes with a lightmap source (lightmap_source.h), recorded once per volume into one sequence and replayed,
+// and this frame's values written before each submission. SmokeRenderer runs it with the network; the modes
+// of `sixway render` (src/runtime/modes/) with theirs.
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gpu/sequence.h"
+#include "io/scene.h"
+#include "render/camera.h"
+#include "render/projection.h"
+#include "render/recorded_sequence.h"
+#include "render/volume.h"
+#include "runtime/lightmap_source.h"
+#include "runtime/realtime_frame.h"
+
+namespace sixway::gpu {
+class Context;
+class PipelineCache;
+}  // namespace sixway::gpu
+
+namespace sixway::runtime {
+
+// Where a frame is seen from and what lights it.
+struct FrameView {
+  render::Camera camera;
+  std::vector<io::Light> lights;
+};
+// The scene's camera and lights on their paths at frame `index`.
+FrameView sceneView(const io::Scene& scene, int index);
+
+struct FrameInput {
+  render::Volume volume;
+  uint64_t generation = 0;  // tells apart volumes that may share a buffer handle (a restarted simulation's)
+  FrameView view;
+  int index = 0;         // the scene's frame: the guide's jitter, the sources' noise
+  double seconds = 0.0;  // the obstacles' time
+  // The depth range of an engine's depth buffer (RealtimeFrame::updateScene); unset on sixway's own target.
+  std::optional<render::DepthRange> targetDepth;
+};
+
+class FrameRenderer {
+ public:
+  // `scene` outlives the renderer; the guiding map takes the source's settings.
+  FrameRenderer(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
+                FrameTarget target, uint32_t shadowTiles, std::unique_ptr<LightmapSource> source);
+
+  // Records the passes when the volume differs from the last frame's, writes this frame's values, and returns
+  // the sequence to submit or record.
+  gpu::Sequence& prepare(const FrameInput& input);
+
+  // What the last prepare() could not do as asked, for the user (RealtimeFrame::takeNotes).
+  const std::vector<std::string>& notes() const { return notes_; }
+  RealtimeFrame& frame() { return frame_; }
+  const RealtimeFrame& frame() const { return frame_; }
+  const LightmapSource& source() const { return *source_; }
+
+ private:
+  std::unique_ptr<LightmapSource> source_;  // before the frame, whose guide it sets
+  RealtimeFrame frame_;
+  render::RecordedSequence sequence_;
+  std::vector<std::string> notes_;
+};
+
+}  // namespace sixway::runtime

@@ -1,0 +1,35 @@
+#pragma once
+// reference and reference-ms: the reference baker's lightmaps of each frame's volume for that frame's view
+// (exact single scattering, or with the higher orders path-traced: render::ScatteredLightmaps), uploaded
+// before the shading (stages "bake/…").
+#include "reference/scattered_lightmaps.h"
+#include "runtime/lightmap_source.h"
+
+namespace sixway::modes {
+
+class BakedLightmaps : public runtime::LightmapSource {
+ public:
+  // `multiple`: the higher orders' tracing; its seed becomes the scene's render.seed + frame.
+  BakedLightmaps(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
+                 render::Scattering scattering, const render::MultipleScattering& multiple);
+
+  render::ImagePlane update(runtime::RealtimeFrame& frame, const runtime::SourceFrame& current) override;
+  std::vector<gpu::StageTime> stageTimes() const override;
+
+ protected:
+  BakedLightmaps(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
+                 render::Scattering scattering, const render::MultipleScattering& multiple,
+                 runtime::FrameStages stages);
+  // The lightmaps of `current`'s volume seen from `camera` over `plane` into the frame's.
+  void bake(runtime::RealtimeFrame& frame, const runtime::SourceFrame& current, const render::Camera& camera,
+            const render::ImagePlane& plane);
+
+ private:
+  io::Smoke smoke_;
+  uint32_t seed_;  // the scene's render.seed
+  render::Scattering scattering_;
+  render::MultipleScattering multiple_;
+  render::ScatteredLightmaps baker_;
+};
+
+}  // namespace sixway::modes
