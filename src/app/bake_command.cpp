@@ -20,12 +20,12 @@
 #include "gpu/pipeline.h"
 #include "io/error.h"
 #include "io/report.h"
-#include "io/scene.h"
 #include "reference/bake_flipbook.h"
 #include "reference/flipbook.h"
 #include "reference/vdb_sequence.h"
 #include "render/scene_frame.h"
 #include "runtime/internal.h"
+#include "scene/scene.h"
 #include "sources/scene_volumes.h"
 
 namespace sixway::app {
@@ -64,7 +64,7 @@ glm::vec3 vec3Of(const std::vector<float>& v) {
 }
 
 // The fixed view: --camera-* flags, else the scene's camera (at frame 0), else the default framing camera.
-render::Camera chooseCamera(const BakeOptions& o, const io::Scene* scene, const render::Box& bounds) {
+render::Camera chooseCamera(const BakeOptions& o, const scene::Scene* scene, const render::Box& bounds) {
   const float fov = o.fov.value_or(scene ? scene->camera.fovDeg : 40.0f);
   if (!o.cameraPosition.empty()) {
     const glm::vec3 up = o.cameraUp.empty() ? glm::vec3(0, 1, 0) : vec3Of(o.cameraUp);
@@ -75,7 +75,7 @@ render::Camera chooseCamera(const BakeOptions& o, const io::Scene* scene, const 
     }
   }
   if (scene) {
-    io::Camera camera = scene->camera;
+    scene::Camera camera = scene->camera;
     camera.fovDeg = fov;
     return render::sceneCamera(camera, 0);
   }
@@ -83,8 +83,8 @@ render::Camera chooseCamera(const BakeOptions& o, const io::Scene* scene, const 
 }
 
 // The five-key emission ramp used for OpenVDB files with --emission (temperature 0 … 1, black to white-hot).
-io::Emission defaultRamp(float intensity) {
-  io::Emission e;
+scene::Emission defaultRamp(float intensity) {
+  scene::Emission e;
   e.intensity = intensity;
   e.ramp = {{0.0f, {0.0f, 0.0f, 0.0f}},
             {0.25f, {0.5f, 0.05f, 0.0f}},
@@ -168,14 +168,14 @@ void run(const BakeOptions& o) {
   StagedDirectory::requireWritable(o.out, o.force, isBakeOutput, kBakeFolders);
   if (!o.report.empty()) io::requireWritableFile(o.report, o.force);
 
-  std::optional<io::Scene> scene;
-  if (!o.scene.empty()) scene = io::loadScene(o.scene);
+  std::optional<scene::Scene> scene;
+  if (!o.scene.empty()) scene = scene::loadScene(o.scene);
   if (scene && o.voxels) {
     if (!scene->vdb)
       throw io::InputError("--voxels", "only for VDB input (--vdb, or a scene with a vdb section)");
     scene->vdb->voxels = *o.voxels;
   }
-  io::Smoke smoke = scene ? scene->smoke : io::Smoke{};
+  scene::Smoke smoke = scene ? scene->smoke : scene::Smoke{};
   if (o.extinction) smoke.extinction = *o.extinction;
   if (o.albedo) smoke.albedo = *o.albedo;
   if (o.g) smoke.phaseG = *o.g;
@@ -191,7 +191,7 @@ void run(const BakeOptions& o) {
                                                       : parseTile(o.tile);
   // The flipbook's size is known before anything is simulated or loaded (a scene bakes 16 frames unless
   // told).
-  const int sourceFrames = scene ? io::sceneFrameCount(*scene) : int(o.vdb.size());
+  const int sourceFrames = scene ? scene::sceneFrameCount(*scene) : int(o.vdb.size());
   const int frameCount = o.frames.value_or(scene && !scene->vdb ? 16 : sourceFrames - o.first);
   render::requireFlipbookFits(
       render::flipbookLayout(frameCount, tileWidth, tileHeight, o.columns.value_or(0)), "--frames/--tile");

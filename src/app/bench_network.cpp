@@ -16,8 +16,8 @@
 #include "gpu/context.h"
 #include "gpu/image.h"
 #include "gpu/sequence.h"
-#include "io/scene.h"
 #include "nn/network.h"
+#include "scene/scene.h"
 
 namespace sixway::app {
 namespace {
@@ -67,7 +67,7 @@ nlohmann::json benchNetworkSize(const gpu::Context& context, const gpu::Pipeline
                             : o.tiling == "matrix" ? nn::Tiling::Matrix
                                                    : nn::Tiling::Device;
   nn::NetworkOptions options{o.fp16 ? nn::Precision::Fp16 : nn::Precision::Fp32, true, tiling};
-  options.albedo = io::Smoke{}.albedo;  // a network that reads it sees a scene's default smoke
+  options.albedo = scene::Smoke{}.albedo;  // a network that reads it sees a scene's default smoke
   nn::Network network(context, cache, weights, size, size, options);
   const gpu::Image guide = benchGuide(context, size), emission = benchEmission(context, size);
   const gpu::ImageDesc lightmap{size,

@@ -15,6 +15,7 @@
 #include "io/error.h"
 #include "render/volume.h"
 #include "runtime/modes/mode_renderer.h"
+#include "scene/fluid_physics.h"
 #include "sim/simulation.h"
 
 namespace sixway::app {
@@ -45,7 +46,7 @@ double stageMs(const std::vector<gpu::StageTime>& stages, const std::string& nam
 constexpr const char* kNeuralRow = "neural lightmaps: guide + network fp32";
 constexpr const char* kBakerRow = "exact baker (single scattering)";
 
-nlohmann::json sceneSettings(const io::Scene& scene) {
+nlohmann::json sceneSettings(const scene::Scene& scene) {
   return {{"lattice", {scene.grid.size.x, scene.grid.size.y, scene.grid.size.z}},
           {"frame", {scene.render.width, scene.render.height}},
           {"lights", scene.lights.size()},
@@ -56,7 +57,7 @@ nlohmann::json sceneSettings(const io::Scene& scene) {
 
 nlohmann::json benchLightmaps(const gpu::Context& context, const gpu::PipelineCache& cache,
                               const BenchOptions& o, const BenchInputs& inputs) {
-  io::Scene scene = benchScene(o.scene, inputs.lattices.front());
+  scene::Scene scene = benchScene(o.scene, inputs.lattices.front());
   const std::vector<glm::vec2> smoke = benchSmoke(scene);
   std::vector<float> density(smoke.size()), temperature(smoke.size());
   for (size_t i = 0; i < smoke.size(); ++i) density[i] = smoke[i].x, temperature[i] = smoke[i].y;
@@ -117,9 +118,9 @@ nlohmann::json benchLightmaps(const gpu::Context& context, const gpu::PipelineCa
 
 nlohmann::json benchFrame(const gpu::Context& context, const gpu::PipelineCache& cache, const BenchOptions& o,
                           const BenchInputs& inputs) {
-  io::Scene scene = benchScene(o.scene, inputs.lattices.front());
+  scene::Scene scene = benchScene(o.scene, inputs.lattices.front());
   scene.render.lightmapSize = int(o.frameLightmapSize);
-  const uint32_t steps = uint32_t(io::lbmStepsPerFrame(scene));
+  const uint32_t steps = uint32_t(scene::lbmStepsPerFrame(scene));
   const bool fp16 = o.fp16 && context.capabilities().storage16Bit;
   std::printf("\nframe: %d lattice steps of %dx%dx%d + %ux%u lightmaps (%s maps) + a %dx%d frame\n", steps,
               scene.grid.size.x, scene.grid.size.y, scene.grid.size.z, o.frameLightmapSize,

@@ -36,24 +36,24 @@ float valueNoise(glm::vec3 p) {
 
 }  // namespace
 
-io::Scene benchScene(const std::filesystem::path& file, glm::ivec3 lattice) {
-  io::Scene scene = io::loadScene(file);
-  io::requireSimulated(scene, file.string());
+scene::Scene benchScene(const std::filesystem::path& file, glm::ivec3 lattice) {
+  scene::Scene scene = scene::loadScene(file);
+  scene::requireSimulated(scene, file.string());
   if (scene.inlets.empty()) throw io::InputError(file.string(), "the bench scene needs an inlet");
   scene.grid.cellSize *= float(scene.grid.size.x) / float(lattice.x);
   scene.grid.size = lattice;
   return scene;
 }
 
-std::vector<glm::vec2> benchSmoke(const io::Scene& scene) {
+std::vector<glm::vec2> benchSmoke(const scene::Scene& scene) {
   const glm::ivec3 size = scene.grid.size * scene.grid.smokeUpres;
   const float dx = scene.grid.cellSize / float(scene.grid.smokeUpres);
   const glm::vec3 extent = glm::vec3(scene.grid.size) * scene.grid.cellSize;
-  const io::Inlet& inlet = scene.inlets.front();
+  const scene::Inlet& inlet = scene.inlets.front();
   const glm::vec3 source =
-      std::holds_alternative<io::InletDisk>(inlet.shape)
-          ? std::get<io::InletDisk>(inlet.shape).center
-          : 0.5f * (std::get<io::InletBox>(inlet.shape).min + std::get<io::InletBox>(inlet.shape).max);
+      std::holds_alternative<scene::InletDisk>(inlet.shape)
+          ? std::get<scene::InletDisk>(inlet.shape).center
+          : 0.5f * (std::get<scene::InletBox>(inlet.shape).min + std::get<scene::InletBox>(inlet.shape).max);
   const float height = 0.7f * extent.y;  // the column's top, above the source
   std::vector<glm::vec2> smoke(size_t(size.x) * size.y * size.z, glm::vec2(0));
   for (int k = 0; k < size.z; ++k)
@@ -63,8 +63,8 @@ std::vector<glm::vec2> benchSmoke(const io::Scene& scene) {
         const float h = (p.y - source.y) / height;  // 0 at the source, 1 at the top
         if (h < 0 || h > 1) continue;
         bool solid = false;
-        for (const io::Obstacle& o : scene.obstacles)
-          if (const auto* s = std::get_if<io::SphereObstacle>(&o.shape))
+        for (const scene::Obstacle& o : scene.obstacles)
+          if (const auto* s = std::get_if<scene::SphereObstacle>(&o.shape))
             solid = solid || glm::distance(p, s->center) < s->radius;
         if (solid) continue;
         // A column that sways and widens with height (radius 0.1 → 0.35 of the domain's width), fading out

@@ -6,18 +6,18 @@
 #include <glm/vec3.hpp>
 #include <vector>
 
-#include "io/scene.h"
+#include "scene/scene.h"
 
 namespace sixway::app {
 
 // The scene with `lattice` cells: the cell size is scaled with the x resolution, so the domain keeps its
 // width (and its shape when the lattice keeps the file's proportions, 1:2:1).
-io::Scene benchScene(const std::filesystem::path& file, glm::ivec3 lattice);
+scene::Scene benchScene(const std::filesystem::path& file, glm::ivec3 lattice);
 
 // (density, temperature) on the scene's smoke grid, x fastest: a fixed, seeded plume column above the first
 // inlet, widening with height, with value noise in it and none inside sphere obstacles. The benchmark starts
 // from it so that every stage sees a grown plume from the first frame (empty space is skipped by the guide,
 // so a young plume would flatter it) without simulating hundreds of steps first.
-std::vector<glm::vec2> benchSmoke(const io::Scene& scene);
+std::vector<glm::vec2> benchSmoke(const scene::Scene& scene);
 
 }  // namespace sixway::app

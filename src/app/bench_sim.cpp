@@ -24,9 +24,9 @@ std::string latticeName(glm::ivec3 n) {
 nlohmann::json benchLattice(const gpu::Context& context, const gpu::PipelineCache& cache,
                             const BenchOptions& o, glm::ivec3 lattice, const std::string& storage,
                             const std::string& transport) {
-  io::Scene scene = benchScene(o.scene, lattice);
+  scene::Scene scene = benchScene(o.scene, lattice);
   scene.fluid.populationStorage =
-      storage == "fp16" ? io::PopulationStorage::Fp16 : io::PopulationStorage::Fp32;
+      storage == "fp16" ? scene::PopulationStorage::Fp16 : scene::PopulationStorage::Fp32;
   scene.smoke.sparse = transport == "sparse";
   const uint64_t cells = uint64_t(lattice.x) * lattice.y * lattice.z;
   const bool large = cells > kLargeLatticeCells;

@@ -6,7 +6,7 @@
 
 #include "gpu/check.h"
 #include "io/error.h"
-#include "io/scene.h"
+#include "scene/scene.h"
 
 namespace sixway::app {
 
@@ -21,6 +21,6 @@ auto withinDeviceLimits(const std::string& source, const std::string& setting, B
 }
 
 // What to reduce when a scene's lattice does not fit: "grid.size (NX×NY×NZ) or grid.smoke_upres (N)".
-std::string gridSetting(const io::Grid& grid);
+std::string gridSetting(const scene::Grid& grid);
 
 }  // namespace sixway::app

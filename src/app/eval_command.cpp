@@ -23,11 +23,11 @@
 #include "io/json_reader.h"
 #include "io/report.h"
 #include "io/safetensors.h"
-#include "io/scene.h"
 #include "nn/network.h"
 #include "render/lightmap_images.h"
 #include "runtime/internal.h"
 #include "runtime/network_weights.h"
+#include "scene/scene.h"
 
 namespace sixway::app {
 namespace {
@@ -124,7 +124,7 @@ int guideChannels(const fs::path& shard, const nlohmann::json& description, cons
 // The smoke's albedo of a shard's scene (absent: a scene's default), which a network may read.
 float sceneAlbedo(const fs::path& shard, const nlohmann::json& description) {
   const nlohmann::json albedo = description.value(nlohmann::json::json_pointer("/scene/smoke/albedo"),
-                                                  nlohmann::json(io::Smoke{}.albedo));
+                                                  nlohmann::json(scene::Smoke{}.albedo));
   if (!albedo.is_number() || !(albedo.get<float>() >= 0.0f && albedo.get<float>() <= 1.0f))
     throw io::InputError(shard.string(), "scene.smoke.albedo must be a number in [0, 1]");
   return albedo.get<float>();

@@ -25,11 +25,11 @@
 #include "app/timings_log.h"
 #include "io/error.h"
 #include "io/report.h"
-#include "io/scene.h"
 #include "metrics/image_metrics.h"
 #include "runtime/internal.h"
 #include "runtime/modes/mode_renderer.h"
 #include "runtime/scene_volumes.h"
+#include "scene/scene.h"
 #include "sources/scene_volumes.h"
 
 namespace sixway::app {
@@ -59,7 +59,7 @@ struct RenderOptions {
 class FrameSource {
  public:
   FrameSource(sixway::Device& device, sixway::SmokeSimulation* simulation, render::VolumeSequence* playback,
-              const io::Scene& scene, const fs::path& scenePath, const modes::ModeOptions& options)
+              const scene::Scene& scene, const fs::path& scenePath, const modes::ModeOptions& options)
       : simulation_(simulation), playback_(playback), scene_(scene) {
     const std::string settings = "render.lightmap_size, render.width or render.height";
     if (options.mode == modes::RenderMode::Neural && simulation) {
@@ -97,16 +97,16 @@ class FrameSource {
  private:
   sixway::SmokeSimulation* simulation_;
   render::VolumeSequence* playback_;
-  const io::Scene& scene_;
+  const scene::Scene& scene_;
   std::unique_ptr<sixway::SmokeRenderer> renderer_;
   std::unique_ptr<modes::ModeRenderer> modeRenderer_;
 };
 
 void run(const RenderOptions& o) {
   const StopOnSignal stopOnSignal;
-  io::Scene scene = io::loadScene(o.scene);
+  scene::Scene scene = scene::loadScene(o.scene);
   if (o.warmup) scene.render.warmupFrames = *o.warmup;
-  if (o.toneMap) scene.render.toneMap = *o.toneMap == "aces" ? io::ToneMap::Aces : io::ToneMap::Clamp;
+  if (o.toneMap) scene.render.toneMap = *o.toneMap == "aces" ? scene::ToneMap::Aces : scene::ToneMap::Clamp;
   if (o.exposureStops) scene.render.exposureStops = *o.exposureStops;
   // Warm-up frames run the scene's clock (simulation, camera and light paths) without writing; frame_0000 is
   // the scene's frame `warmup`.

@@ -67,8 +67,8 @@ void checkOutputs(const SimOptions& o, const StagedDirectory::OutputNames& vdbFr
 
 void run(const SimOptions& o) {
   const StopOnSignal stopOnSignal;
-  const io::Scene scene = io::loadScene(o.scene);
-  io::requireSimulated(scene, o.scene.string());
+  const scene::Scene scene = scene::loadScene(o.scene);
+  scene::requireSimulated(scene, o.scene.string());
   // --vdb-out is staged: an earlier run's frames stay whole until this run has succeeded; then those of this
   // scene name that this run did not replace go.
   const StagedDirectory::OutputNames vdbFrames = [&](const std::string& f) {
@@ -165,7 +165,7 @@ void run(const SimOptions& o) {
          {"watchdog", watchdog},
          {"mlups", mlups},
          {"population_storage",
-          scene.fluid.populationStorage == io::PopulationStorage::Fp16 ? "fp16" : "fp32"},
+          scene.fluid.populationStorage == scene::PopulationStorage::Fp16 ? "fp16" : "fp32"},
          {"bytes_per_cell_update", sim::bytesPerCellUpdate(scene.fluid.populationStorage)},
          {"lbm_bandwidth_gb_s", lbmBandwidth},
          {"copy_bandwidth_gb_s", bandwidth},

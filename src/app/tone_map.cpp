@@ -17,7 +17,8 @@ io::Image toDisplay(const io::Image& linear, const DisplayTransform& transform) 
     for (int x = 0; x < linear.width; ++x)
       for (int c = 0; c < 3; ++c) {
         const float v = linear.at(x, y, c) * scale;
-        rgb.at(x, y, c) = transform.toneMap == io::ToneMap::Aces ? acesFitted(v) : std::clamp(v, 0.0f, 1.0f);
+        rgb.at(x, y, c) =
+            transform.toneMap == scene::ToneMap::Aces ? acesFitted(v) : std::clamp(v, 0.0f, 1.0f);
       }
   return rgb;
 }

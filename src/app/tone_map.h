@@ -3,12 +3,12 @@
 // then (in io::writePng) the sRGB encoding. The frame itself, its EXR and the lightmaps stay linear HDR, as
 // an engine embedding the renderer would want them for its own tone mapping.
 #include "io/image.h"
-#include "io/scene.h"
+#include "scene/scene.h"
 
 namespace sixway::app {
 
 struct DisplayTransform {
-  io::ToneMap toneMap = io::ToneMap::Clamp;
+  scene::ToneMap toneMap = scene::ToneMap::Clamp;
   float exposureStops = 0;  // multiplies the linear values by 2^exposureStops
 };
 

@@ -14,6 +14,7 @@
 #include "io/json_reader.h"
 #include "io/obj.h"
 #include "render/obstacle_meshes.h"
+#include "scene/obstacle_placement.h"
 
 namespace sixway::dataset {
 namespace {
@@ -186,7 +187,7 @@ bool variesInlet(const DatasetVariations& v) {
 
 // The cell size of the config's sequences, in double as the files hold it (so the scene files stay tidy):
 // the config's, else the base scene's scaled so that the domain keeps its extent along x.
-double effectiveCellSize(const DatasetConfig& c, const io::Grid& base) {
+double effectiveCellSize(const DatasetConfig& c, const scene::Grid& base) {
   if (c.cellSize) return c.json["grid"]["cell_size"].get<double>();
   const double baseCell = c.baseSceneJson["grid"]["cell_size"].get<double>();
   return c.gridSize ? baseCell * base.size.x / c.gridSize->x : baseCell;
@@ -194,8 +195,8 @@ double effectiveCellSize(const DatasetConfig& c, const io::Grid& base) {
 
 // The lattice a config's sequences share: the base grid with the config's overrides. A domain of another
 // extent keeps the base domain's floor and horizontal centre, unless the config gives the origin.
-io::Grid effectiveGrid(const DatasetConfig& c, const io::Grid& base) {
-  io::Grid g = base;
+scene::Grid effectiveGrid(const DatasetConfig& c, const scene::Grid& base) {
+  scene::Grid g = base;
   if (c.gridSize) g.size = *c.gridSize;
   g.cellSize = float(effectiveCellSize(c, base));
   if (c.smokeUpres) g.smokeUpres = *c.smokeUpres;
@@ -269,7 +270,7 @@ std::string rebase(const std::string& file, const fs::path& baseDir, const fs::p
 }
 
 nlohmann::json obstacleJson(const DatasetConfig& c, const Draws& s, ObstacleChoice choice,
-                            glm::vec3 inletCentre, const io::Grid& grid) {
+                            glm::vec3 inletCentre, const scene::Grid& grid) {
   const DatasetObstacles& o = *c.obstacles;
   const glm::vec3 centre(inletCentre.x + float(2 * uniform(s, kObstacleX) - 1) * o.offset,
                          o.height.at(uniform(s, kObstacleHeight)),
@@ -297,11 +298,11 @@ nlohmann::json obstacleJson(const DatasetConfig& c, const Draws& s, ObstacleChoi
       const glm::vec3 size = mesh.boundsMax - mesh.boundsMin;
       const double scale = tidy(2.0f * radius / std::max({size.x, size.y, size.z}));
       const double turn = tidy(glm::degrees(2.0 * angle));
-      io::MeshObstacle placed;
+      scene::MeshObstacle placed;
       placed.scale = float(scale);
       placed.rotateDeg = glm::vec3(0.0f, float(turn), 0.0f);
       const glm::vec3 middle = 0.5f * (mesh.boundsMin + mesh.boundsMax);
-      const glm::vec3 translate = centre - io::meshRotation(placed) * (placed.scale * middle);
+      const glm::vec3 translate = centre - scene::meshRotation(placed) * (placed.scale * middle);
       return {{"type", "mesh"},
               {"file", o.bunnyMesh.generic_string()},
               {"scale", scale},
@@ -379,7 +380,7 @@ DatasetConfig parseDatasetConfig(const nlohmann::json& j, const fs::path& file) 
   const std::vector<uint8_t> bytes = io::readFileBytes(c.baseScene);
   c.baseSceneJson = io::parseJsonText(
       std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), c.baseScene.string());
-  const io::Scene base = io::parseScene(c.baseSceneJson, c.baseScene.string(), folderOf(c.baseScene));
+  const scene::Scene base = scene::parseScene(c.baseSceneJson, c.baseScene.string(), folderOf(c.baseScene));
 
   c.sequences = r.required<int>("sequences", io::inRange(1, 100000));
   c.seed = r.optional<uint32_t>("seed", 1u);
@@ -418,7 +419,7 @@ DatasetConfig parseDatasetConfig(const nlohmann::json& j, const fs::path& file) 
   r.object("guide", [&](io::JsonReader& g) {
     c.guideAlphaStepVoxels =
         g.optional<float>("alpha_step_voxels", base.render.guideAlphaStepVoxels,
-                          io::zeroOrInRange(io::kMinGuideStepVoxels, io::kMaxGuideStepVoxels));
+                          io::zeroOrInRange(scene::kMinGuideStepVoxels, scene::kMaxGuideStepVoxels));
     c.guideEmission = g.optional<bool>("emission", false);
     if (c.guideEmission && c.guideAlphaStepVoxels <= 0)
       g.fail("emission", "comes from the fine march: needs alpha_step_voxels > 0");
@@ -440,11 +441,11 @@ DatasetConfig parseDatasetConfig(const nlohmann::json& j, const fs::path& file) 
     const std::vector<uint8_t> text = io::readFileBytes(scene);
     nlohmann::json json = io::parseJsonText(
         std::string_view(reinterpret_cast<const char*>(text.data()), text.size()), scene.string());
-    const io::Scene parsed = io::parseScene(json, scene.string(), folderOf(scene));
+    const scene::Scene parsed = scene::parseScene(json, scene.string(), folderOf(scene));
     if (!parsed.vdb) r.fail("vdb_scenes", "'" + scene.string() + "' has no vdb section: it simulates");
     const int needed = int(c.frames.warmup.max) + (c.frames.count - 1) * c.frames.stride + 1;
-    if (needed > io::sceneFrameCount(parsed))
-      r.fail("vdb_scenes", "'" + scene.string() + "' has " + std::to_string(io::sceneFrameCount(parsed)) +
+    if (needed > scene::sceneFrameCount(parsed))
+      r.fail("vdb_scenes", "'" + scene.string() + "' has " + std::to_string(scene::sceneFrameCount(parsed)) +
                                " frames; frames.warmup, count and stride need " + std::to_string(needed));
     c.vdbScenes.push_back(scene);
     c.vdbSceneJsons.push_back(std::move(json));
@@ -462,15 +463,15 @@ DatasetConfig parseDatasetConfig(const nlohmann::json& j, const fs::path& file) 
   if (variesInlet(c.variations) && base.inlets.empty())
     r.fail("variations",
            "the inlet variations need an inlet in the base scene (" + c.baseScene.string() + ")");
-  if (c.variations.inletRadius && !std::holds_alternative<io::InletDisk>(base.inlets[0].shape))
+  if (c.variations.inletRadius && !std::holds_alternative<scene::InletDisk>(base.inlets[0].shape))
     r.fail("variations.inlet_radius",
            "needs a disk as the base scene's first inlet (" + c.baseScene.string() + " has a box)");
-  if (c.variations.inletSpeed && std::holds_alternative<io::InletBox>(base.inlets[0].shape) &&
+  if (c.variations.inletSpeed && std::holds_alternative<scene::InletBox>(base.inlets[0].shape) &&
       glm::length(base.inlets[0].velocity) == 0.0f)
     r.fail("variations.inlet_speed",
            "the base scene's box inlet has no velocity to scale (" + c.baseScene.string() + ")");
   if (c.cameras.distance) {
-    const io::Grid grid = effectiveGrid(c, base.grid);
+    const scene::Grid grid = effectiveGrid(c, base.grid);
     const float radius = 0.5f * glm::length(glm::vec3(grid.size) * grid.cellSize);
     if (*c.cameras.distance <= radius)
       r.fail("cameras.distance", "must be more than the volume's bounding radius " + io::show(radius) +
@@ -489,18 +490,18 @@ DatasetConfig loadDatasetConfig(const fs::path& file) {
 
 namespace {
 
-glm::vec3 inletCentreOf(const io::Inlet& inlet) {
-  if (const auto* disk = std::get_if<io::InletDisk>(&inlet.shape)) return disk->center;
-  const auto& box = std::get<io::InletBox>(inlet.shape);
+glm::vec3 inletCentreOf(const scene::Inlet& inlet) {
+  if (const auto* disk = std::get_if<scene::InletDisk>(&inlet.shape)) return disk->center;
+  const auto& box = std::get<scene::InletBox>(inlet.shape);
   return 0.5f * (box.min + box.max);
 }
 
 // Draws the first inlet's variations into its scene JSON and returns its (moved) centre. A disk's speed is
 // along its normal; a box keeps its velocity's direction at the drawn speed, and its offset moves both
 // corners.
-glm::vec3 varyInlet(nlohmann::json& inlet, const io::Inlet& base, const DatasetVariations& v,
+glm::vec3 varyInlet(nlohmann::json& inlet, const scene::Inlet& base, const DatasetVariations& v,
                     const Draws& s) {
-  const bool disk = std::holds_alternative<io::InletDisk>(base.shape);
+  const bool disk = std::holds_alternative<scene::InletDisk>(base.shape);
   if (v.inletSpeed) {
     const double speed = v.inletSpeed->at(uniform(s, kInletSpeed));
     inlet["velocity"] =
@@ -514,7 +515,7 @@ glm::vec3 varyInlet(nlohmann::json& inlet, const io::Inlet& base, const DatasetV
   if (disk) {
     inlet["center"] = tidy(inletCentreOf(base) + offset);
   } else {
-    const auto& box = std::get<io::InletBox>(base.shape);
+    const auto& box = std::get<scene::InletBox>(base.shape);
     inlet["min"] = tidy(box.min + offset);
     inlet["max"] = tidy(box.max + offset);
   }
@@ -528,7 +529,7 @@ void varySmoke(nlohmann::json& scene, const DatasetVariations& v, const Draws& s
   if (v.densityScale) {  // log-uniform: x0.5 and x2 are equally likely around x1
     const double scale = v.densityScale->min * std::pow(double(v.densityScale->max) / v.densityScale->min,
                                                         uniform(s, kDensityScale));
-    smoke["extinction"] = tidy(smoke.value("extinction", double(io::Smoke{}.extinction)) * scale);
+    smoke["extinction"] = tidy(smoke.value("extinction", double(scene::Smoke{}.extinction)) * scale);
   }
 }
 
@@ -561,8 +562,8 @@ void setGuide(nlohmann::json& scene, const DatasetConfig& c) {
 SequencePlan planVdbSequence(const DatasetConfig& c, int sequence, int attempt) {
   const Draws s{c.seed, sequence, attempt};
   const std::size_t i = std::size_t(sequence - c.sequences);
-  const io::Scene played =
-      io::parseScene(c.vdbSceneJsons[i], c.vdbScenes[i].string(), folderOf(c.vdbScenes[i]));
+  const scene::Scene played =
+      scene::parseScene(c.vdbSceneJsons[i], c.vdbScenes[i].string(), folderOf(c.vdbScenes[i]));
   SequencePlan plan;
   plan.sequence = sequence;
   plan.attempt = attempt;
@@ -578,8 +579,8 @@ SequencePlan planVdbSequence(const DatasetConfig& c, int sequence, int attempt) 
   setGuide(j, c);
   varySmoke(j, c.variations, s);
   plan.frames = sampledFrames(c, s);
-  plan.scene =
-      io::parseScene(j, c.file.string() + " (sequence " + std::to_string(sequence) + ")", folderOf(c.file));
+  plan.scene = scene::parseScene(j, c.file.string() + " (sequence " + std::to_string(sequence) + ")",
+                                 folderOf(c.file));
   return plan;
 }
 
@@ -589,7 +590,7 @@ SequencePlan planSequence(const DatasetConfig& c, int sequence, int attempt) {
   if (sequence >= c.sequences) return planVdbSequence(c, sequence, attempt);
   const Draws s{c.seed, sequence, attempt};
   const fs::path configDir = folderOf(c.file);
-  const io::Scene base = io::parseScene(c.baseSceneJson, c.baseScene.string(), folderOf(c.baseScene));
+  const scene::Scene base = scene::parseScene(c.baseSceneJson, c.baseScene.string(), folderOf(c.baseScene));
   SequencePlan plan;
   plan.sequence = sequence;
   plan.attempt = attempt;
@@ -597,7 +598,7 @@ SequencePlan planSequence(const DatasetConfig& c, int sequence, int attempt) {
   j = c.baseSceneJson;
   j["name"] = base.name + sequenceSuffix(sequence);
 
-  const io::Grid grid = effectiveGrid(c, base.grid);
+  const scene::Grid grid = effectiveGrid(c, base.grid);
   j["grid"]["size"] = {grid.size.x, grid.size.y, grid.size.z};
   j["grid"]["cell_size"] = effectiveCellSize(c, base.grid);
   j["grid"]["smoke_upres"] = grid.smokeUpres;
@@ -629,7 +630,8 @@ SequencePlan planSequence(const DatasetConfig& c, int sequence, int attempt) {
 
   plan.frames = sampledFrames(c, s);
 
-  plan.scene = io::parseScene(j, c.file.string() + " (sequence " + std::to_string(sequence) + ")", configDir);
+  plan.scene =
+      scene::parseScene(j, c.file.string() + " (sequence " + std::to_string(sequence) + ")", configDir);
   return plan;
 }
 

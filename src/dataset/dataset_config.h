@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "io/scene.h"
 #include "render/camera.h"
 #include "render/volume.h"
+#include "scene/scene.h"
 
 #include "reference/scattered_lightmaps.h"
 
@@ -116,7 +116,7 @@ struct SequencePlan {
   int sequence = 0;
   int attempt = 0;           // 0, or the how-manieth redraw after the simulation failed
   nlohmann::json sceneJson;  // the effective scene (mesh paths relative to the config's folder)
-  io::Scene scene;           // parsed from sceneJson
+  scene::Scene scene;        // parsed from sceneJson
   std::string obstacle;      // obstacleChoiceName, or "base" for the base scene's obstacles
   std::vector<int> frames;   // the sampled frame indices (frame i = the smoke after i + 1 frames)
 };

@@ -89,7 +89,7 @@ nlohmann::json vec(glm::vec3 v) {
 DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCache& cache,
                               const DatasetConfig& config, const SequencePlan& plan,
                               const FrameProgress& progress) {
-  io::Scene scene = plan.scene;
+  scene::Scene scene = plan.scene;
   const int size = config.lightmapSize;
   const int lastFrame = plan.frames.back();
   const std::unique_ptr<render::VolumeSequence> volumes =

@@ -17,11 +17,11 @@
 namespace sixway::eval {
 
 nlohmann::json equalTimeStudy(const gpu::Context& context, const gpu::PipelineCache& cache,
-                              const io::Scene& scene, int index, const render::Volume& volume,
+                              const scene::Scene& scene, int index, const render::Volume& volume,
                               const EqualTimeSettings& study, const io::Image* neural) {
   const double budgetMs = study.budgetMs;
   const render::Camera camera = render::sceneCamera(scene.camera, index);
-  const std::vector<io::Light> lights = render::sceneLights(scene.lights, index);
+  const std::vector<scene::Light> lights = render::sceneLights(scene.lights, index);
   const render::ImagePlane frame = render::fullFrame(camera, scene.render.width, scene.render.height);
   render::TraceSettings settings;
   settings.width = scene.render.width;
@@ -29,8 +29,9 @@ nlohmann::json equalTimeStudy(const gpu::Context& context, const gpu::PipelineCa
   settings.maxOrders = study.orders;
   settings.background = scene.render.background;
   if (scene.ambient) {
-    if (const auto* c = std::get_if<io::AmbientColor>(&*scene.ambient)) settings.environment = {c->color};
-    if (const auto* sh = std::get_if<io::AmbientSh>(&*scene.ambient)) settings.environment = sh->coefficients;
+    if (const auto* c = std::get_if<scene::AmbientColor>(&*scene.ambient)) settings.environment = {c->color};
+    if (const auto* sh = std::get_if<scene::AmbientSh>(&*scene.ambient))
+      settings.environment = sh->coefficients;
   }
   render::PathTracer tracer(context, cache);
   std::unique_ptr<render::ObstacleBvh> obstacles;

@@ -8,8 +8,8 @@
 #include <optional>
 
 #include "io/image.h"
-#include "io/scene.h"
 #include "render/volume.h"
+#include "scene/scene.h"
 
 namespace sixway::gpu {
 class Context;
@@ -33,7 +33,7 @@ struct EqualTimeSettings {
 // Returns {budget_ms, reference_spp, curve: [{spp, ms, image error}], equal_time_spp, equal_time_ms,
 // equal_time (image error), neural (image error)}; image errors as metrics::ImageError::json().
 nlohmann::json equalTimeStudy(const gpu::Context& context, const gpu::PipelineCache& cache,
-                              const io::Scene& scene, int index, const render::Volume& volume,
+                              const scene::Scene& scene, int index, const render::Volume& volume,
                               const EqualTimeSettings& study, const io::Image* neural);
 
 }  // namespace sixway::eval

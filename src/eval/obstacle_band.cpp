@@ -35,15 +35,15 @@ float densityAt(const HostDensity& smoke, glm::vec3 p) {
 }
 
 // Whether a shadow-casting obstacle lies between p and a shadow-casting light.
-bool inShadow(const render::ObstacleBvh& obstacles, glm::vec3 p, const std::vector<io::Light>& lights) {
-  for (const io::Light& light : lights) {
+bool inShadow(const render::ObstacleBvh& obstacles, glm::vec3 p, const std::vector<scene::Light>& lights) {
+  for (const scene::Light& light : lights) {
     if (!light.shadows) continue;
     glm::vec3 toLight;
     float distance = 3.4e38f;
-    if (const auto* d = std::get_if<io::DirectionalLight>(&light.source)) {
+    if (const auto* d = std::get_if<scene::DirectionalLight>(&light.source)) {
       toLight = glm::normalize(d->direction);
     } else {
-      const glm::vec3 v = std::get<io::PointLight>(light.source).position - p;
+      const glm::vec3 v = std::get<scene::PointLight>(light.source).position - p;
       distance = glm::length(v);
       toLight = v / distance;
     }
@@ -54,7 +54,7 @@ bool inShadow(const render::ObstacleBvh& obstacles, glm::vec3 p, const std::vect
 
 // Whether the ray meets visible smoke in an obstacle's shadow before `tEnd` (the obstacle it sees, if any).
 bool seesShadowedSmoke(const render::ObstacleBvh& obstacles, glm::vec3 o, glm::vec3 w, float tEnd,
-                       const std::vector<io::Light>& lights, const HostDensity& smoke, float extinction) {
+                       const std::vector<scene::Light>& lights, const HostDensity& smoke, float extinction) {
   const glm::vec2 span = rayBox(o, w, smoke.grid.bounds());
   const float step = 0.5f * smoke.grid.cellSize, end = std::min(span.y, tEnd);
   float depth = 0.0f;
@@ -75,7 +75,7 @@ int bandRadius(int height) {
 
 std::vector<uint8_t> obstacleBand(const render::ObstacleBvh& obstacles, const render::Camera& camera,
                                   const render::ImagePlane& plane, int width, int height,
-                                  const std::vector<io::Light>& lights, const HostDensity& smoke,
+                                  const std::vector<scene::Light>& lights, const HostDensity& smoke,
                                   const BandSettings& settings) {
   std::vector<uint8_t> band(size_t(width) * height, 0);
   std::vector<float> hit(size_t(width) * height, 3.4e38f);

@@ -8,10 +8,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "io/scene.h"
 #include "render/camera.h"
 #include "render/obstacle_bvh.h"
 #include "render/volume.h"
+#include "scene/scene.h"
 
 namespace sixway::eval {
 
@@ -33,7 +33,7 @@ int bandRadius(int height);
 // One byte per pixel (row 0 at the top), 1 in the band; `obstacles` placed for the frame.
 std::vector<uint8_t> obstacleBand(const render::ObstacleBvh& obstacles, const render::Camera& camera,
                                   const render::ImagePlane& plane, int width, int height,
-                                  const std::vector<io::Light>& lights, const HostDensity& smoke,
+                                  const std::vector<scene::Light>& lights, const HostDensity& smoke,
                                   const BandSettings& settings);
 
 }  // namespace sixway::eval

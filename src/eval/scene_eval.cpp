@@ -24,7 +24,6 @@
 #include "io/error.h"
 #include "io/file_access.h"
 #include "io/report.h"
-#include "io/scene.h"
 #include "metrics/image_metrics.h"
 #include "render/camera.h"
 #include "render/obstacle_bvh.h"
@@ -33,6 +32,7 @@
 #include "runtime/modes/mode_renderer.h"
 #include "runtime/network_weights.h"
 #include "runtime/scene_volumes.h"
+#include "scene/scene.h"
 #include "sources/scene_volumes.h"
 
 namespace sixway::eval {
@@ -116,10 +116,10 @@ nlohmann::json temporalSummary(const std::map<std::string, TemporalChange>& meth
 
 // The scene as evaluated: the density scale on the extinction (σ_t = extinction · density, so scaling one
 // scales the other for every renderer), and the camera path replaced when asked.
-io::Scene evaluatedScene(const SceneEvalSettings& s) {
-  io::Scene scene = io::loadScene(s.scene);
+scene::Scene evaluatedScene(const SceneEvalSettings& s) {
+  scene::Scene scene = scene::loadScene(s.scene);
   scene.smoke.extinction *= s.densityScale;
-  if (s.cameraOrbitDeg) scene.camera.path = io::CameraOrbit{*s.cameraOrbitDeg};
+  if (s.cameraOrbitDeg) scene.camera.path = scene::CameraOrbit{*s.cameraOrbitDeg};
   return scene;
 }
 
@@ -137,7 +137,7 @@ void check(const SceneEvalSettings& s) {
 
 void evaluateScene(const DeviceOptions& device, const SceneEvalSettings& s) {
   check(s);
-  io::Scene scene = evaluatedScene(s);
+  scene::Scene scene = evaluatedScene(s);
   io::requireWritableFile(s.report, s.force);
   if (!s.out.empty()) io::requireWritableDirectory(s.out, s.force);
   const int stripFrame = s.stripFrame.value_or(s.frames - 1);
@@ -152,7 +152,7 @@ void evaluateScene(const DeviceOptions& device, const SceneEvalSettings& s) {
       sources::openSceneVolumes(context, cache, scene, warmup + s.frames, s.scene.string());
   const auto* simulated = dynamic_cast<const runtime::SimulatedVolumes*>(volumes.get());
   // What the renderers see: the obstacles, unless left out (--no-obstacles).
-  io::Scene renderScene = scene;
+  scene::Scene renderScene = scene;
   if (!s.obstacles) renderScene.obstacles.clear();
   modes::ModeOptions options;
   options.weights = s.weights;

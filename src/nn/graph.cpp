@@ -7,7 +7,7 @@
 
 #include "io/error.h"
 #include "io/json_reader.h"
-#include "io/scene.h"
+#include "scene/scene.h"
 
 namespace sixway::nn {
 namespace {
@@ -86,8 +86,9 @@ Node readNode(io::JsonReader& r) {
         r.required<int>("guide_channels", io::inRange(1, std::min(n.outChannels, kMaxGuideChannels)));
     // The guide's 4th channel is the fine alpha, its 5th the emission of the same fine march, which the
     // runtime's guide computes only when asked.
-    n.guideAlphaStepVoxels = r.optional<float>(
-        "guide_alpha_step_voxels", 0.0f, io::zeroOrInRange(io::kMinGuideStepVoxels, io::kMaxGuideStepVoxels));
+    n.guideAlphaStepVoxels =
+        r.optional<float>("guide_alpha_step_voxels", 0.0f,
+                          io::zeroOrInRange(scene::kMinGuideStepVoxels, scene::kMaxGuideStepVoxels));
     if ((n.guideChannels >= 4) != (n.guideAlphaStepVoxels > 0.0f))
       r.fail("guide_channels",
              "a 4th guide channel is the fine alpha: guide_channels 4 or 5 go with "

@@ -11,12 +11,12 @@
 #include <vector>
 
 #include "gpu/sequence.h"
-#include "io/scene.h"
 #include "reference/flipbook.h"
 #include "reference/lightmap_baker.h"
 #include "reference/scattered_lightmaps.h"
 #include "render/camera.h"
 #include "render/volume_sequence.h"
+#include "scene/scene.h"
 
 namespace sixway::gpu {
 class Context;
@@ -32,7 +32,7 @@ struct FlipbookBake {
   int columns = 0;  // 0: a near-square grid
   ChannelPacking packing = unityPacking();
   Camera camera;          // fixed for the whole sequence
-  io::Smoke smoke;        // optics
+  scene::Smoke smoke;     // optics
   BakeSettings settings;  // tile size and quadrature
   Scattering scattering = Scattering::Multiple;
   MultipleScattering multiple;  // with Scattering::Multiple; the same seed every frame (coherent noise)

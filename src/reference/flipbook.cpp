@@ -128,7 +128,7 @@ ChannelPacking twoTextures(const std::string& first, const std::array<SixWayChan
 
 }  // namespace
 
-std::optional<EmissiveMask> unityEmissiveMask(const io::Smoke& smoke) {
+std::optional<EmissiveMask> unityEmissiveMask(const scene::Smoke& smoke) {
   const std::optional<float> straight = emissiveStraightScale(smoke);
   const std::vector<GradientKey> keys = emissiveGradientFromRamp(smoke.emission);
   if (!straight || keys.empty()) return std::nullopt;

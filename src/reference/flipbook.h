@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "io/image.h"
-#include "io/scene.h"
 #include "reference/scattering.h"
 #include "render/sixway.h"
 #include "render/sixway_shading.h"
+#include "scene/scene.h"
 
 namespace sixway::render {
 
@@ -74,7 +74,7 @@ struct EmissiveMask {
   float multiplier = 1.0f;            // Unity's Emissive Multiplier
 };
 // The mask for `smoke`'s emission; none when it does not emit.
-std::optional<EmissiveMask> unityEmissiveMask(const io::Smoke& smoke);
+std::optional<EmissiveMask> unityEmissiveMask(const scene::Smoke& smoke);
 
 // Writes <stem>_<texture>.exr (half), .png and .tga (8-bit, colour sRGB-encoded) for each texture of
 // `packing`, a Unity .meta file beside each (reference/unity_meta.h), and the sidecar <stem>.json (layout,

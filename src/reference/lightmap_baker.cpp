@@ -90,7 +90,7 @@ void LightmapBaker::ensureCapacity(const VolumeGrid& grid, uint64_t lightmapValu
   }
 }
 
-io::Image LightmapBaker::bake(const Volume& volume, const io::Smoke& smoke, const Camera& camera,
+io::Image LightmapBaker::bake(const Volume& volume, const scene::Smoke& smoke, const Camera& camera,
                               const ImagePlane& billboard, const BakeSettings& settings) {
   checkSettings(settings);
   requireConsistent(volume);

@@ -12,12 +12,12 @@
 #include "gpu/buffer.h"
 #include "gpu/sequence.h"
 #include "io/image.h"
-#include "io/scene.h"
 #include "render/brick_majorants.h"
 #include "render/camera.h"
 #include "render/light_grid.h"
 #include "render/recorded_sequence.h"
 #include "render/volume.h"
+#include "scene/scene.h"
 
 namespace sixway::gpu {
 class Context;
@@ -42,7 +42,7 @@ class LightmapBaker {
   // The eight channels (sixWayChannelNames(), linear, premultiplied) of `volume` lit from the six directions
   // of `camera`, over the `billboard` rectangle of its image plane. Throws io::InputError for settings out
   // of range and an emission ramp with too many keys.
-  io::Image bake(const Volume& volume, const io::Smoke& smoke, const Camera& camera,
+  io::Image bake(const Volume& volume, const scene::Smoke& smoke, const Camera& camera,
                  const ImagePlane& billboard, const BakeSettings& settings);
 
   // Of the last bake: the light grids (channel order), GPU time per stage, and the optical depths on the

@@ -34,11 +34,11 @@ void checkSettings(const TraceSettings& s, size_t lights) {
 }
 
 // w of the radiance: 1 where obstacles cast shadows from the light.
-layout::PathLight pathLight(const io::Light& light) {
+layout::PathLight pathLight(const scene::Light& light) {
   const glm::vec4 radiance(light.color * light.intensity, light.shadows ? 1.0f : 0.0f);
-  if (const auto* directional = std::get_if<io::DirectionalLight>(&light.source))
+  if (const auto* directional = std::get_if<scene::DirectionalLight>(&light.source))
     return {glm::vec4(directional->direction, 0.0f), radiance};
-  return {glm::vec4(std::get<io::PointLight>(light.source).position, 1.0f), radiance};
+  return {glm::vec4(std::get<scene::PointLight>(light.source).position, 1.0f), radiance};
 }
 
 }  // namespace
@@ -66,8 +66,8 @@ PathTracer::PathTracer(const gpu::Context& context, const gpu::PipelineCache& ca
 
 PathTracer::~PathTracer() = default;
 
-void PathTracer::beginImage(const Volume& volume, const io::Smoke& smoke, const Camera& camera,
-                            const ImagePlane& plane, const std::vector<io::Light>& lights,
+void PathTracer::beginImage(const Volume& volume, const scene::Smoke& smoke, const Camera& camera,
+                            const ImagePlane& plane, const std::vector<scene::Light>& lights,
                             const TraceSettings& settings, const ObstacleBvh* obstacles) {
   checkSettings(settings, lights.size());
   layout::TraceParams& p = *static_cast<layout::TraceParams*>(params_.mapped());
@@ -85,7 +85,7 @@ void PathTracer::beginImage(const Volume& volume, const io::Smoke& smoke, const 
   begin(volume, smoke, camera, plane, settings, false);
 }
 
-void PathTracer::beginSixWay(const Volume& volume, const io::Smoke& smoke, const Camera& camera,
+void PathTracer::beginSixWay(const Volume& volume, const scene::Smoke& smoke, const Camera& camera,
                              const ImagePlane& billboard, const TraceSettings& settings) {
   checkSettings(settings, kSixWayLights);
   layout::TraceParams& p = *static_cast<layout::TraceParams*>(params_.mapped());
@@ -99,7 +99,7 @@ void PathTracer::beginSixWay(const Volume& volume, const io::Smoke& smoke, const
   begin(volume, smoke, camera, billboard, settings, true);
 }
 
-void PathTracer::begin(const Volume& volume, const io::Smoke& smoke, const Camera& camera,
+void PathTracer::begin(const Volume& volume, const scene::Smoke& smoke, const Camera& camera,
                        const ImagePlane& plane, const TraceSettings& settings, bool sixWay) {
   requireConsistent(volume);
   settings_ = settings;

@@ -13,12 +13,12 @@
 #include "gpu/buffer.h"
 #include "gpu/sequence.h"
 #include "io/image.h"
-#include "io/scene.h"
 #include "render/brick_majorants.h"
 #include "render/camera.h"
 #include "render/obstacle_bvh.h"
 #include "render/recorded_sequence.h"
 #include "render/volume.h"
+#include "scene/scene.h"
 
 namespace sixway::gpu {
 class Context;
@@ -53,13 +53,13 @@ class PathTracer {
   // (radiance, including the background, emission and obstacles) and A (alpha = 1 − T of the camera ray; 1
   // where it meets an obstacle). `obstacles`, placed for the frame (ObstacleBvh::update), are opaque
   // Lambertian surfaces of the real-time pass's albedo (kObstacleAlbedo); none when null or empty.
-  void beginImage(const Volume& volume, const io::Smoke& smoke, const Camera& camera, const ImagePlane& plane,
-                  const std::vector<io::Light>& lights, const TraceSettings& settings,
-                  const ObstacleBvh* obstacles = nullptr);
+  void beginImage(const Volume& volume, const scene::Smoke& smoke, const Camera& camera,
+                  const ImagePlane& plane, const std::vector<scene::Light>& lights,
+                  const TraceSettings& settings, const ObstacleBvh* obstacles = nullptr);
   // Starts six-way lightmaps: the eight channels of sixway.h, each light channel lit by one white
   // directional light of irradiance π from its camera-relative direction, black world; emissive is the
   // emission seen directly. Background and environment are not used.
-  void beginSixWay(const Volume& volume, const io::Smoke& smoke, const Camera& camera,
+  void beginSixWay(const Volume& volume, const scene::Smoke& smoke, const Camera& camera,
                    const ImagePlane& billboard, const TraceSettings& settings);
 
   // Adds `samplesPerPixel` samples (rounded up to whole passes).
@@ -71,7 +71,7 @@ class PathTracer {
   double traceMilliseconds() const { return traceMs_; }
 
  private:
-  void begin(const Volume& volume, const io::Smoke& smoke, const Camera& camera, const ImagePlane& plane,
+  void begin(const Volume& volume, const scene::Smoke& smoke, const Camera& camera, const ImagePlane& plane,
              const TraceSettings& settings, bool sixWay);
 
   const gpu::Context* context_;

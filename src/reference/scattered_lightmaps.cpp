@@ -76,7 +76,7 @@ double ScatteredLightmaps::milliseconds() const {
   return total;
 }
 
-io::Image ScatteredLightmaps::bake(const Volume& volume, const io::Smoke& smoke, const Camera& camera,
+io::Image ScatteredLightmaps::bake(const Volume& volume, const scene::Smoke& smoke, const Camera& camera,
                                    const ImagePlane& billboard, const BakeSettings& settings,
                                    Scattering scattering, const MultipleScattering& multiple) {
   if (scattering == Scattering::Multiple) checkMultiple(multiple, settings);

@@ -14,12 +14,12 @@
 
 #include "gpu/sequence.h"
 #include "io/image.h"
-#include "io/scene.h"
 #include "reference/lightmap_baker.h"
 #include "reference/path_tracer.h"
 #include "reference/scattering.h"
 #include "render/camera.h"
 #include "render/volume.h"
+#include "scene/scene.h"
 
 namespace sixway::gpu {
 class Context;
@@ -45,7 +45,7 @@ class ScatteredLightmaps {
 
   // The eight channels (sixWayChannelNames()) of `volume` from `camera` over `billboard`, as
   // LightmapBaker::bake, with `scattering`. Throws io::InputError for settings out of range.
-  io::Image bake(const Volume& volume, const io::Smoke& smoke, const Camera& camera,
+  io::Image bake(const Volume& volume, const scene::Smoke& smoke, const Camera& camera,
                  const ImagePlane& billboard, const BakeSettings& settings, Scattering scattering,
                  const MultipleScattering& multiple = {});
   // The last bake's exact single scattering (its result, or the part the multiple scattering was added to;

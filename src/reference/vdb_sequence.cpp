@@ -15,15 +15,15 @@ bool usable(const io::VdbGridInfo& grid) {
   return grid.valueType == "float" && !grid.empty;
 }
 
-// U of io::VdbSource: file space to the scene's y-up space, and back.
-glm::vec3 toScene(glm::vec3 p, io::VdbUp up) {
-  return up == io::VdbUp::Z ? glm::vec3(p.x, p.z, -p.y) : p;
+// U of scene::VdbSource: file space to the scene's y-up space, and back.
+glm::vec3 toScene(glm::vec3 p, scene::VdbUp up) {
+  return up == scene::VdbUp::Z ? glm::vec3(p.x, p.z, -p.y) : p;
 }
-glm::vec3 toFile(glm::vec3 p, io::VdbUp up) {
-  return up == io::VdbUp::Z ? glm::vec3(p.x, -p.z, p.y) : p;
+glm::vec3 toFile(glm::vec3 p, scene::VdbUp up) {
+  return up == scene::VdbUp::Z ? glm::vec3(p.x, -p.z, p.y) : p;
 }
 
-std::vector<std::string> gridNames(const io::VdbSource& source) {
+std::vector<std::string> gridNames(const scene::VdbSource& source) {
   std::vector<std::string> names = {source.densityGrid};
   if (source.temperatureGrid) names.push_back(*source.temperatureGrid);
   return names;
@@ -38,7 +38,7 @@ VolumeGrid cubicLattice(glm::vec3 lo, glm::vec3 hi, int longestAxisCells) {
 }
 
 // A lattice of the file's space placed in the scene: the same cells, turned, scaled and moved.
-VolumeGrid inScene(const VolumeGrid& file, const io::VdbSource& source) {
+VolumeGrid inScene(const VolumeGrid& file, const scene::VdbSource& source) {
   const Box box = file.bounds();
   const glm::vec3 a = toScene(box.min, source.up), b = toScene(box.max, source.up);
   return {glm::abs(glm::ivec3(toScene(glm::vec3(file.size), source.up))),
@@ -47,7 +47,7 @@ VolumeGrid inScene(const VolumeGrid& file, const io::VdbSource& source) {
 
 // How far a grid's world box reaches from the scene's origin once scaled and moved (the up turn keeps it), in
 // metres: inf when it does not fit a float.
-double sceneReach(const io::VdbGridInfo& grid, const io::VdbSource& source) {
+double sceneReach(const io::VdbGridInfo& grid, const scene::VdbSource& source) {
   double reach = 0;
   for (const glm::vec3& corner : {grid.worldMin, grid.worldMax})
     for (int axis = 0; axis < 3; ++axis) {
@@ -57,22 +57,22 @@ double sceneReach(const io::VdbGridInfo& grid, const io::VdbSource& source) {
   return reach;
 }
 
-// A grid that would stretch the lattice beyond io::kMaxSceneMetres (a float box whose diagonal overflows,
+// A grid that would stretch the lattice beyond scene::kMaxSceneMetres (a float box whose diagonal overflows,
 // light grids without a size) is refused, naming the file and what placed it there.
 void requireWithinScene(const std::filesystem::path& file, const io::VdbGridInfo& grid,
-                        const io::VdbSource& source) {
+                        const scene::VdbSource& source) {
   const double reach = sceneReach(grid, source);
-  if (reach <= io::kMaxSceneMetres) return;
+  if (reach <= scene::kMaxSceneMetres) return;
   throw io::InputError(file.string(),
                        "grid '" + grid.name + "' reaches " + io::show(float(reach)) +
                            " m from the origin (voxel size " + io::show(grid.voxelSize.x) + " × vdb.scale " +
-                           io::show(source.scale) + "), more than " + io::show(io::kMaxSceneMetres) +
+                           io::show(source.scale) + "), more than " + io::show(scene::kMaxSceneMetres) +
                            " m; check the file's voxel size and vdb.scale, or give vdb.box_min/box_max");
 }
 
 // The playback lattice: over the scene's box when it gives one, else over the union of the world boxes of
 // the grids read (sized in the file's own space, so that turning a file moves its cells exactly).
-VolumeGrid playbackLattice(const io::VdbSource& source, std::vector<std::string>& notes) {
+VolumeGrid playbackLattice(const scene::VdbSource& source, std::vector<std::string>& notes) {
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
   bool anyTemperature = false;
   for (const auto& file : source.files) {
@@ -112,8 +112,8 @@ VolumeGrid playbackLattice(const io::VdbSource& source, std::vector<std::string>
 
 // The grid read on the file's own axes, turned onto the scene's: scene cell (i, j, k) is file cell
 // (i, n_y − 1 − k, j) when z is up.
-std::vector<float> toSceneAxes(const io::DenseGrid& grid, io::VdbUp up, glm::ivec3 cells) {
-  if (up == io::VdbUp::Y) return grid.values;
+std::vector<float> toSceneAxes(const io::DenseGrid& grid, scene::VdbUp up, glm::ivec3 cells) {
+  if (up == scene::VdbUp::Y) return grid.values;
   std::vector<float> out(grid.values.size());
   std::size_t at = 0;
   for (int k = 0; k < cells.z; ++k)
@@ -130,8 +130,9 @@ std::optional<std::string> temperatureGridIn(const std::vector<std::filesystem::
   return std::nullopt;
 }
 
-io::VdbSource fileList(std::vector<std::filesystem::path> files, int longestAxisCells, bool withTemperature) {
-  io::VdbSource source;
+scene::VdbSource fileList(std::vector<std::filesystem::path> files, int longestAxisCells,
+                          bool withTemperature) {
+  scene::VdbSource source;
   source.temperatureGrid = withTemperature ? temperatureGridIn(files) : std::nullopt;
   source.files = std::move(files);
   source.voxels = longestAxisCells;
@@ -140,7 +141,7 @@ io::VdbSource fileList(std::vector<std::filesystem::path> files, int longestAxis
 
 }  // namespace
 
-VdbSequence::VdbSequence(const gpu::Context& context, io::VdbSource source)
+VdbSequence::VdbSequence(const gpu::Context& context, scene::VdbSource source)
     : source_(std::move(source)),
       lattice_(playbackLattice(source_, notes_)),
       volume_(context, lattice_, source_.temperatureGrid.has_value()) {}

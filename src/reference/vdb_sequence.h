@@ -1,15 +1,15 @@
 #pragma once
 // A sequence of OpenVDB files resampled onto one lattice of cubic cells that covers the active voxels of
 // every file (so that non-uniform voxel sizes and transforms are honoured, and every frame shares the same
-// buffers), placed in the world by the scene's transform (io::VdbSource). Files whose density grid is
+// buffers), placed in the world by the scene's transform (scene::VdbSource). Files whose density grid is
 // missing or empty are empty frames.
 #include <filesystem>
 #include <string>
 #include <vector>
 
-#include "io/scene.h"
 #include "render/volume.h"
 #include "render/volume_sequence.h"
+#include "scene/scene.h"
 
 namespace sixway::gpu {
 class Context;
@@ -22,7 +22,7 @@ class VdbSequence : public VolumeSequence {
   // Reads every file's grid list up front (so a missing or corrupt file fails before any work) and sizes the
   // lattice: source.voxels cells along the longest axis of the union of the grids' world boxes. Throws
   // InputError when no file has a usable density grid, or when the temperature grid is named but in no file.
-  VdbSequence(const gpu::Context& context, io::VdbSource source);
+  VdbSequence(const gpu::Context& context, scene::VdbSource source);
   // `sixway bake --vdb`: files as given, one frame each; with `withTemperature`, a float grid named
   // "temperature" (else "heat") becomes the temperature.
   VdbSequence(const gpu::Context& context, std::vector<std::filesystem::path> files, int longestAxisCells,
@@ -37,7 +37,7 @@ class VdbSequence : public VolumeSequence {
   std::string frameName(int index) const override { return file(index).filename().string(); }
 
   const VolumeGrid& lattice() const { return lattice_; }
-  const io::VdbSource& source() const { return source_; }
+  const scene::VdbSource& source() const { return source_; }
   const std::filesystem::path& file(int frame) const { return source_.files[frame / source_.framesPerFile]; }
   // What the reader skipped or changed so far, each once ("<file>: grid 'obstacles' is int32, not float:
   // skipped").
@@ -47,7 +47,7 @@ class VdbSequence : public VolumeSequence {
   // Reads the file of `frame` into the buffers unless it is there already; false for an empty frame.
   bool load(int frame);
 
-  io::VdbSource source_;
+  scene::VdbSource source_;
   std::vector<std::string> notes_;  // before lattice_: sizing the lattice adds notes
   VolumeGrid lattice_;
   DeviceVolume volume_;

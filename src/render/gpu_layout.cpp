@@ -20,7 +20,7 @@ LightGrid lightGrid(const render::LightGrid& grid) {
           glm::vec4(grid.v, grid.maxStep), glm::vec4(grid.toLight, 0.0f), glm::ivec4(grid.nodes, 0)};
 }
 
-int emissionRamp(const io::Emission& emission, glm::vec4 (&keys)[kMaxRampKeys]) {
+int emissionRamp(const scene::Emission& emission, glm::vec4 (&keys)[kMaxRampKeys]) {
   if (emission.intensity <= 0.0f || emission.ramp.empty()) return 0;
   if (emission.ramp.size() > kMaxRampKeys)
     throw io::InputError("smoke.emission.ramp", "has " + std::to_string(emission.ramp.size()) +

@@ -10,10 +10,10 @@
 // "Shaders compiled again every frame").
 #include <glm/vec4.hpp>
 
-#include "io/scene.h"
 #include "render/camera.h"
 #include "render/light_grid.h"
 #include "render/volume.h"
+#include "scene/scene.h"
 
 namespace sixway::render::layout {
 
@@ -71,6 +71,6 @@ CameraRays cameraRays(const Camera& camera, const ImagePlane& plane);
 LightGrid lightGrid(const render::LightGrid& grid);
 // The emission ramp as (temperature, r, g, b) keys; returns the key count, 0 when the smoke does not emit.
 // Throws io::InputError for more keys than the shaders hold.
-int emissionRamp(const io::Emission& emission, glm::vec4 (&keys)[kMaxRampKeys]);
+int emissionRamp(const scene::Emission& emission, glm::vec4 (&keys)[kMaxRampKeys]);
 
 }  // namespace sixway::render::layout

@@ -55,13 +55,13 @@ void checkSettings(const GuideSettings& s) {
 }
 
 // The axis of the six-way frame a light lies on: opposite lights share a light grid.
-int axisOf(io::GuideLight light) {
+int axisOf(scene::GuideLight light) {
   switch (light) {
-    case io::GuideLight::Right:
-    case io::GuideLight::Left:
+    case scene::GuideLight::Right:
+    case scene::GuideLight::Left:
       return 0;
-    case io::GuideLight::Top:
-    case io::GuideLight::Bottom:
+    case scene::GuideLight::Top:
+    case scene::GuideLight::Bottom:
       return 1;
     default:
       return 2;
@@ -73,19 +73,19 @@ int axisOf(io::GuideLight light) {
 struct LightFrame {
   glm::vec3 toLight, u, v;
 };
-LightFrame lightFrame(io::GuideLight light, const Camera& c) {
+LightFrame lightFrame(scene::GuideLight light, const Camera& c) {
   switch (light) {
-    case io::GuideLight::Right:
+    case scene::GuideLight::Right:
       return {c.right, c.up, c.forward};
-    case io::GuideLight::Left:
+    case scene::GuideLight::Left:
       return {-c.right, c.up, c.forward};
-    case io::GuideLight::Top:
+    case scene::GuideLight::Top:
       return {c.up, c.right, c.forward};
-    case io::GuideLight::Bottom:
+    case scene::GuideLight::Bottom:
       return {-c.up, c.right, c.forward};
-    case io::GuideLight::Back:
+    case scene::GuideLight::Back:
       return {c.forward, c.right, c.up};
-    case io::GuideLight::Front:
+    case scene::GuideLight::Front:
       break;
   }
   return {-c.forward, c.right, c.up};
@@ -93,7 +93,7 @@ LightFrame lightFrame(io::GuideLight light, const Camera& c) {
 
 }  // namespace
 
-GuideSettings GuideSettings::fromScene(const io::Scene& scene) {
+GuideSettings GuideSettings::fromScene(const scene::Scene& scene) {
   GuideSettings s;
   s.size = uint32_t(scene.render.lightmapSize);
   s.stepCells = scene.render.guideStepVoxels;
@@ -123,10 +123,10 @@ GuidingMap::GuidingMap(const gpu::Context& context, const gpu::PipelineCache& ca
   // One light grid per axis of the six-way frame that a guide light other than front lies on; the shader's
   // kLightGrids holds, per such light k, its grid (bits 3k, 3k + 1) and whether it is the grid's opposite.
   int32_t lightGrids = 0, shadowed = 0;
-  for (io::GuideLight light : settings_.lights) {
-    if (light == io::GuideLight::Front) continue;
+  for (scene::GuideLight light : settings_.lights) {
+    if (light == scene::GuideLight::Front) continue;
     const size_t grid = std::find_if(gridLights_.begin(), gridLights_.end(),
-                                     [&](io::GuideLight l) { return axisOf(l) == axisOf(light); }) -
+                                     [&](scene::GuideLight l) { return axisOf(l) == axisOf(light); }) -
                         gridLights_.begin();
     if (grid == gridLights_.size()) gridLights_.push_back(light);
     lightGrids |= int32_t(grid | (gridLights_[grid] != light ? 4 : 0)) << (3 * shadowed++);
@@ -228,14 +228,14 @@ void GuidingMap::record(gpu::Sequence& sequence, const Volume& volume, const gpu
 }
 
 void GuidingMap::update(const Camera& camera, const ImagePlane& billboard, const DepthRange& shellRange,
-                        const io::Smoke& smoke, uint32_t frame) {
+                        const scene::Smoke& smoke, uint32_t frame) {
   if (gridNodes_ == 0) throw std::logic_error("GuidingMap::update before record");
   // One midpoint sample per interval of a column (finer ones change the result by far less than the
   // interpolation between columns); the step limit sits a hair above the interval so that rounding cannot
   // make it two steps on one side only.
   const float columnStep = spacing_ * 1.001f;
   grids_.clear();
-  for (io::GuideLight light : gridLights_) {
+  for (scene::GuideLight light : gridLights_) {
     const LightFrame f = lightFrame(light, camera);
     grids_.push_back(lightGridFor(grid_, f.toLight, f.u, f.v, spacing_, columnStep));
     if (glm::any(glm::greaterThan(grids_.back().nodes, glm::ivec3(gridNodes_))))

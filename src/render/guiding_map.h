@@ -13,12 +13,12 @@
 #include "gpu/buffer.h"
 #include "gpu/image.h"
 #include "gpu/sequence.h"
-#include "io/scene.h"
 #include "render/brick_majorants.h"
 #include "render/camera.h"
 #include "render/light_grid.h"
 #include "render/projection.h"
 #include "render/volume.h"
+#include "scene/scene.h"
 
 namespace sixway::gpu {
 class Context;
@@ -32,7 +32,8 @@ struct GuideSettings {
   uint32_t size = 128;              // pixels per side of the (square) guide: the lightmap size
   float stepCells = 3.0f;           // view-ray step, in cells of the volume grid
   float shadowSpacingCells = 2.0f;  // node spacing of the coarse light grids, in cells
-  std::vector<io::GuideLight> lights{io::GuideLight::Front, io::GuideLight::Top, io::GuideLight::Bottom};
+  std::vector<scene::GuideLight> lights{scene::GuideLight::Front, scene::GuideLight::Top,
+                                        scene::GuideLight::Bottom};
   float shellThreshold = 0.1f;  // alpha at which the shell depth is taken, in (0, 1)
   uint32_t seed = 1;            // of the per-pixel, per-frame jitter
   // > 0: channel A holds the alpha of a second, fine view march of this step (cells; midpoints, not
@@ -44,7 +45,7 @@ struct GuideSettings {
 
   // render.lightmap_size, guide_step_voxels, guide_alpha_step_voxels, guide_lights, shell_threshold, seed;
   // the rest default.
-  static GuideSettings fromScene(const io::Scene& scene);
+  static GuideSettings fromScene(const scene::Scene& scene);
 };
 
 class GuidingMap {
@@ -71,7 +72,7 @@ class GuidingMap {
   // frame index that picks the jitter. Uses the lattice of the last record(); throws std::logic_error before
   // the first.
   void update(const Camera& camera, const ImagePlane& billboard, const DepthRange& shellRange,
-              const io::Smoke& smoke, uint32_t frame);
+              const scene::Smoke& smoke, uint32_t frame);
 
   const GuideSettings& settings() const { return settings_; }
   // How the smoke's opacity builds up along each guide pixel's ray, for the composite with obstacles
@@ -91,7 +92,7 @@ class GuidingMap {
  private:
   const gpu::Context* context_;
   GuideSettings settings_;
-  std::vector<io::GuideLight> gridLights_;  // the light each light grid points to, one per axis used
+  std::vector<scene::GuideLight> gridLights_;  // the light each light grid points to, one per axis used
   std::unique_ptr<BrickMajorantPass> majorantPass_;
   std::unique_ptr<gpu::Pipeline> depthPass_, marchPass_;
   gpu::Buffer params_, frame_, bricks_;

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <limits>
 #include <numeric>
 
@@ -147,7 +148,7 @@ glm::vec3 intersect(const BvhTriangle& tri, glm::vec3 o, glm::vec3 w) {
 
 }  // namespace
 
-ObstacleBvh::ObstacleBvh(const gpu::Context& context, const std::vector<io::Obstacle>& obstacles)
+ObstacleBvh::ObstacleBvh(const gpu::Context& context, const std::vector<scene::Obstacle>& obstacles)
     : obstacles_(obstacles) {
   for (uint32_t i = 0; i < obstacles.size(); ++i) {
     const ObstacleTriangles mesh = triangulate(obstacles[i], i);

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "gpu/buffer.h"
-#include "io/scene.h"
 #include "render/volume.h"
+#include "scene/scene.h"
 
 namespace sixway::gpu {
 class Context;
@@ -57,12 +57,12 @@ class ObstacleBvh {
  public:
   // Triangulates and builds once, places at time 0. Throws io::InputError for an OBJ file that cannot be
   // read.
-  ObstacleBvh(const gpu::Context& context, const std::vector<io::Obstacle>& obstacles);
+  ObstacleBvh(const gpu::Context& context, const std::vector<scene::Obstacle>& obstacles);
 
   // Places the obstacles at time `seconds` (frame · frame_dt), as ObstacleMeshes::update does.
   void update(double seconds);
   // Replaces an obstacle's motion from the next update() on (a steered obstacle).
-  void setMotion(size_t obstacle, std::optional<io::Motion> motion) {
+  void setMotion(size_t obstacle, std::optional<scene::Motion> motion) {
     obstacles_.at(obstacle).motion = std::move(motion);
   }
 
@@ -81,7 +81,7 @@ class ObstacleBvh {
   const gpu::Buffer& placements() const { return recordBuffer_; }
 
  private:
-  std::vector<io::Obstacle> obstacles_;
+  std::vector<scene::Obstacle> obstacles_;
   std::vector<Box> localBounds_;
   std::vector<BvhNode> nodes_;
   std::vector<BvhTriangle> triangles_;

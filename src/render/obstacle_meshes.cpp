@@ -9,8 +9,8 @@
 #include <numbers>
 #include <utility>
 
-#include "io/motion.h"
 #include "io/obj.h"
+#include "scene/obstacle_placement.h"
 
 namespace sixway::render {
 namespace {
@@ -52,7 +52,7 @@ class Builder {
 };
 
 // Latitude rings from pole to pole, kRoundSegments around; the poles' degenerate triangles are left out.
-ObstacleTriangles sphere(const io::SphereObstacle& s, uint32_t index) {
+ObstacleTriangles sphere(const scene::SphereObstacle& s, uint32_t index) {
   constexpr int around = kRoundSegments, rings = kRoundSegments / 2;
   Builder b(index);
   for (int j = 0; j <= rings; ++j) {
@@ -73,7 +73,7 @@ ObstacleTriangles sphere(const io::SphereObstacle& s, uint32_t index) {
 }
 
 // The side with radial normals and two flat caps.
-ObstacleTriangles cylinder(const io::CylinderObstacle& c, uint32_t index) {
+ObstacleTriangles cylinder(const scene::CylinderObstacle& c, uint32_t index) {
   glm::vec3 u, v;
   perpendiculars(c.axis, u, v);
   const glm::vec3 half = 0.5f * c.height * c.axis;
@@ -103,7 +103,7 @@ ObstacleTriangles cylinder(const io::CylinderObstacle& c, uint32_t index) {
   return b.take();
 }
 
-ObstacleTriangles box(const io::BoxObstacle& box, uint32_t index) {
+ObstacleTriangles box(const scene::BoxObstacle& box, uint32_t index) {
   const glm::vec3 h = 0.5f * box.size;
   Builder b(index);
   for (int axis = 0; axis < 3; ++axis)
@@ -124,9 +124,9 @@ ObstacleTriangles box(const io::BoxObstacle& box, uint32_t index) {
 // The OBJ triangles scaled and turned. A corner's normal is the area-weighted sum of the normals of the faces
 // around its vertex that turn from its own face by less than the crease angle; corners of a vertex with equal
 // normals share one output vertex.
-ObstacleTriangles mesh(const io::MeshObstacle& m, uint32_t index) {
+ObstacleTriangles mesh(const scene::MeshObstacle& m, uint32_t index) {
   const io::Mesh obj = io::readObj(m.file);
-  const glm::mat3 turn = io::meshRotation(m) * m.scale;
+  const glm::mat3 turn = scene::meshRotation(m) * m.scale;
   std::vector<glm::vec3> positions(obj.positions.size());
   std::transform(obj.positions.begin(), obj.positions.end(), positions.begin(),
                  [&](glm::vec3 p) { return turn * p; });
@@ -164,24 +164,24 @@ ObstacleTriangles mesh(const io::MeshObstacle& m, uint32_t index) {
 
 }  // namespace
 
-ObstacleTriangles triangulate(const io::Obstacle& obstacle, uint32_t index) {
-  return std::visit(Overloaded{[&](const io::SphereObstacle& s) { return sphere(s, index); },
-                               [&](const io::CylinderObstacle& c) { return cylinder(c, index); },
-                               [&](const io::BoxObstacle& x) { return box(x, index); },
-                               [&](const io::MeshObstacle& m) { return mesh(m, index); }},
+ObstacleTriangles triangulate(const scene::Obstacle& obstacle, uint32_t index) {
+  return std::visit(Overloaded{[&](const scene::SphereObstacle& s) { return sphere(s, index); },
+                               [&](const scene::CylinderObstacle& c) { return cylinder(c, index); },
+                               [&](const scene::BoxObstacle& x) { return box(x, index); },
+                               [&](const scene::MeshObstacle& m) { return mesh(m, index); }},
                     obstacle.shape);
 }
 
-glm::vec3 placementAt(const io::Obstacle& obstacle, double seconds) {
-  if (obstacle.motion) return io::evaluateMotion(*obstacle.motion, seconds).position;
-  return std::visit(Overloaded{[](const io::SphereObstacle& s) { return s.center; },
-                               [](const io::CylinderObstacle& c) { return c.center; },
-                               [](const io::BoxObstacle& x) { return x.center; },
-                               [](const io::MeshObstacle& m) { return m.translate; }},
+glm::vec3 placementAt(const scene::Obstacle& obstacle, double seconds) {
+  if (obstacle.motion) return scene::evaluateMotion(*obstacle.motion, seconds).position;
+  return std::visit(Overloaded{[](const scene::SphereObstacle& s) { return s.center; },
+                               [](const scene::CylinderObstacle& c) { return c.center; },
+                               [](const scene::BoxObstacle& x) { return x.center; },
+                               [](const scene::MeshObstacle& m) { return m.translate; }},
                     obstacle.shape);
 }
 
-ObstacleMeshes::ObstacleMeshes(const gpu::Context& context, const std::vector<io::Obstacle>& obstacles)
+ObstacleMeshes::ObstacleMeshes(const gpu::Context& context, const std::vector<scene::Obstacle>& obstacles)
     : obstacles_(obstacles), placed_(obstacles.size()) {
   std::vector<ObstacleVertex> vertices;
   std::vector<uint32_t> indices;
@@ -255,7 +255,7 @@ double sphereFacetDepth(double radius) {
   return radius * (1 - std::cos(delta / std::sqrt(2.0)));
 }
 
-Box domainBox(const io::Grid& grid) {
+Box domainBox(const scene::Grid& grid) {
   return {grid.origin, grid.origin + glm::vec3(grid.size) * grid.cellSize};
 }
 

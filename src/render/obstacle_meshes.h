@@ -4,7 +4,7 @@
 // obstacle's placement point (a shape's centre, a mesh's translation). Obstacles move rigidly without turning
 // (docs/scene-format.md, motion), so a frame only changes one translation per obstacle: update() writes them
 // into a host-visible buffer that the recorded draws read, at the positions the simulation voxelizes
-// (io::evaluateMotion). Method and measured errors: docs/real-time-rendering.md, "Obstacles and shadows".
+// (scene::evaluateMotion). Method and measured errors: docs/real-time-rendering.md, "Obstacles and shadows".
 #include <cstdint>
 #include <glm/vec3.hpp>
 #include <optional>
@@ -12,8 +12,8 @@
 
 #include "gpu/buffer.h"
 #include "gpu/pipeline.h"
-#include "io/scene.h"
 #include "render/volume.h"
+#include "scene/scene.h"
 
 namespace sixway::render {
 
@@ -43,23 +43,23 @@ struct ObstacleTriangles {
   std::vector<ObstacleVertex> vertices;
   std::vector<uint32_t> indices;  // three per triangle, counter-clockwise seen from outside
 };
-ObstacleTriangles triangulate(const io::Obstacle& obstacle, uint32_t index);
+ObstacleTriangles triangulate(const scene::Obstacle& obstacle, uint32_t index);
 
 // The placement point of an obstacle at `seconds` (time = frame · frame_dt): its motion's position, else the
 // shape's centre or the mesh's translation.
-glm::vec3 placementAt(const io::Obstacle& obstacle, double seconds);
+glm::vec3 placementAt(const scene::Obstacle& obstacle, double seconds);
 
 class ObstacleMeshes {
  public:
   // Triangulates all obstacles once and places them at time 0. Obstacles with shadows = true come first in
   // the index buffer, so that the shadow pass draws just the first casterIndexCount() indices.
-  ObstacleMeshes(const gpu::Context& context, const std::vector<io::Obstacle>& obstacles);
+  ObstacleMeshes(const gpu::Context& context, const std::vector<scene::Obstacle>& obstacles);
 
   // Places the obstacles at time `seconds` (frame · frame_dt), for every pass recorded with these meshes.
   void update(double seconds);
   // Replaces the motion of obstacle `obstacle` (the simulation's steered one,
   // sim::Simulation::steerObstacle), from the next update() on.
-  void setMotion(size_t obstacle, std::optional<io::Motion> motion) {
+  void setMotion(size_t obstacle, std::optional<scene::Motion> motion) {
     obstacles_.at(obstacle).motion = std::move(motion);
   }
 
@@ -80,7 +80,7 @@ class ObstacleMeshes {
   static std::vector<gpu::VertexAttribute> vertexAttributes();
 
  private:
-  std::vector<io::Obstacle> obstacles_;
+  std::vector<scene::Obstacle> obstacles_;
   Box boundsOf(bool castersOnly) const;
 
   std::vector<Box> localBounds_;  // of each obstacle's vertices, around its placement point
@@ -90,7 +90,7 @@ class ObstacleMeshes {
 };
 
 // The simulation domain: grid.origin to grid.origin + grid.size · grid.cellSize.
-Box domainBox(const io::Grid& grid);
+Box domainBox(const scene::Grid& grid);
 // The domain box grown to hold the obstacles as last placed: the bounds that the shadow maps cover and whose
 // boxDepthRange is the depth range of the obstacle pass (and of every pass that tests against its depth).
 Box sceneBounds(const Box& domain, const ObstacleMeshes& meshes);

@@ -72,7 +72,7 @@ ObstaclePass::ObstaclePass(const gpu::Context& context, const gpu::PipelineCache
 ObstaclePass::~ObstaclePass() = default;
 
 void ObstaclePass::update(const Camera& camera, const ImagePlane& plane, DepthRange range,
-                          std::span<const io::Light> lights, const std::optional<io::Ambient>& ambient,
+                          std::span<const scene::Light> lights, const std::optional<scene::Ambient>& ambient,
                           const ShadowMaps& shadows) {
   if (lights.size() > size_t(kMaxLights))
     throw io::InputError("lights", std::to_string(lights.size()) +
@@ -84,18 +84,18 @@ void ObstaclePass::update(const Camera& camera, const ImagePlane& plane, DepthRa
   p.eye = glm::vec4(camera.position, float(shadows.tileSize()));
   p.albedo = glm::vec4(kObstacleAlbedo, float(lights.size()));
   if (ambient) {
-    if (const auto* constant = std::get_if<io::AmbientColor>(&*ambient))
+    if (const auto* constant = std::get_if<scene::AmbientColor>(&*ambient))
       p.ambient[0] = glm::vec4(constant->color, 0.0f);
     else
       for (int i = 0; i < 4; ++i)
-        p.ambient[i] = glm::vec4(std::get<io::AmbientSh>(*ambient).coefficients[i], 0.0f);
+        p.ambient[i] = glm::vec4(std::get<scene::AmbientSh>(*ambient).coefficients[i], 0.0f);
   }
   for (size_t i = 0; i < lights.size(); ++i) {
-    const io::Light& light = lights[i];
-    if (const auto* directional = std::get_if<io::DirectionalLight>(&light.source))
+    const scene::Light& light = lights[i];
+    if (const auto* directional = std::get_if<scene::DirectionalLight>(&light.source))
       p.lightVector[i] = glm::vec4(directional->direction, 0.0f);
     else
-      p.lightVector[i] = glm::vec4(std::get<io::PointLight>(light.source).position, 1.0f);
+      p.lightVector[i] = glm::vec4(std::get<scene::PointLight>(light.source).position, 1.0f);
     p.lightIntensity[i] = glm::vec4(light.color * light.intensity, 0.0f);
     const int tile = shadows.tileOf(i);
     p.lightViewProjection[i] = shadows.lightViewProjection(i);
@@ -108,7 +108,7 @@ void ObstaclePass::update(const Camera& camera, const ImagePlane& plane, DepthRa
 
 void ObstaclePass::record(gpu::Sequence& sequence, const ObstacleMeshes& meshes, const ShadowMaps& shadows,
                           const gpu::Image& color, const gpu::Image& depth, const Volume* smoke,
-                          const io::Smoke& smokeOptics) const {
+                          const scene::Smoke& smokeOptics) const {
   ObstaclePush push{};
   if (smoke) {
     requireConsistent(*smoke);

@@ -12,9 +12,9 @@
 #include <span>
 
 #include "gpu/buffer.h"
-#include "io/scene.h"
 #include "render/camera.h"
 #include "render/projection.h"
+#include "scene/scene.h"
 
 namespace sixway::gpu {
 class Context;
@@ -49,7 +49,7 @@ class ObstaclePass {
   // (sceneLights), the ambient light and the shadow maps, updated for this frame (their tiles and light
   // matrices). Throws io::InputError for more lights than the shader takes (8).
   void update(const Camera& camera, const ImagePlane& plane, DepthRange range,
-              std::span<const io::Light> lights, const std::optional<io::Ambient>& ambient,
+              std::span<const scene::Light> lights, const std::optional<scene::Ambient>& ambient,
               const ShadowMaps& shadows);
 
   // Stage "obstacles": clears `color` (kColorFormat, colour attachment) to the background and `depth`
@@ -58,7 +58,7 @@ class ObstaclePass {
   // reaches them (and the ambient light, along the normal). The images' sizes are the frame's.
   void record(gpu::Sequence& sequence, const ObstacleMeshes& meshes, const ShadowMaps& shadows,
               const gpu::Image& color, const gpu::Image& depth, const Volume* smoke = nullptr,
-              const io::Smoke& smokeOptics = {}) const;
+              const scene::Smoke& smokeOptics = {}) const;
 
   // Of the last update: world → clip space of the depth buffer.
   const glm::mat4& viewProjection() const { return viewProjection_; }

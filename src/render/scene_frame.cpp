@@ -7,14 +7,14 @@
 
 namespace sixway::render {
 
-Camera sceneCamera(const io::Camera& camera, int frame) {
+Camera sceneCamera(const scene::Camera& camera, int frame) {
   glm::vec3 position = camera.position;
   if (camera.path) {
-    if (const auto* orbit = std::get_if<io::CameraOrbit>(&*camera.path)) {
+    if (const auto* orbit = std::get_if<scene::CameraOrbit>(&*camera.path)) {
       const float angle = glm::radians(orbit->degreesPerFrame * float(frame));
       position = camera.target + glm::angleAxis(angle, camera.up) * (camera.position - camera.target);
     } else {
-      const auto& dolly = std::get<io::CameraDolly>(*camera.path);
+      const auto& dolly = std::get<scene::CameraDolly>(*camera.path);
       const float s = std::min(1.0f, float(frame) / float(dolly.frames));
       position = camera.position + s * (dolly.endPosition - camera.position);
     }
@@ -22,16 +22,16 @@ Camera sceneCamera(const io::Camera& camera, int frame) {
   return Camera::lookAt(position, camera.target, camera.up, camera.fovDeg);
 }
 
-std::vector<io::Light> sceneLights(const std::vector<io::Light>& lights, int frame) {
-  std::vector<io::Light> moved = lights;
-  for (io::Light& light : moved) {
+std::vector<scene::Light> sceneLights(const std::vector<scene::Light>& lights, int frame) {
+  std::vector<scene::Light> moved = lights;
+  for (scene::Light& light : moved) {
     if (!light.path) continue;
     const glm::quat turn =
         glm::angleAxis(glm::radians(light.path->degreesPerFrame * float(frame)), light.path->axis);
-    if (auto* directional = std::get_if<io::DirectionalLight>(&light.source)) {
+    if (auto* directional = std::get_if<scene::DirectionalLight>(&light.source)) {
       directional->direction = turn * directional->direction;
     } else {
-      auto& point = std::get<io::PointLight>(light.source);
+      auto& point = std::get<scene::PointLight>(light.source);
       point.position = light.path->center + turn * (point.position - light.path->center);
     }
     light.path.reset();

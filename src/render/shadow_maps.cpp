@@ -124,17 +124,19 @@ glm::mat4 drawsNothing() {
 
 }  // namespace
 
-uint32_t shadowTileCount(std::span<const io::Light> lights, const std::vector<io::Obstacle>& obstacles) {
-  if (std::none_of(obstacles.begin(), obstacles.end(), [](const io::Obstacle& o) { return o.shadows; }))
+uint32_t shadowTileCount(std::span<const scene::Light> lights,
+                         const std::vector<scene::Obstacle>& obstacles) {
+  if (std::none_of(obstacles.begin(), obstacles.end(), [](const scene::Obstacle& o) { return o.shadows; }))
     return 0;
-  return uint32_t(std::count_if(lights.begin(), lights.end(), [](const io::Light& l) { return l.shadows; }));
+  return uint32_t(
+      std::count_if(lights.begin(), lights.end(), [](const scene::Light& l) { return l.shadows; }));
 }
 
-std::optional<glm::mat4> shadowProjection(const io::Light& light, const Box& casters, const Box& scene,
+std::optional<glm::mat4> shadowProjection(const scene::Light& light, const Box& casters, const Box& scene,
                                           uint32_t tileSize) {
-  if (const auto* directional = std::get_if<io::DirectionalLight>(&light.source))
+  if (const auto* directional = std::get_if<scene::DirectionalLight>(&light.source))
     return directionalProjection(directional->direction, casters, scene, tileSize);
-  return pointProjection(std::get<io::PointLight>(light.source).position, casters, scene, tileSize);
+  return pointProjection(std::get<scene::PointLight>(light.source).position, casters, scene, tileSize);
 }
 
 ShadowMaps::ShadowMaps(const gpu::Context& context, const gpu::PipelineCache& cache, uint32_t tileSize,
@@ -169,7 +171,7 @@ ShadowMaps::ShadowMaps(const gpu::Context& context, const gpu::PipelineCache& ca
 
 ShadowMaps::~ShadowMaps() = default;
 
-void ShadowMaps::update(std::span<const io::Light> lights, const Box& sceneBounds,
+void ShadowMaps::update(std::span<const scene::Light> lights, const Box& sceneBounds,
                         const ObstacleMeshes& meshes) {
   tileOf_.assign(lights.size(), -1);
   lightMatrices_.assign(lights.size(), drawsNothing());

@@ -21,8 +21,8 @@
 
 #include "gpu/buffer.h"
 #include "gpu/image.h"
-#include "io/scene.h"
 #include "render/volume.h"
+#include "scene/scene.h"
 
 namespace sixway::gpu {
 class Pipeline;
@@ -37,13 +37,13 @@ class ObstacleMeshes;
 inline constexpr uint32_t kDefaultShadowTileSize = 1024;
 
 // Atlas tiles a scene needs: one per light with shadows = true, when at least one obstacle casts shadows.
-uint32_t shadowTileCount(std::span<const io::Light> lights, const std::vector<io::Obstacle>& obstacles);
+uint32_t shadowTileCount(std::span<const scene::Light> lights, const std::vector<scene::Obstacle>& obstacles);
 
 // World → the light's clip space for a tile of tileSize² texels, fitted to the casters' bounds and reaching
 // the far side of the scene bounds; none for a point light that does not have the whole casters' box in front
 // of it (inside that box, or beside it so that its nearest corner is nearer than 1/1000 of the farthest
 // scene depth): there is no cube map.
-std::optional<glm::mat4> shadowProjection(const io::Light& light, const Box& casters, const Box& scene,
+std::optional<glm::mat4> shadowProjection(const scene::Light& light, const Box& casters, const Box& scene,
                                           uint32_t tileSize);
 
 class ShadowMaps {
@@ -58,7 +58,7 @@ class ShadowMaps {
   // in order while some obstacle casts shadows and tiles remain (an atlas of 0 tiles: no shadows at all); a
   // point light whose projection does not exist this frame (see shadowProjection) has no tile this frame, and
   // a note says so once per light.
-  void update(std::span<const io::Light> lights, const Box& sceneBounds, const ObstacleMeshes& meshes);
+  void update(std::span<const scene::Light> lights, const Box& sceneBounds, const ObstacleMeshes& meshes);
 
   // Stage "shadow maps": clears the atlas to 1 and draws the shadow-casting obstacles into each tile.
   void record(gpu::Sequence& sequence, const ObstacleMeshes& meshes) const;

@@ -87,15 +87,15 @@ void checkControls(const ShadingControls& c) {
 }
 
 // L0 and L1 of the ambient radiance, L1 turned into the six-way frame (camera right, up, forward).
-void ambientCoefficients(const std::optional<io::Ambient>& ambient, const Camera& camera,
+void ambientCoefficients(const std::optional<scene::Ambient>& ambient, const Camera& camera,
                          glm::vec4 (&out)[4]) {
   for (glm::vec4& c : out) c = glm::vec4(0.0f);
   if (!ambient) return;
-  if (const auto* constant = std::get_if<io::AmbientColor>(&*ambient)) {
+  if (const auto* constant = std::get_if<scene::AmbientColor>(&*ambient)) {
     out[0] = glm::vec4(constant->color, 0.0f);
     return;
   }
-  const auto& sh = std::get<io::AmbientSh>(*ambient).coefficients;
+  const auto& sh = std::get<scene::AmbientSh>(*ambient).coefficients;
   out[0] = glm::vec4(sh[0], 0.0f);
   const glm::vec3 axes[3] = {camera.right, camera.up, camera.forward};
   for (int i = 0; i < 3; ++i)  // per colour: L1 (a world vector) · axis
@@ -111,14 +111,14 @@ void requireSampledFloat(const gpu::Image& image, const char* what) {
 
 }  // namespace
 
-ShadingLight shadingLight(const io::Light& light, int shadowTile, const glm::mat4& shadowMatrix) {
+ShadingLight shadingLight(const scene::Light& light, int shadowTile, const glm::mat4& shadowMatrix) {
   ShadingLight s;
-  if (const auto* directional = std::get_if<io::DirectionalLight>(&light.source)) {
+  if (const auto* directional = std::get_if<scene::DirectionalLight>(&light.source)) {
     s.type = ShadingLight::Type::Directional;
     s.vector = glm::normalize(directional->direction);
   } else {
     s.type = ShadingLight::Type::Point;
-    s.vector = std::get<io::PointLight>(light.source).position;
+    s.vector = std::get<scene::PointLight>(light.source).position;
   }
   s.radiance = light.color * light.intensity;
   s.shadowTile = light.shadows ? shadowTile : -1;
@@ -126,17 +126,17 @@ ShadingLight shadingLight(const io::Light& light, int shadowTile, const glm::mat
   return s;
 }
 
-std::vector<GradientKey> emissiveGradientFromRamp(const io::Emission& emission) {
+std::vector<GradientKey> emissiveGradientFromRamp(const scene::Emission& emission) {
   std::vector<GradientKey> keys;
   if (emission.intensity <= 0.0f) return keys;
-  for (const io::EmissionKey& k : emission.ramp) {
+  for (const scene::EmissionKey& k : emission.ramp) {
     const float l = luminance(k.color);
     if (l > (keys.empty() ? 0.0f : keys.back().position)) keys.push_back({l, k.color});
   }
   return keys;
 }
 
-std::optional<float> emissiveStraightScale(const io::Smoke& smoke) {
+std::optional<float> emissiveStraightScale(const scene::Smoke& smoke) {
   if (smoke.emission.intensity <= 0.0f) return std::nullopt;
   return smoke.emission.intensity / smoke.extinction;
 }
@@ -174,7 +174,7 @@ SixWayShading::~SixWayShading() = default;
 
 void SixWayShading::update(const Camera& camera, const ImagePlane& frame, const ImagePlane& billboard,
                            DepthRange shellRange, DepthRange sceneRange, std::span<const ShadingLight> lights,
-                           const std::optional<io::Ambient>& ambient, const ShadingControls& controls) {
+                           const std::optional<scene::Ambient>& ambient, const ShadingControls& controls) {
   if (lights.size() > maxLights_)
     throw io::InputError("shading", std::to_string(lights.size()) +
                                         " lights; the six-way shading takes at most " +

@@ -18,9 +18,9 @@
 
 #include "gpu/buffer.h"
 #include "gpu/image.h"
-#include "io/scene.h"
 #include "render/camera.h"
 #include "render/projection.h"
+#include "scene/scene.h"
 
 namespace sixway::gpu {
 class Context;
@@ -42,7 +42,7 @@ struct ShadingLight {
 };
 
 // The scene's light (positioned for the frame, see sceneLights) with its shadow map, if any.
-ShadingLight shadingLight(const io::Light& light, int shadowTile = -1,
+ShadingLight shadingLight(const scene::Light& light, int shadowTile = -1,
                           const glm::mat4& shadowMatrix = glm::mat4(1.0f));
 
 // Unity's "Lightmap Remap" range: straight (not premultiplied) values in [inMin, inMax] map onto
@@ -85,11 +85,11 @@ struct ShadingControls {
 // are not brighter than the one before are dropped), so the emissive colour has exactly the luminance the
 // baker wrote into the emissive channel, and, looked up at the straight value (emissiveStraightScale), the
 // ramp's colour of that luminance. Empty for no emission.
-std::vector<GradientKey> emissiveGradientFromRamp(const io::Emission& emission);
+std::vector<GradientKey> emissiveGradientFromRamp(const scene::Emission& emission);
 // emissiveStraightScale for a scene's smoke: intensity / extinction, the emitted luminance of opaque smoke
 // per unit of ramp luminance (the source function j/σ_t of shaders/render/sixway_march.comp). None without
 // emission.
-std::optional<float> emissiveStraightScale(const io::Smoke& smoke);
+std::optional<float> emissiveStraightScale(const scene::Smoke& smoke);
 
 // The obstacle shadow maps: one D32 depth image, `tileSize` wide, a vertical stack of square tiles, tile t
 // holding the light with shadowTile t (docs/real-time-rendering.md, "Obstacles and shadows").
@@ -114,7 +114,7 @@ class SixWayShading {
   // and for controls out of range.
   void update(const Camera& camera, const ImagePlane& frame, const ImagePlane& billboard,
               DepthRange shellRange, DepthRange sceneRange, std::span<const ShadingLight> lights,
-              const std::optional<io::Ambient>& ambient, const ShadingControls& controls);
+              const std::optional<scene::Ambient>& ambient, const ShadingControls& controls);
 
   // Records the draw (timed stage "shade"). Lightmaps A and B: sampled float RGBA images over the billboard;
   // `guide`: the guiding map (shell depth in B), none: no pixel has a shell; `opacityDepths`: where the

@@ -5,12 +5,12 @@
 
 namespace sixway::runtime {
 
-FrameView sceneView(const io::Scene& scene, int index) {
+FrameView sceneView(const scene::Scene& scene, int index) {
   return {render::sceneCamera(scene.camera, index), render::sceneLights(scene.lights, index)};
 }
 
 FrameRenderer::FrameRenderer(const gpu::Context& context, const gpu::PipelineCache& cache,
-                             const io::Scene& scene, FrameTarget target, uint32_t shadowTiles,
+                             const scene::Scene& scene, FrameTarget target, uint32_t shadowTiles,
                              std::unique_ptr<LightmapSource> source)
     : source_(std::move(source)),
       frame_(context, cache, scene, std::move(target), shadowTiles, source_->guide(scene)),

@@ -10,13 +10,13 @@
 #include <vector>
 
 #include "gpu/sequence.h"
-#include "io/scene.h"
 #include "render/camera.h"
 #include "render/projection.h"
 #include "render/recorded_sequence.h"
 #include "render/volume.h"
 #include "runtime/lightmap_source.h"
 #include "runtime/realtime_frame.h"
+#include "scene/scene.h"
 
 namespace sixway::gpu {
 class Context;
@@ -28,10 +28,10 @@ namespace sixway::runtime {
 // Where a frame is seen from and what lights it.
 struct FrameView {
   render::Camera camera;
-  std::vector<io::Light> lights;
+  std::vector<scene::Light> lights;
 };
 // The scene's camera and lights on their paths at frame `index`.
-FrameView sceneView(const io::Scene& scene, int index);
+FrameView sceneView(const scene::Scene& scene, int index);
 
 struct FrameInput {
   render::Volume volume;
@@ -46,7 +46,7 @@ struct FrameInput {
 class FrameRenderer {
  public:
   // `scene` outlives the renderer; the guiding map takes the source's settings.
-  FrameRenderer(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
+  FrameRenderer(const gpu::Context& context, const gpu::PipelineCache& cache, const scene::Scene& scene,
                 FrameTarget target, uint32_t shadowTiles, std::unique_ptr<LightmapSource> source);
 
   // Records the passes when the volume differs from the last frame's, writes this frame's values, and returns

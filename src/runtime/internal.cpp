@@ -25,7 +25,7 @@ const gpu::PipelineCache& Access::pipelineCache(const Device& device) {
   return *device.impl_->cache;
 }
 
-const io::Scene& Access::scene(const SmokeSimulation& simulation) {
+const scene::Scene& Access::scene(const SmokeSimulation& simulation) {
   return simulation.impl_->scene;
 }
 

@@ -10,9 +10,9 @@
 
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
-#include "io/scene.h"
 #include "runtime/realtime_frame.h"
 #include "runtime/scene_volumes.h"
+#include "scene/scene.h"
 
 namespace sixway::runtime {
 
@@ -25,7 +25,7 @@ struct Access {
   static const gpu::Context& context(const Device& device);
   static const gpu::PipelineCache& pipelineCache(const Device& device);
 
-  static const io::Scene& scene(const SmokeSimulation& simulation);
+  static const scene::Scene& scene(const SmokeSimulation& simulation);
   static const SimulatedVolumes& volumes(const SmokeSimulation& simulation);
   // How often the simulation was started: a restarted one's volume may reuse a buffer handle.
   static uint64_t starts(const SmokeSimulation& simulation);

@@ -7,11 +7,11 @@
 
 #include "gpu/image.h"
 #include "gpu/sequence.h"
-#include "io/scene.h"
 #include "nn/network.h"
 #include "render/lightmap_images.h"
 #include "runtime/internal.h"
 #include "runtime/network_weights.h"
+#include "scene/scene.h"
 
 namespace sixway {
 
@@ -25,7 +25,7 @@ struct LightmapNetwork::Impl {
         sequence(context) {
     nn::NetworkOptions options;
     options.precision = fp16 ? nn::Precision::Fp16 : nn::Precision::Fp32;
-    options.albedo = io::Smoke{}.albedo;  // run() sets each run's
+    options.albedo = scene::Smoke{}.albedo;  // run() sets each run's
     network = runtime::loadNetwork(context, cache, weights, size, options);
     if (network->graph().nodes.front().guideChannels > nn::kGuideImageChannels)
       emission.emplace(

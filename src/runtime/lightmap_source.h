@@ -6,11 +6,11 @@
 #include <vector>
 
 #include "gpu/sequence.h"
-#include "io/scene.h"
 #include "render/camera.h"
 #include "render/guiding_map.h"
 #include "render/volume.h"
 #include "runtime/realtime_frame.h"
+#include "scene/scene.h"
 
 namespace sixway::runtime {
 
@@ -32,7 +32,7 @@ class LightmapSource {
 
   FrameStages stages() const { return stages_; }
   // The guiding map's settings: the scene's, unless the source reads the guide its own way.
-  virtual render::GuideSettings guide(const io::Scene& scene) const {
+  virtual render::GuideSettings guide(const scene::Scene& scene) const {
     return render::GuideSettings::fromScene(scene);
   }
   // Records what fills frame.lightmaps() from the guide; nothing for lightmaps uploaded by update().

@@ -6,7 +6,7 @@ namespace sixway::runtime {
 namespace {
 
 // Fp16 or fp32 feature maps, an emissive output only for smoke that glows, the smoke's albedo.
-nn::NetworkOptions sceneNetworkOptions(const io::Scene& scene, bool fp16) {
+nn::NetworkOptions sceneNetworkOptions(const scene::Scene& scene, bool fp16) {
   nn::NetworkOptions options;
   options.precision = fp16 ? nn::Precision::Fp16 : nn::Precision::Fp32;
   options.emission = scene.smoke.emission.intensity > 0.0f;
@@ -17,11 +17,11 @@ nn::NetworkOptions sceneNetworkOptions(const io::Scene& scene, bool fp16) {
 }  // namespace
 
 NetworkLightmaps::NetworkLightmaps(const gpu::Context& context, const gpu::PipelineCache& cache,
-                                   const io::Scene& scene, const std::filesystem::path& weights, bool fp16)
+                                   const scene::Scene& scene, const std::filesystem::path& weights, bool fp16)
     : network_(loadNetwork(context, cache, weights, uint32_t(scene.render.lightmapSize),
                            sceneNetworkOptions(scene, fp16))) {}
 
-render::GuideSettings NetworkLightmaps::guide(const io::Scene& scene) const {
+render::GuideSettings NetworkLightmaps::guide(const scene::Scene& scene) const {
   render::GuideSettings guide = LightmapSource::guide(scene);
   const nn::Node& input = network_->graph().nodes.front();
   if (input.guideAlphaStepVoxels > 0.0f) guide.alphaStepCells = input.guideAlphaStepVoxels;

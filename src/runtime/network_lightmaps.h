@@ -13,13 +13,13 @@ class NetworkLightmaps : public LightmapSource {
  public:
   // For the scene's lightmap size, its smoke's emission and albedo. Throws io::InputError naming a missing or
   // malformed weights file.
-  NetworkLightmaps(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
+  NetworkLightmaps(const gpu::Context& context, const gpu::PipelineCache& cache, const scene::Scene& scene,
                    const std::filesystem::path& weights, bool fp16);
 
   // The scene's guide with the fine alpha (channel A) when the network reads it (the graph's
   // guide_alpha_step_voxels wins over the scene's render.guide_alpha_step_voxels: the network was trained on
   // that step), and the emission image when its guide has a 5th channel.
-  render::GuideSettings guide(const io::Scene& scene) const override;
+  render::GuideSettings guide(const scene::Scene& scene) const override;
   void record(gpu::Sequence& sequence, RealtimeFrame& frame) override;
 
  private:

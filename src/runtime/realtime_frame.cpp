@@ -16,7 +16,7 @@ gpu::Image ownImage(const gpu::Context& context, uint32_t width, uint32_t height
 }  // namespace
 
 RealtimeFrame::RealtimeFrame(const gpu::Context& context, const gpu::PipelineCache& cache,
-                             const io::Scene& scene, FrameTarget target, uint32_t shadowTiles,
+                             const scene::Scene& scene, FrameTarget target, uint32_t shadowTiles,
                              const render::GuideSettings& guide)
     : scene_(&scene),
       width_(target.width),
@@ -58,7 +58,7 @@ void RealtimeFrame::record(gpu::Sequence& s, const render::Volume& volume, Frame
                   render::ShadowAtlas{&shadowMaps_.atlas(), shadowMaps_.tileSize()}, color());
 }
 
-void RealtimeFrame::updateScene(const render::Camera& camera, const std::vector<io::Light>& lights,
+void RealtimeFrame::updateScene(const render::Camera& camera, const std::vector<scene::Light>& lights,
                                 double seconds, std::optional<render::DepthRange> targetDepth) {
   meshes_.update(seconds);
   const render::Box bounds = render::sceneBounds(render::domainBox(scene_->grid), meshes_);
@@ -76,7 +76,7 @@ render::ImagePlane RealtimeFrame::updateGuide(const render::Camera& camera, cons
   return billboard;
 }
 
-void RealtimeFrame::updateShading(const render::Camera& camera, const std::vector<io::Light>& lights,
+void RealtimeFrame::updateShading(const render::Camera& camera, const std::vector<scene::Light>& lights,
                                   const render::ImagePlane& billboard, const render::Box& volumeBox) {
   std::vector<render::ShadingLight> shadingLights;
   for (size_t l = 0; l < lights.size(); ++l)

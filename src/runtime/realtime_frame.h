@@ -10,7 +10,6 @@
 
 #include "gpu/image.h"
 #include "gpu/sequence.h"
-#include "io/scene.h"
 #include "render/camera.h"
 #include "render/guiding_map.h"
 #include "render/lightmap_images.h"
@@ -20,6 +19,7 @@
 #include "render/shadow_maps.h"
 #include "render/sixway_shading.h"
 #include "render/volume.h"
+#include "scene/scene.h"
 
 namespace sixway::gpu {
 class Context;
@@ -43,7 +43,7 @@ class RealtimeFrame {
  public:
   // `shadowTiles`: the shadow atlas's tiles (0: no shadows); `guide`: the guiding map's settings (a lightmap
   // source's, LightmapSource::guide).
-  RealtimeFrame(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
+  RealtimeFrame(const gpu::Context& context, const gpu::PipelineCache& cache, const scene::Scene& scene,
                 FrameTarget target, uint32_t shadowTiles, const render::GuideSettings& guide);
 
   // Records the passes for `volume` into `sequence`; `lightmaps` records what fills lightmaps() between the
@@ -53,13 +53,13 @@ class RealtimeFrame {
 
   // This frame's scene: obstacles at `seconds`, the lights, and the depth range the target's depth buffer
   // holds (unset: the range the obstacle pass draws with, boxDepthRange of the scene bounds).
-  void updateScene(const render::Camera& camera, const std::vector<io::Light>& lights, double seconds,
+  void updateScene(const render::Camera& camera, const std::vector<scene::Light>& lights, double seconds,
                    std::optional<render::DepthRange> targetDepth = std::nullopt);
   // This frame's billboard over `volumeBox` (billboardBounds) and the guide's values for it, at frame
   // `index`.
   render::ImagePlane updateGuide(const render::Camera& camera, const render::Box& volumeBox, int index);
   // The shading's values, for the billboard the lightmaps cover.
-  void updateShading(const render::Camera& camera, const std::vector<io::Light>& lights,
+  void updateShading(const render::Camera& camera, const std::vector<scene::Light>& lights,
                      const render::ImagePlane& billboard, const render::Box& volumeBox);
 
   const gpu::Image& color() const { return engineColor_ ? *engineColor_ : color_; }
@@ -81,7 +81,7 @@ class RealtimeFrame {
   std::vector<std::string> takeNotes() { return shadowMaps_.takeNotes(); }
 
  private:
-  const io::Scene* scene_;
+  const scene::Scene* scene_;
   uint32_t width_, height_, lightmapSize_;
   std::optional<gpu::Image> engineColor_, engineDepth_;
   gpu::Image color_, depth_, guide_;

@@ -16,18 +16,18 @@ bool finite(glm::vec3 v) {
 
 }  // namespace
 
-io::Light sceneLight(const Light& light) {
+scene::Light sceneLight(const Light& light) {
   if (!finite(light.color) || !glm::all(glm::greaterThanEqual(light.color, glm::vec3(0.0f))) ||
       !(light.intensity >= 0.0f && light.intensity < kHuge))
     throw std::invalid_argument("Light: colour and intensity must be finite and non-negative");
-  io::Light l;
+  scene::Light l;
   if (light.kind == Light::Kind::Directional) {
     if (!finite(light.direction) || !(glm::length(light.direction) > 1e-6f))
       throw std::invalid_argument("Light: a directional light needs a direction");
-    l.source = io::DirectionalLight{glm::normalize(light.direction)};
+    l.source = scene::DirectionalLight{glm::normalize(light.direction)};
   } else {
     if (!finite(light.position)) throw std::invalid_argument("Light: a point light needs a finite position");
-    l.source = io::PointLight{light.position};
+    l.source = scene::PointLight{light.position};
   }
   l.color = light.color;
   l.intensity = light.intensity;
@@ -35,14 +35,14 @@ io::Light sceneLight(const Light& light) {
   return l;
 }
 
-Light publicLight(const io::Light& light) {
+Light publicLight(const scene::Light& light) {
   Light l;
-  if (const auto* directional = std::get_if<io::DirectionalLight>(&light.source)) {
+  if (const auto* directional = std::get_if<scene::DirectionalLight>(&light.source)) {
     l.kind = Light::Kind::Directional;
     l.direction = directional->direction;
   } else {
     l.kind = Light::Kind::Point;
-    l.position = std::get<io::PointLight>(light.source).position;
+    l.position = std::get<scene::PointLight>(light.source).position;
   }
   l.color = light.color;
   l.intensity = light.intensity;

@@ -2,10 +2,12 @@
 
 #include <cstdio>
 
+#include "scene/fluid_physics.h"
+
 namespace sixway::runtime {
 
 SimulatedVolumes::SimulatedVolumes(const gpu::Context& context, const gpu::PipelineCache& cache,
-                                   const io::Scene& scene, int frames)
+                                   const scene::Scene& scene, int frames)
     : simulation_(context, cache, scene),
       frames_(frames),
       volume_(
@@ -18,7 +20,7 @@ SimulatedVolumes::SimulatedVolumes(const gpu::Context& context, const gpu::Pipel
 }
 
 render::Volume SimulatedVolumes::volume(int index) {
-  const uint32_t steps = uint32_t(io::lbmStepsPerFrame(simulation_.scene()));
+  const uint32_t steps = uint32_t(scene::lbmStepsPerFrame(simulation_.scene()));
   if (simulated_ <= index) frameTimes_ = {};
   for (; simulated_ <= index; ++simulated_) {
     simulation_.advance(steps);

@@ -5,9 +5,9 @@
 #include <memory>
 
 #include "gpu/sequence.h"
-#include "io/scene.h"
 #include "render/volume.h"
 #include "render/volume_sequence.h"
+#include "scene/scene.h"
 #include "sim/simulation.h"
 
 namespace sixway::gpu {
@@ -20,7 +20,7 @@ namespace sixway::runtime {
 // Frame i is the smoke after i + 1 frames of simulation (t = (i + 1) · time.frame_dt); `frames` frames.
 class SimulatedVolumes : public render::VolumeSequence {
  public:
-  SimulatedVolumes(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
+  SimulatedVolumes(const gpu::Context& context, const gpu::PipelineCache& cache, const scene::Scene& scene,
                    int frames);
 
   int frameCount() const override { return frames_; }
@@ -41,7 +41,7 @@ class SimulatedVolumes : public render::VolumeSequence {
   sim::Simulation& simulation() { return simulation_; }
   // GPU time of the simulation steps of the last frame asked for (ms).
   const sim::StepTimes& frameTimes() const { return frameTimes_; }
-  static double frameSeconds(const io::Scene& scene, int index) {
+  static double frameSeconds(const scene::Scene& scene, int index) {
     return double(index + 1) * scene.time.frameDt;
   }
 

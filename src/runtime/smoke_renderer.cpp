@@ -14,7 +14,7 @@
 namespace sixway {
 namespace {
 
-runtime::FrameTarget frameTarget(const gpu::Context& context, const io::Scene& scene,
+runtime::FrameTarget frameTarget(const gpu::Context& context, const scene::Scene& scene,
                                  const RenderTarget* target) {
   if (!target) return {uint32_t(scene.render.width), uint32_t(scene.render.height), {}, {}};
   if (!target->colorImage || !target->colorView || !target->depthImage || !target->depthView ||
@@ -29,7 +29,7 @@ runtime::FrameTarget frameTarget(const gpu::Context& context, const io::Scene& s
                                 VK_IMAGE_USAGE_SAMPLED_BIT, "engine depth"})};
 }
 
-uint32_t shadowTiles(const io::Scene& scene, const RendererOptions& options) {
+uint32_t shadowTiles(const scene::Scene& scene, const RendererOptions& options) {
   if (!options.shadows) return 0;
   return options.shadowedLights ? *options.shadowedLights
                                 : render::shadowTileCount(scene.lights, scene.obstacles);
@@ -88,7 +88,7 @@ void SmokeRenderer::setLights(const std::vector<Light>& lights) {
   if (lights.size() > maxLights())
     throw std::invalid_argument("SmokeRenderer::setLights: " + std::to_string(lights.size()) +
                                 " lights; at most " + std::to_string(maxLights()));
-  std::vector<io::Light> converted;
+  std::vector<scene::Light> converted;
   for (const Light& l : lights) converted.push_back(runtime::sceneLight(l));
   impl_->lights = std::move(converted);
 }

@@ -8,8 +8,8 @@
 #include <optional>
 #include <vector>
 
-#include "io/scene.h"
 #include "runtime/frame_renderer.h"
+#include "scene/scene.h"
 
 namespace sixway {
 
@@ -21,11 +21,11 @@ struct SmokeRenderer::Impl {
   gpu::Sequence& prepare();
 
   const SmokeSimulation& simulation;
-  const io::Scene& scene;  // the simulation's
+  const scene::Scene& scene;  // the simulation's
   bool engineTarget;
   runtime::FrameRenderer renderer;
   std::optional<Camera> camera;
-  std::optional<std::vector<io::Light>> lights;
+  std::optional<std::vector<scene::Light>> lights;
   gpu::Sequence* last = nullptr;
 };
 

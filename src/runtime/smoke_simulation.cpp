@@ -9,7 +9,7 @@
 
 namespace sixway {
 
-SmokeSimulation::Impl::Impl(const gpu::Context& context, const gpu::PipelineCache& cache, io::Scene scene)
+SmokeSimulation::Impl::Impl(const gpu::Context& context, const gpu::PipelineCache& cache, scene::Scene scene)
     : context(context), cache(cache), scene(std::move(scene)) {
   start();
 }
@@ -26,9 +26,9 @@ void SmokeSimulation::Impl::start() {
 namespace {
 
 // The runtime simulates; a scene that plays VDB files back is refused naming its file.
-io::Scene simulatedScene(const std::filesystem::path& file) {
-  io::Scene scene = io::loadScene(file);
-  io::requireSimulated(scene, file.string());
+scene::Scene simulatedScene(const std::filesystem::path& file) {
+  scene::Scene scene = scene::loadScene(file);
+  scene::requireSimulated(scene, file.string());
   return scene;
 }
 

@@ -6,19 +6,19 @@
 
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
-#include "io/scene.h"
 #include "runtime/scene_volumes.h"
+#include "scene/scene.h"
 
 namespace sixway {
 
 struct SmokeSimulation::Impl {
-  Impl(const gpu::Context& context, const gpu::PipelineCache& cache, io::Scene scene);
+  Impl(const gpu::Context& context, const gpu::PipelineCache& cache, scene::Scene scene);
   // A fresh simulation of the scene (the previous one's memory freed first).
   void start();
 
   const gpu::Context& context;
   const gpu::PipelineCache& cache;
-  io::Scene scene;
+  scene::Scene scene;
   std::unique_ptr<runtime::SimulatedVolumes> volumes;
   int frames = 0;         // frames simulated (or recorded) since the start
   uint64_t starts = 0;    // how often the simulation was started: a renderer re-records after a restart

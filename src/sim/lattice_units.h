@@ -4,7 +4,7 @@
 // lattice viscosity = ν · dt / dx², relaxation time τ = 3 ν_lattice + ½.
 #include <glm/glm.hpp>
 
-#include "io/scene.h"
+#include "scene/scene.h"
 
 namespace sixway::sim {
 
@@ -22,6 +22,6 @@ struct LatticeUnits {
   glm::vec3 toLattice(glm::vec3 world, glm::vec3 origin) const { return (world - origin) / cellSize; }
 };
 
-LatticeUnits latticeUnits(const io::Scene& scene);
+LatticeUnits latticeUnits(const scene::Scene& scene);
 
 }  // namespace sixway::sim

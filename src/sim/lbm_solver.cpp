@@ -27,8 +27,8 @@ struct ForcesPush {  // forces.comp
 };
 
 // The shader, or its LBM_FP16 variant (shaders/sim/shaders.cmake).
-std::string latticeShader(const std::string& name, io::PopulationStorage storage) {
-  return storage == io::PopulationStorage::Fp16 ? name + ":LBM_FP16" : name;
+std::string latticeShader(const std::string& name, scene::PopulationStorage storage) {
+  return storage == scene::PopulationStorage::Fp16 ? name + ":LBM_FP16" : name;
 }
 
 std::vector<BindingType> storageBuffers(int count) {
@@ -61,28 +61,28 @@ gpu::ComputePipelineDesc latticeDesc(const std::string& shader, const LbmSetting
 
 }  // namespace
 
-uint32_t populationBytes(io::PopulationStorage storage) {
-  return storage == io::PopulationStorage::Fp16 ? 2 : 4;
+uint32_t populationBytes(scene::PopulationStorage storage) {
+  return storage == scene::PopulationStorage::Fp16 ? 2 : 4;
 }
 
-uint32_t bytesPerCellUpdate(io::PopulationStorage storage) {
+uint32_t bytesPerCellUpdate(scene::PopulationStorage storage) {
   return 19 * populationBytes(storage) * 2 + 4 + 16 * 2;
 }
 
-glm::ivec3 storedSize(glm::ivec3 size, const std::array<io::BoundaryType, 6>& faces) {
+glm::ivec3 storedSize(glm::ivec3 size, const std::array<scene::BoundaryType, 6>& faces) {
   for (int a = 0; a < 3; ++a)
-    if (faces[2 * a] != io::BoundaryType::Periodic) size[a] += 2;
+    if (faces[2 * a] != scene::BoundaryType::Periodic) size[a] += 2;
   return size;
 }
 
-uint64_t latticeBytes(glm::ivec3 size, const std::array<io::BoundaryType, 6>& faces,
-                      io::PopulationStorage storage) {
+uint64_t latticeBytes(glm::ivec3 size, const std::array<scene::BoundaryType, 6>& faces,
+                      scene::PopulationStorage storage) {
   const glm::ivec3 stored = storedSize(size, faces);
   return uint64_t(stored.x) * uint64_t(stored.y) * uint64_t(stored.z) * 19 * populationBytes(storage) +
          uint64_t(size.x) * uint64_t(size.y) * uint64_t(size.z) * 16;
 }
 
-LbmSettings lbmSettings(const io::Scene& scene, const LatticeUnits& units) {
+LbmSettings lbmSettings(const scene::Scene& scene, const LatticeUnits& units) {
   LbmSettings s;
   s.size = scene.grid.size;
   s.faces = scene.boundaries.faces;
@@ -94,8 +94,8 @@ LbmSettings lbmSettings(const io::Scene& scene, const LatticeUnits& units) {
   s.up = -glm::normalize(scene.fluid.gravity);
   s.bodyForce = units.toLatticeAcceleration(scene.fluid.bodyForce);
   s.wind = units.toLatticeVelocity(scene.boundaries.wind);
-  s.parabolicInflow = scene.boundaries.inflowProfile == io::InflowProfile::Parabolic;
-  s.interpolatedBounceBack = scene.fluid.obstacleBoundary == io::ObstacleBoundary::Interpolated;
+  s.parabolicInflow = scene.boundaries.inflowProfile == scene::InflowProfile::Parabolic;
+  s.interpolatedBounceBack = scene.fluid.obstacleBoundary == scene::ObstacleBoundary::Interpolated;
   s.storage = scene.fluid.populationStorage;
   return s;
 }
@@ -122,7 +122,7 @@ LbmSolver::LbmSolver(const gpu::Context& context, const gpu::PipelineCache& cach
   const uint64_t storedCells = uint64_t(storedSize_.x) * uint64_t(storedSize_.y) * uint64_t(storedSize_.z);
   if (storedCells > UINT32_MAX / kPopulationsPerBuffer)
     throw io::InputError("grid.size", "the lattice has too many cells for 32-bit population addressing");
-  if (settings.storage == io::PopulationStorage::Fp16 && !context.capabilities().storage16Bit)
+  if (settings.storage == scene::PopulationStorage::Fp16 && !context.capabilities().storage16Bit)
     throw io::InputError(
         "fluid.population_storage",
         "fp16 needs 16-bit storage buffers (storageBuffer16BitAccess), which this device lacks");
@@ -228,7 +228,7 @@ void LbmSolver::recordStep(gpu::Sequence& sequence, const gpu::Buffer& params, c
   uint64_t interior = 1, slabs = 0;
   bool boxOnFace = false;  // a cell of the box on a face slab: a slab cell may border an obstacle
   for (int a = 0; a < 3; ++a) {
-    const bool oneCellPeriodic = size[a] == 1 && settings_.faces[2 * a] == io::BoundaryType::Periodic;
+    const bool oneCellPeriodic = size[a] == 1 && settings_.faces[2 * a] == scene::BoundaryType::Periodic;
     interior *= uint64_t(std::max(size[a] - (oneCellPeriodic ? 0 : 2), 0));
     if (!oneCellPeriodic) slabs += cells_ / uint64_t(size[a]) * (size[a] > 1 ? 2 : 1);
     if (!oneCellPeriodic && boxCells > 0)

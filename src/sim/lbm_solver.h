@@ -1,7 +1,7 @@
 #pragma once
 // The D3Q19 lattice and its kernels (shaders/sim/lbm_*.comp, forces*.comp): one set of populations, in four
 // structure-of-arrays buffers, streamed in place by steps of alternating parity (lbm_in_place.glsl), of
-// 32-bit populations or of 16-bit shifted ones (io::PopulationStorage, lbm_lattice.glsl).
+// 32-bit populations or of 16-bit shifted ones (scene::PopulationStorage, lbm_lattice.glsl).
 #include <array>
 #include <glm/glm.hpp>
 #include <memory>
@@ -11,7 +11,7 @@
 
 #include "gpu/buffer.h"
 #include "gpu/pipeline.h"
-#include "io/scene.h"
+#include "scene/scene.h"
 #include "sim/lattice_units.h"
 
 namespace sixway::gpu {
@@ -22,7 +22,7 @@ namespace sixway::sim {
 
 struct LbmSettings {
   glm::ivec3 size{0};
-  std::array<io::BoundaryType, 6> faces{};
+  std::array<scene::BoundaryType, 6> faces{};
   float tau = 0.6f;
   float smagorinsky = 0;
   int smokeUpres = 1;
@@ -31,23 +31,23 @@ struct LbmSettings {
   glm::vec3 bodyForce{0};  // lattice acceleration
   glm::vec3 wind{0};       // lattice velocity on inflow faces
   bool parabolicInflow = false;
-  bool interpolatedBounceBack = false;  // obstacles: io::ObstacleBoundary::Interpolated
-  io::PopulationStorage storage = io::PopulationStorage::Fp32;
+  bool interpolatedBounceBack = false;  // obstacles: scene::ObstacleBoundary::Interpolated
+  scene::PopulationStorage storage = scene::PopulationStorage::Fp32;
 };
 
 // Bytes of one stored population.
-uint32_t populationBytes(io::PopulationStorage storage);
+uint32_t populationBytes(scene::PopulationStorage storage);
 // Bytes read and written per cell update by lbm_step: 19 populations each way, the flags and the macro state
 // (read and written); the smoke and the neighbours' flags are left out.
-uint32_t bytesPerCellUpdate(io::PopulationStorage storage);
+uint32_t bytesPerCellUpdate(scene::PopulationStorage storage);
 // The cells stored for a lattice of `size` cells: a ghost layer across every face that is not periodic
 // (lbm_in_place.glsl).
-glm::ivec3 storedSize(glm::ivec3 size, const std::array<io::BoundaryType, 6>& faces);
+glm::ivec3 storedSize(glm::ivec3 size, const std::array<scene::BoundaryType, 6>& faces);
 // Device memory of a lattice: its populations (ghost cells included) and the macro state (16 bytes a cell).
-uint64_t latticeBytes(glm::ivec3 size, const std::array<io::BoundaryType, 6>& faces,
-                      io::PopulationStorage storage);
+uint64_t latticeBytes(glm::ivec3 size, const std::array<scene::BoundaryType, 6>& faces,
+                      scene::PopulationStorage storage);
 
-LbmSettings lbmSettings(const io::Scene& scene, const LatticeUnits& units);
+LbmSettings lbmSettings(const scene::Scene& scene, const LatticeUnits& units);
 
 // A pipeline per step parity, built the first time it is recorded: lavapipe compiles a pipeline when it is
 // created, and a lattice uses only some (without obstacles: no forces, box or uncovered pipelines). The
@@ -95,7 +95,7 @@ class LbmSolver {
   // Cells per axis as stored: the lattice and its ghost layers.
   glm::ivec3 storedSize() const { return storedSize_; }
   uint64_t cells() const { return cells_; }
-  io::PopulationStorage storage() const { return settings_.storage; }
+  scene::PopulationStorage storage() const { return settings_.storage; }
 
  private:
   // Four buffers of populations 0–4, 5–9, 10–14, 15–18 for `cells` cells (lbm_lattice.glsl).

@@ -9,8 +9,8 @@
 #include "gpu/pipeline.h"
 #include "gpu/sequence.h"
 #include "io/error.h"
-#include "io/motion.h"
 #include "io/obj.h"
+#include "scene/obstacle_placement.h"
 #include "sim/sim_spec.h"
 
 namespace sixway::sim {
@@ -34,8 +34,8 @@ struct VoxelizePush {
 
 }  // namespace
 
-ObstacleSet::ObstacleSet(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
-                         const LatticeUnits& units)
+ObstacleSet::ObstacleSet(const gpu::Context& context, const gpu::PipelineCache& cache,
+                         const scene::Scene& scene, const LatticeUnits& units)
     : units_(units), origin_(scene.grid.origin), size_(scene.grid.size) {
   const uint64_t cells = uint64_t(scene.grid.size.x) * scene.grid.size.y * scene.grid.size.z;
   cells_ = cells;
@@ -55,31 +55,31 @@ ObstacleSet::ObstacleSet(const gpu::Context& context, const gpu::PipelineCache& 
     throw io::InputError(scene.name, "inlets: at most " + std::to_string(kMaxInlets) +
                                          " are supported, got " + std::to_string(scene.inlets.size()));
   const float toCells = 1.0f / units.cellSize;
-  for (const io::Obstacle& o : scene.obstacles) {
+  for (const scene::Obstacle& o : scene.obstacles) {
     GpuObstacle g{};
     glm::vec3 extent(0);
     std::visit(
         Overloaded{
-            [&](const io::SphereObstacle& s) {
+            [&](const scene::SphereObstacle& s) {
               g.centre = glm::vec4(units.toLattice(s.center, origin_), float(ShapeCode::Sphere));
               g.size.x = s.radius * toCells;
               extent = glm::vec3(g.size.x);
             },
-            [&](const io::CylinderObstacle& c) {
+            [&](const scene::CylinderObstacle& c) {
               g.centre = glm::vec4(units.toLattice(c.center, origin_), float(ShapeCode::Cylinder));
               g.axis = glm::vec4(c.axis, 0.5f * c.height * toCells);
               g.size.x = c.radius * toCells;
               extent = g.axis.w * glm::abs(c.axis) + g.size.x * glm::sqrt(1.0f - c.axis * c.axis);
             },
-            [&](const io::BoxObstacle& b) {
+            [&](const scene::BoxObstacle& b) {
               g.centre = glm::vec4(units.toLattice(b.center, origin_), float(ShapeCode::Box));
               g.size = glm::vec4(0.5f * b.size * toCells, 0.0f);
               extent = glm::vec3(g.size);
             },
-            [&](const io::MeshObstacle& m) {
+            [&](const scene::MeshObstacle& m) {
               g.centre = glm::vec4(units.toLattice(m.translate, origin_), float(ShapeCode::Mesh));
               // lattice offset d → object: Rᵀ · d · cellSize / scale
-              const glm::mat3 toObject = glm::transpose(io::meshRotation(m)) * (units.cellSize / m.scale);
+              const glm::mat3 toObject = glm::transpose(scene::meshRotation(m)) * (units.cellSize / m.scale);
               for (int row = 0; row < 3; ++row)
                 g.rotation[row] = glm::vec4(toObject[0][row], toObject[1][row], toObject[2][row], 0.0f);
             },
@@ -87,14 +87,14 @@ ObstacleSet::ObstacleSet(const gpu::Context& context, const gpu::PipelineCache& 
         o.shape);
     obstacles_.push_back({g, o.motion, extent});
   }
-  for (const io::Inlet& in : scene.inlets) {
+  for (const scene::Inlet& in : scene.inlets) {
     GpuInlet g{};
     std::visit(Overloaded{
-                   [&](const io::InletDisk& d) {
+                   [&](const scene::InletDisk& d) {
                      g.centre = glm::vec4(units.toLattice(d.center, origin_), 0.0f);
                      g.normal = glm::vec4(d.normal, d.radius * toCells);
                    },
-                   [&](const io::InletBox& b) {
+                   [&](const scene::InletBox& b) {
                      g.centre = glm::vec4(units.toLattice(b.min, origin_), 1.0f);
                      g.normal = glm::vec4(units.toLattice(b.max, origin_), 0.0f);
                    },
@@ -108,7 +108,7 @@ ObstacleSet::ObstacleSet(const gpu::Context& context, const gpu::PipelineCache& 
 }
 
 void ObstacleSet::voxelizeMeshes(const gpu::Context& context, const gpu::PipelineCache& cache,
-                                 const io::Scene& scene) {
+                                 const scene::Scene& scene) {
   struct Job {
     io::Mesh mesh;
     GpuObstacle* target;
@@ -116,7 +116,7 @@ void ObstacleSet::voxelizeMeshes(const gpu::Context& context, const gpu::Pipelin
   std::vector<Job> jobs;
   uint32_t words = 0;
   for (size_t i = 0; i < scene.obstacles.size(); ++i) {
-    const auto* m = std::get_if<io::MeshObstacle>(&scene.obstacles[i].shape);
+    const auto* m = std::get_if<scene::MeshObstacle>(&scene.obstacles[i].shape);
     if (!m) continue;
     GpuObstacle& g = obstacles_[i].shape;
     Job job{io::readObj(m->file), &g};
@@ -178,20 +178,21 @@ void ObstacleSet::recordFlags(gpu::Sequence& sequence, const gpu::Buffer& params
                             dispatchArgs, slot * kFlagsDispatchStride);
 }
 
-void ObstacleSet::setMotion(size_t obstacle, std::optional<io::Motion> motion) {
+void ObstacleSet::setMotion(size_t obstacle, std::optional<scene::Motion> motion) {
   obstacles_.at(obstacle).motion = std::move(motion);
 }
 
 glm::vec3 ObstacleSet::positionAt(size_t obstacle, double seconds) const {
   const Placed& p = obstacles_.at(obstacle);
-  if (p.motion) return io::evaluateMotion(*p.motion, seconds).position;
+  if (p.motion) return scene::evaluateMotion(*p.motion, seconds).position;
   return origin_ + glm::vec3(p.shape.centre) * units_.cellSize;
 }
 
 glm::vec3 ObstacleSet::centreAt(size_t obstacle, uint64_t step) const {
   const Placed& p = obstacles_[obstacle];
   if (!p.motion) return glm::vec3(p.shape.centre);
-  return units_.toLattice(io::evaluateMotion(*p.motion, double(step) * units_.stepSeconds).position, origin_);
+  return units_.toLattice(scene::evaluateMotion(*p.motion, double(step) * units_.stepSeconds).position,
+                          origin_);
 }
 
 std::pair<glm::ivec3, glm::ivec3> ObstacleSet::sweptBox() const {
@@ -201,7 +202,7 @@ std::pair<glm::ivec3, glm::ivec3> ObstacleSet::sweptBox() const {
   for (const Placed& p : obstacles_) {
     std::vector<glm::vec3> centres{glm::vec3(p.shape.centre)};
     if (p.motion)
-      for (const io::Keyframe& k : p.motion->keyframes)
+      for (const scene::Keyframe& k : p.motion->keyframes)
         centres.push_back(units_.toLattice(k.position, origin_));
     for (const glm::vec3& c : centres) {
       lo = glm::min(lo, c - p.halfExtent);
@@ -254,7 +255,7 @@ void ObstacleSet::fill(StepParams& params, uint64_t step) const {
   for (size_t i = 0; i < obstacles_.size(); ++i) {
     GpuObstacle g = obstacles_[i].shape;
     if (obstacles_[i].motion) {
-      const io::MotionState state = io::evaluateMotion(*obstacles_[i].motion, seconds);
+      const scene::MotionState state = scene::evaluateMotion(*obstacles_[i].motion, seconds);
       g.centre = glm::vec4(units_.toLattice(state.position, origin_), g.centre.w);
       g.velocity = glm::vec4(units_.toLatticeVelocity(state.velocity), 0.0f);
     }

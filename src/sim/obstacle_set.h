@@ -10,7 +10,7 @@
 
 #include "gpu/buffer.h"
 #include "gpu/pipeline.h"
-#include "io/scene.h"
+#include "scene/scene.h"
 #include "sim/lattice_units.h"
 #include "sim/sim_params.h"
 
@@ -22,7 +22,7 @@ namespace sixway::sim {
 
 class ObstacleSet {
  public:
-  ObstacleSet(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
+  ObstacleSet(const gpu::Context& context, const gpu::PipelineCache& cache, const scene::Scene& scene,
               const LatticeUnits& units);
 
   // Obstacles and inlets as they are at lattice step `step` (time = step · stepSeconds).
@@ -36,8 +36,8 @@ class ObstacleSet {
   std::pair<glm::ivec3, glm::ivec3> inletBox() const;
   // Replaces the motion of `obstacle` (none: at rest where its shape says), e.g. while a user drags it.
   // sweptBox() follows the new motion: sequences recorded with the old box must be recorded again.
-  void setMotion(size_t obstacle, std::optional<io::Motion> motion);
-  const std::optional<io::Motion>& motion(size_t obstacle) const { return obstacles_.at(obstacle).motion; }
+  void setMotion(size_t obstacle, std::optional<scene::Motion> motion);
+  const std::optional<scene::Motion>& motion(size_t obstacle) const { return obstacles_.at(obstacle).motion; }
   // Where the obstacle's centre (a mesh: its translation) is at `seconds`, in world coordinates (m).
   glm::vec3 positionAt(size_t obstacle, double seconds) const;
   // Scales every inlet's velocity (not its smoke) from the next step on; 1 is the scene's.
@@ -58,14 +58,15 @@ class ObstacleSet {
  private:
   struct Placed {
     GpuObstacle shape;  // at rest; centre replaced by the motion's position
-    std::optional<io::Motion> motion;
+    std::optional<scene::Motion> motion;
     glm::vec3 halfExtent;  // of an axis-aligned box around the centre that holds the shape, cells
   };
   struct TimedInlet {
     GpuInlet inlet;
     float start, stop;  // s
   };
-  void voxelizeMeshes(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene);
+  void voxelizeMeshes(const gpu::Context& context, const gpu::PipelineCache& cache,
+                      const scene::Scene& scene);
   glm::vec3 centreAt(size_t obstacle, uint64_t step) const;  // lattice coordinates
 
   LatticeUnits units_;

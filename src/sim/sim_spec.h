@@ -10,7 +10,7 @@ using gpu::SpecId;
 
 inline constexpr SpecId kSize[3] = {{0, "NX"}, {1, "NY"}, {2, "NZ"}};  // the lattice
 inline constexpr SpecId kSmokeUpres{3, "SMOKE_UPRES"};
-// Boundary type per face, in io::Scene's face order (-x, +x, -y, +y, -z, +z).
+// Boundary type per face, in scene::Scene's face order (-x, +x, -y, +y, -z, +z).
 inline constexpr SpecId kFaces[6] = {{4, "FACE_XM"}, {5, "FACE_XP"}, {6, "FACE_YM"},
                                      {7, "FACE_YP"}, {8, "FACE_ZM"}, {9, "FACE_ZP"}};
 inline constexpr SpecId kPeriodic[3] = {{10, "PERIODIC_X"}, {11, "PERIODIC_Y"}, {12, "PERIODIC_Z"}};

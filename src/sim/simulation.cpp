@@ -14,14 +14,15 @@
 namespace sixway::sim {
 namespace {
 
-const io::Scene& simulated(const io::Scene& scene) {
-  io::requireSimulated(scene, scene.name);
+const scene::Scene& simulated(const scene::Scene& scene) {
+  scene::requireSimulated(scene, scene.name);
   return scene;
 }
 
 }  // namespace
 
-Simulation::Simulation(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene)
+Simulation::Simulation(const gpu::Context& context, const gpu::PipelineCache& cache,
+                       const scene::Scene& scene)
     : context_(&context), scene_(simulated(scene)), units_(latticeUnits(scene)) {
   obstacles_ = std::make_unique<ObstacleSet>(context, cache, scene, units_);
   lbm_ = std::make_unique<LbmSolver>(context, cache, lbmSettings(scene, units_));
@@ -65,7 +66,7 @@ void Simulation::steerObstacle(size_t obstacle, glm::vec3 target) {
   const double speedLimit = 0.5 * scene_.fluid.maxLatticeVelocity / units_.velocityScale;  // m/s
   const double frame = units_.stepSeconds * units_.stepsPerFrame;
   const double duration = std::max(frame, double(glm::length(target - from)) / speedLimit);
-  io::Motion motion;
+  scene::Motion motion;
   motion.keyframes = {{float(now), from}, {float(now + duration), target}};
   obstacles_->setMotion(obstacle, motion);
   // The sequences hold the old motion's swept box (forces, the LBM's boundary dispatch); frames an engine
@@ -76,7 +77,7 @@ void Simulation::steerObstacle(size_t obstacle, glm::vec3 target) {
 
 float Simulation::maxInletStrength() const {
   float fastest = 0.0f;
-  for (const io::Inlet& inlet : scene_.inlets)
+  for (const scene::Inlet& inlet : scene_.inlets)
     fastest = std::max(fastest, units_.toLatticeVelocity(glm::length(inlet.velocity)));
   if (fastest <= 0.0f) return 1.0f;
   return std::clamp(scene_.fluid.maxLatticeVelocity / fastest, 1.0f, 2.0f);

@@ -14,7 +14,7 @@
 #include "gpu/reduce_stats.h"
 #include "gpu/sequence.h"
 #include "io/dense_grid.h"
-#include "io/scene.h"
+#include "scene/scene.h"
 #include "sim/flags_schedule.h"
 #include "sim/lattice_units.h"
 #include "sim/lbm_solver.h"
@@ -47,12 +47,12 @@ struct AdvanceReport {
 
 class Simulation {
  public:
-  Simulation(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene);
+  Simulation(const gpu::Context& context, const gpu::PipelineCache& cache, const scene::Scene& scene);
   ~Simulation();
 
   // Runs `steps` lattice steps (in submissions of at most stepsPerFrame). Throws WatchdogError.
   void advance(uint32_t steps);
-  // Records one frame's steps (io::lbmStepsPerFrame) into `commands`, a caller's command buffer, as frame
+  // Records one frame's steps (scene::lbmStepsPerFrame) into `commands`, a caller's command buffer, as frame
   // `frame` (gpu::Sequence::record): nothing waits. The measurements of the frame recorded
   // Context::framesInFlight() frames earlier, complete by then, become report(), and the watchdog checks
   // them: a WatchdogError arrives that many frames late.
@@ -67,7 +67,7 @@ class Simulation {
   // motion's velocity, and the recorded steps are recorded again for the new swept box.
   void steerObstacle(size_t obstacle, glm::vec3 target);
   // The obstacle's motion as the simulation uses it (the scene's, or the steered one).
-  const std::optional<io::Motion>& obstacleMotion(size_t obstacle) const {
+  const std::optional<scene::Motion>& obstacleMotion(size_t obstacle) const {
     return obstacles_->motion(obstacle);
   }
   // Scales the inlets' velocity, in [0, maxInletStrength()]; throws std::invalid_argument outside.
@@ -84,7 +84,7 @@ class Simulation {
   uint64_t flagPasses() const { return flagsSchedule_.passes(); }
   double seconds() const { return double(step_) * units_.stepSeconds; }
   const LatticeUnits& units() const { return units_; }
-  const io::Scene& scene() const { return scene_; }
+  const scene::Scene& scene() const { return scene_; }
 
   const LbmSolver& lbm() const { return *lbm_; }
   SmokeTransport& smoke() { return *smoke_; }
@@ -101,7 +101,7 @@ class Simulation {
   void checkRecordedFrame(uint64_t frame);
 
   const gpu::Context* context_;
-  io::Scene scene_;
+  scene::Scene scene_;
   LatticeUnits units_;
   std::unique_ptr<ObstacleSet> obstacles_;
   std::unique_ptr<LbmSolver> lbm_;

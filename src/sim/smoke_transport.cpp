@@ -36,7 +36,7 @@ gpu::ComputePipelineDesc smokeDesc(const char* shader, int bindings, const Smoke
 
 void setPeriodicAxes(gpu::ComputePipelineDesc& d, const SmokeSettings& s) {
   for (int axis = 0; axis < 3; ++axis)
-    d.spec.set(spec::kPeriodic[axis], s.faces[2 * axis] == io::BoundaryType::Periodic);
+    d.spec.set(spec::kPeriodic[axis], s.faces[2 * axis] == scene::BoundaryType::Periodic);
 }
 
 // An FCT pass: its own bindings, then the brick header and the active list (sim_fct_cell.glsl).

@@ -10,7 +10,7 @@
 
 #include "gpu/buffer.h"
 #include "gpu/pipeline.h"
-#include "io/scene.h"
+#include "scene/scene.h"
 
 namespace sixway::gpu {
 class Sequence;
@@ -21,7 +21,7 @@ namespace sixway::sim {
 struct SmokeSettings {
   glm::ivec3 lattice{0};
   int upres = 1;
-  std::array<io::BoundaryType, 6> faces{};
+  std::array<scene::BoundaryType, 6> faces{};
   float decayPerStep = 1;  // exp(−dissipation · dt)
   // Skip the bricks of 16×2×2 cells whose values and neighbours' are all ≤ sparseThreshold, dropping those
   // values (shaders/common/sim_bricks.glsl); false: every cell every substep.

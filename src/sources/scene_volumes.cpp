@@ -9,10 +9,10 @@
 namespace sixway::sources {
 
 std::unique_ptr<render::VolumeSequence> openSceneVolumes(const gpu::Context& context,
-                                                         const gpu::PipelineCache& cache, io::Scene& scene,
+                                                         const gpu::PipelineCache& cache, scene::Scene& scene,
                                                          int frames, std::string_view source) {
   if (!scene.vdb) return std::make_unique<runtime::SimulatedVolumes>(context, cache, scene, frames);
-  const int available = io::sceneFrameCount(scene);
+  const int available = scene::sceneFrameCount(scene);
   if (frames > available)
     throw io::InputError(source, std::to_string(frames) + " frames asked for, but the vdb sequence has " +
                                      std::to_string(available) + " (" +

@@ -7,8 +7,8 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "io/scene.h"
 #include "render/volume_sequence.h"
+#include "scene/scene.h"
 
 namespace sixway::gpu {
 class Context;
@@ -21,7 +21,7 @@ namespace sixway::sources {
 // becomes the playback lattice, so that what places cameras, billboards and depth ranges sees the smoke's
 // box. Throws InputError naming `source` when a VDB scene has fewer frames than asked for.
 std::unique_ptr<render::VolumeSequence> openSceneVolumes(const gpu::Context& context,
-                                                         const gpu::PipelineCache& cache, io::Scene& scene,
+                                                         const gpu::PipelineCache& cache, scene::Scene& scene,
                                                          int frames, std::string_view source);
 
 // What a report or sidecar records of where the smoke came from: the lattice, and the files when played back.

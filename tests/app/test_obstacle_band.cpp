@@ -17,7 +17,7 @@ namespace {
 
 constexpr int kSize = 64;
 
-io::Light sunAbove(bool shadows) {
+scene::Light sunAbove(bool shadows) {
   return directionalLight({0.0f, 1.0f, 0.0f}, 1.0f, shadows);
 }
 

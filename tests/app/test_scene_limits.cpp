@@ -5,8 +5,8 @@
 
 #include "app/device_limits.h"
 #include "gpu/buffer.h"
-#include "io/scene.h"
 #include "render/gpu_layout.h"
+#include "scene/scene.h"
 #include "sim/sim_params.h"
 #include "support/gpu_fixture.h"
 #include "support/input_error.h"
@@ -16,16 +16,16 @@ namespace {
 
 using ::testing::HasSubstr, ::testing::Not;
 
-static_assert(io::kMaxSceneInlets == sim::kMaxInlets);
-static_assert(io::kMaxSceneObstacles == sim::kMaxObstacles);
-static_assert(io::kMaxSceneLights == std::size_t(render::layout::kMaxLights));
-static_assert(io::kMaxRampKeys == std::size_t(render::layout::kMaxRampKeys));
+static_assert(scene::kMaxSceneInlets == sim::kMaxInlets);
+static_assert(scene::kMaxSceneObstacles == sim::kMaxObstacles);
+static_assert(scene::kMaxSceneLights == std::size_t(render::layout::kMaxLights));
+static_assert(scene::kMaxRampKeys == std::size_t(render::layout::kMaxRampKeys));
 
 class DeviceLimitsTest : public GpuTest {};
 
 TEST_F(DeviceLimitsTest, ABufferBeyondTheDeviceNamesTheFileAndTheSettingToReduce) {
   const uint64_t tooBig = uint64_t(context().limits().maxStorageBufferRange) + 4;
-  io::Grid grid;
+  scene::Grid grid;
   grid.size = {512, 512, 512};
   const std::string message = inputErrorMessage([&] {
     app::withinDeviceLimits("scenes/big.json", app::gridSetting(grid),

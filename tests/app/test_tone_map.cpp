@@ -34,13 +34,13 @@ TEST(ToneMapTest, AcesFitFollowsThePublishedCurve) {
 TEST(ToneMapTest, ExposureInStopsThenTheCurveOrTheClamp) {
   io::Image frame(2, 1, {"R", "G", "B", "A"});
   frame.pixels = {0.25f, 0.5f, 2.0f, 1.0f, 0.0f, 0.1f, 0.4f, 0.0f};
-  const io::Image clamped = app::toDisplay(frame, {io::ToneMap::Clamp, 1.0f});
+  const io::Image clamped = app::toDisplay(frame, {scene::ToneMap::Clamp, 1.0f});
   ASSERT_EQ(clamped.channels, (std::vector<std::string>{"R", "G", "B"})) << "alpha is not displayed";
   EXPECT_FLOAT_EQ(clamped.at(0, 0, 0), 0.5f);
   EXPECT_FLOAT_EQ(clamped.at(0, 0, 1), 1.0f);
   EXPECT_FLOAT_EQ(clamped.at(0, 0, 2), 1.0f);
   EXPECT_FLOAT_EQ(clamped.at(1, 0, 2), 0.8f);
-  const io::Image filmic = app::toDisplay(frame, {io::ToneMap::Aces, -1.0f});
+  const io::Image filmic = app::toDisplay(frame, {scene::ToneMap::Aces, -1.0f});
   EXPECT_NEAR(filmic.at(0, 0, 2), narkowicz(1.0), 1e-6);
   EXPECT_NEAR(filmic.at(1, 0, 1), narkowicz(0.05), 1e-6);
   const io::Image same = app::toDisplay(frame, {});

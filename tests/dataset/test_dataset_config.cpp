@@ -105,8 +105,8 @@ TEST_F(DatasetConfigTest, TheDensityScaleMultipliesTheExtinction) {
   const dataset::DatasetConfig scaled = dataset::loadDatasetConfig(write(j));
   int below = 0, above = 0;
   for (int sequence = 0; sequence < 16; ++sequence) {
-    const io::Scene a = dataset::planSequence(plain, sequence).scene,
-                    b = dataset::planSequence(scaled, sequence).scene;
+    const scene::Scene a = dataset::planSequence(plain, sequence).scene,
+                       b = dataset::planSequence(scaled, sequence).scene;
     const float scale = b.smoke.extinction / a.smoke.extinction;
     EXPECT_GE(scale, 0.5f - 1e-3f);
     EXPECT_LE(scale, 2.0f + 1e-3f);
@@ -134,7 +134,7 @@ TEST_F(DatasetConfigTest, ABoxInletVariesItsSpeedOffsetAndContents) {
   std::set<float> speeds;
   for (int s = 0; s < config.sequences; ++s) {
     const dataset::SequencePlan plan = dataset::planSequence(config, s);
-    const io::Inlet& inlet = plan.scene.inlets.at(0);
+    const scene::Inlet& inlet = plan.scene.inlets.at(0);
     const float speed = glm::length(inlet.velocity);
     speeds.insert(speed);
     EXPECT_GE(speed, 0.5f - 1e-4f);
@@ -142,7 +142,7 @@ TEST_F(DatasetConfigTest, ABoxInletVariesItsSpeedOffsetAndContents) {
     EXPECT_NEAR(inlet.velocity.y, speed, 1e-4f) << "the base's direction, +y";
     EXPECT_GE(inlet.density, 1.0f);
     EXPECT_LE(inlet.temperature, 4.0f);
-    const auto& box = std::get<io::InletBox>(inlet.shape);
+    const auto& box = std::get<scene::InletBox>(inlet.shape);
     EXPECT_NEAR(box.max.x - box.min.x, 0.3f, 1e-4f) << "the box keeps its size";
     EXPECT_NEAR(box.min.y, 0.1f, 1e-4f);
     EXPECT_LE(std::abs(box.min.x + 0.15f), 0.2f + 1e-4f);
@@ -270,7 +270,7 @@ TEST_F(DatasetConfigTest, SequencesArePlannedWithinTheRangesAndReproducibly) {
   for (int s = 0; s < config.sequences; ++s) {
     const dataset::SequencePlan plan = dataset::planSequence(config, s);
     EXPECT_EQ(plan.sceneJson, dataset::planSequence(config, s).sceneJson) << "sequence " << s;
-    const io::Scene& scene = plan.scene;
+    const scene::Scene& scene = plan.scene;
     // The grid: 16 cells across the base's 1.6 m, same floor and horizontal centre.
     EXPECT_EQ(scene.grid.size, glm::ivec3(16, 32, 16));
     EXPECT_FLOAT_EQ(scene.grid.cellSize, 0.1f);
@@ -280,7 +280,7 @@ TEST_F(DatasetConfigTest, SequencesArePlannedWithinTheRangesAndReproducibly) {
     speeds.insert(speed);
     EXPECT_GE(speed, 0.5f);
     EXPECT_LE(speed, 1.5f);
-    const auto& disk = std::get<io::InletDisk>(scene.inlets[0].shape);
+    const auto& disk = std::get<scene::InletDisk>(scene.inlets[0].shape);
     EXPECT_LE(std::abs(disk.center.x), 0.2f + 1e-4f);
     EXPECT_LE(std::abs(disk.center.z), 0.1f + 1e-4f);
     EXPECT_FLOAT_EQ(disk.center.y, 0.05f);
@@ -290,16 +290,16 @@ TEST_F(DatasetConfigTest, SequencesArePlannedWithinTheRangesAndReproducibly) {
     const int choice = s % 5;
     ASSERT_EQ(scene.obstacles.size(), choice == 0 ? 0u : 1u) << "sequence " << s;
     if (choice == 1) {
-      EXPECT_TRUE(std::holds_alternative<io::CylinderObstacle>(scene.obstacles[0].shape));
+      EXPECT_TRUE(std::holds_alternative<scene::CylinderObstacle>(scene.obstacles[0].shape));
     }
     if (choice == 2 || choice == 4) {
-      const auto& sphere = std::get<io::SphereObstacle>(scene.obstacles[0].shape);
+      const auto& sphere = std::get<scene::SphereObstacle>(scene.obstacles[0].shape);
       EXPECT_GE(sphere.radius, 0.1f - 1e-4f);
       EXPECT_LE(sphere.radius, 0.2f + 1e-4f);
       EXPECT_EQ(scene.obstacles[0].motion.has_value(), choice == 4);
     }
     if (choice == 3) {
-      EXPECT_TRUE(std::holds_alternative<io::MeshObstacle>(scene.obstacles[0].shape));
+      EXPECT_TRUE(std::holds_alternative<scene::MeshObstacle>(scene.obstacles[0].shape));
     }
     // Warm-up in [4, 9], then 3 samples 2 frames apart.
     ASSERT_EQ(plan.frames.size(), 3u);

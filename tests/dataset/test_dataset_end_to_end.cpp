@@ -63,7 +63,7 @@ render::Camera expectedCamera(const render::Box& box, float azimuthDeg, float el
 // directly for a camera around the volume box.
 class DirectRenders {
  public:
-  DirectRenders(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
+  DirectRenders(const gpu::Context& context, const gpu::PipelineCache& cache, const scene::Scene& scene,
                 int size)
       : context_(context),
         scene_(scene),
@@ -98,7 +98,7 @@ class DirectRenders {
 
  private:
   const gpu::Context& context_;
-  const io::Scene& scene_;
+  const scene::Scene& scene_;
   render::GuidingMap guiding_;
   gpu::Image guideImage_;
   render::LightmapBaker baker_;
@@ -147,7 +147,7 @@ TEST_F(DatasetEndToEnd, ShardsMatchDirectRendersFollowTheRuleAndAreReproducible)
     }
 
     // Direct renders of the same frames, from the scene the shard records.
-    const io::Scene scene = io::parseScene(meta["scene"], "shard scene", kTinyConfig.parent_path());
+    const scene::Scene scene = scene::parseScene(meta["scene"], "shard scene", kTinyConfig.parent_path());
     runtime::SimulatedVolumes volumes(context(), pipelineCache(), scene, plan.frames.back() + 1);
     const render::Box box = render::domainBox(scene.grid);
     DirectRenders direct(context(), pipelineCache(), scene, size);
@@ -342,7 +342,7 @@ TEST_F(DatasetEndToEnd, VdbSequencesPlayBackWithoutMotion) {
   const int size = config.lightmapSize, count = config.frames.count;
   for (float m : shard.tensors[2].toFloat()) ASSERT_EQ(m, 0.0f) << "no motion field";
 
-  io::Scene scene = io::parseScene(shard.metadata["scene"], "shard scene", "/");
+  scene::Scene scene = scene::parseScene(shard.metadata["scene"], "shard scene", "/");
   render::VdbSequence volumes(context(), *scene.vdb);
   const render::Box box = volumes.bounds();
   DirectRenders direct(context(), pipelineCache(), scene, size);

@@ -1,5 +1,5 @@
-// Scene files (docs/scene-format.md): JSON text → io::parseScene. Bad input must end in io::InputError; any
-// other exception, crash or sanitizer report is a finding.
+// Scene files (docs/scene-format.md): JSON text → scene::parseScene. Bad input must end in io::InputError;
+// any other exception, crash or sanitizer report is a finding.
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
@@ -7,14 +7,14 @@
 #include "fuzz_input_file.h"
 #include "io/error.h"
 #include "io/json_reader.h"
-#include "io/scene.h"
+#include "scene/scene.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   try {
     // Mesh paths are only resolved against the folder here, not opened.
-    sixway::io::parseScene(sixway::io::parseJsonText(text, "fuzz.json"), "fuzz.json",
-                           sixway::fuzz::scratchDirectory());
+    sixway::scene::parseScene(sixway::io::parseJsonText(text, "fuzz.json"), "fuzz.json",
+                              sixway::fuzz::scratchDirectory());
   } catch (const sixway::io::InputError&) {
   }
   return 0;

@@ -11,9 +11,9 @@
 #include <filesystem>
 
 #include "io/exr.h"
-#include "io/scene.h"
 #include "runtime/modes/mode_renderer.h"
 #include "runtime/scene_volumes.h"
+#include "scene/scene.h"
 #include "support/gpu_fixture.h"
 #include "support/image_compare.h"
 
@@ -28,7 +28,7 @@ class GoldenFrame : public GpuTest, public ::testing::WithParamInterface<modes::
 
 TEST_P(GoldenFrame, MatchesTheCommittedImage) {
   const modes::RenderMode mode = GetParam();
-  const io::Scene scene = io::loadScene(fs::path(SIXWAY_TEST_DATA_DIR) / "scenes" / "small_plume.json");
+  const scene::Scene scene = scene::loadScene(fs::path(SIXWAY_TEST_DATA_DIR) / "scenes" / "small_plume.json");
   modes::ModeOptions options;
   options.mode = mode;
   options.weights = fs::path(SIXWAY_TEST_DATA_DIR) / "nn" / "default.safetensors";  // untrained, fixed

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "io/file_access.h"
-#include "io/scene.h"
+#include "scene/scene.h"
 #include "support/input_error.h"
 #include "support/temp_dir.h"
 
@@ -45,7 +45,8 @@ TEST(InputFileTest, APathLongerThanTheSystemAllowsIsSaidSo) {
                                std::to_string(longPath.native().size()) + " characters, at most " +
                                std::to_string(PATH_MAX - 1) + ")";
   EXPECT_EQ(io::regularFileProblem(longPath), expected);
-  EXPECT_THAT(inputErrorMessage([&] { io::loadScene(longPath); }), namesFileAndProblem(longPath, expected));
+  EXPECT_THAT(inputErrorMessage([&] { scene::loadScene(longPath); }),
+              namesFileAndProblem(longPath, expected));
 
   const fs::path longName = dir / (std::string(300, 'a') + ".json");
   EXPECT_EQ(io::regularFileProblem(longName),

@@ -17,12 +17,12 @@
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "io/safetensors.h"
-#include "io/scene.h"
 #include "io/vdb.h"
 #include "reference/lightmap_baker.h"
 #include "render/billboard.h"
 #include "render/guiding_map.h"
 #include "render/sixway.h"
+#include "scene/scene.h"
 
 namespace {
 
@@ -38,7 +38,7 @@ struct Result {
 };
 
 Result run(const gpu::Context& context, const gpu::PipelineCache& cache,
-           const render::GuideSettings& settings, const render::Volume& volume, const io::Smoke& smoke,
+           const render::GuideSettings& settings, const render::Volume& volume, const scene::Smoke& smoke,
            const render::Camera& camera, const std::vector<float>& exact, const std::vector<float>& alpha) {
   render::GuidingMap map(context, cache, settings);
   gpu::Image image(context, map.imageDesc());
@@ -90,14 +90,15 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: guide_bench VDB [SCENE]\n");
     return 2;
   }
-  const std::optional<io::Scene> scene = argc > 2 ? std::optional(io::loadScene(argv[2])) : std::nullopt;
+  const std::optional<scene::Scene> scene =
+      argc > 2 ? std::optional(scene::loadScene(argv[2])) : std::nullopt;
   gpu::Context context;
   gpu::PipelineCache cache(context);
   std::printf("device: %s (%s)\n", context.properties().deviceName, context.driver().driverInfo);
   const std::string file = argv[1];
   io::DenseRequest request = io::AutoBounds{128};
   if (scene) {
-    const io::Grid& g = scene->grid;
+    const scene::Grid& g = scene->grid;
     request = io::ExplicitBounds{g.origin, g.origin + glm::vec3(g.size) * g.cellSize, g.size * g.smokeUpres};
   }
   const io::DenseGrid density = io::readVdbDense(file, "density", request);
@@ -106,7 +107,7 @@ int main(int argc, char** argv) {
   std::printf("volume: %s, %dx%dx%d cells of %.4g\n", file.c_str(), grid.size.x, grid.size.y, grid.size.z,
               grid.cellSize);
 
-  io::Smoke smoke;  // the shipped scenes' optics: extinction 30 per unit density with 1/30 m cells
+  scene::Smoke smoke;  // the shipped scenes' optics: extinction 30 per unit density with 1/30 m cells
   smoke.extinction = 1.0f / grid.cellSize;
   smoke.albedo = 0.9f;
   smoke.phaseG = 0.2f;
@@ -143,10 +144,10 @@ int main(int argc, char** argv) {
   struct Variant {
     const char* name;
     float step, spacing;
-    std::vector<io::GuideLight> lights;
+    std::vector<scene::GuideLight> lights;
   };
-  const std::vector<io::GuideLight> ftb = defaults.lights;
-  const std::vector<io::GuideLight> frontOnly = {io::GuideLight::Front};
+  const std::vector<scene::GuideLight> ftb = defaults.lights;
+  const std::vector<scene::GuideLight> frontOnly = {scene::GuideLight::Front};
   const std::vector<Variant> variants = {{"default (step 3, grids 2)", 3, 2, ftb},
                                          {"step 1.5, grids 2", 1.5f, 2, ftb},
                                          {"step 6, grids 2", 6, 2, ftb},
@@ -180,7 +181,7 @@ int main(int argc, char** argv) {
                                        density.size})
               : io::DenseGrid{};
   const render::DeviceVolume heated = render::uploadVolume(context, density, hasHeat ? &heat : nullptr);
-  io::Smoke glowing = smoke;
+  scene::Smoke glowing = smoke;
   glowing.emission = {{{0.0f, glm::vec3(0.0f)}, {1.0f, glm::vec3(1.0f, 0.5f, 0.1f)}}, 1.0f};
   std::printf("\n%-30s %9s %9s %9s %17s\n", "default guide, GPU ms", "no A", "A step 1", "A step 0.5",
               "A + emission, 1");

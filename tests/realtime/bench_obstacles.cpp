@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
   std::printf("%-20s %10s %6s %5s %18s %14s %14s\n", "scene", "triangles", "size", "tiles", "shadow maps ms",
               "obstacles ms", "with smoke ms");
   for (int a = first; a < argc; ++a) {
-    const io::Scene scene = io::loadScene(argv[a]);
+    const scene::Scene scene = scene::loadScene(argv[a]);
     render::ObstacleMeshes meshes(context, scene.obstacles);
     const uint32_t tiles = render::shadowTileCount(scene.lights, scene.obstacles);
     render::ShadowMaps shadows(context, cache, tileSize, tiles);
@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
       for (int frame = 0; frame < 23; ++frame) {
         meshes.update(frame * double(scene.time.frameDt));
         const render::Camera camera = render::sceneCamera(scene.camera, frame);
-        const std::vector<io::Light> lights = render::sceneLights(scene.lights, frame);
+        const std::vector<scene::Light> lights = render::sceneLights(scene.lights, frame);
         const render::Box bounds = render::sceneBounds(render::domainBox(scene.grid), meshes);
         shadows.update(lights, bounds, meshes);
         pass.update(camera, render::fullFrame(camera, int(size), int(size)),

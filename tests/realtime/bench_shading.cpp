@@ -60,11 +60,12 @@ double medianMs(gpu::Sequence& sequence, render::SixWayShading& shading, const r
                 const render::ImagePlane& frame, const render::ImagePlane& billboard,
                 render::DepthRange range, const std::vector<render::ShadingLight>& lights,
                 bool ambient = true) {
-  io::AmbientSh sh;
+  scene::AmbientSh sh;
   sh.coefficients = {glm::vec3(0.2f), glm::vec3(0.05f), glm::vec3(0.1f), glm::vec3(-0.05f)};
   render::ShadingControls controls;
   controls.absorption = true;
-  const std::optional<io::Ambient> environment = ambient ? std::optional<io::Ambient>(sh) : std::nullopt;
+  const std::optional<scene::Ambient> environment =
+      ambient ? std::optional<scene::Ambient>(sh) : std::nullopt;
   shading.update(camera, frame, billboard, range, {0.1f, 20.0f}, lights, environment, controls);
   sequence.submit();  // warm-up
   std::vector<double> times;

@@ -63,19 +63,19 @@ double guideJitter(uint32_t seed, uint32_t pixel, uint32_t frame) {
 
 namespace {
 
-dvec3 towardLight(io::GuideLight light, const render::Camera& c) {
+dvec3 towardLight(scene::GuideLight light, const render::Camera& c) {
   switch (light) {
-    case io::GuideLight::Right:
+    case scene::GuideLight::Right:
       return c.right;
-    case io::GuideLight::Left:
+    case scene::GuideLight::Left:
       return -dvec3(c.right);
-    case io::GuideLight::Top:
+    case scene::GuideLight::Top:
       return c.up;
-    case io::GuideLight::Bottom:
+    case scene::GuideLight::Bottom:
       return -dvec3(c.up);
-    case io::GuideLight::Back:
+    case scene::GuideLight::Back:
       return c.forward;
-    case io::GuideLight::Front:
+    case scene::GuideLight::Front:
       break;
   }
   return -dvec3(c.forward);
@@ -91,7 +91,7 @@ struct ShadowedLight {
 
 }  // namespace
 
-io::Image cpuGuidingMap(const CpuVolume& volume, const io::Smoke& smoke, const render::Camera& camera,
+io::Image cpuGuidingMap(const CpuVolume& volume, const scene::Smoke& smoke, const render::Camera& camera,
                         const render::ImagePlane& billboard, const render::DepthRange& shellRange,
                         const render::GuideSettings& settings, const std::vector<render::LightGrid>& grids,
                         uint32_t frame) {
@@ -100,8 +100,8 @@ io::Image cpuGuidingMap(const CpuVolume& volume, const io::Smoke& smoke, const r
     depths.push_back({g, lightGridDepths(volume, smoke.extinction, g)});
   bool front = false;
   std::vector<ShadowedLight> lights;
-  for (io::GuideLight light : settings.lights) {
-    if (light == io::GuideLight::Front) {
+  for (scene::GuideLight light : settings.lights) {
+    if (light == scene::GuideLight::Front) {
       front = true;
       continue;
     }

@@ -8,11 +8,11 @@
 
 #include "cpu_reference.h"
 #include "io/image.h"
-#include "io/scene.h"
 #include "render/camera.h"
 #include "render/guiding_map.h"
 #include "render/light_grid.h"
 #include "render/projection.h"
+#include "scene/scene.h"
 
 namespace sixway::test {
 
@@ -26,7 +26,7 @@ double guideJitter(uint32_t seed, uint32_t pixel, uint32_t frame);
 // settings have one, else from the coarse march's samples. `grids` are the light grids
 // (GuidingMap::shadowGrids()); each guide light other than front uses the one along its axis, from its near
 // end (grid pointing to it) or its far end (the column's total less the grid's depth).
-io::Image cpuGuidingMap(const CpuVolume& volume, const io::Smoke& smoke, const render::Camera& camera,
+io::Image cpuGuidingMap(const CpuVolume& volume, const scene::Smoke& smoke, const render::Camera& camera,
                         const render::ImagePlane& billboard, const render::DepthRange& shellRange,
                         const render::GuideSettings& settings, const std::vector<render::LightGrid>& grids,
                         uint32_t frame);

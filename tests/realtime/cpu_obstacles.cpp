@@ -89,7 +89,7 @@ std::optional<double> hitTriangle(const Ray& ray, dvec3 a, dvec3 b, dvec3 c) {
   return t;
 }
 
-CpuMesh::CpuMesh(const io::MeshObstacle& mesh) {
+CpuMesh::CpuMesh(const scene::MeshObstacle& mesh) {
   const io::Mesh obj = io::readObj(mesh.file);
   const glm::dmat3 turn =
       rotationZ(mesh.rotateDeg.z) * rotationY(mesh.rotateDeg.y) * rotationX(mesh.rotateDeg.x);
@@ -145,16 +145,16 @@ double viewDepthFromDepthBuffer(double d, double near, double far) {
   return near * far / (far - d * (far - near));
 }
 
-dvec3 lambert(dvec3 albedo, dvec3 p, dvec3 n, const std::vector<io::Light>& lights,
-              const std::optional<io::Ambient>& ambient) {
+dvec3 lambert(dvec3 albedo, dvec3 p, dvec3 n, const std::vector<scene::Light>& lights,
+              const std::optional<scene::Ambient>& ambient) {
   dvec3 irradiance(0);
-  for (const io::Light& light : lights) {
+  for (const scene::Light& light : lights) {
     dvec3 l;
     double falloff = 1;
-    if (const auto* d = std::get_if<io::DirectionalLight>(&light.source)) {
+    if (const auto* d = std::get_if<scene::DirectionalLight>(&light.source)) {
       l = glm::normalize(dvec3(d->direction));
     } else {
-      const dvec3 toLight = dvec3(std::get<io::PointLight>(light.source).position) - p;
+      const dvec3 toLight = dvec3(std::get<scene::PointLight>(light.source).position) - p;
       falloff = 1 / glm::dot(toLight, toLight);
       l = glm::normalize(toLight);
     }
@@ -162,10 +162,10 @@ dvec3 lambert(dvec3 albedo, dvec3 p, dvec3 n, const std::vector<io::Light>& ligh
   }
   dvec3 ambientRadiance(0);
   if (ambient) {
-    if (const auto* c = std::get_if<io::AmbientColor>(&*ambient)) {
+    if (const auto* c = std::get_if<scene::AmbientColor>(&*ambient)) {
       ambientRadiance = dvec3(c->color);
     } else {
-      const auto& sh = std::get<io::AmbientSh>(*ambient).coefficients;
+      const auto& sh = std::get<scene::AmbientSh>(*ambient).coefficients;
       const dvec3 l1 = n.x * dvec3(sh[1]) + n.y * dvec3(sh[2]) + n.z * dvec3(sh[3]);
       ambientRadiance = glm::max(dvec3(0), dvec3(sh[0]) + (2.0 / 3.0) * l1);
     }
@@ -173,7 +173,7 @@ dvec3 lambert(dvec3 albedo, dvec3 p, dvec3 n, const std::vector<io::Light>& ligh
   return albedo * (irradiance / kPi + ambientRadiance);
 }
 
-dvec3 keyframePosition(const io::Motion& motion, double seconds) {
+dvec3 keyframePosition(const scene::Motion& motion, double seconds) {
   const auto& k = motion.keyframes;
   if (seconds <= k.front().time) return dvec3(k.front().position);
   for (size_t i = 0; i + 1 < k.size(); ++i)

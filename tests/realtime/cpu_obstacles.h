@@ -9,8 +9,8 @@
 #include <optional>
 #include <vector>
 
-#include "io/scene.h"
 #include "render/camera.h"
+#include "scene/scene.h"
 
 namespace sixway::test {
 
@@ -33,7 +33,7 @@ std::optional<double> hitBox(const Ray& ray, dvec3 min, dvec3 max);
 // camera's image, so that a ray through a pixel only tests the triangles over it.
 class CpuMesh {
  public:
-  CpuMesh(const io::MeshObstacle& mesh);
+  CpuMesh(const scene::MeshObstacle& mesh);
   // Bins for rays through pixel coordinates of a W × H image over `plane`, up to `margin` pixels outside the
   // pixel of the ray (all triangles must lie in front of the camera).
   void bin(const render::Camera& camera, const render::ImagePlane& plane, int width, int height, int margin);
@@ -63,11 +63,11 @@ double viewDepthFromDepthBuffer(double d, double near, double far);
 // Outgoing radiance of a Lambertian surface with albedo `albedo` at `p`, unit normal `n`, under the lights
 // (directional: irradiance = intensity·colour·max(0, n·l); point: intensity·colour·max(0, n·l)/r²) and the
 // ambient radiance max(0, L0 + L1·w), whose cosine-weighted hemisphere integral is π·(L0 + (2/3) L1·n).
-dvec3 lambert(dvec3 albedo, dvec3 p, dvec3 n, const std::vector<io::Light>& lights,
-              const std::optional<io::Ambient>& ambient);
+dvec3 lambert(dvec3 albedo, dvec3 p, dvec3 n, const std::vector<scene::Light>& lights,
+              const std::optional<scene::Ambient>& ambient);
 
 // Position of a keyframed motion at `seconds` (linear between keyframes, held at the ends; no loop).
-dvec3 keyframePosition(const io::Motion& motion, double seconds);
+dvec3 keyframePosition(const scene::Motion& motion, double seconds);
 
 // The clip-space point of `p` under `m` after the perspective divide.
 dvec3 project(const glm::mat4& m, dvec3 p);

@@ -300,10 +300,10 @@ io::Image cpuSixWayShading(const CpuShadingInputs& in, const io::Image& backgrou
   // Ambient radiance L(w) = L0 + L1·w; L1 along the six-way axes.
   dvec3 l0(0.0), l1[3] = {dvec3(0.0), dvec3(0.0), dvec3(0.0)};
   if (in.ambient) {
-    if (const auto* constant = std::get_if<io::AmbientColor>(&*in.ambient)) {
+    if (const auto* constant = std::get_if<scene::AmbientColor>(&*in.ambient)) {
       l0 = dvec3(constant->color);
     } else {
-      const auto& sh = std::get<io::AmbientSh>(*in.ambient).coefficients;
+      const auto& sh = std::get<scene::AmbientSh>(*in.ambient).coefficients;
       l0 = dvec3(sh[0]);
       for (int i = 0; i < 3; ++i)
         for (int w = 0; w < 3; ++w) l1[i] += dvec3(sh[1 + w]) * axes[i][w];

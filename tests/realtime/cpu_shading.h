@@ -13,10 +13,10 @@
 #include <glm/vec3.hpp>
 
 #include "io/image.h"
-#include "io/scene.h"
 #include "render/camera.h"
 #include "render/projection.h"
 #include "render/sixway_shading.h"
+#include "scene/scene.h"
 
 namespace sixway::test {
 
@@ -25,7 +25,7 @@ struct CpuShadingInputs {
   render::ImagePlane frame, billboard;
   render::DepthRange shellRange, sceneRange;
   std::vector<render::ShadingLight> lights;
-  std::optional<io::Ambient> ambient;
+  std::optional<scene::Ambient> ambient;
   render::ShadingControls controls;
   const io::Image* lightmapA = nullptr;      // RGBA
   const io::Image* lightmapB = nullptr;      // RGBA

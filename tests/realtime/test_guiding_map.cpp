@@ -22,7 +22,7 @@ namespace {
 
 constexpr double kLevels[4] = {0.1, 0.35, 0.6, 0.85};  // shaders/common/depth.glsl, kOpacityLevels
 
-using io::GuideLight;
+using scene::GuideLight;
 
 // A smooth, uneven volume of 24 × 32 × 20 cells: overlapping blobs of compact support ((1 − r²/R²)³), zero
 // within two cells of the faces so that no ray's first or last sample sits on smoke.
@@ -47,8 +47,8 @@ CpuVolume blobs() {
   });
 }
 
-io::Smoke blobOptics() {
-  io::Smoke smoke;
+scene::Smoke blobOptics() {
+  scene::Smoke smoke;
   smoke.extinction = 10.0f;  // about 0.4 optical depth per 3-cell step at unit density
   smoke.albedo = 0.85f;
   smoke.phaseG = 0.3f;
@@ -83,7 +83,7 @@ class GuideRun {
 
   // Channels guide, alpha, depth, and the four opacity depths; the guide's fourth, stored channel must be 0
   // unless the settings ask for the fine alpha.
-  io::Image frame(const render::Camera& camera, const io::Smoke& smoke, uint32_t frame) {
+  io::Image frame(const render::Camera& camera, const scene::Smoke& smoke, uint32_t frame) {
     const io::Image all = channels(camera, smoke, frame);
     const io::Tensor half{"",
                           io::DType::F16,
@@ -102,7 +102,7 @@ class GuideRun {
     return image;
   }
   // All four stored channels.
-  io::Image channels(const render::Camera& camera, const io::Smoke& smoke, uint32_t frame) {
+  io::Image channels(const render::Camera& camera, const scene::Smoke& smoke, uint32_t frame) {
     map_.update(camera, render::billboardBounds(camera, box_, 1.0f), render::boxDepthRange(camera, box_),
                 smoke, frame);
     sequence_.submit();
@@ -126,7 +126,7 @@ class GuideRun {
 
 class GuidingMapTest : public RenderTest {
  protected:
-  io::Image cpu(const GuideRun& run, const CpuVolume& volume, const io::Smoke& smoke,
+  io::Image cpu(const GuideRun& run, const CpuVolume& volume, const scene::Smoke& smoke,
                 const render::Camera& camera, uint32_t frame, float stepCells = 0.0f) {
     render::GuideSettings settings = run.map().settings();
     if (stepCells > 0) settings.stepCells = stepCells;
@@ -168,7 +168,7 @@ double maskedRelativeRms(const io::Image& a, const io::Image& b, int c, int alph
 TEST_F(GuidingMapTest, MatchesTheCpuMarchWithTheSameJitter) {
   const CpuVolume volume = blobs();
   const render::DeviceVolume device = upload(volume);
-  const io::Smoke smoke = blobOptics();
+  const scene::Smoke smoke = blobOptics();
   const std::vector<std::pair<std::string, std::vector<GuideLight>>> lightSets = {
       {"front_top_bottom", {GuideLight::Front, GuideLight::Top, GuideLight::Bottom}},
       {"front", {GuideLight::Front}},
@@ -224,7 +224,7 @@ TEST_F(GuidingMapTest, MatchesTheCpuMarchWithTheSameJitter) {
 TEST_F(GuidingMapTest, ConstantBoxGivesTheAnalyticAlphaAndShellDepth) {
   const CpuVolume volume = constantBox({16, 16, 16}, 1.0f / 16, 1.0f);
   const render::DeviceVolume device = upload(volume);
-  io::Smoke smoke;
+  scene::Smoke smoke;
   smoke.extinction = 3.0f;
   render::GuideSettings settings = guideSettings({GuideLight::Front});
   settings.shellThreshold = 0.3f;
@@ -280,7 +280,7 @@ TEST_F(GuidingMapTest, EmptyVolumeIsDarkTransparentAndAtDepthOne) {
 TEST_F(GuidingMapTest, FramesMoveTheJitterAndTheirMeanApproachesTheFineMarch) {
   const CpuVolume volume = blobs();
   const render::DeviceVolume device = upload(volume);
-  const io::Smoke smoke = blobOptics();
+  const scene::Smoke smoke = blobOptics();
   GuideRun run(context(), pipelineCache(), guideSettings(), device.view());
   const render::Camera camera = offAxis(volume, {1.3f, 0.8f, 1.9f});
   constexpr int kFrames = 64;
@@ -326,7 +326,7 @@ TEST_F(GuidingMapTest, FramesMoveTheJitterAndTheirMeanApproachesTheFineMarch) {
 TEST_F(GuidingMapTest, FrontOnlyIsDimmerThanFrontTopBottom) {
   const CpuVolume volume = blobs();
   const render::DeviceVolume device = upload(volume);
-  const io::Smoke smoke = blobOptics();
+  const scene::Smoke smoke = blobOptics();
   const render::Camera camera = offAxis(volume, {1.3f, 0.8f, 1.9f});
   GuideRun three(context(), pipelineCache(), guideSettings(), device.view());
   GuideRun front(context(), pipelineCache(), guideSettings({GuideLight::Front}), device.view());
@@ -352,7 +352,7 @@ TEST_F(GuidingMapTest, FrontOnlyIsDimmerThanFrontTopBottom) {
 TEST_F(GuidingMapTest, ApproximatesTheExactBakersFrontTopBottomSum) {
   const CpuVolume volume = blobs();
   const render::DeviceVolume device = upload(volume);
-  const io::Smoke smoke = blobOptics();
+  const scene::Smoke smoke = blobOptics();
   const render::Camera camera = offAxis(volume, {1.3f, 0.8f, 1.9f});
   GuideRun run(context(), pipelineCache(), guideSettings(), device.view());
   const io::Image one = run.frame(camera, smoke, 0);
@@ -386,7 +386,7 @@ TEST_F(GuidingMapTest, ApproximatesTheExactBakersFrontTopBottomSum) {
 TEST_F(GuidingMapTest, FineAlphaIsTheExactBakersAlpha) {
   const CpuVolume volume = blobs();
   const render::DeviceVolume device = upload(volume);
-  const io::Smoke smoke = blobOptics();
+  const scene::Smoke smoke = blobOptics();
   const render::Camera camera = offAxis(volume, {1.3f, 0.8f, 1.9f});
   render::GuideSettings settings = guideSettings();
   settings.alphaStepCells = 0.5f;
@@ -433,7 +433,7 @@ TEST_F(GuidingMapTest, FineAlphaIsTheExactBakersAlpha) {
 TEST_F(GuidingMapTest, EmissionIsTheExactBakersEmission) {
   const CpuVolume volume = puffs(24);
   const render::DeviceVolume device = upload(volume);
-  const io::Smoke smoke = puffOptics();
+  const scene::Smoke smoke = puffOptics();
   const render::Camera camera = obliqueCamera();
   render::GuideSettings settings = guideSettings();
   settings.alphaStepCells = 0.5f;
@@ -530,7 +530,7 @@ TEST_F(GuidingMapTest, ABoxBeyondAFloatIsAnErrorNotAHang) {
 }
 
 TEST_F(GuidingMapTest, SettingsComeFromTheScene) {
-  io::Scene scene;
+  scene::Scene scene;
   scene.render.lightmapSize = 64;
   scene.render.guideStepVoxels = 2.5f;
   scene.render.guideLights = {GuideLight::Front, GuideLight::Left, GuideLight::Right};

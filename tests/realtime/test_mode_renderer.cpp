@@ -18,7 +18,6 @@
 
 #include "cpu_shading.h"
 #include "io/safetensors.h"
-#include "io/scene.h"
 #include "io/vdb.h"
 #include "render/billboard.h"
 #include "render/camera.h"
@@ -26,6 +25,7 @@
 #include "render/scene_frame.h"
 #include "render/volume.h"
 #include "runtime/modes/mode_renderer.h"
+#include "scene/scene.h"
 #include "support/gpu_fixture.h"
 
 namespace sixway::test {
@@ -68,7 +68,7 @@ nlohmann::json sceneJson(glm::vec3 lightDirection, uint32_t seed) {
 
 class ModeRendererTest : public GpuTest {
  protected:
-  io::Image render(const io::Scene& scene, modes::RenderMode mode, modes::ModeRenderer** keep = nullptr) {
+  io::Image render(const scene::Scene& scene, modes::RenderMode mode, modes::ModeRenderer** keep = nullptr) {
     modes::ModeOptions options;
     options.mode = mode;
     options.pathTraceSamples = 256;
@@ -103,9 +103,9 @@ struct ModelError {
 };
 
 ModelError modelError(glm::vec3 lightDirection,
-                      const std::function<io::Image(const io::Scene&, modes::RenderMode)>& render) {
-  const io::Scene first = io::parseScene(sceneJson(lightDirection, 1), "frame_test.json", ".");
-  const io::Scene second = io::parseScene(sceneJson(lightDirection, 1000), "frame_test.json", ".");
+                      const std::function<io::Image(const scene::Scene&, modes::RenderMode)>& render) {
+  const scene::Scene first = scene::parseScene(sceneJson(lightDirection, 1), "frame_test.json", ".");
+  const scene::Scene second = scene::parseScene(sceneJson(lightDirection, 1000), "frame_test.json", ".");
   const io::Image reference = render(first, modes::RenderMode::Reference);
   const io::Image traced = render(first, modes::RenderMode::PathTrace);
   const io::Image tracedAgain = render(second, modes::RenderMode::PathTrace);
@@ -117,7 +117,7 @@ ModelError modelError(glm::vec3 lightDirection,
 }
 
 TEST_F(ModeRendererTest, ReferenceMatchesThePathTracerForAnAxisLight) {
-  const auto renderer = [this](const io::Scene& s, modes::RenderMode m) { return render(s, m); };
+  const auto renderer = [this](const scene::Scene& s, modes::RenderMode m) { return render(s, m); };
   const ModelError axis = modelError({1.0f, 0.0f, 0.0f}, renderer);
   const ModelError diagonal = modelError(glm::normalize(glm::vec3(1.0f, 1.0f, 0.0f)), renderer);
   const double axisBias = std::sqrt(std::max(0.0, axis.mse - axis.noise));
@@ -149,9 +149,9 @@ TEST_F(ModeRendererTest, ReferenceMsGlowMatchesThePathTracerAtOneTemperature) {
                                {{{"temperature", 0.0}, {"color", {0.0, 0.0, 0.0}}},
                                 {{"temperature", 0.5}, {"color", {1.0, 0.3, 0.05}}},
                                 {{"temperature", 1.0}, {"color", {1.0, 0.8, 0.5}}}}}};
-    return io::parseScene(j, "frame_test.json", ".");
+    return scene::parseScene(j, "frame_test.json", ".");
   };
-  auto renderWith = [&](const io::Scene& scene, modes::RenderMode mode) {
+  auto renderWith = [&](const scene::Scene& scene, modes::RenderMode mode) {
     modes::ModeOptions options;
     options.mode = mode;
     options.pathTraceSamples = 256;
@@ -199,7 +199,7 @@ TEST_F(ModeRendererTest, ReferenceMsGlowMatchesThePathTracerAtOneTemperature) {
 }
 
 TEST_F(ModeRendererTest, GuideLitLightmapsAreTheGuidesMeanLight) {
-  const io::Scene scene = io::parseScene(sceneJson({1.0f, 0.0f, 0.0f}, 1), "frame_test.json", ".");
+  const scene::Scene scene = scene::parseScene(sceneJson({1.0f, 0.0f, 0.0f}, 1), "frame_test.json", ".");
   modes::ModeRenderer* renderer = nullptr;
   render(scene, modes::RenderMode::GuideLit, &renderer);
   const io::Image guide = renderer->guide();
@@ -250,7 +250,7 @@ TEST_F(ModeRendererTest, SmokeWithoutEmissionShowsNoGlowFromTheNetwork) {
     modes::ModeOptions options;
     options.mode = modes::RenderMode::Neural;
     options.weights = weights;
-    modes::ModeRenderer renderer(context(), pipelineCache(), io::parseScene(dark, "frame_test.json", "."),
+    modes::ModeRenderer renderer(context(), pipelineCache(), scene::parseScene(dark, "frame_test.json", "."),
                                  options);
     io::Image image = renderer.render(0, 0.0, volume_.view()).image;
     return std::pair{std::move(image), renderer.lightmaps()};
@@ -284,13 +284,13 @@ TEST_F(ModeRendererTest, SmokeWithoutEmissionShowsNoGlowFromTheNetwork) {
 }
 
 TEST_F(ModeRendererTest, AUsersViewRendersLikeTheSceneViewItCopies) {
-  const io::Scene scene = io::parseScene(sceneJson({1.0f, 0.0f, 0.0f}, 1), "frame_test.json", ".");
+  const scene::Scene scene = scene::parseScene(sceneJson({1.0f, 0.0f, 0.0f}, 1), "frame_test.json", ".");
   const io::Image ofScene = render(scene, modes::RenderMode::Reference);
   runtime::FrameView view = runtime::sceneView(scene, 0);
   const io::Image ofView = renderer_->render(view, 0, 0.0, volume_.view()).image;
   EXPECT_EQ(ofScene.pixels, ofView.pixels);
   // Turning the light to the other side changes the frame.
-  view.lights[0].source = io::DirectionalLight{glm::vec3(-1.0f, 0.0f, 0.0f)};
+  view.lights[0].source = scene::DirectionalLight{glm::vec3(-1.0f, 0.0f, 0.0f)};
   const io::Image turned = renderer_->render(view, 0, 0.0, volume_.view()).image;
   EXPECT_NE(ofScene.pixels, turned.pixels);
 }
@@ -304,10 +304,10 @@ TEST_F(ModeRendererTest, SphereShadowsTheSmokesShadowPoints) {
   const glm::vec3 centre(0.42f, 0.6f, 0.15f);
   const float radius = 0.1f;
   j["obstacles"] = {{{"type", "sphere"}, {"center", {centre.x, centre.y, centre.z}}, {"radius", radius}}};
-  const io::Scene scene = io::parseScene(j, "frame_test.json", ".");
+  const scene::Scene scene = scene::parseScene(j, "frame_test.json", ".");
   nlohmann::json unshadowedJson = j;
   unshadowedJson["obstacles"][0]["shadows"] = false;
-  const io::Scene unshadowedScene = io::parseScene(unshadowedJson, "frame_test.json", ".");
+  const scene::Scene unshadowedScene = scene::parseScene(unshadowedJson, "frame_test.json", ".");
 
   const io::Image unshadowed = render(unshadowedScene, modes::RenderMode::Reference);
   modes::ModeRenderer* renderer = nullptr;

@@ -21,17 +21,17 @@
 namespace sixway::test {
 namespace {
 
-io::Obstacle boxAt(glm::vec3 centre, glm::vec3 size, bool shadows = true) {
-  io::Obstacle o;
-  o.shape = io::BoxObstacle{centre, size};
+scene::Obstacle boxAt(glm::vec3 centre, glm::vec3 size, bool shadows = true) {
+  scene::Obstacle o;
+  o.shape = scene::BoxObstacle{centre, size};
   o.shadows = shadows;
   return o;
 }
 
-io::Obstacle bunny() {
-  io::Obstacle o;
-  o.shape = io::MeshObstacle{std::filesystem::path(SIXWAY_ASSETS_DIR) / "meshes/stanford-bunny.obj", 6.0f,
-                             glm::vec3(0.05f, -0.35f, 0.1f), glm::vec3(10.0f, 30.0f, -5.0f)};
+scene::Obstacle bunny() {
+  scene::Obstacle o;
+  o.shape = scene::MeshObstacle{std::filesystem::path(SIXWAY_ASSETS_DIR) / "meshes/stanford-bunny.obj", 6.0f,
+                                glm::vec3(0.05f, -0.35f, 0.1f), glm::vec3(10.0f, 30.0f, -5.0f)};
   return o;
 }
 
@@ -90,13 +90,13 @@ TEST_F(ObstacleBvhTest, SpheresAndBoxesMatchTheirAnalyticHits) {
 // Camera rays through a 64 × 64 image of the bunny: the hierarchy's nearest hit is the nearest of all the OBJ
 // triangles placed as the scene format says (CpuMesh), pixel for pixel.
 TEST_F(ObstacleBvhTest, MeshMatchesEveryTriangleTested) {
-  const io::Obstacle mesh = bunny();
+  const scene::Obstacle mesh = bunny();
   const render::ObstacleBvh bvh(context(), {mesh});
   EXPECT_GT(bvh.triangleCount(), 60000u);
   const render::Camera camera =
       render::Camera::lookAt({0.3f, 0.5f, 3.0f}, {0.0f, 0.1f, 0.0f}, glm::vec3(0, 1, 0), 35.0f);
   const render::ImagePlane plane = render::fullFrame(camera, 64, 64);
-  CpuMesh cpu(std::get<io::MeshObstacle>(mesh.shape));
+  CpuMesh cpu(std::get<scene::MeshObstacle>(mesh.shape));
   cpu.bin(camera, plane, 64, 64, 1);
   int covered = 0;
   for (int y = 0; y < 64; ++y)
@@ -117,8 +117,8 @@ TEST_F(ObstacleBvhTest, MeshMatchesEveryTriangleTested) {
 // A moving sphere is where its keyframes put it at the frame's time, and obstacles that cast no shadows are
 // skipped by shadow rays only.
 TEST_F(ObstacleBvhTest, MotionAndCasters) {
-  io::Obstacle moving = sphereAt({0.0f, 0.0f, 0.0f}, 0.2f);
-  moving.motion = io::Motion{{{0.0f, {0.0f, 0.0f, 0.0f}}, {1.0f, {1.0f, 0.0f, 0.0f}}}, false};
+  scene::Obstacle moving = sphereAt({0.0f, 0.0f, 0.0f}, 0.2f);
+  moving.motion = scene::Motion{{{0.0f, {0.0f, 0.0f, 0.0f}}, {1.0f, {1.0f, 0.0f, 0.0f}}}, false};
   render::ObstacleBvh bvh(context(), {moving, sphereAt({0.0f, 1.0f, 0.0f}, 0.2f, false)});
   bvh.update(0.5);
   const auto atHalf = bvh.nearestHit({0.5f, 0.0f, 5.0f}, {0.0f, 0.0f, -1.0f}, 0.0f, 100.0f);
@@ -133,8 +133,8 @@ TEST_F(ObstacleBvhTest, MotionAndCasters) {
 // obstacle_trace.glsl against nearestHit, ray for ray, on the bunny, spheres, a box and a moved obstacle:
 // nearest hits (distance, normal, obstacle), and shadow-caster any-hit queries.
 TEST_F(ObstacleBvhTest, GpuTraversalMatchesTheCpu) {
-  io::Obstacle moving = sphereAt({0.8f, 0.0f, 0.0f}, 0.25f);
-  moving.motion = io::Motion{{{0.0f, {0.8f, 0.0f, 0.0f}}, {1.0f, {0.8f, 0.6f, 0.0f}}}, false};
+  scene::Obstacle moving = sphereAt({0.8f, 0.0f, 0.0f}, 0.25f);
+  moving.motion = scene::Motion{{{0.0f, {0.8f, 0.0f, 0.0f}}, {1.0f, {0.8f, 0.6f, 0.0f}}}, false};
   render::ObstacleBvh bvh(context(), {bunny(), moving, boxAt({-0.8f, 0.3f, 0.2f}, {0.3f, 0.5f, 0.2f}, false),
                                       sphereAt({0.0f, -0.8f, 0.4f}, 0.3f)});
   bvh.update(0.7);

@@ -13,13 +13,13 @@
 #include "gpu/image.h"
 #include "gpu/sequence.h"
 #include "io/error.h"
-#include "io/motion.h"
 #include "realtime/cpu_obstacles.h"
 #include "render/obstacle_meshes.h"
 #include "render/obstacle_pass.h"
 #include "render/projection.h"
 #include "render/shadow_maps.h"
 #include "render/volume.h"
+#include "scene/obstacle_placement.h"
 #include "support/gpu_fixture.h"
 #include "support/scene_parts.h"
 
@@ -32,13 +32,13 @@ constexpr double kPi = std::numbers::pi;
 const render::Box kDomain{glm::vec3(-1.0f), glm::vec3(1.0f)};
 const glm::vec3 kBackground(0.1f, 0.2f, 0.3f);
 
-io::Light directional(glm::vec3 towardLight, glm::vec3 color, float intensity, bool shadows = true) {
+scene::Light directional(glm::vec3 towardLight, glm::vec3 color, float intensity, bool shadows = true) {
   return directionalLight(towardLight, intensity, shadows, color);
 }
 
-io::Light point(glm::vec3 position, float intensity, bool shadows = true) {
-  io::Light l;
-  l.source = io::PointLight{position};
+scene::Light point(glm::vec3 position, float intensity, bool shadows = true) {
+  scene::Light l;
+  l.source = scene::PointLight{position};
   l.intensity = intensity;
   l.shadows = shadows;
   return l;
@@ -60,14 +60,15 @@ class ObstaclesTest : public GpuTest {
   // The shadow maps (tiles of kShadowTile²) and the obstacle pass of one frame at kSize², the meshes as last
   // placed.
   Frame render(const render::ObstacleMeshes& meshes, const render::Camera& camera,
-               const std::vector<io::Light>& lights = {}, const std::optional<io::Ambient>& ambient = {},
-               const render::Volume* smoke = nullptr, const io::Smoke& optics = {}) {
+               const std::vector<scene::Light>& lights = {},
+               const std::optional<scene::Ambient>& ambient = {}, const render::Volume* smoke = nullptr,
+               const scene::Smoke& optics = {}) {
     Frame f{camera, render::fullFrame(camera, kSize, kSize)};
     const render::Box bounds = render::sceneBounds(kDomain, meshes);
     f.range = render::boxDepthRange(camera, bounds);
     const uint32_t tiles = meshes.casterIndexCount() > 0
                                ? uint32_t(std::count_if(lights.begin(), lights.end(),
-                                                        [](const io::Light& l) { return l.shadows; }))
+                                                        [](const scene::Light& l) { return l.shadows; }))
                                : 0;
     render::ShadowMaps shadows(context(), pipelineCache(), kShadowTile, tiles);
     shadows.update(lights, bounds, meshes);
@@ -92,27 +93,28 @@ class ObstaclesTest : public GpuTest {
 };
 
 TEST_F(ObstaclesTest, TriangulationLiesOnTheShapesAndFacesOutward) {
-  io::Obstacle cylinder;
-  cylinder.shape = io::CylinderObstacle{glm::vec3(0.0f), 0.3f, 0.8f, glm::normalize(glm::vec3(1, 2, 0.5f))};
-  io::Obstacle box;
-  box.shape = io::BoxObstacle{glm::vec3(0.0f), glm::vec3(0.4f, 0.6f, 0.2f)};
-  for (const io::Obstacle& o : {sphereAt(glm::vec3(0.0f), 0.5f), cylinder, box}) {
+  scene::Obstacle cylinder;
+  cylinder.shape =
+      scene::CylinderObstacle{glm::vec3(0.0f), 0.3f, 0.8f, glm::normalize(glm::vec3(1, 2, 0.5f))};
+  scene::Obstacle box;
+  box.shape = scene::BoxObstacle{glm::vec3(0.0f), glm::vec3(0.4f, 0.6f, 0.2f)};
+  for (const scene::Obstacle& o : {sphereAt(glm::vec3(0.0f), 0.5f), cylinder, box}) {
     const render::ObstacleTriangles t = render::triangulate(o, 3);
     ASSERT_GT(t.indices.size(), 0u);
     for (const render::ObstacleVertex& v : t.vertices) {
       EXPECT_EQ(v.obstacle, 3u);
       EXPECT_NEAR(glm::length(v.normal), 1.0f, 1e-5f);
       const glm::vec3 p = v.position;
-      if (const auto* s = std::get_if<io::SphereObstacle>(&o.shape)) {
+      if (const auto* s = std::get_if<scene::SphereObstacle>(&o.shape)) {
         EXPECT_NEAR(glm::length(p), s->radius, 1e-5f);
-      } else if (const auto* c = std::get_if<io::CylinderObstacle>(&o.shape)) {
+      } else if (const auto* c = std::get_if<scene::CylinderObstacle>(&o.shape)) {
         const float along = glm::dot(p, c->axis), across = glm::length(p - along * c->axis);
         EXPECT_TRUE(std::abs(across - c->radius) < 1e-5f ||
                     std::abs(std::abs(along) - 0.5f * c->height) < 1e-5f);
         EXPECT_LE(across, c->radius + 1e-5f);
         EXPECT_LE(std::abs(along), 0.5f * c->height + 1e-5f);
       } else {
-        const glm::vec3 h = 0.5f * std::get<io::BoxObstacle>(o.shape).size;
+        const glm::vec3 h = 0.5f * std::get<scene::BoxObstacle>(o.shape).size;
         const glm::vec3 q = glm::abs(p) / h;
         EXPECT_NEAR(std::max({q.x, q.y, q.z}), 1.0f, 1e-5f);
       }
@@ -164,8 +166,8 @@ TEST_F(ObstaclesTest, SphereDepthMatchesRayIntersection) {
 // (1) A box's faces are flat: depth within 1e-4 m (depth-buffer precision over a 2..4 m range).
 TEST_F(ObstaclesTest, BoxDepthMatchesRayIntersection) {
   const glm::vec3 centre(0.05f, 0.1f, -0.1f), size(0.8f, 0.6f, 0.5f);
-  io::Obstacle box;
-  box.shape = io::BoxObstacle{centre, size};
+  scene::Obstacle box;
+  box.shape = scene::BoxObstacle{centre, size};
   render::ObstacleMeshes meshes(context(), {box});
   const Frame f = render(meshes, camera({1.6f, 1.2f, 2.2f}, {0, 0, 0}));
   const dvec3 lo = dvec3(centre - 0.5f * size), hi = dvec3(centre + 0.5f * size);
@@ -198,7 +200,7 @@ TEST_F(ObstaclesTest, BoxDepthMatchesRayIntersection) {
 // a point light's 1/r² by ≤ 0.7 % (0.003 here); half-float rounding adds 2^-11 relative.
 class LitSphereTest : public ObstaclesTest {
  protected:
-  double compareWithLambert(const std::vector<io::Light>& lights, const io::Ambient& ambient) {
+  double compareWithLambert(const std::vector<scene::Light>& lights, const scene::Ambient& ambient) {
     const glm::vec3 centre(0.0f, 0.05f, 0.0f);
     const float radius = 0.55f;
     render::ObstacleMeshes meshes(context(), {sphereAt(centre, radius)});
@@ -237,8 +239,9 @@ class LitSphereTest : public ObstaclesTest {
 };
 
 TEST_F(LitSphereTest, DirectionalLightAndShAmbientMatchLambert) {
-  const io::Ambient ambient = io::AmbientSh{{glm::vec3(0.2f, 0.2f, 0.25f), glm::vec3(0.05f, 0.0f, -0.05f),
-                                             glm::vec3(0.12f, 0.1f, 0.08f), glm::vec3(-0.06f, 0.05f, 0.1f)}};
+  const scene::Ambient ambient =
+      scene::AmbientSh{{glm::vec3(0.2f, 0.2f, 0.25f), glm::vec3(0.05f, 0.0f, -0.05f),
+                        glm::vec3(0.12f, 0.1f, 0.08f), glm::vec3(-0.06f, 0.05f, 0.1f)}};
   const double worst =
       compareWithLambert({directional({0.6f, 0.7f, 0.5f}, {1.0f, 0.9f, 0.8f}, float(kPi))}, ambient);
   RecordProperty("max_radiance_error", std::to_string(worst));
@@ -247,7 +250,7 @@ TEST_F(LitSphereTest, DirectionalLightAndShAmbientMatchLambert) {
 TEST_F(LitSphereTest, PointLightAndConstantAmbientMatchLambert) {
   const double worst = compareWithLambert(
       {point({1.2f, 1.0f, 1.5f}, 6.0f), directional({-1, 0.2f, 0.3f}, {0.3f, 0.3f, 0.6f}, 1.0f)},
-      io::AmbientColor{glm::vec3(0.05f, 0.04f, 0.03f)});
+      scene::AmbientColor{glm::vec3(0.05f, 0.04f, 0.03f)});
   RecordProperty("max_radiance_error", std::to_string(worst));
 }
 
@@ -265,9 +268,9 @@ TEST_F(ObstaclesTest, SmokeShadowsTheObstacles) {
   render::DeviceVolume volume(context(), grid, false);
   volume.upload(std::vector<float>(40 * 10 * 40, 1.0f), {});
   const render::Volume smoke = volume.view();
-  const std::vector<io::Light> sun = {directional({0, 1, 0}, glm::vec3(1.0f), float(kPi))};
+  const std::vector<scene::Light> sun = {directional({0, 1, 0}, glm::vec3(1.0f), float(kPi))};
   const render::Camera view = camera({0.0f, -0.2f, 3.0f}, centre);
-  io::Smoke absorbing, scattering;
+  scene::Smoke absorbing, scattering;
   absorbing.extinction = scattering.extinction = 3.0f;
   absorbing.albedo = 0.0f;
   scattering.albedo = 0.9f;
@@ -276,7 +279,7 @@ TEST_F(ObstaclesTest, SmokeShadowsTheObstacles) {
   const double tau = 1.5, direct = std::exp(-tau);
   const double g1 = 2 - 0.9 * 1.2, g2 = 0.9 * 0.8, k = std::sqrt(g1 * g1 - g2 * g2);
   const double scattered = k / (k * std::cosh(k * tau) + g1 * std::sinh(k * tau)) - direct;
-  for (const io::Smoke& optics : {absorbing, scattering}) {
+  for (const scene::Smoke& optics : {absorbing, scattering}) {
     SCOPED_TRACE(optics.albedo > 0.0f ? "scattering" : "absorbing");
     const Frame shadowed = render(meshes, view, sun, {}, &smoke, optics);
     int lit = 0;
@@ -310,17 +313,17 @@ TEST_F(ObstaclesTest, SmokeShadowsTheObstacles) {
 TEST_F(ObstaclesTest, ObstacleShadowsFallOnObstacles) {
   const glm::vec3 centre(0.1f, 0.1f, 0.05f), floorCentre(0.0f, -0.5f, 0.0f), floorSize(1.8f, 0.1f, 1.8f);
   const float radius = 0.3f;
-  io::Obstacle floor;
-  floor.shape = io::BoxObstacle{floorCentre, floorSize};
+  scene::Obstacle floor;
+  floor.shape = scene::BoxObstacle{floorCentre, floorSize};
   render::ObstacleMeshes meshes(context(), {sphereAt(centre, radius), floor});
-  const std::vector<io::Light> lights = {directional({0.5f, 1.0f, 0.3f}, glm::vec3(1.0f), float(kPi))};
-  const io::Ambient ambient = io::AmbientColor{glm::vec3(0.05f)};
+  const std::vector<scene::Light> lights = {directional({0.5f, 1.0f, 0.3f}, glm::vec3(1.0f), float(kPi))};
+  const scene::Ambient ambient = scene::AmbientColor{glm::vec3(0.05f)};
   const Frame f = render(meshes, camera({0.0f, 1.6f, 2.4f}, {0.0f, -0.3f, 0.0f}, 45.0f), lights, ambient);
   const dvec3 lo = dvec3(floorCentre - 0.5f * floorSize), hi = dvec3(floorCentre + 0.5f * floorSize);
   const auto covered = [&](double px, double py) {
     return hitBox(pixelRay(f.camera, f.plane, px, py, kSize, kSize), lo, hi).has_value();
   };
-  const dvec3 l = glm::normalize(dvec3(std::get<io::DirectionalLight>(lights[0].source).direction));
+  const dvec3 l = glm::normalize(dvec3(std::get<scene::DirectionalLight>(lights[0].source).direction));
   // The texel of the light's tile: the casters' extent (the floor's diagonal across the beam at most) over
   // the tile.
   const double texel = glm::length(dvec3(floorSize)) / kShadowTile;
@@ -338,7 +341,7 @@ TEST_F(ObstaclesTest, ObstacleShadowsFallOnObstacles) {
       if (along > 0 && std::abs(pass - radius) < 6 * texel) continue;
       const bool inShadow = along > 0 && pass < radius;
       const dvec3 expected = lambert(dvec3(render::kObstacleAlbedo), p, dvec3(0, 1, 0),
-                                     inShadow ? std::vector<io::Light>{} : lights, ambient);
+                                     inShadow ? std::vector<scene::Light>{} : lights, ambient);
       for (int k = 0; k < 3; ++k)
         EXPECT_NEAR(f.rgba(x, y)[k], expected[k], 2e-3) << x << "," << y << (inShadow ? " shadowed" : " lit");
       ++(inShadow ? shadowed : lit);
@@ -357,9 +360,9 @@ TEST_F(ObstaclesTest, ShadowAtlasHoldsTheFirstHitAlongEachLightRay) {
   const glm::vec3 centre(0.1f, 0.3f, -0.2f);
   const float radius = 0.35f;
   render::ObstacleMeshes meshes(context(), {sphereAt(centre, radius)});
-  const std::vector<io::Light> lights = {directional({0.4f, 1.0f, 0.3f}, glm::vec3(1.0f), 3.0f),
-                                         directional({1.0f, 0.0f, 0.0f}, glm::vec3(1.0f), 3.0f, false),
-                                         point({0.6f, 2.8f, 1.5f}, 5.0f)};
+  const std::vector<scene::Light> lights = {directional({0.4f, 1.0f, 0.3f}, glm::vec3(1.0f), 3.0f),
+                                            directional({1.0f, 0.0f, 0.0f}, glm::vec3(1.0f), 3.0f, false),
+                                            point({0.6f, 2.8f, 1.5f}, 5.0f)};
   const render::Box bounds = render::sceneBounds(kDomain, meshes);
   constexpr uint32_t kTile = 64;
   ASSERT_EQ(render::shadowTileCount(lights, {sphereAt(centre, radius)}), 2u);
@@ -399,10 +402,10 @@ TEST_F(ObstaclesTest, ShadowAtlasHoldsTheFirstHitAlongEachLightRay) {
     };
     const Ray axis = rayThrough(0.0, 0.0);
     if (light == 0) {
-      const dvec3 towardLight(std::get<io::DirectionalLight>(lights[0].source).direction);
+      const dvec3 towardLight(std::get<scene::DirectionalLight>(lights[0].source).direction);
       EXPECT_NEAR(glm::dot(axis.direction, -glm::normalize(towardLight)), 1.0, 1e-6);
     } else {
-      const dvec3 toLight = dvec3(std::get<io::PointLight>(lights[2].source).position) - axis.origin;
+      const dvec3 toLight = dvec3(std::get<scene::PointLight>(lights[2].source).position) - axis.origin;
       EXPECT_LT(glm::length(glm::cross(toLight, axis.direction)), 1e-4) << "the ray misses the light";
       EXPECT_LT(glm::dot(toLight, axis.direction), 0.0) << "the ray runs toward the light";
     }
@@ -453,14 +456,14 @@ TEST_F(ObstaclesTest, ShadowAtlasHoldsTheFirstHitAlongEachLightRay) {
 // Only shadow-casting obstacles go into the atlas; every obstacle goes into the image. A box that casts no
 // shadow between two spheres that do, lit from above: the texels over the box read 1.
 TEST_F(ObstaclesTest, OnlyShadowCastersAreInTheAtlas) {
-  io::Obstacle box;
-  box.shape = io::BoxObstacle{glm::vec3(0.0f), glm::vec3(0.4f)};
+  scene::Obstacle box;
+  box.shape = scene::BoxObstacle{glm::vec3(0.0f), glm::vec3(0.4f)};
   box.shadows = false;
-  const std::vector<io::Obstacle> obstacles = {sphereAt({-0.6f, 0.0f, 0.0f}, 0.2f), box,
-                                               sphereAt({0.6f, 0.0f, 0.0f}, 0.2f)};
+  const std::vector<scene::Obstacle> obstacles = {sphereAt({-0.6f, 0.0f, 0.0f}, 0.2f), box,
+                                                  sphereAt({0.6f, 0.0f, 0.0f}, 0.2f)};
   render::ObstacleMeshes meshes(context(), obstacles);
   EXPECT_LT(meshes.casterIndexCount(), meshes.indexCount());
-  const std::vector<io::Light> lights = {directional({0, 1, 0}, glm::vec3(1.0f), 3.0f)};
+  const std::vector<scene::Light> lights = {directional({0, 1, 0}, glm::vec3(1.0f), 3.0f)};
   constexpr int kTile = 32;
   render::ShadowMaps shadows(context(), pipelineCache(), kTile, render::shadowTileCount(lights, obstacles));
   shadows.update(lights, render::sceneBounds(kDomain, meshes), meshes);
@@ -486,10 +489,10 @@ TEST_F(ObstaclesTest, OnlyShadowCastersAreInTheAtlas) {
 // A point light inside the domain gets a shadow map as long as the casters lie in front of it; inside the
 // casters' bounds it gets none (no cube maps), and a note says so once.
 TEST_F(ObstaclesTest, PointLightInsideTheCastersBoundsHasNoTileAndOneNote) {
-  const std::vector<io::Obstacle> obstacles = {sphereAt({0, 0, 0}, 0.2f)};
+  const std::vector<scene::Obstacle> obstacles = {sphereAt({0, 0, 0}, 0.2f)};
   render::ObstacleMeshes meshes(context(), obstacles);
-  const std::vector<io::Light> lights = {point({0.1f, 0.05f, 0.0f}, 1.0f), point({0.5f, 0.5f, 0.5f}, 1.0f),
-                                         directional({0, 1, 0}, glm::vec3(1), 1)};
+  const std::vector<scene::Light> lights = {point({0.1f, 0.05f, 0.0f}, 1.0f), point({0.5f, 0.5f, 0.5f}, 1.0f),
+                                            directional({0, 1, 0}, glm::vec3(1), 1)};
   render::ShadowMaps shadows(context(), pipelineCache(), 16, 3);
   for (int frame = 0; frame < 2; ++frame) {
     shadows.update(lights, render::sceneBounds(kDomain, meshes), meshes);
@@ -504,8 +507,8 @@ TEST_F(ObstaclesTest, PointLightInsideTheCastersBoundsHasNoTileAndOneNote) {
 // coverage of the sphere at the keyframed position (within 0.1 px: only silhouette pixels can differ, about
 // 2πR ≈ 60 of ≈ 300), so it moves by the projected displacement.
 TEST_F(ObstaclesTest, MovingSphereIsDrawnAtItsKeyframedPosition) {
-  io::Obstacle moving = sphereAt(glm::vec3(-0.5f, 0.0f, 0.0f), 0.25f);
-  moving.motion = io::Motion{{{0.0f, {-0.5f, 0.0f, 0.0f}}, {2.0f, {0.5f, 0.3f, 0.1f}}}, false};
+  scene::Obstacle moving = sphereAt(glm::vec3(-0.5f, 0.0f, 0.0f), 0.25f);
+  moving.motion = scene::Motion{{{0.0f, {-0.5f, 0.0f, 0.0f}}, {2.0f, {0.5f, 0.3f, 0.1f}}}, false};
   render::ObstacleMeshes meshes(context(), {moving});
   const render::Camera view = camera({0, 0.2f, 3.2f}, {0, 0, 0});
   const double frameDt = 1.0 / 30;
@@ -513,7 +516,7 @@ TEST_F(ObstaclesTest, MovingSphereIsDrawnAtItsKeyframedPosition) {
   for (int i = 0; i < 2; ++i) {
     const double seconds = (i == 0 ? 10 : 45) * frameDt;
     const dvec3 expected = keyframePosition(*moving.motion, seconds);
-    const glm::vec3 simulated = io::evaluateMotion(*moving.motion, seconds).position;
+    const glm::vec3 simulated = scene::evaluateMotion(*moving.motion, seconds).position;
     ASSERT_LT(glm::length(dvec3(simulated) - expected), 1e-6);
     meshes.update(seconds);
     const Frame f = render(meshes, view);
@@ -542,13 +545,13 @@ TEST_F(ObstaclesTest, MovingSphereIsDrawnAtItsKeyframedPosition) {
 // 1e-4 m on lavapipe (the same flat triangles: depth-buffer precision only, which Vulkan leaves to the
 // rasterizer), 3e-4 m elsewhere (NVIDIA's H200 measured 1.45e-4 m at 2.6 m).
 TEST_F(ObstaclesTest, MeshCoverageAndDepthMatchRayTriangleTest) {
-  io::Obstacle bunny;
-  bunny.shape = io::MeshObstacle{std::filesystem::path(SIXWAY_ASSETS_DIR) / "meshes/stanford-bunny.obj", 6.0f,
-                                 glm::vec3(0.05f, -0.35f, 0.1f), glm::vec3(10.0f, 30.0f, -5.0f)};
+  scene::Obstacle bunny;
+  bunny.shape = scene::MeshObstacle{std::filesystem::path(SIXWAY_ASSETS_DIR) / "meshes/stanford-bunny.obj",
+                                    6.0f, glm::vec3(0.05f, -0.35f, 0.1f), glm::vec3(10.0f, 30.0f, -5.0f)};
   render::ObstacleMeshes meshes(context(), {bunny});
   const Frame f =
       render(meshes, camera({0.3f, 0.5f, 3.0f}, {0, 0.1f, 0}), {directional({0, 1, 1}, glm::vec3(1), 3)});
-  CpuMesh cpu(std::get<io::MeshObstacle>(bunny.shape));
+  CpuMesh cpu(std::get<scene::MeshObstacle>(bunny.shape));
   cpu.bin(f.camera, f.plane, kSize, kSize, 2);
   const auto covered = [&](double px, double py) { return cpu.hitPixel(px, py).has_value(); };
   int inside = 0, outside = 0;
@@ -586,7 +589,7 @@ TEST_F(ObstaclesTest, SceneWithoutObstaclesIsTheBackground) {
       EXPECT_EQ(f.rgba(x, y)[3], 0.0f);
       EXPECT_EQ(f.depthAt(x, y), 1.0f);
     }
-  const std::vector<io::Light> lights = {directional({0, 1, 0}, glm::vec3(1), 1)};
+  const std::vector<scene::Light> lights = {directional({0, 1, 0}, glm::vec3(1), 1)};
   EXPECT_EQ(render::shadowTileCount(lights, {}), 0u);
   render::ShadowMaps shadows(context(), pipelineCache(), render::kDefaultShadowTileSize, 0);
   shadows.update(lights, kDomain, meshes);

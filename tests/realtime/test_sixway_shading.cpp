@@ -144,8 +144,8 @@ class SixWayShadingTest : public GpuTest {
     return lights;
   }
 
-  static io::Ambient randomSh(std::mt19937& rng) {
-    io::AmbientSh sh;
+  static scene::Ambient randomSh(std::mt19937& rng) {
+    scene::AmbientSh sh;
     sh.coefficients[0] = {uniform(rng, 0.05f, 0.3f), uniform(rng, 0.05f, 0.3f), uniform(rng, 0.05f, 0.3f)};
     for (int i = 1; i < 4; ++i)
       for (int c = 0; c < 3; ++c) sh.coefficients[i][c] = uniform(rng, -0.5f, 0.5f) * sh.coefficients[0][c];
@@ -175,7 +175,7 @@ class SixWayShadingTest : public GpuTest {
   // for each of `frames` (each sets `in` before its submission).
   struct Frame {
     std::vector<ShadingLight> lights;
-    std::optional<io::Ambient> ambient;
+    std::optional<scene::Ambient> ambient;
     render::ShadingControls controls;
   };
   std::vector<io::Image> render(const std::vector<Frame>& frames, bool withGuide, bool withObstacles,
@@ -343,8 +343,8 @@ TEST_F(SixWayShadingTest, UniformEnvironmentGivesFourTimesRadianceTimesUniformLi
   background = io::Image(kWidth, kHeight, {"R", "G", "B", "A"});
   const glm::vec3 c(0.3f, 0.2f, 0.1f);
   Frame constant, sh;
-  constant.ambient = io::AmbientColor{c};
-  io::AmbientSh coefficients;
+  constant.ambient = scene::AmbientColor{c};
+  scene::AmbientSh coefficients;
   coefficients.coefficients[0] = c;
   sh.ambient = coefficients;
   for (Frame* f : {&constant, &sh}) f->controls.emissiveGradient = {{1.0f, glm::vec3(0.0f)}};
@@ -622,7 +622,7 @@ TEST_F(SixWayShadingTest, BillboardShowsItsLightmapsOverExactlyItsRectangle) {
 // The default gradient from an emission ramp keeps the emissive channel's luminance (what the baker wrote)
 // and shows each ramp key's own colour at that key's luminance.
 TEST_F(SixWayShadingTest, DefaultEmissiveGradientKeepsTheBakedLuminance) {
-  io::Emission emission;
+  scene::Emission emission;
   emission.intensity = 2.0f;
   emission.ramp = {
       {0.0f, {0, 0, 0}}, {0.3f, {0.6f, 0.1f, 0.0f}}, {0.6f, {1.0f, 0.5f, 0.1f}}, {1.0f, {1, 0.95f, 0.9f}}};
@@ -658,11 +658,11 @@ TEST_F(SixWayShadingTest, DefaultEmissiveGradientKeepsTheBakedLuminance) {
 // temperature times alpha · s, however thick the smoke: the hue no longer follows the emissive channel's
 // brightness (Unity's gradient(e) would turn thin hot smoke into the coolest key's colour).
 TEST_F(SixWayShadingTest, StraightEmissionShowsTheRampColourAtAnyThickness) {
-  io::Emission emission;
+  scene::Emission emission;
   emission.intensity = 4.0f;
   emission.ramp = {
       {0.3f, {0, 0, 0}}, {1.0f, {1.0f, 0.25f, 0.02f}}, {2.0f, {1.0f, 0.65f, 0.2f}}, {3.0f, {1, 0.95f, 0.8f}}};
-  io::Smoke smoke;
+  scene::Smoke smoke;
   smoke.extinction = 30.0f;
   smoke.emission = emission;
   const float s = *render::emissiveStraightScale(smoke);
@@ -705,8 +705,8 @@ TEST_F(SixWayShadingTest, MoreLightsThanItTakesIsAnInputError) {
 }
 
 TEST(SixWayShadingLights, SceneLightsBecomeShadingLights) {
-  io::Light point;
-  point.source = io::PointLight{{1, 2, 3}};
+  scene::Light point;
+  point.source = scene::PointLight{{1, 2, 3}};
   point.color = {1.0f, 0.5f, 0.25f};
   point.intensity = 8.0f;
   point.shadows = false;
@@ -715,8 +715,8 @@ TEST(SixWayShadingLights, SceneLightsBecomeShadingLights) {
   EXPECT_EQ(p.vector, glm::vec3(1, 2, 3));
   EXPECT_EQ(p.radiance, glm::vec3(8.0f, 4.0f, 2.0f));
   EXPECT_EQ(p.shadowTile, -1);  // the light casts no shadows
-  io::Light sun;
-  sun.source = io::DirectionalLight{{0, 2, 0}};
+  scene::Light sun;
+  sun.source = scene::DirectionalLight{{0, 2, 0}};
   const ShadingLight s = render::shadingLight(sun, 1);
   EXPECT_EQ(s.type, ShadingLight::Type::Directional);
   EXPECT_EQ(s.vector, glm::vec3(0, 1, 0));

@@ -26,7 +26,7 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-void benchBake(render::LightmapBaker& baker, const render::Volume& volume, const io::Smoke& smoke,
+void benchBake(render::LightmapBaker& baker, const render::Volume& volume, const scene::Smoke& smoke,
                const render::Camera& camera, const char* view) {
   render::BakeSettings settings;
   settings.width = settings.height = 256;
@@ -50,7 +50,7 @@ void benchBake(render::LightmapBaker& baker, const render::Volume& volume, const
   for (const auto& [name, times] : stages) std::printf("  %-24s %.1f ms\n", name.c_str(), median(times));
 }
 
-void benchTrace(render::PathTracer& tracer, const render::Volume& volume, const io::Smoke& smoke,
+void benchTrace(render::PathTracer& tracer, const render::Volume& volume, const scene::Smoke& smoke,
                 const render::Camera& camera, int orders) {
   render::TraceSettings settings;
   settings.width = settings.height = 256;
@@ -76,7 +76,7 @@ int main() {
 
   const render::DeviceVolume volume = render::uploadVolume(context, test::densityAndHeatCube(128));
 
-  io::Smoke smoke;  // about 0.3 optical depth per cell at the densest cells, as in the simulated scenes
+  scene::Smoke smoke;  // about 0.3 optical depth per cell at the densest cells, as in the simulated scenes
   smoke.extinction = 0.3f / volume.grid().cellSize;
   const render::Box box = volume.grid().bounds();
   const render::Camera front = render::framingCamera(box);

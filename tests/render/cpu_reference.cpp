@@ -36,7 +36,7 @@ double trilinear(const render::VolumeGrid& grid, const std::vector<float>& value
   return result;
 }
 
-glm::dvec3 rampColor(const io::Emission& emission, double temperature) {
+glm::dvec3 rampColor(const scene::Emission& emission, double temperature) {
   const auto& keys = emission.ramp;
   if (temperature <= keys.front().temperature) return keys.front().color;
   for (size_t k = 1; k < keys.size(); ++k) {
@@ -172,7 +172,7 @@ double henyeyGreenstein(double cosTheta, double g) {
   return (1 - g * g) / (4 * kPi * d * std::sqrt(d));
 }
 
-io::Image bakeSixWay(const CpuVolume& volume, const io::Smoke& smoke, const render::Camera& camera,
+io::Image bakeSixWay(const CpuVolume& volume, const scene::Smoke& smoke, const render::Camera& camera,
                      const render::ImagePlane& plane, int width, int height, double stepCells) {
   io::Image image(width, height, {"Right", "Left", "Top", "Bottom", "Back", "Front", "alpha", "emissive"});
   const std::array<dvec3, 6> lights = {dvec3(camera.right), -dvec3(camera.right),  dvec3(camera.up),
@@ -195,7 +195,7 @@ io::Image bakeSixWay(const CpuVolume& volume, const io::Smoke& smoke, const rend
   return image;
 }
 
-io::Image environmentSingleScattering(const CpuVolume& volume, const io::Smoke& smoke,
+io::Image environmentSingleScattering(const CpuVolume& volume, const scene::Smoke& smoke,
                                       const render::Camera& camera, const render::ImagePlane& plane,
                                       int width, int height, const std::array<glm::vec3, 4>& environment,
                                       int directions, double stepCells) {
@@ -226,7 +226,7 @@ io::Image environmentSingleScattering(const CpuVolume& volume, const io::Smoke& 
   return image;
 }
 
-io::Image pointLightSingleScattering(const CpuVolume& volume, const io::Smoke& smoke,
+io::Image pointLightSingleScattering(const CpuVolume& volume, const scene::Smoke& smoke,
                                      const render::Camera& camera, const render::ImagePlane& plane, int width,
                                      int height, glm::vec3 position, glm::vec3 intensity, double stepCells) {
   const double maxStep = stepCells * volume.grid.cellSize;

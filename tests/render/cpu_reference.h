@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "io/image.h"
-#include "io/scene.h"
 #include "render/camera.h"
 #include "render/light_grid.h"
 #include "render/volume.h"
+#include "scene/scene.h"
 
 namespace sixway::test {
 
@@ -53,19 +53,19 @@ std::vector<double> lightGridDepths(const CpuVolume& volume, double extinction,
 
 // The eight six-way channels, by a view march with steps of at most stepCells cells and a direct march
 // toward each light from every sample.
-io::Image bakeSixWay(const CpuVolume& volume, const io::Smoke& smoke, const render::Camera& camera,
+io::Image bakeSixWay(const CpuVolume& volume, const scene::Smoke& smoke, const render::Camera& camera,
                      const render::ImagePlane& plane, int width, int height, double stepCells);
 
 // Single scattering toward the camera (RGB, black background) of light arriving from every direction with
 // radiance max(0, L0 + L1·w), integrated over `directions` quasi-uniform directions (spherical Fibonacci).
-io::Image environmentSingleScattering(const CpuVolume& volume, const io::Smoke& smoke,
+io::Image environmentSingleScattering(const CpuVolume& volume, const scene::Smoke& smoke,
                                       const render::Camera& camera, const render::ImagePlane& plane,
                                       int width, int height, const std::array<glm::vec3, 4>& environment,
                                       int directions, double stepCells);
 
 // Single scattering toward the camera (RGB, black background) of a point light of radiant intensity
 // `intensity` (colour included) at `position`.
-io::Image pointLightSingleScattering(const CpuVolume& volume, const io::Smoke& smoke,
+io::Image pointLightSingleScattering(const CpuVolume& volume, const scene::Smoke& smoke,
                                      const render::Camera& camera, const render::ImagePlane& plane, int width,
                                      int height, glm::vec3 position, glm::vec3 intensity, double stepCells);
 

@@ -99,7 +99,7 @@ int main(int argc, char** argv) {
   const render::Camera camera = render::Camera::lookAt(
       box.centre() + glm::vec3(0.0f, -2.2f * glm::length(box.size()), 0.0f), box.centre(), {0, 0, 1}, 40.0f);
   const render::ImagePlane billboard = render::billboardBounds(camera, box, 1.0f);
-  io::Smoke smoke;
+  scene::Smoke smoke;
   smoke.extinction = 3.0f;  // per unit of the file's world units; ≈ 0.4 optical depth per cell at density 1
   smoke.albedo = 0.9f;
   smoke.phaseG = 0.3f;
@@ -157,7 +157,7 @@ int main(int argc, char** argv) {
   // A final image under one light from upper right, in front: path-traced (single and multiple scattering),
   // and six-way shading of the matching lightmaps.
   const glm::vec3 toLight = glm::normalize(0.6f * camera.right + 0.5f * camera.up - 0.6f * camera.forward);
-  const io::Light sun{io::DirectionalLight{toLight}, glm::vec3(1.0f), std::numbers::pi_v<float>};
+  const scene::Light sun{scene::DirectionalLight{toLight}, glm::vec3(1.0f), std::numbers::pi_v<float>};
   trace.maxOrders = 1;
   tracer.beginImage(volume, smoke, camera, billboard, {sun}, trace);
   tracer.accumulate(1024);

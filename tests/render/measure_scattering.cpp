@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
               cells, truthSpp);
 
   const render::DeviceVolume volume = render::uploadVolume(context, test::densityAndHeatCube(cells));
-  io::Smoke smoke;  // 0.3 optical depth per cell of a 128³ lattice at the densest cells, albedo 0.9
+  scene::Smoke smoke;  // 0.3 optical depth per cell of a 128³ lattice at the densest cells, albedo 0.9
   smoke.extinction = 0.3f / (volume.grid().cellSize * float(cells) / 128.0f);
   const render::Box box = volume.grid().bounds();
   const render::Camera camera = render::Camera::lookAt(

@@ -14,7 +14,7 @@ namespace {
 
 class BakerTest : public RenderTest {
  protected:
-  io::Image bake(const CpuVolume& volume, const io::Smoke& smoke, const render::Camera& camera, int size,
+  io::Image bake(const CpuVolume& volume, const scene::Smoke& smoke, const render::Camera& camera, int size,
                  float lightSpacingCells = 1.0f, float stepCells = 0.5f) {
     const render::DeviceVolume device = upload(volume);
     render::BakeSettings settings;
@@ -34,7 +34,7 @@ class BakerTest : public RenderTest {
 // (one cell) and step (half a cell) the largest error is under 2% of the channel's peak.
 TEST_F(BakerTest, MatchesTheCpuReferenceAndConvergesAsTheLightGridRefines) {
   const CpuVolume volume = puffs(20);
-  const io::Smoke smoke = puffOptics();
+  const scene::Smoke smoke = puffOptics();
   const render::Camera camera = obliqueCamera();
   const io::Image cpu =
       bakeSixWay(volume, smoke, camera, squareBillboard(camera, volume.box()), 32, 32, 0.25);
@@ -68,7 +68,7 @@ TEST_F(BakerTest, MatchesTheCpuReferenceAndConvergesAsTheLightGridRefines) {
 // Every light's grid, oblique to the volume's axes with this camera, against the CPU's column integral.
 TEST_F(BakerTest, LightGridDepthsMatchTheCpuColumnIntegral) {
   const CpuVolume volume = puffs(16);
-  const io::Smoke smoke = puffOptics();
+  const scene::Smoke smoke = puffOptics();
   bake(volume, smoke, obliqueCamera(), 16);
   for (int light = 0; light < render::kSixWayLights; ++light) {
     const render::LightGrid& grid = baker_.lightGrids()[light];
@@ -92,7 +92,7 @@ TEST_F(BakerTest, LightGridDepthsMatchTheCpuColumnIntegral) {
 // smoke (equal steps: alpha to float rounding).
 TEST_F(BakerTest, SkippingEmptyBricksChangesNothing) {
   const CpuVolume volume = sparseCones(24);
-  io::Smoke smoke = puffOptics();
+  scene::Smoke smoke = puffOptics();
   smoke.emission.intensity = 0.0f;
   const render::Camera camera = obliqueCamera();
   const io::Image cpu = bakeSixWay(volume, smoke, camera, squareBillboard(camera, volume.box()), 32, 32, 0.5);
@@ -107,7 +107,7 @@ TEST_F(BakerTest, SkippingEmptyBricksChangesNothing) {
 // through the box, computed analytically; no light reaches the camera.
 TEST_F(BakerTest, AbsorbingBoxGivesTheAnalyticAlpha) {
   const CpuVolume volume = constantBox({12, 8, 6}, 0.1f, 1.0f);
-  io::Smoke smoke;
+  scene::Smoke smoke;
   smoke.extinction = 2.5f;
   smoke.albedo = 0.0f;
   const render::Camera camera = obliqueCamera();
@@ -137,7 +137,7 @@ TEST_F(BakerTest, EmptyVolumeIsBlackAndTransparent) {
 TEST_F(BakerTest, ChannelsAreLitFromTheirCameraRelativeSides) {
   const render::Box unit{glm::vec3(0.0f), glm::vec3(1.0f)};
   const render::Camera camera = render::framingCamera(unit);
-  io::Smoke smoke;
+  scene::Smoke smoke;
   smoke.extinction = 1.0f;
   smoke.phaseG = 0.6f;
   const io::Image thin = bake(puffs(12), smoke, camera, 8);

@@ -103,19 +103,19 @@ TEST(CameraTest, PixelCentreRayOfAFullFrameIsTheViewAxis) {
 
 // Orbits turn counter-clockwise seen from above (right-hand rule about +y): +z goes to +x after 90°.
 TEST(SceneFrameTest, OrbitsAndDolliesMoveAsTheSceneFormatSays) {
-  io::Camera camera;
+  scene::Camera camera;
   camera.position = {0, 1, 4};
   camera.target = {0, 1, 0};
-  camera.path = io::CameraOrbit{30.0f};
+  camera.path = scene::CameraOrbit{30.0f};
   expectVec(render::sceneCamera(camera, 3).position, {4, 1, 0}, 1e-4f);
-  camera.path = io::CameraDolly{{0, 1, 2}, 4};
+  camera.path = scene::CameraDolly{{0, 1, 2}, 4};
   expectVec(render::sceneCamera(camera, 2).position, {0, 1, 3});
   expectVec(render::sceneCamera(camera, 9).position, {0, 1, 2});
 
-  io::Light lamp{io::PointLight{{1, 0, 0}}};
-  lamp.path = io::LightOrbit{{0, 0, 0}, {0, 1, 0}, 90.0f};
+  scene::Light lamp{scene::PointLight{{1, 0, 0}}};
+  lamp.path = scene::LightOrbit{{0, 0, 0}, {0, 1, 0}, 90.0f};
   const auto moved = render::sceneLights({lamp}, 1);
-  expectVec(std::get<io::PointLight>(moved[0].source).position, {0, 0, -1});
+  expectVec(std::get<scene::PointLight>(moved[0].source).position, {0, 0, -1});
   EXPECT_FALSE(moved[0].path.has_value());
 }
 

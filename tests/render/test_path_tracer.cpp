@@ -20,8 +20,8 @@ namespace {
 class PathTracerTest : public RenderTest {
  protected:
   // An RGB + alpha image of `volume` with the oblique camera, pixel centres, no lights unless given.
-  io::Image traceImage(const CpuVolume& volume, const io::Smoke& smoke, render::TraceSettings settings,
-                       uint32_t samples, const std::vector<io::Light>& lights = {}) {
+  io::Image traceImage(const CpuVolume& volume, const scene::Smoke& smoke, render::TraceSettings settings,
+                       uint32_t samples, const std::vector<scene::Light>& lights = {}) {
     const render::DeviceVolume device = upload(volume);
     const render::Camera camera = obliqueCamera();
     tracer_.beginImage(device.view(), smoke, camera, squareBillboard(camera, volume.box()), lights, settings);
@@ -42,7 +42,7 @@ render::TraceSettings settings(int size, int maxOrders) {
 
 TEST_F(PathTracerTest, EmptyVolumeIsBlackWithAlphaZero) {
   const CpuVolume empty = constantBox({8, 8, 8}, 0.125f, 0.0f);
-  const io::Light sun{io::DirectionalLight{{0.0f, 1.0f, 0.0f}}};
+  const scene::Light sun{scene::DirectionalLight{{0.0f, 1.0f, 0.0f}}};
   for (float v : traceImage(empty, puffOptics(), settings(16, 8), 16, {sun}).pixels) ASSERT_EQ(v, 0.0f);
   const render::DeviceVolume device = upload(empty);
   const render::Camera camera = obliqueCamera();
@@ -57,7 +57,7 @@ TEST_F(PathTracerTest, EmptyVolumeIsBlackWithAlphaZero) {
 // density, each sample is 0 or 1, so the tolerance is binomial: 5 standard deviations of the mean.
 TEST_F(PathTracerTest, AbsorbingBoxGivesTheAnalyticAlphaAndTransmittedBackground) {
   const CpuVolume box = constantBox({12, 8, 6}, 0.1f, 1.0f);
-  io::Smoke smoke;
+  scene::Smoke smoke;
   smoke.extinction = 2.5f;
   smoke.albedo = 0.0f;
   render::TraceSettings s = settings(16, 8);
@@ -83,7 +83,7 @@ TEST_F(PathTracerTest, AbsorbingBoxGivesTheAnalyticAlphaAndTransmittedBackground
 // all scattering orders, whatever the slab's shape and phase function; cutting the orders loses energy.
 TEST_F(PathTracerTest, WhiteSlabInAWhiteFurnaceConservesEnergy) {
   const CpuVolume slab = constantBox({16, 16, 4}, 1.0f / 16, 1.0f);
-  io::Smoke smoke;
+  scene::Smoke smoke;
   smoke.extinction = 8.0f;  // optical thickness 2 across the slab
   smoke.albedo = 1.0f;
   smoke.phaseG = 0.5f;
@@ -117,7 +117,7 @@ TEST_F(PathTracerTest, WhiteSlabInAWhiteFurnaceConservesEnergy) {
 TEST_F(PathTracerTest, SingleScatteringConvergesToTheBakerAsOneOverSqrtSpp) {
   const CpuVolume volume = puffs(16);
   const render::DeviceVolume device = upload(volume);
-  const io::Smoke smoke = puffOptics();
+  const scene::Smoke smoke = puffOptics();
   const render::Camera camera = obliqueCamera();
   const render::ImagePlane plane = squareBillboard(camera, volume.box());
   render::LightmapBaker baker(context(), pipelineCache());
@@ -167,10 +167,10 @@ TEST_F(PathTracerTest, SingleScatteringConvergesToTheBakerAsOneOverSqrtSpp) {
 // shadow rays) against the CPU oracle, within 3× the measured Monte Carlo error.
 TEST_F(PathTracerTest, PointLightSingleScatteringMatchesTheCpuOracle) {
   const CpuVolume volume = puffs(12);
-  io::Smoke smoke = puffOptics();
+  scene::Smoke smoke = puffOptics();
   smoke.emission.intensity = 0.0f;  // the oracle has no emission
   const glm::vec3 position(1.4f, 1.1f, 0.3f);
-  const io::Light lamp{io::PointLight{position}, {1.0f, 0.7f, 0.4f}, 5.0f};
+  const scene::Light lamp{scene::PointLight{position}, {1.0f, 0.7f, 0.4f}, 5.0f};
   render::TraceSettings s = settings(16, 1);
   const io::Image a = traceImage(volume, smoke, s, 512, {lamp});
   s.seed = 2;
@@ -191,7 +191,7 @@ TEST_F(PathTracerTest, PointLightSingleScatteringMatchesTheCpuOracle) {
 // reaches the environment only through Henyey–Greenstein sampling, so this checks the sampled directions.
 TEST_F(PathTracerTest, EnvironmentSingleScatteringMatchesTheCpuOracle) {
   const CpuVolume volume = puffs(10);
-  io::Smoke smoke = puffOptics();
+  scene::Smoke smoke = puffOptics();
   smoke.emission.intensity = 0.0f;
   smoke.phaseG = 0.5f;
   const std::array<glm::vec3, 4> environment = {glm::vec3(0.5f), glm::vec3(0.45f, 0.0f, 0.0f),
@@ -220,7 +220,7 @@ TEST_F(PathTracerTest, EnvironmentSingleScatteringMatchesTheCpuOracle) {
 // within that error plus 3× the Monte Carlo error.
 TEST_F(PathTracerTest, SixLightmapsSumToTheUniformEnvironment) {
   const CpuVolume volume = puffs(10);
-  io::Smoke smoke = puffOptics();
+  scene::Smoke smoke = puffOptics();
   smoke.emission.intensity = 0.0f;
   smoke.phaseG = 0.0f;
   smoke.extinction = 1.5f;
@@ -263,7 +263,7 @@ TEST_F(PathTracerTest, SixLightmapsSumToTheUniformEnvironment) {
 TEST_F(PathTracerTest, SparseSmokeAcrossEmptyBricksMatchesTheCpuOracle) {
   const CpuVolume volume = sparseCones(24);
   const render::DeviceVolume device = upload(volume);
-  io::Smoke smoke = puffOptics();
+  scene::Smoke smoke = puffOptics();
   smoke.emission.intensity = 0.0f;
   const render::Camera camera = obliqueCamera();
   const render::ImagePlane plane = squareBillboard(camera, volume.box());
@@ -290,7 +290,7 @@ TEST_F(PathTracerTest, LayerOnABrickFaceKeepsItsWholeOpticalDepth) {
     const CpuVolume volume = makeVolume({16, 16, 16}, glm::vec3(0.0f), 1.0f / 16,
                                         [layer](dvec3 p) { return int(p.x * 16) == layer ? 1.0f : 0.0f; });
     const render::DeviceVolume device = upload(volume);
-    io::Smoke smoke;
+    scene::Smoke smoke;
     smoke.extinction = 16.0f;  // optical depth 1 straight through the layer
     smoke.albedo = 0.0f;
     const render::Camera camera =
@@ -322,7 +322,7 @@ TEST_F(PathTracerTest, FixedSeedReproducesTheImage) {
   const CpuVolume volume = puffs(10);
   render::TraceSettings s = settings(12, 4);
   s.jitter = true;
-  const io::Light sun{io::DirectionalLight{glm::normalize(glm::vec3(1.0f, 1.0f, 0.0f))}};
+  const scene::Light sun{scene::DirectionalLight{glm::normalize(glm::vec3(1.0f, 1.0f, 0.0f))}};
   const io::Image first = traceImage(volume, puffOptics(), s, 32, {sun});
   const io::Image again = traceImage(volume, puffOptics(), s, 32, {sun});
   EXPECT_EQ(first.pixels, again.pixels);

@@ -29,8 +29,8 @@ CpuVolume slab() {
   return constantBox({16, 8, 16}, 1.0f / 16, 1.0f);
 }
 
-io::Smoke slabOptics() {
-  io::Smoke smoke;
+scene::Smoke slabOptics() {
+  scene::Smoke smoke;
   smoke.extinction = 3.0f;  // optical depth 1.5 from top to bottom, 3 front to back
   smoke.albedo = 0.8f;
   smoke.phaseG = 0.0f;  // isotropic: 1 / 4π
@@ -38,7 +38,7 @@ io::Smoke slabOptics() {
 }
 
 // The sun straight above, irradiance 1.
-io::Light sun(bool shadows) {
+scene::Light sun(bool shadows) {
   return directionalLight({0.0f, 1.0f, 0.0f}, 1.0f, shadows);
 }
 
@@ -53,8 +53,8 @@ std::optional<double> hitSphere(dvec3 o, dvec3 d, dvec3 c, double r) {
 class PathTracerObstacleTest : public RenderTest {
  protected:
   io::Image trace(const CpuVolume& volume, const render::Camera& camera, const render::ImagePlane& plane,
-                  const std::vector<io::Light>& lights, const render::ObstacleBvh& obstacles, uint32_t seed,
-                  uint32_t samples) {
+                  const std::vector<scene::Light>& lights, const render::ObstacleBvh& obstacles,
+                  uint32_t seed, uint32_t samples) {
     const render::DeviceVolume device = upload(volume);
     render::TraceSettings s;
     s.width = s.height = kSize;
@@ -81,7 +81,7 @@ TEST_F(PathTracerObstacleTest, SphereShadowsTheSlabAsItsShadowCylinder) {
   const render::Camera camera =
       render::Camera::lookAt({0.5f, 0.25f, 3.0f}, {0.5f, 0.25f, 0.5f}, {0.0f, 1.0f, 0.0f}, 30.0f);
   const render::ImagePlane plane = squareBillboard(camera, volume.box());
-  const io::Smoke smoke = slabOptics();
+  const scene::Smoke smoke = slabOptics();
   const double sigma = smoke.extinction, scatter = smoke.albedo * sigma / (4 * kPi);
 
   for (const bool shadows : {true, false}) {
@@ -171,10 +171,10 @@ TEST_F(PathTracerObstacleTest, SphereInsideAbsorbingSmoke) {
   const render::Camera camera =
       render::Camera::lookAt({0.5f, 0.55f, 3.0f}, {0.5f, 0.45f, 0.5f}, {0.0f, 1.0f, 0.0f}, 14.0f);
   const render::ImagePlane plane = render::fullFrame(camera, kSize, kSize);
-  io::Smoke smoke = slabOptics();
+  scene::Smoke smoke = slabOptics();
   smoke.albedo = 0.0f;
   const dvec3 toLight = glm::normalize(dvec3(0.0, 1.0, 0.6));
-  const io::Light light = directionalLight(glm::vec3(toLight), 1.0f);
+  const scene::Light light = directionalLight(glm::vec3(toLight), 1.0f);
   const render::DeviceVolume device = upload(volume);
   render::TraceSettings s;
   s.width = s.height = kSize;

@@ -21,7 +21,7 @@ class ScatteredLightmapsTest : public RenderTest {
  protected:
   void SetUp() override { settings_.width = settings_.height = 32; }
   io::Image bake(render::Scattering scattering, const render::MultipleScattering& multiple = {},
-                 io::Smoke smoke = puffOptics()) {
+                 scene::Smoke smoke = puffOptics()) {
     return lightmaps_.bake(volume_.view(), smoke, camera_, billboard_, settings_, scattering, multiple);
   }
   CpuVolume cpuVolume_ = puffs(16);
@@ -95,7 +95,7 @@ TEST(UpsampleAlphaGuided, KeepsTheLightPerOpacityAndLeavesEmptyPixelsDark) {
 }
 
 TEST_F(ScatteredLightmapsTest, AlbedoZeroHasNoMultipleScatteringAndMultipleOnlyAddsLight) {
-  io::Smoke black = puffOptics();
+  scene::Smoke black = puffOptics();
   black.albedo = 0.0f;
   const io::Image single = bake(render::Scattering::Single, {}, black);
   EXPECT_EQ(bake(render::Scattering::Multiple, {}, black).pixels, single.pixels);

@@ -39,8 +39,8 @@ CpuVolume constantBox(glm::ivec3 cells, float cellSize, float density) {
   return makeVolume(cells, glm::vec3(0.0f), cellSize, [density](dvec3) { return density; });
 }
 
-io::Smoke puffOptics() {
-  io::Smoke smoke;
+scene::Smoke puffOptics() {
+  scene::Smoke smoke;
   smoke.extinction = 6.0f;
   smoke.albedo = 0.8f;
   smoke.phaseG = 0.4f;

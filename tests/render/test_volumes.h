@@ -3,10 +3,10 @@
 #include <glm/vec3.hpp>
 
 #include "cpu_reference.h"
-#include "io/scene.h"
 #include "render/billboard.h"
 #include "render/camera.h"
 #include "render/volume.h"
+#include "scene/scene.h"
 #include "support/gpu_fixture.h"
 
 namespace sixway::test {
@@ -23,7 +23,7 @@ CpuVolume sparseCones(int cells);
 CpuVolume constantBox(glm::ivec3 cells, float cellSize, float density);
 
 // Optics with extinction so that the puffs are a few optical depths across, and an emission ramp.
-io::Smoke puffOptics();
+scene::Smoke puffOptics();
 
 // An oblique perspective view of the unit box from the front-right-above.
 render::Camera obliqueCamera();

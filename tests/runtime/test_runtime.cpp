@@ -21,12 +21,13 @@
 #include "gpu/device_features.h"
 #include "gpu/image.h"
 #include "io/safetensors.h"
-#include "io/scene.h"
 #include "render/scene_frame.h"
 #include "runtime/internal.h"
 #include "runtime/modes/mode_renderer.h"
 #include "runtime/scene_lights.h"
 #include "runtime/scene_volumes.h"
+#include "scene/fluid_physics.h"
+#include "scene/scene.h"
 #include "support/temp_dir.h"
 
 namespace sixway::test {
@@ -65,7 +66,7 @@ double maxDifference(const std::vector<float>& a, const std::vector<float>& b) {
 std::vector<float> neuralModeFrame(Device& device, const std::filesystem::path& weights) {
   const gpu::Context& context = runtime::Access::context(device);
   const gpu::PipelineCache& cache = runtime::Access::pipelineCache(device);
-  const io::Scene scene = io::loadScene(kScene);
+  const scene::Scene scene = scene::loadScene(kScene);
   runtime::SimulatedVolumes volumes(context, cache, scene, 2);
   modes::ModeOptions options;
   options.weights = weights;
@@ -132,9 +133,10 @@ TEST(Runtime, EngineLightsRestartAndReports) {
   EXPECT_GT(simulated, 0.0);
 
   // The scene's lights of frame 1 (the directional one orbits), given by the engine: the same image.
-  const io::Scene scene = io::loadScene(kScene);
+  const scene::Scene scene = scene::loadScene(kScene);
   std::vector<Light> lights;
-  for (const io::Light& l : render::sceneLights(scene.lights, 1)) lights.push_back(runtime::publicLight(l));
+  for (const scene::Light& l : render::sceneLights(scene.lights, 1))
+    lights.push_back(runtime::publicLight(l));
   renderer.setLights(lights);
   renderer.render();
   const std::vector<float> engineLit = renderer.image();
@@ -318,12 +320,12 @@ TEST(Runtime, AnEngineSteersAnObstacleBetweenFrames) {
   EXPECT_EQ(simulation.framesSimulated(), 8);
   const SmokeVolume volume = simulation.volume();
   EXPECT_NE(volume.density, VK_NULL_HANDLE);
-  EXPECT_EQ(volume.cells, glm::ivec3(24, 32, 24) * io::loadScene(kScene).grid.smokeUpres);
-  EXPECT_FLOAT_EQ(volume.cellSize, 0.04f / float(io::loadScene(kScene).grid.smokeUpres));
+  EXPECT_EQ(volume.cells, glm::ivec3(24, 32, 24) * scene::loadScene(kScene).grid.smokeUpres);
+  EXPECT_FLOAT_EQ(volume.cellSize, 0.04f / float(scene::loadScene(kScene).grid.smokeUpres));
   // The measurements read so far are of frames recorded two frames before the last ones: the smoke is there.
   const sim::AdvanceReport& report = runtime::Access::volumes(simulation).simulation().report();
   EXPECT_GT(report.smokeMass, 0.0);
-  EXPECT_EQ(report.forces.size(), size_t(io::lbmStepsPerFrame(io::loadScene(kScene))));
+  EXPECT_EQ(report.forces.size(), size_t(scene::lbmStepsPerFrame(scene::loadScene(kScene))));
   EXPECT_EQ(own.validationMessages(), 0u);
 }
 

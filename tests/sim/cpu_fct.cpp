@@ -6,7 +6,7 @@
 namespace sixway::test {
 namespace {
 
-using io::BoundaryType;
+using scene::BoundaryType;
 
 // The lattice velocity (cells per step) at x in lattice coordinates (cell centres at integer + 0.5).
 glm::dvec3 sampleVelocity(const CpuSmokeSettings& s, const std::vector<glm::dvec3>& velocity, glm::dvec3 x) {

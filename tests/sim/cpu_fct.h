@@ -16,14 +16,14 @@
 #include <vector>
 
 #include "cpu_lbm.h"
-#include "io/scene.h"
+#include "scene/scene.h"
 
 namespace sixway::test {
 
 struct CpuSmokeSettings {
   glm::ivec3 lattice{0};
   int upres = 1;
-  std::array<io::BoundaryType, 6> faces{};
+  std::array<scene::BoundaryType, 6> faces{};
   glm::ivec3 smokeSize() const { return lattice * upres; }
 };
 

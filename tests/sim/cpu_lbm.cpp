@@ -9,7 +9,7 @@ namespace sixway::test {
 namespace {
 
 using d3q19::kQ;
-using io::BoundaryType;
+using scene::BoundaryType;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
@@ -33,7 +33,7 @@ double movingBounceBack(int i, double postOpposite, double rho, glm::dvec3 wall)
          2 * d3q19::weight(i) * rho * glm::dot(glm::dvec3(d3q19::velocity(i)), wall) / d3q19::kCs2;
 }
 
-glm::ivec3 wrapPeriodic(glm::ivec3 p, glm::ivec3 size, const std::array<io::BoundaryType, 6>& faces) {
+glm::ivec3 wrapPeriodic(glm::ivec3 p, glm::ivec3 size, const std::array<scene::BoundaryType, 6>& faces) {
   for (int a = 0; a < 3; ++a)
     if (faces[2 * a] == BoundaryType::Periodic) p[a] = ((p[a] % size[a]) + size[a]) % size[a];
   return p;

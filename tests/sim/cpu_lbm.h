@@ -28,7 +28,7 @@
 #include <vector>
 
 #include "cpu_d3q19.h"
-#include "io/scene.h"
+#include "scene/scene.h"
 
 namespace sixway::test {
 
@@ -46,7 +46,7 @@ struct CellFlags {
 
 struct CpuLbmSettings {
   glm::ivec3 size{0};
-  std::array<io::BoundaryType, 6> faces{};  // x−, x+, y−, y+, z−, z+
+  std::array<scene::BoundaryType, 6> faces{};  // x−, x+, y−, y+, z−, z+
   double tau = 0.6;
   double smagorinsky = 0;
   int smokeUpres = 1;

@@ -6,6 +6,8 @@
 #include <type_traits>
 #include <variant>
 
+#include "scene/fluid_physics.h"
+
 namespace sixway::test {
 namespace {
 
@@ -13,42 +15,42 @@ size_t cellCount(glm::ivec3 n) {
   return size_t(n.x) * n.y * n.z;
 }
 
-void requireLatticeUnits(const io::Scene& scene) {
-  const double stepSeconds = scene.time.frameDt / io::lbmStepsPerFrame(scene);
+void requireLatticeUnits(const scene::Scene& scene) {
+  const double stepSeconds = scene.time.frameDt / scene::lbmStepsPerFrame(scene);
   if (scene.grid.cellSize != 1 || stepSeconds != 1 || scene.grid.origin != glm::vec3(0))
     throw std::invalid_argument(
         "CpuSimulation: the scene must be in lattice units (cell 1 m, step 1 s, origin 0)");
 }
 
-bool insideInlet(const io::Inlet& inlet, glm::dvec3 p) {
-  if (const auto* disk = std::get_if<io::InletDisk>(&inlet.shape)) {
+bool insideInlet(const scene::Inlet& inlet, glm::dvec3 p) {
+  if (const auto* disk = std::get_if<scene::InletDisk>(&inlet.shape)) {
     const glm::dvec3 d = p - glm::dvec3(disk->center), n(disk->normal);
     const double along = glm::dot(d, n);
     return along >= -0.5 && along < 0.5 && glm::length(d - along * n) <= disk->radius;
   }
-  const auto& box = std::get<io::InletBox>(inlet.shape);
+  const auto& box = std::get<scene::InletBox>(inlet.shape);
   return glm::all(glm::greaterThanEqual(p, glm::dvec3(box.min))) &&
          glm::all(glm::lessThan(p, glm::dvec3(box.max)));
 }
 
-ShapeTest shapeTest(const io::Obstacle& obstacle, glm::dvec3 centre, glm::dvec3 p) {
+ShapeTest shapeTest(const scene::Obstacle& obstacle, glm::dvec3 centre, glm::dvec3 p) {
   const auto& shape = obstacle.shape;
-  if (const auto* s = std::get_if<io::SphereObstacle>(&shape)) return sphereTest(p, centre, s->radius);
-  if (const auto* c = std::get_if<io::CylinderObstacle>(&shape))
+  if (const auto* s = std::get_if<scene::SphereObstacle>(&shape)) return sphereTest(p, centre, s->radius);
+  if (const auto* c = std::get_if<scene::CylinderObstacle>(&shape))
     return cylinderTest(p, centre, glm::dvec3(c->axis), c->radius, 0.5 * c->height);
-  if (const auto* b = std::get_if<io::BoxObstacle>(&shape))
+  if (const auto* b = std::get_if<scene::BoxObstacle>(&shape))
     return boxTest(p, centre, 0.5 * glm::dvec3(b->size));
   throw std::invalid_argument("CpuSimulation: mesh obstacles are not modelled");
 }
 
 }  // namespace
 
-CpuLbmSettings cpuLbmSettings(const io::Scene& scene) {
+CpuLbmSettings cpuLbmSettings(const scene::Scene& scene) {
   requireLatticeUnits(scene);
   CpuLbmSettings s;
   s.size = scene.grid.size;
   s.faces = scene.boundaries.faces;
-  s.tau = 3 * double(io::kinematicViscosity(scene)) + 0.5;  // ν = c_s² (τ − ½)
+  s.tau = 3 * double(scene::kinematicViscosity(scene)) + 0.5;  // ν = c_s² (τ − ½)
   s.smagorinsky = scene.fluid.smagorinsky;
   s.smokeUpres = scene.grid.smokeUpres;
   s.buoyancyTemperature = scene.fluid.buoyancy.temperature;
@@ -56,19 +58,19 @@ CpuLbmSettings cpuLbmSettings(const io::Scene& scene) {
   s.up = -glm::normalize(glm::dvec3(scene.fluid.gravity));
   s.bodyAcceleration = scene.fluid.bodyForce;
   s.wind = scene.boundaries.wind;
-  s.parabolicInflow = scene.boundaries.inflowProfile == io::InflowProfile::Parabolic;
-  s.interpolatedBounceBack = scene.fluid.obstacleBoundary == io::ObstacleBoundary::Interpolated;
+  s.parabolicInflow = scene.boundaries.inflowProfile == scene::InflowProfile::Parabolic;
+  s.interpolatedBounceBack = scene.fluid.obstacleBoundary == scene::ObstacleBoundary::Interpolated;
   return s;
 }
 
-CpuSimulation::CpuSimulation(const io::Scene& scene)
+CpuSimulation::CpuSimulation(const scene::Scene& scene)
     : scene_(scene),
       lbm_(cpuLbmSettings(scene),
            std::vector<glm::dvec4>(cellCount(scene.grid.size), glm::dvec4(0, 0, 0, 1))),
       smokeSettings_{scene.grid.size, scene.grid.smokeUpres, scene.boundaries.faces},
       smoke_(cellCount(smokeSettings_.smokeSize()), glm::dvec2(0)),
       flags_(cellCount(scene.grid.size)) {
-  for (const io::Inlet& inlet : scene.inlets)
+  for (const scene::Inlet& inlet : scene.inlets)
     if (inlet.noise != 0) throw std::invalid_argument("CpuSimulation: inlet noise is not modelled");
 }
 
@@ -79,12 +81,12 @@ void CpuSimulation::setFlow(const std::vector<glm::dvec3>& velocity, const std::
 }
 
 CpuSimulation::Motion CpuSimulation::obstacleAt(size_t obstacle, double time) const {
-  const io::Obstacle& o = scene_.obstacles[obstacle];
+  const scene::Obstacle& o = scene_.obstacles[obstacle];
   if (!o.motion) {
     return {std::visit(
                 [](const auto& shape) -> glm::dvec3 {
                   using T = std::decay_t<decltype(shape)>;
-                  if constexpr (std::is_same_v<T, io::MeshObstacle>)
+                  if constexpr (std::is_same_v<T, scene::MeshObstacle>)
                     return glm::dvec3(shape.translate);
                   else
                     return glm::dvec3(shape.center);
@@ -125,7 +127,7 @@ CpuStepInputs CpuSimulation::inputsAt(uint64_t step, const std::vector<CellFlags
     centres.push_back(m.position);
     in.obstacleVelocity.push_back(m.velocity);
   }
-  for (const io::Inlet& inlet : scene_.inlets) in.inletVelocity.push_back(inlet.velocity);
+  for (const scene::Inlet& inlet : scene_.inlets) in.inletVelocity.push_back(inlet.velocity);
   in.insideObstacle = [obstacles = scene_.obstacles, centres](int o, glm::dvec3 p) {
     return shapeTest(obstacles[o], centres[o], p).inside;
   };
@@ -138,7 +140,7 @@ CpuStepInputs CpuSimulation::inputsAt(uint64_t step, const std::vector<CellFlags
     for (size_t o = 0; o < centres.size() && !f.solid(); ++o)
       if (shapeTest(scene_.obstacles[o], centres[o], p).inside) f.obstacle = int(o);
     for (size_t i = 0; i < scene_.inlets.size() && f.inlet < 0 && !f.solid(); ++i) {
-      const io::Inlet& inlet = scene_.inlets[i];
+      const scene::Inlet& inlet = scene_.inlets[i];
       if (time >= inlet.start && time < inlet.stop && insideInlet(inlet, p)) f.inlet = int(i);
     }
   }
@@ -147,7 +149,7 @@ CpuStepInputs CpuSimulation::inputsAt(uint64_t step, const std::vector<CellFlags
 
 void CpuSimulation::advance(int steps) {
   std::vector<glm::dvec2> inletSmoke;
-  for (const io::Inlet& inlet : scene_.inlets) inletSmoke.emplace_back(inlet.density, inlet.temperature);
+  for (const scene::Inlet& inlet : scene_.inlets) inletSmoke.emplace_back(inlet.density, inlet.temperature);
   const double decay = std::exp(-double(scene_.smoke.dissipation));
   for (int s = 0; s < steps; ++s, ++step_) {
     const CpuStepInputs in = inputsAt(step_, flags_);

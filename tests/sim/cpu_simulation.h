@@ -12,13 +12,13 @@
 #include "cpu_fct.h"
 #include "cpu_lbm.h"
 #include "cpu_shapes.h"
-#include "io/scene.h"
+#include "scene/scene.h"
 
 namespace sixway::test {
 
 class CpuSimulation {
  public:
-  explicit CpuSimulation(const io::Scene& scene);
+  explicit CpuSimulation(const scene::Scene& scene);
 
   // Velocity and density per lattice cell; populations at their equilibrium.
   void setFlow(const std::vector<glm::dvec3>& velocity, const std::vector<double>& density);
@@ -40,7 +40,7 @@ class CpuSimulation {
   };
   Motion obstacleAt(size_t obstacle, double time) const;
 
-  io::Scene scene_;
+  scene::Scene scene_;
   CpuLbm lbm_;
   CpuSmokeSettings smokeSettings_;
   std::vector<glm::dvec2> smoke_;
@@ -49,6 +49,6 @@ class CpuSimulation {
 };
 
 // The LBM settings of a lattice-unit scene, from the scene format's definitions.
-CpuLbmSettings cpuLbmSettings(const io::Scene& scene);
+CpuLbmSettings cpuLbmSettings(const scene::Scene& scene);
 
 }  // namespace sixway::test

@@ -11,7 +11,7 @@ std::vector<d3q19::Populations> downloadPopulations(const sim::LbmSolver& lbm, i
   const glm::ivec3 size = lbm.size(), stored = lbm.storedSize();
   const glm::ivec3 pad = (stored - size) / 2;  // ghost cells per side; 0 across periodic faces
   const size_t storedCells = size_t(stored.x) * stored.y * stored.z;
-  const bool fp16 = lbm.storage() == io::PopulationStorage::Fp16;
+  const bool fp16 = lbm.storage() == scene::PopulationStorage::Fp16;
   std::vector<std::vector<double>> slots(d3q19::kQ);  // slot i of every stored cell, decoded
   for (int b = 0; b < 4; ++b) {
     std::vector<float> words;

@@ -47,8 +47,8 @@ nlohmann::json latticeScene(glm::ivec3 size, double viscosity, const nlohmann::j
   return scene;
 }
 
-io::Scene parseLatticeScene(const nlohmann::json& scene) {
-  return io::parseScene(scene, "test-scene.json", ".");
+scene::Scene parseLatticeScene(const nlohmann::json& scene) {
+  return scene::parseScene(scene, "test-scene.json", ".");
 }
 
 std::vector<glm::vec3> smoothVelocity(glm::ivec3 size, float amplitude, uint32_t seed) {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "io/scene.h"
+#include "scene/scene.h"
 
 namespace sixway::test {
 
@@ -16,7 +16,7 @@ namespace sixway::test {
 // model; `patch` merged in (RFC 7386: objects merge, arrays and values replace).
 nlohmann::json latticeScene(glm::ivec3 size, double viscosity,
                             const nlohmann::json& patch = nlohmann::json::object());
-io::Scene parseLatticeScene(const nlohmann::json& scene);
+scene::Scene parseLatticeScene(const nlohmann::json& scene);
 
 // Smooth fields: three Fourier modes per component with random wave vectors and phases, periodic in
 // the box, |value − mean| ≤ amplitude.

@@ -50,7 +50,7 @@ class ForcesTest : public GpuTest {
  protected:
   // Runs `before` steps, then one more, and compares the force that step reports on each obstacle.
   void expectForcesMatch(const json& sceneJson, int before) {
-    const io::Scene scene = parseLatticeScene(sceneJson);
+    const scene::Scene scene = parseLatticeScene(sceneJson);
     const glm::ivec3 n = scene.grid.size;
     const CpuSimulation cpu(scene);
     for (int s = 0; s <= before; ++s)

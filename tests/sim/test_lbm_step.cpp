@@ -36,12 +36,12 @@ struct Initial {
   std::vector<glm::vec2> smoke;
 };
 
-Initial initialState(const io::Scene& scene) {
+Initial initialState(const scene::Scene& scene) {
   const glm::ivec3 n = scene.grid.size;
   return {smoothVelocity(n, 0.05f, 7), smoothDensity(n, 0.01f, 8), smoothSmoke(n * scene.grid.smokeUpres, 9)};
 }
 
-std::vector<glm::dvec4> cpuMacro(const io::Scene& scene, int steps) {
+std::vector<glm::dvec4> cpuMacro(const scene::Scene& scene, int steps) {
   const Initial init = initialState(scene);
   CpuSimulation cpu(scene);
   cpu.setFlow(toDouble(init.velocity), toDouble(init.density));
@@ -50,7 +50,7 @@ std::vector<glm::dvec4> cpuMacro(const io::Scene& scene, int steps) {
   return cpu.lbm().macro();
 }
 
-std::string describe(const FieldError& e, const io::Scene& scene, const std::vector<glm::vec4>& gpu,
+std::string describe(const FieldError& e, const scene::Scene& scene, const std::vector<glm::vec4>& gpu,
                      const std::vector<glm::dvec4>& cpu) {
   if (e.cell < 0) return "";
   const glm::vec4 g = gpu[e.cell];
@@ -68,7 +68,7 @@ class LbmStepTest : public GpuTest {
   // the tolerance).
   void expectMatchesCpu(const json& sceneJson, int steps, const json& withoutFeature,
                         double tolerance = kTolerance) {
-    const io::Scene scene = parseLatticeScene(sceneJson);
+    const scene::Scene scene = parseLatticeScene(sceneJson);
     const CpuSimulation probe(scene);
     for (int s = 0; s <= steps; ++s)
       ASSERT_GT(probe.surfaceMargin(s), kSurfaceMargin)
@@ -84,7 +84,7 @@ class LbmStepTest : public GpuTest {
     }
     const std::vector<glm::vec4> gpuMacro = gpu.lbm().macro().download<glm::vec4>();
     const std::vector<glm::dvec4> expected = cpuMacro(scene, steps);
-    const uint64_t populationBytes = scene.fluid.populationStorage == io::PopulationStorage::Fp16 ? 2 : 4;
+    const uint64_t populationBytes = scene.fluid.populationStorage == scene::PopulationStorage::Fp16 ? 2 : 4;
     const glm::ivec3 stored = gpu.lbm().storedSize();
     EXPECT_EQ(gpu.lbm().lattice(0).size(), uint64_t(stored.x) * stored.y * stored.z * 5 * populationBytes)
         << "population storage";
@@ -393,14 +393,14 @@ TEST_F(LbmStepTest, SteeredSphereMatchesItsKeyframedMotion) {
       s["motion"] = motion;
     return latticeScene(kSize, kViscosity, {{"obstacles", {s}}});
   };
-  const io::Scene still = parseLatticeScene(sphere(nullptr));
+  const scene::Scene still = parseLatticeScene(sphere(nullptr));
   const Initial init = initialState(still);
   sim::Simulation gpu(context(), pipelineCache(), still);
   gpu.setFlow(init.velocity, init.density);
   gpu.smoke().upload(init.smoke);
   gpu.advance(2);
   gpu.steerObstacle(0, target);
-  const io::Motion& steered = *gpu.obstacleMotion(0);
+  const scene::Motion& steered = *gpu.obstacleMotion(0);
   ASSERT_EQ(steered.keyframes.size(), 2u);
   EXPECT_EQ(steered.keyframes[0].time, 2.0f);
   EXPECT_EQ(steered.keyframes[0].position, start);
@@ -413,9 +413,9 @@ TEST_F(LbmStepTest, SteeredSphereMatchesItsKeyframedMotion) {
   gpu.advance(steps - 2);
 
   json keyframes = json::array();
-  for (const io::Keyframe& k : steered.keyframes)
+  for (const scene::Keyframe& k : steered.keyframes)
     keyframes.push_back({{"time", k.time}, {"position", {k.position.x, k.position.y, k.position.z}}});
-  const io::Scene keyframed = parseLatticeScene(sphere({{"keyframes", keyframes}}));
+  const scene::Scene keyframed = parseLatticeScene(sphere({{"keyframes", keyframes}}));
   const CpuSimulation probe(keyframed);
   for (int s = 0; s <= steps; ++s) ASSERT_GT(probe.surfaceMargin(s), kSurfaceMargin) << "step " << s;
   const std::vector<glm::vec4> gpuMacro = gpu.lbm().macro().download<glm::vec4>();
@@ -443,7 +443,7 @@ TEST_F(LbmStepTest, InletStrengthScalesTheInletVelocity) {
                             {"density", 1.5},
                             {"temperature", 0.5}}}}});
   };
-  const io::Scene scene = parseLatticeScene(withInlet(0.07));
+  const scene::Scene scene = parseLatticeScene(withInlet(0.07));
   const Initial init = initialState(scene);
   sim::Simulation gpu(context(), pipelineCache(), scene);
   // The fastest inlet may go up to the lattice speed limit: 0.1 / 0.07.
@@ -455,7 +455,7 @@ TEST_F(LbmStepTest, InletStrengthScalesTheInletVelocity) {
   gpu.smoke().upload(init.smoke);
   gpu.advance(5);
   const std::vector<glm::vec4> gpuMacro = gpu.lbm().macro().download<glm::vec4>();
-  const io::Scene halved = parseLatticeScene(withInlet(0.035));
+  const scene::Scene halved = parseLatticeScene(withInlet(0.035));
   const std::vector<glm::dvec4> expected = cpuMacro(halved, 5);
   const FieldError u = velocityError(gpuMacro, expected);
   EXPECT_LE(u.max, kTolerance) << "velocity" << describe(u, halved, gpuMacro, expected);

@@ -45,7 +45,7 @@ json sceneWith(const json& patch) {
 class ObstacleFlagsTest : public GpuTest {
  protected:
   // The flags buffer after marking the cells at each of `steps` in turn.
-  std::vector<uint32_t> gpuFlags(const io::Scene& scene, const std::vector<uint64_t>& steps) {
+  std::vector<uint32_t> gpuFlags(const scene::Scene& scene, const std::vector<uint64_t>& steps) {
     const sim::ObstacleSet set(context(), pipelineCache(), scene, sim::latticeUnits(scene));
     gpu::Buffer params(context(), sizeof(sim::StepParams), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                        gpu::MemoryKind::HostUpload, "step parameters");
@@ -66,7 +66,7 @@ class ObstacleFlagsTest : public GpuTest {
 
   // Analytic shapes and inlets: the GPU flags after `steps` equal the CPU's, cell by cell.
   void expectFlagsMatch(const json& sceneJson, const std::vector<uint64_t>& steps) {
-    const io::Scene scene = parseLatticeScene(sceneJson);
+    const scene::Scene scene = parseLatticeScene(sceneJson);
     const CpuSimulation cpu(scene);
     std::vector<CellFlags> expected(size_t(kSize.x) * kSize.y * kSize.z);
     for (uint64_t step : steps) {
@@ -149,7 +149,7 @@ TEST_F(ObstacleFlagsTest, MovingSphereRemembersTheCellsItLeft) {
 // with a static sphere and an inlet that starts at 3 s (step 3), steps 0, 1, 3 and 4; after ten steps its
 // flags are the ones a pass at every step gives.
 TEST_F(ObstacleFlagsTest, SteadyGeometryIsMarkedOnlyAfterAChange) {
-  const io::Scene scene = parseLatticeScene(
+  const scene::Scene scene = parseLatticeScene(
       sceneWith({{"obstacles", {{{"type", "sphere"}, {"center", {9.3, 7.7, 5.9}}, {"radius", 4.23}}}},
                  {"inlets",
                   {{{"shape", "disk"},
@@ -169,7 +169,7 @@ TEST_F(ObstacleFlagsTest, SteadyGeometryIsMarkedOnlyAfterAChange) {
 TEST_F(ObstacleFlagsTest, AMovingObstacleIsMarkedEveryStep) {
   const json keyframes = {{{"time", 0.0}, {"position", {5.3, 8.7, 4.9}}},
                           {{"time", 90.0}, {"position", {15.3, 6.7, 7.9}}}};
-  const io::Scene scene = parseLatticeScene(sceneWith(
+  const scene::Scene scene = parseLatticeScene(sceneWith(
       {{"obstacles", {{{"type", "sphere"}, {"radius", 4.2}, {"motion", {{"keyframes", keyframes}}}}}}}));
   sim::Simulation simulation(context(), pipelineCache(), scene);
   simulation.advance(6);
@@ -246,8 +246,8 @@ class MeshFlagsTest : public ObstacleFlagsTest {
                                   WorldMesh& placed) {
     json mesh = {{"type", "mesh"}, {"file", file.string()}};
     mesh.merge_patch(placement);
-    const io::Scene scene = parseLatticeScene(latticeScene(size, 0.02, {{"obstacles", {mesh}}}));
-    const auto& m = std::get<io::MeshObstacle>(scene.obstacles[0].shape);
+    const scene::Scene scene = parseLatticeScene(latticeScene(size, 0.02, {{"obstacles", {mesh}}}));
+    const auto& m = std::get<scene::MeshObstacle>(scene.obstacles[0].shape);
     placed = placeMesh(io::readObj(file), m.scale, glm::dvec3(m.translate), glm::dvec3(m.rotateDeg));
     return gpuFlags(scene, {0});
   }

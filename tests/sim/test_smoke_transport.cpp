@@ -28,7 +28,7 @@
 namespace sixway::test {
 namespace {
 
-using io::BoundaryType;
+using scene::BoundaryType;
 using Faces = std::array<BoundaryType, 6>;
 
 constexpr glm::ivec3 kLattice{12, 10, 8};

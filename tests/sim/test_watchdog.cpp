@@ -33,7 +33,7 @@ class WatchdogTest : public GpuTest {
  protected:
   // The watchdog's message after one step from `velocity` (empty if it does not trip), and the CPU state.
   std::string firstStepMessage(const std::vector<glm::vec3>& velocity, CpuSimulation& cpu) {
-    const io::Scene scene = parseLatticeScene(latticeScene(kSize, 0.02));
+    const scene::Scene scene = parseLatticeScene(latticeScene(kSize, 0.02));
     const std::vector<float> density(velocity.size(), 1.0f);
     sim::Simulation gpu(context(), pipelineCache(), scene);
     gpu.setFlow(velocity, density);

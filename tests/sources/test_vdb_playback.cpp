@@ -9,11 +9,12 @@
 #include <nlohmann/json.hpp>
 
 #include "io/error.h"
-#include "io/scene.h"
 #include "io/vdb.h"
 #include "reference/vdb_sequence.h"
 #include "runtime/modes/mode_renderer.h"
 #include "runtime/scene_volumes.h"
+#include "scene/fluid_physics.h"
+#include "scene/scene.h"
 #include "sim/simulation.h"
 #include "sources/scene_volumes.h"
 #include "support/gpu_fixture.h"
@@ -47,11 +48,11 @@ std::vector<float> download(const gpu::Buffer* buffer) {
 }
 
 // The frames as `sixway sim --vdb-out` writes them: <name>_0001.vdb is the smoke after one frame.
-void exportFrames(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
+void exportFrames(const gpu::Context& context, const gpu::PipelineCache& cache, const scene::Scene& scene,
                   const fs::path& out) {
   sim::Simulation simulation(context, cache, scene);
   for (int frame = 1; frame <= kFrames; ++frame) {
-    simulation.advance(uint32_t(io::lbmStepsPerFrame(scene)));
+    simulation.advance(uint32_t(scene::lbmStepsPerFrame(scene)));
     auto [density, temperature] = simulation.smokeGrids();
     char name[64];
     std::snprintf(name, sizeof(name), "%s_%04d.vdb", scene.name.c_str(), frame);
@@ -60,7 +61,7 @@ void exportFrames(const gpu::Context& context, const gpu::PipelineCache& cache, 
 }
 
 // small_plume with its simulation replaced by the exported files, played back on the simulation's domain.
-io::Scene playbackScene(const fs::path& files, const io::Grid& grid) {
+scene::Scene playbackScene(const fs::path& files, const scene::Grid& grid) {
   nlohmann::json j = nlohmann::json::parse(std::ifstream(kPlume));
   for (const char* key : {"grid", "fluid", "inlets", "obstacles"}) j.erase(key);
   j["time"].erase("steps_per_frame");
@@ -73,17 +74,17 @@ io::Scene playbackScene(const fs::path& files, const io::Grid& grid) {
               {"voxels", std::max({cells.x, cells.y, cells.z})},
               {"box_min", {grid.origin.x, grid.origin.y, grid.origin.z}},
               {"box_max", {max.x, max.y, max.z}}};
-  return io::parseScene(j, "playback.json", files);
+  return scene::parseScene(j, "playback.json", files);
 }
 
 TEST_F(VdbPlaybackTest, SimExportPlaysBackAsTheSameVolumesAndImages) {
-  const io::Scene simulated = io::loadScene(kPlume);
+  const scene::Scene simulated = scene::loadScene(kPlume);
   exportFrames(context(), pipelineCache(), simulated, dir.path());
-  io::Scene played = playbackScene(dir.path(), simulated.grid);
+  scene::Scene played = playbackScene(dir.path(), simulated.grid);
   auto playback = sources::openSceneVolumes(context(), pipelineCache(), played, kFrames, "playback.json");
   runtime::SimulatedVolumes live(context(), pipelineCache(), simulated, kFrames);
 
-  io::Scene renderScene = simulated;
+  scene::Scene renderScene = simulated;
   renderScene.obstacles.clear();  // the played-back scene has none to draw
   modes::ModeOptions options;
   options.mode = modes::RenderMode::Reference;
@@ -114,8 +115,8 @@ TEST_F(VdbPlaybackTest, SimExportPlaysBackAsTheSameVolumesAndImages) {
   }
 }
 
-io::VdbSource source(std::vector<fs::path> files) {
-  io::VdbSource s;
+scene::VdbSource source(std::vector<fs::path> files) {
+  scene::VdbSource s;
   s.files = std::move(files);
   s.voxels = 24;
   return s;
@@ -123,8 +124,8 @@ io::VdbSource source(std::vector<fs::path> files) {
 
 TEST_F(VdbPlaybackTest, TheTransformTurnsScalesAndMovesTheFileExactly) {
   render::VdbSequence upright(context(), source({kVdb / "smoke_000002.vdb"}));
-  io::VdbSource turned = source({kVdb / "smoke_000002.vdb"});
-  turned.up = io::VdbUp::Z;
+  scene::VdbSource turned = source({kVdb / "smoke_000002.vdb"});
+  turned.up = scene::VdbUp::Z;
   turned.scale = 0.5f;
   turned.translate = {1.0f, -2.0f, 3.0f};
   turned.densityScale = 2.0f;
@@ -157,7 +158,7 @@ TEST_F(VdbPlaybackTest, TheTransformTurnsScalesAndMovesTheFileExactly) {
 }
 
 TEST_F(VdbPlaybackTest, FramesRepeatPerFileAndAnEmptyFrameIsZero) {
-  io::VdbSource s = source({kVdb / "smoke_000002.vdb", kVdb / "smoke_000001.vdb"});
+  scene::VdbSource s = source({kVdb / "smoke_000002.vdb", kVdb / "smoke_000001.vdb"});
   s.framesPerFile = 2;
   render::VdbSequence sequence(context(), s);
   ASSERT_EQ(sequence.frameCount(), 4);
@@ -179,25 +180,25 @@ TEST_F(VdbPlaybackTest, FramesRepeatPerFileAndAnEmptyFrameIsZero) {
 }
 
 TEST_F(VdbPlaybackTest, BadFilesAndFrameCountsGetOneLine) {
-  io::VdbSource wrongName = source({kVdb / "smoke_000002.vdb"});
+  scene::VdbSource wrongName = source({kVdb / "smoke_000002.vdb"});
   wrongName.densityGrid = "smoke";
   EXPECT_THAT(inputErrorMessage([&] { render::VdbSequence(context(), wrongName); }),
               ::testing::HasSubstr("smoke_000002.vdb: has no float grid 'smoke' (set vdb.density_grid"));
   // One file of a sequence without the density grid is an error, not an empty frame said only in a note.
   io::DenseGrid heat{.size = {4, 4, 4}, .values = std::vector<float>(64, 1.0f)};
   io::writeVdb(dir / "heat_only.vdb", {{"heat", &heat}});
-  io::VdbSource oneWithout = source({kVdb / "smoke_000002.vdb", dir / "heat_only.vdb"});
+  scene::VdbSource oneWithout = source({kVdb / "smoke_000002.vdb", dir / "heat_only.vdb"});
   EXPECT_THAT(inputErrorMessage([&] { render::VdbSequence(context(), oneWithout); }),
               ::testing::HasSubstr("heat_only.vdb: has no float grid 'density'"));
-  io::VdbSource noHeat = source({kVdb / "smoke_000002.vdb"});
+  scene::VdbSource noHeat = source({kVdb / "smoke_000002.vdb"});
   noHeat.temperatureGrid = "heat";
   EXPECT_THAT(inputErrorMessage([&] { render::VdbSequence(context(), noHeat); }),
               ::testing::HasSubstr("grid 'heat' (vdb.temperature_grid)"));
-  io::VdbSource allEmpty = source({kVdb / "smoke_000001.vdb"});
+  scene::VdbSource allEmpty = source({kVdb / "smoke_000001.vdb"});
   EXPECT_THAT(inputErrorMessage([&] { render::VdbSequence(context(), allEmpty); }),
               ::testing::HasSubstr("non-empty float grid 'density'"));
 
-  io::Scene scene = io::loadScene(SIXWAY_TEST_DATA_DIR "/scenes/vdb_blender.json");
+  scene::Scene scene = scene::loadScene(SIXWAY_TEST_DATA_DIR "/scenes/vdb_blender.json");
   EXPECT_THAT(
       inputErrorMessage([&] { sources::openSceneVolumes(context(), pipelineCache(), scene, 7, "v.json"); }),
       ::testing::HasSubstr("v.json: 7 frames asked for, but the vdb sequence has 6 (3 files"));
@@ -214,12 +215,12 @@ TEST_F(VdbPlaybackTest, GridsBeyondTheScenesReachGetOneLine) {
               ::testing::MatchesRegex(
                   ".*huge_voxels\\.vdb: grid 'density' reaches 4e\\+30 m from the origin \\(voxel "
                   "size 1e\\+30 × vdb\\.scale 1\\), more than 1000000 m; .*"));
-  io::VdbSource scaled = source({kVdb / "smoke_000002.vdb"});
+  scene::VdbSource scaled = source({kVdb / "smoke_000002.vdb"});
   scaled.scale = 1e6f;
   EXPECT_THAT(inputErrorMessage([&] { render::VdbSequence(context(), scaled); }),
               ::testing::HasSubstr("smoke_000002.vdb: grid 'density' reaches"));
   // A box of the scene's own places the lattice: the file's voxel size then only samples it.
-  io::VdbSource boxed = source({dir / "huge_voxels.vdb"});
+  scene::VdbSource boxed = source({dir / "huge_voxels.vdb"});
   boxed.box = std::pair(glm::vec3(0.0f), glm::vec3(1.0f));
   EXPECT_NO_THROW(render::VdbSequence(context(), boxed));
 }

@@ -5,14 +5,14 @@
 
 #include <string>
 
-#include "io/scene.h"
+#include "scene/scene.h"
 
 namespace sixway::test {
 
 // A scene with the given grid size and viscosity, no smoke source, all faces `faces`; `extra` is
 // merged over it (nested objects merged key by key).
-inline io::Scene latticeScene(int nx, int ny, int nz, double viscosity, const std::string& faces,
-                              const nlohmann::json& extra = nlohmann::json::object()) {
+inline scene::Scene latticeScene(int nx, int ny, int nz, double viscosity, const std::string& faces,
+                                 const nlohmann::json& extra = nlohmann::json::object()) {
   nlohmann::json j = {
       {"grid", {{"size", {nx, ny, nz}}, {"cell_size", 1.0}}},
       {"time", {{"frame_dt", 1.0}, {"steps_per_frame", 1}}},
@@ -22,7 +22,7 @@ inline io::Scene latticeScene(int nx, int ny, int nz, double viscosity, const st
       {"camera", {{"position", {0, 0, 10}}, {"target", {0, 0, 0}}}},
   };
   j.merge_patch(extra);
-  return io::parseScene(j, "validation scene", ".");
+  return scene::parseScene(j, "validation scene", ".");
 }
 
 // The fluid.population_storage patch of the fp16 runs (lbm_lattice.glsl), for `extra`.

@@ -62,7 +62,7 @@ Drag drag(const gpu::Context& context, const gpu::PipelineCache& cache, int cell
          {"axis", {0.0, 0.0, 1.0}}}}},
       {"camera", {{"position", {1, 0.2, 3}}, {"target", {1, 0.2, 0}}}},
   };
-  const io::Scene scene = io::parseScene(j, "schaefer-turek-2d1", ".");
+  const scene::Scene scene = scene::parseScene(j, "schaefer-turek-2d1", ".");
   const int nx = scene.grid.size.x, ny = scene.grid.size.y;
   sim::Simulation simulation(context, cache, scene);
   std::vector<glm::vec3> velocity;

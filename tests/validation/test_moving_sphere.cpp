@@ -44,7 +44,7 @@ TEST_P(MovingSphere, DragMatchesAFixedSphereInAStream) {
   const double nu = kSpeed * 2 * kRadius / kReynolds;
   nlohmann::json fixedExtra = populationStorage(GetParam());
   fixedExtra["obstacles"] = {sphere(20)};
-  io::Scene fixedScene = latticeScene(kLength, kWidth, kWidth, nu, "periodic", fixedExtra);
+  scene::Scene fixedScene = latticeScene(kLength, kWidth, kWidth, nu, "periodic", fixedExtra);
   sim::Simulation fixed(context(), pipelineCache(), fixedScene);
   const size_t cells = size_t(kLength) * kWidth * kWidth;
   fixed.setFlow(std::vector<glm::vec3>(cells, glm::vec3(kSpeed, 0, 0)), std::vector<float>(cells, 1.0f));
@@ -58,7 +58,7 @@ TEST_P(MovingSphere, DragMatchesAFixedSphereInAStream) {
   movingSphere.erase("center");  // the keyframes place it
   nlohmann::json movingExtra = populationStorage(GetParam());
   movingExtra["obstacles"] = {movingSphere};
-  io::Scene movingScene = latticeScene(kLength, kWidth, kWidth, nu, "periodic", movingExtra);
+  scene::Scene movingScene = latticeScene(kLength, kWidth, kWidth, nu, "periodic", movingExtra);
   sim::Simulation moving(context(), pipelineCache(), movingScene);
   const double movingDrag = meanDrag(moving);
 
@@ -79,7 +79,7 @@ TEST_F(GpuTest, SweptCellsKeepTheSmokeMass) {
                                    {{"time", 300.0}, {"position", {32.0, 10.0, 10.0}}}}}};
   nlohmann::json movingSphere = sphere(8, motion);
   movingSphere.erase("center");
-  io::Scene scene = latticeScene(40, 20, 20, 0.05, "no_slip", {{"obstacles", {movingSphere}}});
+  scene::Scene scene = latticeScene(40, 20, 20, 0.05, "no_slip", {{"obstacles", {movingSphere}}});
   sim::Simulation simulation(context(), pipelineCache(), scene);
   const size_t cells = 40 * 20 * 20;
   std::vector<glm::vec2> smoke(cells);

@@ -17,7 +17,7 @@ void expectAnalyticProfile(const gpu::Context& context, const gpu::PipelineCache
                            const std::string& storage) {
   const int height = 16;
   const double g = 1e-6;
-  io::Scene scene =
+  scene::Scene scene =
       latticeScene(4, height, 1, nu, "periodic",
                    {{"boundaries", {{"y-", "no_slip"}, {"y+", "no_slip"}}},
                     {"fluid", {{"body_force", {g, 0.0, 0.0}}, {"population_storage", storage}}}});

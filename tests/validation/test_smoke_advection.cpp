@@ -22,8 +22,9 @@ TEST_F(SmokeAdvection, RigidRotationReturnsTheScalarToItsStart) {
   const int n = 64;
   sim::SmokeSettings settings;
   settings.lattice = glm::ivec3(n, n, 1);
-  settings.faces = {io::BoundaryType::NoSlip, io::BoundaryType::NoSlip,   io::BoundaryType::NoSlip,
-                    io::BoundaryType::NoSlip, io::BoundaryType::Periodic, io::BoundaryType::Periodic};
+  settings.faces = {scene::BoundaryType::NoSlip,   scene::BoundaryType::NoSlip,
+                    scene::BoundaryType::NoSlip,   scene::BoundaryType::NoSlip,
+                    scene::BoundaryType::Periodic, scene::BoundaryType::Periodic};
   sim::SmokeTransport transport(context(), pipelineCache(), settings);
 
   // One revolution in `steps` steps; the fastest point (the blob's far edge) moves 0.15 cells/step.
@@ -72,8 +73,9 @@ TEST_F(SmokeAdvection, RigidRotationReturnsTheScalarToItsStart) {
 }
 
 TEST_F(SmokeAdvection, BuoyantPlumeInAClosedBoxKeepsItsMass) {
-  io::Scene scene = latticeScene(24, 32, 24, 0.01, "no_slip",
-                                 {{"fluid", {{"smagorinsky", 0.1}, {"buoyancy", {{"temperature", 2e-4}}}}}});
+  scene::Scene scene =
+      latticeScene(24, 32, 24, 0.01, "no_slip",
+                   {{"fluid", {{"smagorinsky", 0.1}, {"buoyancy", {{"temperature", 2e-4}}}}}});
   sim::Simulation simulation(context(), pipelineCache(), scene);
   std::vector<glm::vec2> smoke(24 * 32 * 24, glm::vec2(0));
   double before = 0;

@@ -34,7 +34,7 @@ void Demo::setSplit(bool split) {
   if (!split) splitPsnr_.reset();
 }
 
-void Demo::addLight(const io::Light& light) {
+void Demo::addLight(const scene::Light& light) {
   if (lights_.size() >= kMaxDemoLights)
     throw std::invalid_argument("at most " + std::to_string(kMaxDemoLights) + " lights");
   lights_.push_back(light);
@@ -49,11 +49,11 @@ void Demo::removeLight(size_t light) {
 
 void Demo::placeLight(size_t light, glm::vec3 vector) {
   if (light >= lights_.size()) throw std::invalid_argument("no light " + std::to_string(light));
-  if (auto* point = std::get_if<io::PointLight>(&lights_[light].source)) {
+  if (auto* point = std::get_if<scene::PointLight>(&lights_[light].source)) {
     point->position = vector;
   } else {
     if (glm::length(vector) <= 0.0f) throw std::invalid_argument("a light direction must not be zero");
-    std::get<io::DirectionalLight>(lights_[light].source).direction = glm::normalize(vector);
+    std::get<scene::DirectionalLight>(lights_[light].source).direction = glm::normalize(vector);
   }
 }
 
@@ -77,8 +77,8 @@ void Demo::setInletStrength(float strength) {
 }
 
 void Demo::loadScene(const fs::path& path) {
-  const io::Scene scene = io::loadScene(path);  // throws before anything changes
-  live_.reset();                                // one scene's GPU memory at a time
+  const scene::Scene scene = scene::loadScene(path);  // throws before anything changes
+  live_.reset();                                      // one scene's GPU memory at a time
   live_ = std::make_unique<LiveScene>(*context_, *cache_, path,
                                       LiveSceneOptions{options_.weights, options_.fp16});
   scenePath_ = path;
@@ -177,11 +177,11 @@ void Demo::runScriptCommand(const ScriptCommand& c) {
   } else if (c.name == "light") {
     const std::string& verb = c.words[0];
     if (verb == "add") {
-      io::Light light;
+      scene::Light light;
       if (c.words[1] == "point")
-        light.source = io::PointLight{vec(2)};
+        light.source = scene::PointLight{vec(2)};
       else
-        light.source = io::DirectionalLight{glm::normalize(vec(2))};
+        light.source = scene::DirectionalLight{glm::normalize(vec(2))};
       addLight(light);
     } else if (verb == "move") {
       placeLight(lightIndex(c.number(1)), vec(2));

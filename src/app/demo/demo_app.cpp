@@ -45,7 +45,7 @@ io::Image downloadFrame(const gpu::Image& image) {
 
 Demo::Demo(const DemoOptions& options) : options_(options), vsync_(options.vsync) {
   if (options.script) script_.emplace(loadScript(*options.script));
-  const io::Scene scene = io::loadScene(options.scene);  // bad input fails before a window opens
+  const scene::Scene scene = scene::loadScene(options.scene);  // bad input fails before a window opens
   gpu::ContextOptions contextOptions = runtime::contextOptions(options.device);
   gpu::checkRequestedDevice(contextOptions);
   window_ = std::make_unique<Window>(options.width, options.height, "sixway-demo");

@@ -17,8 +17,8 @@
 #include "app/demo/orbit_camera.h"
 #include "app/demo/stage_timings.h"
 #include "gpu/context.h"
-#include "io/scene.h"
 #include "runtime/modes/render_mode.h"
+#include "scene/scene.h"
 
 struct GLFWwindow;
 
@@ -67,7 +67,7 @@ class Demo {
   void setView(ViewKind view, int channel = 0);
   void setSplit(bool split);
   void setShadows(bool shadows) { shadows_ = shadows; }
-  void addLight(const io::Light& light);
+  void addLight(const scene::Light& light);
   void removeLight(size_t light);
   // A point light's position, a directional light's direction (toward the light).
   void placeLight(size_t light, glm::vec3 vector);
@@ -116,7 +116,7 @@ class Demo {
   std::filesystem::path scenePath_;
 
   OrbitCamera camera_;
-  std::vector<io::Light> lights_;
+  std::vector<scene::Light> lights_;
   modes::RenderMode mode_ = modes::RenderMode::Neural;
   ViewKind view_ = ViewKind::Frame;
   int channel_ = 0;  // sixWayChannelNames() index for ViewKind::Channel

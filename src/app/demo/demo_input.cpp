@@ -44,7 +44,7 @@ void Demo::onMouseButton(GLFWwindow* window, int button, int action, int mods) {
     d.dragTarget_ = d.live_->obstaclePosition(d.selectedObstacle_);
   } else if (button == GLFW_MOUSE_BUTTON_LEFT && (mods & GLFW_MOD_SHIFT) &&
              d.selectedLight_ < d.lights_.size() &&
-             std::holds_alternative<io::PointLight>(d.lights_[d.selectedLight_].source)) {
+             std::holds_alternative<scene::PointLight>(d.lights_[d.selectedLight_].source)) {
     d.draggingLight_ = true;
   } else if (button == GLFW_MOUSE_BUTTON_LEFT) {
     d.orbiting_ = true;
@@ -82,7 +82,7 @@ void Demo::dragSelection(float right, float down) {
     dragTarget_ += across(dragTarget_);
     dragObstacle(selectedObstacle_, dragTarget_);
   } else {
-    auto& point = std::get<io::PointLight>(lights_[selectedLight_].source);
+    auto& point = std::get<scene::PointLight>(lights_[selectedLight_].source);
     point.position += across(point.position);
   }
 }
@@ -156,8 +156,8 @@ void Demo::onKey(GLFWwindow* window, int key, int, int action, int mods) {
         d.recording_ ? d.stopRecording() : d.startRecording(d.nextRecordingPath());
         break;
       case GLFW_KEY_A: {
-        io::Light light;
-        light.source = io::PointLight{d.camera_.target + glm::vec3(0.3f, 0.3f, 0.3f)};
+        scene::Light light;
+        light.source = scene::PointLight{d.camera_.target + glm::vec3(0.3f, 0.3f, 0.3f)};
         d.addLight(light);
         break;
       }

@@ -121,19 +121,19 @@ void Demo::drawPanel() {
 
   if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen)) {
     for (size_t i = 0; i < lights_.size(); ++i) {
-      io::Light& light = lights_[i];
+      scene::Light& light = lights_[i];
       ImGui::PushID(int(i));
-      const bool point = std::holds_alternative<io::PointLight>(light.source);
+      const bool point = std::holds_alternative<scene::PointLight>(light.source);
       char title[48];
       std::snprintf(title, sizeof(title), "%zu: %s%s", i, point ? "point" : "directional",
                     i == selectedLight_ ? "  (selected)" : "");
       if (ImGui::TreeNode(title)) {
         if (ImGui::IsItemClicked()) selectedLight_ = i;
         if (point) {
-          ImGui::DragFloat3("position (shift+drag)", &std::get<io::PointLight>(light.source).position.x,
+          ImGui::DragFloat3("position (shift+drag)", &std::get<scene::PointLight>(light.source).position.x,
                             0.01f);
         } else {
-          glm::vec3 direction = std::get<io::DirectionalLight>(light.source).direction;
+          glm::vec3 direction = std::get<scene::DirectionalLight>(light.source).direction;
           if (ImGui::DragFloat3("toward the light", &direction.x, 0.01f))
             act([&] { placeLight(i, direction); });
         }
@@ -147,15 +147,15 @@ void Demo::drawPanel() {
     }
     if (ImGui::Button("add point light (A)"))
       act([&] {
-        io::Light light;
-        light.source = io::PointLight{camera_.target + glm::vec3(0.3f)};
+        scene::Light light;
+        light.source = scene::PointLight{camera_.target + glm::vec3(0.3f)};
         addLight(light);
       });
     ImGui::SameLine();
     if (ImGui::Button("add directional"))
       act([&] {
-        io::Light light;
-        light.source = io::DirectionalLight{glm::normalize(glm::vec3(0.4f, 1.0f, 0.3f))};
+        scene::Light light;
+        light.source = scene::DirectionalLight{glm::normalize(glm::vec3(0.4f, 1.0f, 0.3f))};
         addLight(light);
       });
   }

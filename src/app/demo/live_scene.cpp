@@ -9,9 +9,9 @@
 #include "sources/scene_volumes.h"
 
 namespace sixway::app::demo {
-std::vector<io::Light> startingLights(const io::Scene& scene) {
-  std::vector<io::Light> lights = render::sceneLights(scene.lights, 0);
-  for (io::Light& l : lights) l.path.reset();
+std::vector<scene::Light> startingLights(const scene::Scene& scene) {
+  std::vector<scene::Light> lights = render::sceneLights(scene.lights, 0);
+  for (scene::Light& l : lights) l.path.reset();
   if (lights.size() > kMaxDemoLights) lights.resize(kMaxDemoLights);
   return lights;
 }
@@ -19,9 +19,9 @@ std::vector<io::Light> startingLights(const io::Scene& scene) {
 LiveScene::LiveScene(gpu::Context& context, gpu::PipelineCache& cache, const std::filesystem::path& scene,
                      const LiveSceneOptions& options)
     : device_(runtime::Access::borrowDevice(context, cache)), options_(options) {
-  playedScene_ = io::loadScene(scene);
+  playedScene_ = scene::loadScene(scene);
   if (playedScene_.vdb) {
-    playback_ = sources::openSceneVolumes(context, cache, playedScene_, io::sceneFrameCount(playedScene_),
+    playback_ = sources::openSceneVolumes(context, cache, playedScene_, scene::sceneFrameCount(playedScene_),
                                           scene.string());
     return;
   }
@@ -29,7 +29,7 @@ LiveScene::LiveScene(gpu::Context& context, gpu::PipelineCache& cache, const std
   simulation_->advance();  // frame 0
 }
 
-const io::Scene& LiveScene::scene() const {
+const scene::Scene& LiveScene::scene() const {
   return simulation_ ? runtime::Access::scene(*simulation_) : playedScene_;
 }
 
@@ -102,7 +102,8 @@ modes::ModeRenderer& LiveScene::modeRendererFor(modes::RenderMode mode, bool sha
   return *slot;
 }
 
-LiveFrame LiveScene::renderNeural(const Camera& camera, const std::vector<io::Light>& lights, bool shadows) {
+LiveFrame LiveScene::renderNeural(const Camera& camera, const std::vector<scene::Light>& lights,
+                                  bool shadows) {
   auto& slot = renderers_[shadows];
   if (!slot) {
     RendererOptions options;
@@ -120,7 +121,7 @@ LiveFrame LiveScene::renderNeural(const Camera& camera, const std::vector<io::Li
   SmokeRenderer& renderer = *slot;
   renderer.setCamera(camera);
   std::vector<Light> converted;
-  for (const io::Light& l : lights) converted.push_back(runtime::publicLight(l));
+  for (const scene::Light& l : lights) converted.push_back(runtime::publicLight(l));
   renderer.setLights(converted);
   renderer.render();
   const runtime::RealtimeFrame& f = runtime::Access::frame(renderer);
@@ -130,7 +131,7 @@ LiveFrame LiveScene::renderNeural(const Camera& camera, const std::vector<io::Li
 }
 
 LiveFrame LiveScene::render(modes::RenderMode mode, const Camera& camera,
-                            const std::vector<io::Light>& lights, bool shadows) {
+                            const std::vector<scene::Light>& lights, bool shadows) {
   if (mode == modes::RenderMode::Neural && simulation_) return renderNeural(camera, lights, shadows);
   modes::ModeRenderer& renderer = modeRendererFor(mode, shadows);
   const runtime::FrameView view{

@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "gpu/sequence.h"
-#include "io/scene.h"
 #include "render/volume_sequence.h"
 #include "runtime/modes/mode_renderer.h"
+#include "scene/scene.h"
 
 namespace sixway::gpu {
 class Context;
@@ -31,7 +31,7 @@ namespace sixway::app::demo {
 inline constexpr uint32_t kMaxDemoLights = 4;  // lights with a shadow-atlas tile each
 
 // The lights of the scene's first frame, held still (the user moves them now), at most kMaxDemoLights.
-std::vector<io::Light> startingLights(const io::Scene& scene);
+std::vector<scene::Light> startingLights(const scene::Scene& scene);
 
 struct LiveSceneOptions {
   std::filesystem::path weights;  // the network file for neural mode
@@ -53,7 +53,7 @@ class LiveScene {
   LiveScene(gpu::Context& context, gpu::PipelineCache& cache, const std::filesystem::path& scene,
             const LiveSceneOptions& options);
 
-  const io::Scene& scene() const;
+  const scene::Scene& scene() const;
   // Simulates the next frame. Throws sim::WatchdogError when the flow diverges.
   void advance();
   // The simulation from its start, obstacles back on the scene's motions.
@@ -73,18 +73,18 @@ class LiveScene {
 
   // Renders the current frame in `mode` from `camera` under `lights`, with or without obstacle shadows.
   // Throws io::InputError when neural mode has no weights file.
-  LiveFrame render(modes::RenderMode mode, const Camera& camera, const std::vector<io::Light>& lights,
+  LiveFrame render(modes::RenderMode mode, const Camera& camera, const std::vector<scene::Light>& lights,
                    bool shadows);
 
  private:
-  LiveFrame renderNeural(const Camera& camera, const std::vector<io::Light>& lights, bool shadows);
+  LiveFrame renderNeural(const Camera& camera, const std::vector<scene::Light>& lights, bool shadows);
   modes::ModeRenderer& modeRendererFor(modes::RenderMode mode, bool shadows);
   void followObstacles();
 
   Device device_;  // around the demo's context
   LiveSceneOptions options_;
   std::unique_ptr<SmokeSimulation> simulation_;       // a simulated scene
-  io::Scene playedScene_;                             // a played-back scene, its grid the playback lattice
+  scene::Scene playedScene_;                          // a played-back scene, its grid the playback lattice
   std::unique_ptr<render::VolumeSequence> playback_;  // its files
   int playedFrame_ = 0;
   std::map<bool, std::unique_ptr<SmokeRenderer>> renderers_;  // neural, by shadows

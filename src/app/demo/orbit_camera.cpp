@@ -7,7 +7,7 @@
 
 namespace sixway::app::demo {
 
-OrbitCamera OrbitCamera::fromScene(const io::Camera& camera) {
+OrbitCamera OrbitCamera::fromScene(const scene::Camera& camera) {
   OrbitCamera c;
   const glm::vec3 offset = camera.position - camera.target;
   c.target = camera.target;

@@ -5,8 +5,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "io/scene.h"
 #include "render/camera.h"
+#include "scene/scene.h"
 
 namespace sixway::app::demo {
 
@@ -18,7 +18,7 @@ struct OrbitCamera {
   float fovDeg = 40.0f;
 
   // The scene's camera at its start (its path is not followed: the user moves the camera).
-  static OrbitCamera fromScene(const io::Camera& camera);
+  static OrbitCamera fromScene(const scene::Camera& camera);
   glm::vec3 position() const;
   render::Camera camera() const;
   // The same, as the public API's camera.

@@ -3,12 +3,12 @@
 namespace sixway::modes {
 
 BakedLightmaps::BakedLightmaps(const gpu::Context& context, const gpu::PipelineCache& cache,
-                               const io::Scene& scene, render::Scattering scattering,
+                               const scene::Scene& scene, render::Scattering scattering,
                                const render::MultipleScattering& multiple)
     : BakedLightmaps(context, cache, scene, scattering, multiple, runtime::FrameStages::All) {}
 
 BakedLightmaps::BakedLightmaps(const gpu::Context& context, const gpu::PipelineCache& cache,
-                               const io::Scene& scene, render::Scattering scattering,
+                               const scene::Scene& scene, render::Scattering scattering,
                                const render::MultipleScattering& multiple, runtime::FrameStages stages)
     : LightmapSource(stages),
       smoke_(scene.smoke),

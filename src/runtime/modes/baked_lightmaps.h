@@ -10,14 +10,14 @@ namespace sixway::modes {
 class BakedLightmaps : public runtime::LightmapSource {
  public:
   // `multiple`: the higher orders' tracing; its seed becomes the scene's render.seed + frame.
-  BakedLightmaps(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
+  BakedLightmaps(const gpu::Context& context, const gpu::PipelineCache& cache, const scene::Scene& scene,
                  render::Scattering scattering, const render::MultipleScattering& multiple);
 
   render::ImagePlane update(runtime::RealtimeFrame& frame, const runtime::SourceFrame& current) override;
   std::vector<gpu::StageTime> stageTimes() const override;
 
  protected:
-  BakedLightmaps(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
+  BakedLightmaps(const gpu::Context& context, const gpu::PipelineCache& cache, const scene::Scene& scene,
                  render::Scattering scattering, const render::MultipleScattering& multiple,
                  runtime::FrameStages stages);
   // The lightmaps of `current`'s volume seen from `camera` over `plane` into the frame's.
@@ -25,7 +25,7 @@ class BakedLightmaps : public runtime::LightmapSource {
             const render::ImagePlane& plane);
 
  private:
-  io::Smoke smoke_;
+  scene::Smoke smoke_;
   uint32_t seed_;  // the scene's render.seed
   render::Scattering scattering_;
   render::MultipleScattering multiple_;

@@ -27,7 +27,7 @@ render::ImagePlane facingBillboard(const render::Camera& camera, const render::C
 }  // namespace
 
 FlipbookLightmaps::FlipbookLightmaps(const gpu::Context& context, const gpu::PipelineCache& cache,
-                                     const io::Scene& scene, render::Scattering scattering,
+                                     const scene::Scene& scene, render::Scattering scattering,
                                      const render::MultipleScattering& multiple)
     : BakedLightmaps(context, cache, scene, scattering, multiple, runtime::FrameStages::AllButGuide) {}
 

@@ -11,7 +11,7 @@ namespace sixway::modes {
 
 class FlipbookLightmaps : public BakedLightmaps {
  public:
-  FlipbookLightmaps(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
+  FlipbookLightmaps(const gpu::Context& context, const gpu::PipelineCache& cache, const scene::Scene& scene,
                     render::Scattering scattering, const render::MultipleScattering& multiple);
 
   render::ImagePlane update(runtime::RealtimeFrame& frame, const runtime::SourceFrame& current) override;

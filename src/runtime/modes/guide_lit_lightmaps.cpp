@@ -3,7 +3,7 @@
 namespace sixway::modes {
 
 GuideLitLightmaps::GuideLitLightmaps(const gpu::Context& context, const gpu::PipelineCache& cache,
-                                     const io::Scene& scene)
+                                     const scene::Scene& scene)
     : lightmaps_(context, cache, uint32_t(render::GuideSettings::fromScene(scene).lights.size())) {}
 
 void GuideLitLightmaps::record(gpu::Sequence& sequence, runtime::RealtimeFrame& frame) {

@@ -8,7 +8,7 @@ namespace sixway::modes {
 
 class GuideLitLightmaps : public runtime::LightmapSource {
  public:
-  GuideLitLightmaps(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene);
+  GuideLitLightmaps(const gpu::Context& context, const gpu::PipelineCache& cache, const scene::Scene& scene);
 
   void record(gpu::Sequence& sequence, runtime::RealtimeFrame& frame) override;
 

@@ -22,15 +22,15 @@ io::Image downloadHalfImage(const gpu::Image& image, std::vector<std::string> ch
 
 // The scene the real-time passes draw: the path tracer draws the obstacles itself (opaque surfaces in the
 // truth), so its rasterized frame is the background alone.
-io::Scene rasterScene(const io::Scene& scene, RenderMode mode) {
-  io::Scene raster = scene;
+scene::Scene rasterScene(const scene::Scene& scene, RenderMode mode) {
+  scene::Scene raster = scene;
   if (mode == RenderMode::PathTrace) raster.obstacles.clear();
   return raster;
 }
 
 std::unique_ptr<runtime::LightmapSource> modeSource(const gpu::Context& context,
-                                                    const gpu::PipelineCache& cache, const io::Scene& scene,
-                                                    const ModeOptions& o) {
+                                                    const gpu::PipelineCache& cache,
+                                                    const scene::Scene& scene, const ModeOptions& o) {
   const render::MultipleScattering& multiple = o.multipleScattering;
   switch (o.mode) {
     case RenderMode::Neural:
@@ -54,7 +54,7 @@ std::unique_ptr<runtime::LightmapSource> modeSource(const gpu::Context& context,
   return nullptr;
 }
 
-uint32_t shadowTiles(const io::Scene& raster, const ModeOptions& options) {
+uint32_t shadowTiles(const scene::Scene& raster, const ModeOptions& options) {
   if (!options.shadows) return 0;
   return options.shadowTiles ? *options.shadowTiles
                              : render::shadowTileCount(raster.lights, raster.obstacles);
@@ -63,7 +63,7 @@ uint32_t shadowTiles(const io::Scene& raster, const ModeOptions& options) {
 }  // namespace
 
 ModeRenderer::ModeRenderer(const gpu::Context& context, const gpu::PipelineCache& cache,
-                           const io::Scene& scene, const ModeOptions& options)
+                           const scene::Scene& scene, const ModeOptions& options)
     : scene_(scene),
       raster_(rasterScene(scene, options.mode)),
       options_(options),
@@ -94,7 +94,7 @@ RenderedFrame ModeRenderer::render(const runtime::FrameView& view, int index, do
   return result;
 }
 
-void ModeRenderer::setObstacleMotion(size_t obstacle, std::optional<io::Motion> motion) {
+void ModeRenderer::setObstacleMotion(size_t obstacle, std::optional<scene::Motion> motion) {
   if (pathTraced_)
     pathTraced_->setObstacleMotion(obstacle, std::move(motion));
   else

@@ -20,11 +20,11 @@
 
 #include "gpu/sequence.h"
 #include "io/image.h"
-#include "io/scene.h"
 #include "render/volume.h"
 #include "runtime/frame_renderer.h"
 #include "runtime/modes/path_traced_smoke.h"
 #include "runtime/modes/render_mode.h"
+#include "scene/scene.h"
 
 namespace sixway::gpu {
 class Context;
@@ -43,7 +43,7 @@ struct RenderedFrame {
 class ModeRenderer {
  public:
   // Builds every pass the mode needs for the scene. Throws io::InputError for missing or malformed weights.
-  ModeRenderer(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
+  ModeRenderer(const gpu::Context& context, const gpu::PipelineCache& cache, const scene::Scene& scene,
                const ModeOptions& options);
   ModeRenderer(const ModeRenderer&) = delete;
   ModeRenderer& operator=(const ModeRenderer&) = delete;
@@ -54,7 +54,7 @@ class ModeRenderer {
   RenderedFrame render(const runtime::FrameView& view, int index, double seconds,
                        const render::Volume& volume);
   // Moves obstacle `obstacle` along `motion` from now on (the simulation's, when a user drags it).
-  void setObstacleMotion(size_t obstacle, std::optional<io::Motion> motion);
+  void setObstacleMotion(size_t obstacle, std::optional<scene::Motion> motion);
 
   // Of the last frame, for tests and evaluation: the guiding map (guide, alpha, shell depth), its opacity
   // depths (render::GuidingMap::opacityDepths: four channels, encoded) and the lightmaps
@@ -71,8 +71,8 @@ class ModeRenderer {
   const gpu::Image& lightmapImageB() const;
 
  private:
-  io::Scene scene_;
-  io::Scene raster_;  // what the real-time passes draw: pathtrace draws the obstacles itself
+  scene::Scene scene_;
+  scene::Scene raster_;  // what the real-time passes draw: pathtrace draws the obstacles itself
   ModeOptions options_;
   runtime::FrameRenderer frame_;
   std::unique_ptr<PathTracedSmoke> pathTraced_;  // pathtrace

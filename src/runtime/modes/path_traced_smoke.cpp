@@ -7,12 +7,12 @@
 namespace sixway::modes {
 
 PathTracedSmoke::PathTracedSmoke(const gpu::Context& context, const gpu::PipelineCache& cache,
-                                 const io::Scene& scene, const ModeOptions& options)
+                                 const scene::Scene& scene, const ModeOptions& options)
     : scene_(scene), options_(options), tracer_(context, cache) {
   if (!scene.obstacles.empty()) obstacles_ = std::make_unique<render::ObstacleBvh>(context, scene.obstacles);
 }
 
-void PathTracedSmoke::setObstacleMotion(size_t obstacle, std::optional<io::Motion> motion) {
+void PathTracedSmoke::setObstacleMotion(size_t obstacle, std::optional<scene::Motion> motion) {
   if (obstacles_) obstacles_->setMotion(obstacle, std::move(motion));
 }
 
@@ -24,12 +24,13 @@ void PathTracedSmoke::composite(io::Image& frame, const runtime::FrameView& view
   trace.seed = scene_.render.seed + uint32_t(index) + options_.pathTraceSeedOffset;
   trace.maxOrders = options_.pathTraceOrders;
   if (scene_.ambient) {
-    if (const auto* c = std::get_if<io::AmbientColor>(&*scene_.ambient)) trace.environment = {c->color};
-    if (const auto* sh = std::get_if<io::AmbientSh>(&*scene_.ambient)) trace.environment = sh->coefficients;
+    if (const auto* c = std::get_if<scene::AmbientColor>(&*scene_.ambient)) trace.environment = {c->color};
+    if (const auto* sh = std::get_if<scene::AmbientSh>(&*scene_.ambient))
+      trace.environment = sh->coefficients;
   }
-  std::vector<io::Light> traced = view.lights;
+  std::vector<scene::Light> traced = view.lights;
   if (!options_.shadows)
-    for (io::Light& light : traced) light.shadows = false;
+    for (scene::Light& light : traced) light.shadows = false;
   if (obstacles_) obstacles_->update(seconds);
   tracer_.beginImage(volume, scene_.smoke, view.camera,
                      render::fullFrame(view.camera, trace.width, trace.height), traced, trace,

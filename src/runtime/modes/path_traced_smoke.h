@@ -7,29 +7,29 @@
 
 #include "gpu/sequence.h"
 #include "io/image.h"
-#include "io/scene.h"
 #include "reference/path_tracer.h"
 #include "render/obstacle_bvh.h"
 #include "runtime/frame_renderer.h"
 #include "runtime/modes/render_mode.h"
+#include "scene/scene.h"
 
 namespace sixway::modes {
 
 class PathTracedSmoke {
  public:
   // `scene` and `options` outlive it (its ModeRenderer's).
-  PathTracedSmoke(const gpu::Context& context, const gpu::PipelineCache& cache, const io::Scene& scene,
+  PathTracedSmoke(const gpu::Context& context, const gpu::PipelineCache& cache, const scene::Scene& scene,
                   const ModeOptions& options);
 
   // Moves obstacle `obstacle` along `motion` from now on.
-  void setObstacleMotion(size_t obstacle, std::optional<io::Motion> motion);
+  void setObstacleMotion(size_t obstacle, std::optional<scene::Motion> motion);
   // Traces frame `index` of `volume` from `view`, obstacles at `seconds`, over `frame` (RGBA, premultiplied);
   // adds its GPU time to `stages`.
   void composite(io::Image& frame, const runtime::FrameView& view, int index, double seconds,
                  const render::Volume& volume, std::vector<gpu::StageTime>& stages);
 
  private:
-  const io::Scene& scene_;
+  const scene::Scene& scene_;
   const ModeOptions& options_;
   render::PathTracer tracer_;
   std::unique_ptr<render::ObstacleBvh> obstacles_;  // none without obstacles

@@ -14,11 +14,10 @@
 #include <variant>
 #include <vector>
 
-#include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 #include <nlohmann/json_fwd.hpp>
 
-namespace sixway::io {
+namespace sixway::scene {
 
 // The most of each list a scene may hold: the fixed-size arrays of the shaders and parameter blocks that
 // take them (checked against those at compile time in tests/app/test_scene_limits.cpp).
@@ -304,20 +303,4 @@ int sceneFrameCount(const Scene& scene);
 // Throws InputError naming `source` when the scene plays VDB files back: what simulates refuses it.
 void requireSimulated(const Scene& scene, std::string_view source);
 
-// The speed that fixes the time step and the Reynolds number: the fastest inlet, or the wind when a
-// face is inflow, in m/s.
-float referenceSpeed(const Scene& scene);
-// m²/s: the given viscosity, or referenceSpeed · referenceLength / reynolds.
-float kinematicViscosity(const Scene& scene);
-// The fastest a buoyant plume can get, m/s: free fall through the domain's height along gravity under the
-// strongest buoyant acceleration an inlet injects, sqrt(2 · a · H) (0 without buoyancy).
-float buoyantSpeedBound(const Scene& scene);
-// LBM steps per frame: time.stepsPerFrame, or more if needed to keep the fastest inflow at or below
-// fluid.maxLatticeVelocity and the buoyant speed bound at or below 0.25 cells per step (lattice speed =
-// speed · dt / cellSize with dt = frameDt / steps).
-int lbmStepsPerFrame(const Scene& scene);
-// The rotation of a mesh obstacle, R = Rz·Ry·Rx of rotate_deg (x applied first): world = translate +
-// R·(scale·p). The one definition the simulation's voxelizer and the renderers' meshes share.
-glm::mat3 meshRotation(const MeshObstacle& mesh);
-
-}  // namespace sixway::io
+}  // namespace sixway::scene

@@ -1,8 +1,10 @@
-#include "io/motion.h"
+#include "scene/obstacle_placement.h"
 
 #include <cmath>
 
-namespace sixway::io {
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace sixway::scene {
 
 MotionState evaluateMotion(const Motion& motion, double seconds) {
   const auto& keys = motion.keyframes;
@@ -20,4 +22,12 @@ MotionState evaluateMotion(const Motion& motion, double seconds) {
           (keys[k + 1].position - keys[k].position) / span};
 }
 
-}  // namespace sixway::io
+glm::mat3 meshRotation(const MeshObstacle& mesh) {
+  glm::mat4 r(1.0f);
+  r = glm::rotate(r, glm::radians(mesh.rotateDeg.z), glm::vec3(0, 0, 1));
+  r = glm::rotate(r, glm::radians(mesh.rotateDeg.y), glm::vec3(0, 1, 0));
+  r = glm::rotate(r, glm::radians(mesh.rotateDeg.x), glm::vec3(1, 0, 0));
+  return glm::mat3(r);
+}
+
+}  // namespace sixway::scene

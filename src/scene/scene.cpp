@@ -1,20 +1,37 @@
-#include "io/scene.h"
+#include "scene/scene.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
-#include <glm/gtc/matrix_transform.hpp>
 #include <glm/vector_relational.hpp>
 #include <nlohmann/json.hpp>
 
 #include "io/error.h"
 #include "io/file_access.h"
 #include "io/json_reader.h"
+#include "scene/fluid_physics.h"
 
-namespace sixway::io {
+namespace sixway::scene {
 namespace fs = std::filesystem;
+
+// The file is read with io's JSON reader and its checks.
+using io::atLeast;
+using io::both;
+using io::Choices;
+using io::inOpenRange;
+using io::InputError;
+using io::inRange;
+using io::JsonReader;
+using io::lookupProblem;
+using io::multipleOf;
+using io::nonZero;
+using io::parseJsonText;
+using io::positive;
+using io::readFileBytes;
+using io::show;
+using io::zeroOrInRange;
 
 namespace {
 
@@ -74,24 +91,12 @@ const Choices<GuideLight> kGuideLights = {{"front", GuideLight::Front},   {"top"
                                           {"right", GuideLight::Right},   {"back", GuideLight::Back}};
 const Choices<ToneMap> kToneMaps = {{"clamp", ToneMap::Clamp}, {"aces", ToneMap::Aces}};
 
-// The lattice speed the buoyant plume's speed bound may reach: under the watchdog's stable limit (0.35,
-// sim/watchdog.h) with a margin; the bound is free fall, which drag and mixing keep the real plume below.
-constexpr double kBuoyantLatticeVelocity = 0.25;
-
 constexpr std::string_view kPlaybackOnly = "the scene plays back vdb files: there is no simulation to set up";
 // The playback lattice's longest axis: the renderers' volumes are at most this many cells a side.
 constexpr int kMaxVdbVoxels = 1024;
 constexpr int kMaxVdbFrames = 100000;
 
 const Choices<VdbUp> kVdbUps = {{"y", VdbUp::Y}, {"z", VdbUp::Z}};
-
-// Steps per frame that bring the fastest inflow down to fluid.max_lattice_velocity and the buoyant plume's
-// speed bound down to kBuoyantLatticeVelocity: lattice speed = speed · (frameDt / steps) / cellSize.
-double stepsForLatticeVelocity(const Scene& s) {
-  const double step = double(s.time.frameDt) / s.grid.cellSize;
-  return std::max(std::ceil(step * referenceSpeed(s) / s.fluid.maxLatticeVelocity),
-                  std::ceil(step * buoyantSpeedBound(s) / kBuoyantLatticeVelocity));
-}
 
 glm::vec3 direction(JsonReader& r, std::string_view key, glm::vec3 fallback) {
   return glm::normalize(r.optional<glm::vec3>(key, fallback, nonZero()));
@@ -645,39 +650,4 @@ void requireSimulated(const Scene& scene, std::string_view source) {
                      "and dataset play it back)");
 }
 
-float referenceSpeed(const Scene& scene) {
-  float speed = 0;
-  for (const Inlet& inlet : scene.inlets) speed = std::max(speed, glm::length(inlet.velocity));
-  if (std::ranges::count(scene.boundaries.faces, BoundaryType::Inflow) > 0)
-    speed = std::max(speed, glm::length(scene.boundaries.wind));
-  return speed;
-}
-
-float kinematicViscosity(const Scene& scene) {
-  const Fluid& f = scene.fluid;
-  return f.viscosity ? *f.viscosity : referenceSpeed(scene) * f.referenceLength / *f.reynolds;
-}
-
-float buoyantSpeedBound(const Scene& scene) {
-  float acceleration = 0;
-  for (const Inlet& inlet : scene.inlets)
-    acceleration = std::max(acceleration, std::abs(scene.fluid.buoyancy.temperature * inlet.temperature +
-                                                   scene.fluid.buoyancy.density * inlet.density));
-  const glm::vec3 up = glm::abs(glm::normalize(scene.fluid.gravity));
-  const float height = glm::dot(up, glm::vec3(scene.grid.size) * scene.grid.cellSize);
-  return std::sqrt(2.0f * acceleration * height);
-}
-
-int lbmStepsPerFrame(const Scene& scene) {
-  return std::max(scene.time.stepsPerFrame, static_cast<int>(stepsForLatticeVelocity(scene)));
-}
-
-glm::mat3 meshRotation(const MeshObstacle& mesh) {
-  glm::mat4 r(1.0f);
-  r = glm::rotate(r, glm::radians(mesh.rotateDeg.z), glm::vec3(0, 0, 1));
-  r = glm::rotate(r, glm::radians(mesh.rotateDeg.y), glm::vec3(0, 1, 0));
-  r = glm::rotate(r, glm::radians(mesh.rotateDeg.x), glm::vec3(1, 0, 0));
-  return glm::mat3(r);
-}
-
-}  // namespace sixway::io
+}  // namespace sixway::scene

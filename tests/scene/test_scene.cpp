@@ -1,4 +1,4 @@
-#include "io/scene.h"
+#include "scene/scene.h"
 
 #include <chrono>
 #include <cmath>
@@ -12,9 +12,10 @@
 
 #include "io/error.h"
 #include "io/json_reader.h"
+#include "scene/fluid_physics.h"
 #include "support/temp_dir.h"
 
-namespace sixway::io {
+namespace sixway::scene {
 namespace {
 
 namespace fs = std::filesystem;
@@ -58,7 +59,7 @@ void writeFile(const fs::path& path, const std::string& text) {
 std::string errorOf(const std::function<void()>& load) {
   try {
     load();
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     return e.what();
   }
   return "(no InputError)";
@@ -772,12 +773,12 @@ TEST(SceneTest, DeepNestingIsOneLineNotACrash) {
     const fs::path file = dir / "deep.json";
     writeFile(file, text);
     EXPECT_EQ(errorOf([&] { loadScene(file); }),
-              file.string() + ": JSON nested deeper than " + std::to_string(kMaxJsonNesting) + " levels");
+              file.string() + ": JSON nested deeper than " + std::to_string(io::kMaxJsonNesting) + " levels");
   }
   // The limit itself is accepted: the error is then about the content (no grid).
   const fs::path file = dir / "at_limit.json";
-  writeFile(file,
-            "{\"a\":" + std::string(kMaxJsonNesting - 1, '[') + std::string(kMaxJsonNesting - 1, ']') + "}");
+  writeFile(file, "{\"a\":" + std::string(io::kMaxJsonNesting - 1, '[') +
+                      std::string(io::kMaxJsonNesting - 1, ']') + "}");
   EXPECT_EQ(errorOf([&] { loadScene(file); }), file.string() + ": grid.size: required key missing");
 }
 
@@ -829,4 +830,4 @@ TEST(SceneTest, MissingSceneFile) {
 }
 
 }  // namespace
-}  // namespace sixway::io
+}  // namespace sixway::scene
