@@ -20,13 +20,13 @@
 #include "gpu/pipeline.h"
 #include "io/error.h"
 #include "io/report.h"
+#include "modes/scene_source.h"
 #include "reference/bake_flipbook.h"
 #include "reference/flipbook.h"
 #include "reference/vdb_sequence.h"
 #include "render/scene_frame.h"
 #include "runtime/internal.h"
 #include "scene/scene.h"
-#include "sources/scene_volumes.h"
 
 namespace sixway::app {
 namespace {
@@ -106,8 +106,8 @@ bool isBakeOutput(const std::string& name) {
   std::smatch match;
   if (name == "flipbook.json" || std::regex_match(name, frame)) return true;
   if (!std::regex_match(name, match, texture)) return false;
-  for (const std::string& preset : render::packingPresetNames())
-    if (std::ranges::count(render::packingPreset(preset).textures, match[1].str()) > 0) return true;
+  for (const std::string& preset : reference::packingPresetNames())
+    if (std::ranges::count(reference::packingPreset(preset).textures, match[1].str()) > 0) return true;
   return false;
 }
 
@@ -118,7 +118,7 @@ struct MemoryRow {
   uint64_t deviceBytes = 0, deviceAllocations = 0, hostResidentBytes = 0;
 };
 
-nlohmann::json frameRows(const std::vector<MemoryRow>& rows, const render::FlipbookBakeResult& result,
+nlohmann::json frameRows(const std::vector<MemoryRow>& rows, const reference::FlipbookBakeResult& result,
                          int firstFrame) {
   nlohmann::json frames = nlohmann::json::array();
   for (size_t i = 0; i < rows.size(); ++i)
@@ -131,7 +131,7 @@ nlohmann::json frameRows(const std::vector<MemoryRow>& rows, const render::Flipb
 }
 
 // "A = (Right, Top, Back, alpha), B = (Left, Bottom, Front, emissive)"
-std::string describePacking(const render::ChannelPacking& packing) {
+std::string describePacking(const reference::ChannelPacking& packing) {
   std::string text;
   for (int t = 0; t < int(packing.textures.size()); ++t) {
     std::array<std::string, 4> components{"0", "0", "0", "0"};
@@ -146,7 +146,7 @@ std::string describePacking(const render::ChannelPacking& packing) {
 
 // Unity's emission settings for the flipbook: Single Channel with the sidecar's gradient and multiplier, or
 // none.
-void printEmissiveSettings(const std::optional<render::EmissiveMask>& mask, bool maskRequested) {
+void printEmissiveSettings(const std::optional<reference::EmissiveMask>& mask, bool maskRequested) {
   if (!mask) {
     std::printf("sixway bake: Unity: Emissive Mode None (%s)\n",
                 maskRequested ? "the smoke does not emit" : "--emissive premultiplied: not Unity's mask");
@@ -193,8 +193,8 @@ void run(const BakeOptions& o) {
   // told).
   const int sourceFrames = scene ? scene::sceneFrameCount(*scene) : int(o.vdb.size());
   const int frameCount = o.frames.value_or(scene && !scene->vdb ? 16 : sourceFrames - o.first);
-  render::requireFlipbookFits(
-      render::flipbookLayout(frameCount, tileWidth, tileHeight, o.columns.value_or(0)), "--frames/--tile");
+  reference::requireFlipbookFits(
+      reference::flipbookLayout(frameCount, tileWidth, tileHeight, o.columns.value_or(0)), "--frames/--tile");
 
   const Device device(o.common.deviceOptions());
   const gpu::Context& context = runtime::Access::context(device);
@@ -204,14 +204,14 @@ void run(const BakeOptions& o) {
   if (scene) {
     sequence =
         withinDeviceLimits(o.scene.string(), scene->vdb ? "vdb.voxels" : gridSetting(scene->grid), [&] {
-          return sources::openSceneVolumes(context, cache, *scene, o.first + frameCount, o.scene.string());
+          return modes::openSceneVolumes(context, cache, *scene, o.first + frameCount, o.scene.string());
         });
     provenance["source"] = {{"scene", fs::absolute(o.scene).string()}};
-    if (scene->vdb) provenance["source"].update(sources::describeSource(*sequence));
+    if (scene->vdb) provenance["source"].update(modes::describeSource(*sequence));
   } else {
     auto vdb = withinDeviceLimits("--voxels " + std::to_string(o.voxels.value_or(128)), "--voxels", [&] {
-      return std::make_unique<render::VdbSequence>(context, o.vdb, o.voxels.value_or(128),
-                                                   smoke.emission.intensity > 0.0f);
+      return std::make_unique<reference::VdbSequence>(context, o.vdb, o.voxels.value_or(128),
+                                                      smoke.emission.intensity > 0.0f);
     });
     nlohmann::json files = nlohmann::json::array();
     for (const fs::path& f : o.vdb) files.push_back(fs::absolute(f).string());
@@ -224,11 +224,11 @@ void run(const BakeOptions& o) {
     sequence = std::move(vdb);
   }
 
-  render::FlipbookBake job;
+  reference::FlipbookBake job;
   job.firstFrame = o.first;
   job.frameCount = frameCount;
   job.columns = o.columns.value_or(0);
-  job.packing = render::packingPreset(o.packing);
+  job.packing = reference::packingPreset(o.packing);
   job.emissiveMask = o.emissive == "mask";
   job.camera = chooseCamera(o, scene ? &*scene : nullptr, sequence->bounds());
   job.smoke = smoke;
@@ -236,8 +236,8 @@ void run(const BakeOptions& o) {
   job.settings.height = tileHeight;
   if (o.step) job.settings.stepCells = *o.step;
   if (o.lightSpacing) job.settings.lightSpacingCells = *o.lightSpacing;
-  job.scattering = render::parseScattering(o.scattering, "--scattering");
-  if (job.scattering == render::Scattering::Single &&
+  job.scattering = reference::parseScattering(o.scattering, "--scattering");
+  if (job.scattering == reference::Scattering::Single &&
       (o.samples || o.orders || o.downsample || o.seed || o.traceAllOrders))
     throw io::InputError("--scattering single",
                          "--spp, --orders, --ms-downsample, --ms-all-orders and --seed "
@@ -256,7 +256,7 @@ void run(const BakeOptions& o) {
   StagedDirectory output(o.out, "bake", o.force, isBakeOutput, kBakeFolders);
   job.out = output.staging();
   std::printf("sixway bake: %d frames, tiles of %dx%d, %s scattering, packing %s: %s\n", job.frameCount,
-              tileWidth, tileHeight, render::scatteringName(job.scattering), o.packing.c_str(),
+              tileWidth, tileHeight, reference::scatteringName(job.scattering), o.packing.c_str(),
               describePacking(job.packing).c_str());
   std::fflush(stdout);
   // The camera's errors name where it came from: the --camera-* options, else the scene (or the VDB files'
@@ -266,12 +266,12 @@ void run(const BakeOptions& o) {
                                                           : fs::path("--vdb");
   std::vector<MemoryRow> memory;
   memory.reserve(size_t(frameCount));
-  render::FlipbookBakeResult result;
+  reference::FlipbookBakeResult result;
   throwIfStopped();  // a signal while the sequence was being loaded or simulated
   output.underFinalNames([&] {
     result = namingScene(o.scene, cameraSource, [&] {
       return withinDeviceLimits("--tile", "--tile", [&] {
-        return render::bakeFlipbook(context, cache, *sequence, job, [&](const std::string& line) {
+        return reference::bakeFlipbook(context, cache, *sequence, job, [&](const std::string& line) {
           std::printf("  %s\n", line.c_str());
           std::fflush(stdout);
           const gpu::MemoryUse device = context.memoryUse();
@@ -282,7 +282,7 @@ void run(const BakeOptions& o) {
     });
   });
   output.commit();
-  if (const auto* vdb = dynamic_cast<const render::VdbSequence*>(sequence.get()))
+  if (const auto* vdb = dynamic_cast<const reference::VdbSequence*>(sequence.get()))
     for (const std::string& note : vdb->notes()) std::fprintf(stderr, "sixway: note: %s\n", note.c_str());
   std::printf("sixway bake: wrote %s\n", (output.directory() / result.sidecar.filename()).string().c_str());
   // What a Unity VFX Graph output needs besides the textures (their .meta files hold the import settings).
@@ -295,7 +295,7 @@ void run(const BakeOptions& o) {
     io::writeReport(o.report, {{"out", fs::absolute(o.out).string()},
                                {"device", context.properties().deviceName},
                                {"tile", {tileWidth, tileHeight}},
-                               {"scattering", render::scatteringName(job.scattering)},
+                               {"scattering", reference::scatteringName(job.scattering)},
                                {"held_bytes_per_frame", heldPerFrame},
                                {"frames", frameRows(memory, result, job.firstFrame)}});
   }
@@ -322,13 +322,13 @@ void addBakeCommand(CLI::App& app) {
       ->check(CLI::Range(1, 100000));
   bake->add_option("--packing", o->packing,
                    "Channel packing of the two textures: unity (default) | rlt-bbf | o3de (docs/formats.md)")
-      ->check(CLI::IsMember(render::packingPresetNames()));
+      ->check(CLI::IsMember(reference::packingPresetNames()));
   bake->add_option("--emissive", o->emissive,
                    "Emissive component: mask (default: Unity's Single Channel emission, settings in the "
                    "sidecar) | premultiplied (sixway's luminance × alpha)")
       ->check(CLI::IsMember({"mask", "premultiplied"}));
   bake->add_option("--columns", o->columns, "Flipbook columns (default: a near-square grid)")
-      ->check(CLI::Range(1, render::kMaxFlipbookSide));
+      ->check(CLI::Range(1, reference::kMaxFlipbookSide));
   bake->add_option("--tile", o->tile,
                    "Tile size N or WxH in pixels (default: the scene's lightmap_size, or 128)");
   bake->add_option("--camera-position", o->cameraPosition, "Camera position X Y Z (with --camera-target)")

@@ -13,8 +13,8 @@
 #include "gpu/check.h"
 #include "gpu/context.h"
 #include "io/error.h"
+#include "modes/mode_renderer.h"
 #include "render/volume.h"
-#include "runtime/modes/mode_renderer.h"
 #include "scene/fluid_physics.h"
 #include "sim/simulation.h"
 

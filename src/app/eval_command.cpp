@@ -182,7 +182,8 @@ void evaluateDataset(const EvalOptions& o) {
                                                    " differs from the first shard's " + std::to_string(size));
     }
     const std::string targetName =
-        render::parseScattering(o.target, "--target") == render::Scattering::Single ? "target" : "target_ms";
+        reference::parseScattering(o.target, "--target") == reference::Scattering::Single ? "target"
+                                                                                          : "target_ms";
     if (!shard.contains(targetName))
       throw io::InputError(shardPath.string(), "no tensor " + targetName +
                                                    " (the dataset config's \"targets\" " +

@@ -26,11 +26,11 @@
 #include "io/error.h"
 #include "io/report.h"
 #include "metrics/image_metrics.h"
+#include "modes/mode_renderer.h"
+#include "modes/scene_source.h"
 #include "runtime/internal.h"
-#include "runtime/modes/mode_renderer.h"
 #include "runtime/scene_volumes.h"
 #include "scene/scene.h"
-#include "sources/scene_volumes.h"
 
 namespace sixway::app {
 namespace {
@@ -49,7 +49,7 @@ struct RenderOptions {
   std::optional<float> exposureStops;  // default: the scene's render.exposure
   uint32_t samples = 64;
   int orders = 64;
-  render::MultipleScattering multiple;
+  reference::MultipleScattering multiple;
 };
 
 // The frames of one mode, all from the runtime's one real-time frame: neural through the public
@@ -136,9 +136,8 @@ void run(const RenderOptions& o) {
   std::unique_ptr<render::VolumeSequence> playback;
   if (scene.vdb) {
     playback = withinDeviceLimits(o.scene.string(), "vdb.voxels", [&] {
-      return sources::openSceneVolumes(runtime::Access::context(device),
-                                       runtime::Access::pipelineCache(device), scene, warmup + o.frames,
-                                       o.scene.string());
+      return modes::openSceneVolumes(runtime::Access::context(device), runtime::Access::pipelineCache(device),
+                                     scene, warmup + o.frames, o.scene.string());
     });
   } else {
     withinDeviceLimits(o.scene.string(), gridSetting(scene.grid), [&] {
@@ -230,7 +229,7 @@ void run(const RenderOptions& o) {
     report["pixel_faults"] = {{"total", faultTotal}, {"per_frame", faults}};
   }
   if (options.mode == modes::RenderMode::Neural) report["weights"] = fs::absolute(options.weights).string();
-  if (playback) report["source"] = sources::describeSource(*playback);
+  if (playback) report["source"] = modes::describeSource(*playback);
   io::writeReport(writer.stagedPath("timings.json"), report);
   writer.commit();
   std::printf("sixway render: wrote %d frames, timings.json", o.frames);

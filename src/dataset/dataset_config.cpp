@@ -343,7 +343,7 @@ DatasetTargets parseTargets(io::JsonReader& r) {
     return t;
   }
   t.multipleScattering = r.object("multiple_scattering", [](io::JsonReader& m) {
-    render::MultipleScattering ms;
+    reference::MultipleScattering ms;
     ms.samples = uint32_t(m.optional<int>("samples", int(ms.samples), io::inRange(1, 1 << 20)));
     ms.maxOrders = m.optional<int>("orders", ms.maxOrders, io::inRange(2, 100000));
     ms.downsample = m.optional<int>("downsample", ms.downsample, [](int d) {

@@ -58,10 +58,10 @@ struct DatasetCameras {
 };
 
 // The lightmaps a shard stores as training targets ("targets": "single", "multiple" or "both"): `target`,
-// the exact single-scattering baker's, and `target_ms`, multiply-scattered (render::ScatteredLightmaps).
+// the exact single-scattering baker's, and `target_ms`, multiply-scattered (reference::ScatteredLightmaps).
 struct DatasetTargets {
   bool single = true, multiple = false;
-  render::MultipleScattering multipleScattering;  // "multiple_scattering": samples, orders, downsample
+  reference::MultipleScattering multipleScattering;  // "multiple_scattering": samples, orders, downsample
 };
 
 // A shard holds per sample the guide (3, or 4 with the fine alpha), targets (8 each) and motion (2) channels

@@ -12,12 +12,12 @@
 #include "gpu/sequence.h"
 #include "io/file_access.h"
 #include "io/json_text.h"
+#include "modes/scene_source.h"
 #include "reference/scattered_lightmaps.h"
 #include "render/billboard.h"
 #include "render/guiding_map.h"
 #include "render/projection.h"
 #include "runtime/scene_volumes.h"
-#include "sources/scene_volumes.h"
 
 namespace sixway::dataset {
 namespace {
@@ -93,7 +93,7 @@ DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCa
   const int size = config.lightmapSize;
   const int lastFrame = plan.frames.back();
   const std::unique_ptr<render::VolumeSequence> volumes =
-      sources::openSceneVolumes(context, cache, scene, lastFrame + 1, config.file.string());
+      modes::openSceneVolumes(context, cache, scene, lastFrame + 1, config.file.string());
   // A played-back VDB scene has no velocity: its samples get no motion field (zero, "motion": false).
   const auto* simulated = dynamic_cast<const runtime::SimulatedVolumes*>(volumes.get());
   const render::Box box = volumes->bounds();
@@ -109,8 +109,8 @@ DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCa
   if (config.guideEmission) emission.emplace(context, guiding.emissionDesc());
   const gpu::Image* emissionImage = emission ? &*emission : nullptr;
   dataset::MotionField motion(context, cache, uint32_t(size));
-  render::ScatteredLightmaps baker(context, cache);
-  render::BakeSettings bake;
+  reference::ScatteredLightmaps baker(context, cache);
+  reference::BakeSettings bake;
   bake.width = bake.height = size;
   // The smoke travels over the interval between two samples: stride frames of steps, at the lattice velocity
   // (cells per step) the simulation's macro buffer holds.
@@ -148,18 +148,19 @@ DatasetShard generateSequence(const gpu::Context& context, const gpu::PipelineCa
         else
           guides.set(sample, downloadHalfTexels(guide), 4);
         if (config.targets.multiple) {
-          render::MultipleScattering ms = config.targets.multipleScattering;
+          reference::MultipleScattering ms = config.targets.multipleScattering;
           ms.seed = sampleSeed(scene.render.seed, plan.sequence, frame, c.index);
           targetsMs.set(
               sample,
-              baker.bake(volume, scene.smoke, c.camera, billboard, bake, render::Scattering::Multiple, ms)
+              baker.bake(volume, scene.smoke, c.camera, billboard, bake, reference::Scattering::Multiple, ms)
                   .pixels,
               kTargetChannels);
           if (config.targets.single) targets.set(sample, baker.singleScattering().pixels, kTargetChannels);
         } else {
           targets.set(
               sample,
-              baker.bake(volume, scene.smoke, c.camera, billboard, bake, render::Scattering::Single).pixels,
+              baker.bake(volume, scene.smoke, c.camera, billboard, bake, reference::Scattering::Single)
+                  .pixels,
               kTargetChannels);
         }
         // The first sample of a camera has no previous one to move from.

@@ -23,7 +23,7 @@ nlohmann::json equalTimeStudy(const gpu::Context& context, const gpu::PipelineCa
   const render::Camera camera = render::sceneCamera(scene.camera, index);
   const std::vector<scene::Light> lights = render::sceneLights(scene.lights, index);
   const render::ImagePlane frame = render::fullFrame(camera, scene.render.width, scene.render.height);
-  render::TraceSettings settings;
+  reference::TraceSettings settings;
   settings.width = scene.render.width;
   settings.height = scene.render.height;
   settings.maxOrders = study.orders;
@@ -33,7 +33,7 @@ nlohmann::json equalTimeStudy(const gpu::Context& context, const gpu::PipelineCa
     if (const auto* sh = std::get_if<scene::AmbientSh>(&*scene.ambient))
       settings.environment = sh->coefficients;
   }
-  render::PathTracer tracer(context, cache);
+  reference::PathTracer tracer(context, cache);
   std::unique_ptr<render::ObstacleBvh> obstacles;
   if (!scene.obstacles.empty()) {
     obstacles = std::make_unique<render::ObstacleBvh>(context, scene.obstacles);

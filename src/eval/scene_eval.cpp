@@ -25,22 +25,22 @@
 #include "io/file_access.h"
 #include "io/report.h"
 #include "metrics/image_metrics.h"
+#include "modes/mode_renderer.h"
+#include "modes/scene_source.h"
 #include "render/camera.h"
 #include "render/obstacle_bvh.h"
 #include "render/scene_frame.h"
 #include "runtime/internal.h"
-#include "runtime/modes/mode_renderer.h"
 #include "runtime/network_weights.h"
 #include "runtime/scene_volumes.h"
 #include "scene/scene.h"
-#include "sources/scene_volumes.h"
 
 namespace sixway::eval {
 namespace {
 
 namespace fs = std::filesystem;
 
-// The methods measured against the path tracer, by their render-mode names (runtime/modes/render_mode.h).
+// The methods measured against the path tracer, by their render-mode names (modes/render_mode.h).
 // guide-lit is the guide-only baseline: the guiding map's light as all six lightmaps; reference-ms the
 // six-way ceiling under full transport (multiply-scattered lightmaps); traditional-ms the flipbook users bake
 // in DCC tools.
@@ -149,7 +149,7 @@ void evaluateScene(const DeviceOptions& device, const SceneEvalSettings& s) {
   const gpu::Context& context = runtime::Access::context(gpuDevice);
   const gpu::PipelineCache& cache = runtime::Access::pipelineCache(gpuDevice);
   const std::unique_ptr<render::VolumeSequence> volumes =
-      sources::openSceneVolumes(context, cache, scene, warmup + s.frames, s.scene.string());
+      modes::openSceneVolumes(context, cache, scene, warmup + s.frames, s.scene.string());
   const auto* simulated = dynamic_cast<const runtime::SimulatedVolumes*>(volumes.get());
   // What the renderers see: the obstacles, unless left out (--no-obstacles).
   scene::Scene renderScene = scene;
@@ -373,7 +373,7 @@ void evaluateScene(const DeviceOptions& device, const SceneEvalSettings& s) {
       {"density_scale", s.densityScale},
       {"obstacles_drawn", !renderScene.obstacles.empty()},
       {"obstacle_count", scene.obstacles.size()},
-      {"source", sources::describeSource(*volumes)},
+      {"source", modes::describeSource(*volumes)},
       {"shadows", !renderScene.obstacles.empty() && s.shadows},
       {"band_radius_px",
        bandObstacles ? nlohmann::json(bandRadius(scene.render.height)) : nlohmann::json(nullptr)},

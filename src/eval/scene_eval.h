@@ -23,9 +23,9 @@ namespace sixway::eval {
 struct SceneEvalSettings {
   std::filesystem::path scene, weights, report, out;  // out: strip.png (none when empty)
   int frames = 0;
-  uint32_t samples = 64;                          // path-tracer ground truth, per pixel
-  int orders = 64;                                // its scattering orders
-  render::MultipleScattering multipleScattering;  // of reference-ms and traditional-ms
+  uint32_t samples = 64;                             // path-tracer ground truth, per pixel
+  int orders = 64;                                   // its scattering orders
+  reference::MultipleScattering multipleScattering;  // of reference-ms and traditional-ms
   float densityScale = 1.0f;
   bool shadows = true, obstacles = true;  // obstacles: drawn, and in the truth
   std::optional<float> cameraOrbitDeg;    // replaces the scene's camera path by an orbit (degrees per frame)

@@ -40,7 +40,7 @@ struct Image {
 };
 
 // The largest image side read from a file: the largest texture game engines take, as for flipbooks
-// (render::kMaxFlipbookSide). An RGBA float image of that size is already 4 GiB.
+// (reference::kMaxFlipbookSide). An RGBA float image of that size is already 4 GiB.
 inline constexpr int kMaxImageSide = 16384;
 // Throws InputError naming `source` when a file's header claims an image wider or taller than kMaxImageSide,
 // before anything is allocated for it.

@@ -9,14 +9,15 @@
 #include "render/billboard.h"
 #include "render/sixway.h"
 
-namespace sixway::render {
+namespace sixway::reference {
 namespace {
 
 nlohmann::json vec(glm::vec3 v) {
   return {v.x, v.y, v.z};
 }
 
-nlohmann::json describe(const FlipbookBake& job, const ImagePlane& billboard, const nlohmann::json& frames) {
+nlohmann::json describe(const FlipbookBake& job, const render::ImagePlane& billboard,
+                        const nlohmann::json& frames) {
   nlohmann::json scattering = {{"mode", scatteringName(job.scattering)}};
   if (job.scattering == Scattering::Multiple) {
     const MultipleScattering& m = job.multiple;
@@ -49,7 +50,7 @@ nlohmann::json describe(const FlipbookBake& job, const ImagePlane& billboard, co
 }  // namespace
 
 FlipbookBakeResult bakeFlipbook(const gpu::Context& context, const gpu::PipelineCache& cache,
-                                VolumeSequence& sequence, const FlipbookBake& job,
+                                render::VolumeSequence& sequence, const FlipbookBake& job,
                                 const std::function<void(const std::string&)>& progress) {
   const int available = sequence.frameCount();
   if (job.frameCount < 1 || job.firstFrame < 0 || job.firstFrame + job.frameCount > available)
@@ -61,18 +62,18 @@ FlipbookBakeResult bakeFlipbook(const gpu::Context& context, const gpu::Pipeline
   const FlipbookLayout layout = flipbookLayout(job.frameCount, width, height, job.columns);
   requireFlipbookFits(layout, "flipbook");
   FlipbookBakeResult result;
-  result.billboard = billboardBounds(job.camera, sequence.bounds(), float(width) / float(height));
+  result.billboard = render::billboardBounds(job.camera, sequence.bounds(), float(width) / float(height));
 
   ScatteredLightmaps baker(context, cache);
   std::filesystem::create_directories(job.out / "frames");
 
-  const auto& names = sixWayChannelNames();
+  const auto& names = render::sixWayChannelNames();
   std::vector<io::Image> tiles;
   nlohmann::json frames = nlohmann::json::array();
   for (int i = 0; i < job.frameCount; ++i) {
     const int index = job.firstFrame + i;
     const auto start = std::chrono::steady_clock::now();
-    const std::optional<Volume> volume = sequence.frame(index);
+    const std::optional<render::Volume> volume = sequence.frame(index);
     io::Image tile(width, height, {names.begin(), names.end()});
     double gpuMs = 0;
     if (volume) {
@@ -104,4 +105,4 @@ FlipbookBakeResult bakeFlipbook(const gpu::Context& context, const gpu::Pipeline
   return result;
 }
 
-}  // namespace sixway::render
+}  // namespace sixway::reference

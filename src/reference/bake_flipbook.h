@@ -23,7 +23,7 @@ class Context;
 class PipelineCache;
 }  // namespace sixway::gpu
 
-namespace sixway::render {
+namespace sixway::reference {
 
 struct FlipbookBake {
   std::filesystem::path out;  // an existing, empty directory
@@ -31,7 +31,7 @@ struct FlipbookBake {
   int frameCount = 1;
   int columns = 0;  // 0: a near-square grid
   ChannelPacking packing = unityPacking();
-  Camera camera;          // fixed for the whole sequence
+  render::Camera camera;  // fixed for the whole sequence
   scene::Smoke smoke;     // optics
   BakeSettings settings;  // tile size and quadrature
   Scattering scattering = Scattering::Multiple;
@@ -45,7 +45,7 @@ struct FlipbookBake {
 struct FlipbookBakeResult {
   std::filesystem::path sidecar;
   FlipbookLayout layout;
-  ImagePlane billboard;
+  render::ImagePlane billboard;
   std::vector<double> frameMilliseconds;     // GPU time per baked frame
   std::optional<EmissiveMask> emissiveMask;  // as written (none: premultiplied, or no emission)
 };
@@ -53,7 +53,7 @@ struct FlipbookBakeResult {
 // Bakes the frames one after the other; `progress` gets one line per frame. Throws io::InputError for a frame
 // range outside the sequence and a camera that does not see the whole volume box in front of it.
 FlipbookBakeResult bakeFlipbook(const gpu::Context& context, const gpu::PipelineCache& cache,
-                                VolumeSequence& sequence, const FlipbookBake& job,
+                                render::VolumeSequence& sequence, const FlipbookBake& job,
                                 const std::function<void(const std::string&)>& progress);
 
-}  // namespace sixway::render
+}  // namespace sixway::reference

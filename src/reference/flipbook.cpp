@@ -17,15 +17,15 @@
 #include "io/tga.h"
 #include "reference/unity_meta.h"
 
-namespace sixway::render {
+namespace sixway::reference {
 namespace {
 
 constexpr const char* kFormat = "sixway-flipbook";
 constexpr const char* kComponents = "RGBA";
 // Keys of the eight channels in a description, in channel order.
-const std::array<std::string, kSixWayChannels>& channelKeys() {
-  static const std::array<std::string, kSixWayChannels> keys = {"right", "left",  "top",   "bottom",
-                                                                "back",  "front", "alpha", "emissive"};
+const std::array<std::string, render::kSixWayChannels>& channelKeys() {
+  static const std::array<std::string, render::kSixWayChannels> keys = {
+      "right", "left", "top", "bottom", "back", "front", "alpha", "emissive"};
   return keys;
 }
 
@@ -115,8 +115,10 @@ void requireFlipbookFits(const FlipbookLayout& layout, const std::string& source
 namespace {
 
 // Two RGBA textures named `first` and `second`, holding the eight channels in the order given.
-ChannelPacking twoTextures(const std::string& first, const std::array<SixWayChannel, 4>& firstChannels,
-                           const std::string& second, const std::array<SixWayChannel, 4>& secondChannels) {
+ChannelPacking twoTextures(const std::string& first,
+                           const std::array<render::SixWayChannel, 4>& firstChannels,
+                           const std::string& second,
+                           const std::array<render::SixWayChannel, 4>& secondChannels) {
   ChannelPacking p;
   p.textures = {first, second};
   for (int c = 0; c < 4; ++c) {
@@ -129,8 +131,8 @@ ChannelPacking twoTextures(const std::string& first, const std::array<SixWayChan
 }  // namespace
 
 std::optional<EmissiveMask> unityEmissiveMask(const scene::Smoke& smoke) {
-  const std::optional<float> straight = emissiveStraightScale(smoke);
-  const std::vector<GradientKey> keys = emissiveGradientFromRamp(smoke.emission);
+  const std::optional<float> straight = render::emissiveStraightScale(smoke);
+  const std::vector<render::GradientKey> keys = render::emissiveGradientFromRamp(smoke.emission);
   if (!straight || keys.empty()) return std::nullopt;
   // The ramp gradient's keys sit at their own luminance, so the straight value e / (alpha · straight) is at
   // most the top key's: that is the mask's 1. The colours are scaled to at most 1 and the multiplier takes
@@ -138,16 +140,18 @@ std::optional<EmissiveMask> unityEmissiveMask(const scene::Smoke& smoke) {
   // emission.
   const float top = keys.back().position;
   float brightest = 0.0f;
-  for (const GradientKey& k : keys) brightest = std::max({brightest, k.color.r, k.color.g, k.color.b});
+  for (const render::GradientKey& k : keys)
+    brightest = std::max({brightest, k.color.r, k.color.g, k.color.b});
   EmissiveMask mask{.luminanceScale = *straight * top, .gradient = {}, .multiplier = *straight * brightest};
   // Unity's gradient is constant before its first key; sixway's rises from black at 0.
   mask.gradient.push_back({0.0f, glm::vec3(0.0f)});
-  for (const GradientKey& k : keys) mask.gradient.push_back({k.position / top, k.color / brightest});
+  for (const render::GradientKey& k : keys) mask.gradient.push_back({k.position / top, k.color / brightest});
   return mask;
 }
 
 ChannelPacking unityPacking() {
-  return twoTextures("A", {Right, Top, Back, Alpha}, "B", {Left, Bottom, Front, Emissive});
+  return twoTextures("A", {render::Right, render::Top, render::Back, render::Alpha}, "B",
+                     {render::Left, render::Bottom, render::Front, render::Emissive});
 }
 
 const std::vector<std::string>& packingPresetNames() {
@@ -158,9 +162,11 @@ const std::vector<std::string>& packingPresetNames() {
 ChannelPacking packingPreset(const std::string& name) {
   if (name == "unity") return unityPacking();
   if (name == "rlt-bbf")
-    return twoTextures("RLT", {Right, Left, Top, Alpha}, "BBF", {Bottom, Back, Front, Emissive});
+    return twoTextures("RLT", {render::Right, render::Left, render::Top, render::Alpha}, "BBF",
+                       {render::Bottom, render::Back, render::Front, render::Emissive});
   if (name == "o3de")
-    return twoTextures("TLRB", {Top, Left, Right, Bottom}, "FB", {Front, Back, Emissive, Alpha});
+    return twoTextures("TLRB", {render::Top, render::Left, render::Right, render::Bottom}, "FB",
+                       {render::Front, render::Back, render::Emissive, render::Alpha});
   throw std::invalid_argument("packingPreset: unknown packing " + name);
 }
 
@@ -172,12 +178,12 @@ std::vector<io::Image> packFlipbook(const std::vector<io::Image>& frames, const 
   for (int f = 0; f < int(frames.size()) && f < layout.frames; ++f) {
     const io::Image& tile = frames[f];
     if (tile.width != layout.tileWidth || tile.height != layout.tileHeight ||
-        tile.channelCount() != kSixWayChannels)
+        tile.channelCount() != render::kSixWayChannels)
       throw std::invalid_argument("packFlipbook: frame " + std::to_string(f) +
                                   " is not an eight-channel tile");
     for (int y = 0; y < layout.tileHeight; ++y)
       for (int x = 0; x < layout.tileWidth; ++x)
-        for (int c = 0; c < kSixWayChannels; ++c) {
+        for (int c = 0; c < render::kSixWayChannels; ++c) {
           const auto& slot = packing.slots[c];
           if (slot.texture < 0) continue;
           textures[slot.texture].pixels[tilePixel(layout, f, x, y) * 4 + slot.component] = tile.at(x, y, c);
@@ -188,13 +194,13 @@ std::vector<io::Image> packFlipbook(const std::vector<io::Image>& frames, const 
 
 std::vector<io::Image> unpackFlipbook(const std::vector<io::Image>& textures, const FlipbookLayout& layout,
                                       const ChannelPacking& packing) {
-  const auto& names = sixWayChannelNames();
+  const auto& names = render::sixWayChannelNames();
   std::vector<io::Image> frames(layout.frames,
                                 io::Image(layout.tileWidth, layout.tileHeight, {names.begin(), names.end()}));
   for (int f = 0; f < layout.frames; ++f)
     for (int y = 0; y < layout.tileHeight; ++y)
       for (int x = 0; x < layout.tileWidth; ++x)
-        for (int c = 0; c < kSixWayChannels; ++c) {
+        for (int c = 0; c < render::kSixWayChannels; ++c) {
           const auto& slot = packing.slots[c];
           if (slot.texture < 0) continue;
           const io::Image& t = textures[slot.texture];
@@ -209,8 +215,8 @@ std::vector<io::Image> withEmissiveMask(std::vector<io::Image> frames, const Emi
   for (io::Image& frame : frames)
     for (int y = 0; y < frame.height; ++y)
       for (int x = 0; x < frame.width; ++x) {
-        const float alpha = frame.at(x, y, Alpha);
-        float& emissive = frame.at(x, y, Emissive);
+        const float alpha = frame.at(x, y, render::Alpha);
+        float& emissive = frame.at(x, y, render::Emissive);
         emissive = alpha > 0.0f ? std::clamp(emissive / (alpha * mask.luminanceScale), 0.0f, 1.0f) : 0.0f;
       }
   return frames;
@@ -219,7 +225,7 @@ std::vector<io::Image> withEmissiveMask(std::vector<io::Image> frames, const Emi
 nlohmann::json describeEmissive(const std::optional<EmissiveMask>& mask) {
   if (!mask) return {{"encoding", "premultiplied"}};
   nlohmann::json gradient = nlohmann::json::array();
-  for (const GradientKey& k : mask->gradient)
+  for (const render::GradientKey& k : mask->gradient)
     gradient.push_back({{"position", k.position}, {"color", {k.color.r, k.color.g, k.color.b}}});
   return {{"encoding", "mask"},
           {"luminance_scale", mask->luminanceScale},
@@ -277,7 +283,7 @@ std::filesystem::path writeFlipbook(const std::filesystem::path& directory, cons
     files[packing.textures[t]] = {{"exr", base + ".exr"}, {"png", base + ".png"}, {"tga", base + ".tga"}};
   }
   nlohmann::json channels = nlohmann::json::object();
-  for (int c = 0; c < kSixWayChannels; ++c)
+  for (int c = 0; c < render::kSixWayChannels; ++c)
     if (packing.slots[c].texture >= 0) channels[channelKeys()[c]] = reference(packing, c);
   nlohmann::json sidecar = {
       {"format", kFormat},
@@ -373,10 +379,10 @@ Flipbook readFlipbook(const std::filesystem::path& description) {
     textures.push_back(std::move(rgba));
   }
   r.object("channels", [&](io::JsonReader& o) {
-    for (int c = 0; c < kSixWayChannels; ++c) {
+    for (int c = 0; c < render::kSixWayChannels; ++c) {
       const std::string& key = channelKeys()[c];
       const std::optional<std::string> text =
-          c == Emissive ? o.maybe<std::string>(key) : std::optional(o.required<std::string>(key));
+          c == render::Emissive ? o.maybe<std::string>(key) : std::optional(o.required<std::string>(key));
       if (text) packing.slots[c] = parseReference(o, key, *text, packing.textures);
     }
     return 0;
@@ -387,10 +393,10 @@ Flipbook readFlipbook(const std::filesystem::path& description) {
   for (io::Image& frame : book.frames)
     for (int y = 0; y < frame.height; ++y)
       for (int x = 0; x < frame.width; ++x) {
-        const float alpha = frame.at(x, y, Alpha);
-        for (int c = 0; c < kSixWayChannels; ++c) {
-          if (c == Alpha) continue;
-          if (c == Emissive && maskScale)
+        const float alpha = frame.at(x, y, render::Alpha);
+        for (int c = 0; c < render::kSixWayChannels; ++c) {
+          if (c == render::Alpha) continue;
+          if (c == render::Emissive && maskScale)
             frame.at(x, y, c) *= alpha * *maskScale;
           else if (!premultiplied)
             frame.at(x, y, c) *= alpha;
@@ -399,4 +405,4 @@ Flipbook readFlipbook(const std::filesystem::path& description) {
   return book;
 }
 
-}  // namespace sixway::render
+}  // namespace sixway::reference

@@ -18,7 +18,7 @@
 #include "render/sixway_shading.h"
 #include "scene/scene.h"
 
-namespace sixway::render {
+namespace sixway::reference {
 
 struct FlipbookLayout {
   int columns = 1, rows = 1;
@@ -44,7 +44,7 @@ struct ChannelPacking {
     int component = 0;
   };
   std::vector<std::string> textures;
-  std::array<Slot, kSixWayChannels> slots;
+  std::array<Slot, render::kSixWayChannels> slots;
 };
 
 // Unity VFX Graph's six-way packing: A = (Right, Top, Back, alpha), B = (Left, Bottom, Front, emissive).
@@ -69,9 +69,10 @@ std::vector<io::Image> unpackFlipbook(const std::vector<io::Image>& textures, co
 // premultiplied luminance e (docs/formats.md, "Emission"). With mask = e / (alpha · luminanceScale) the three
 // numbers below make Unity's formula give what SixWayShading gives for e with the smoke's straight scale.
 struct EmissiveMask {
-  float luminanceScale = 1.0f;        // e = alpha · luminanceScale · mask
-  std::vector<GradientKey> gradient;  // Unity's Emissive Gradient: black at 0, positions ≤ 1, colours ≤ 1
-  float multiplier = 1.0f;            // Unity's Emissive Multiplier
+  float luminanceScale = 1.0f;  // e = alpha · luminanceScale · mask
+  std::vector<render::GradientKey>
+      gradient;             // Unity's Emissive Gradient: black at 0, positions ≤ 1, colours ≤ 1
+  float multiplier = 1.0f;  // Unity's Emissive Multiplier
 };
 // The mask for `smoke`'s emission; none when it does not emit.
 std::optional<EmissiveMask> unityEmissiveMask(const scene::Smoke& smoke);
@@ -98,4 +99,4 @@ struct Flipbook {
 // description or texture file and the problem.
 Flipbook readFlipbook(const std::filesystem::path& description);
 
-}  // namespace sixway::render
+}  // namespace sixway::reference

@@ -8,7 +8,7 @@
 #include "render/lightmap_images.h"
 #include "render/render_spec.h"
 
-namespace sixway::render {
+namespace sixway::reference {
 
 constexpr uint32_t kGroup = 8;  // the shader's local size in x and y
 
@@ -19,14 +19,14 @@ GuideLightmaps::GuideLightmaps(const gpu::Context& context, const gpu::PipelineC
   gpu::ComputePipelineDesc desc{
       "render/guide_lightmaps.comp",
       {BindingType::StorageImage, BindingType::StorageImage, BindingType::StorageImage}};
-  desc.spec.set(spec::kGuideLights, int32_t(guideLights));
+  desc.spec.set(render::spec::kGuideLights, int32_t(guideLights));
   pass_ = std::make_unique<gpu::Pipeline>(context, cache, desc);
 }
 
 GuideLightmaps::~GuideLightmaps() = default;
 
 void GuideLightmaps::record(gpu::Sequence& sequence, const gpu::Image& guide,
-                            const LightmapImages& lightmaps) const {
+                            const render::LightmapImages& lightmaps) const {
   const gpu::ImageDesc& g = guide.desc();
   const gpu::ImageDesc& l = lightmaps.a.desc();
   if (g.width != l.width || g.height != l.height)
@@ -38,4 +38,4 @@ void GuideLightmaps::record(gpu::Sequence& sequence, const gpu::Image& guide,
   sequence.endStage();
 }
 
-}  // namespace sixway::render
+}  // namespace sixway::reference

@@ -14,8 +14,10 @@ class Sequence;
 }  // namespace sixway::gpu
 
 namespace sixway::render {
-
 struct LightmapImages;
+}  // namespace sixway::render
+
+namespace sixway::reference {
 
 class GuideLightmaps {
  public:
@@ -25,10 +27,11 @@ class GuideLightmaps {
 
   // Records the stage "guide lightmaps": `guide` (RGBA16F) into `lightmaps` of the same size. Throws
   // std::invalid_argument for images of different sizes.
-  void record(gpu::Sequence& sequence, const gpu::Image& guide, const LightmapImages& lightmaps) const;
+  void record(gpu::Sequence& sequence, const gpu::Image& guide,
+              const render::LightmapImages& lightmaps) const;
 
  private:
   std::unique_ptr<gpu::Pipeline> pass_;
 };
 
-}  // namespace sixway::render
+}  // namespace sixway::reference

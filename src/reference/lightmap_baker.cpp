@@ -9,7 +9,7 @@
 #include "render/gpu_layout.h"
 #include "render/sixway.h"
 
-namespace sixway::render {
+namespace sixway::reference {
 namespace {
 
 uint32_t groups(int count, int groupSize) {
@@ -29,24 +29,24 @@ void checkSettings(const BakeSettings& s) {
 }
 
 // Light grids for the six lights, their columns spaced `spacing` apart; u, v are the other two camera axes.
-std::array<LightGrid, 6> sixLightGrids(const Camera& camera, const VolumeGrid& volume, float spacing,
-                                       float maxStep) {
-  const auto directions = sixWayLightDirections(camera);
-  std::array<LightGrid, 6> grids;
-  for (int i = 0; i < kSixWayLights; ++i) {
+std::array<render::LightGrid, 6> sixLightGrids(const render::Camera& camera, const render::VolumeGrid& volume,
+                                               float spacing, float maxStep) {
+  const auto directions = render::sixWayLightDirections(camera);
+  std::array<render::LightGrid, 6> grids;
+  for (int i = 0; i < render::kSixWayLights; ++i) {
     const int axis = i / 2;  // 0: right/left, 1: top/bottom, 2: back/front
     const glm::vec3 u = axis == 0 ? camera.up : camera.right;
     const glm::vec3 v = axis == 2 ? camera.up : camera.forward;
-    grids[i] = lightGridFor(volume, directions[i], u, v, spacing, maxStep);
+    grids[i] = render::lightGridFor(volume, directions[i], u, v, spacing, maxStep);
   }
   return grids;
 }
 
 // Whether the six light grids fit: each in one storage buffer, all together in a quarter of the device's
 // memory.
-bool fits(const std::array<LightGrid, 6>& grids, const gpu::Context& context) {
+bool fits(const std::array<render::LightGrid, 6>& grids, const gpu::Context& context) {
   uint64_t largest = 0, total = 0;
-  for (const LightGrid& g : grids) {
+  for (const render::LightGrid& g : grids) {
     largest = std::max(largest, g.nodeCount() * sizeof(float));
     total += g.nodeCount() * sizeof(float);
   }
@@ -58,13 +58,13 @@ bool fits(const std::array<LightGrid, 6>& grids, const gpu::Context& context) {
 
 LightmapBaker::LightmapBaker(const gpu::Context& context, const gpu::PipelineCache& cache)
     : context_(&context),
-      params_(context, sizeof(layout::BakeParams),
+      params_(context, sizeof(render::layout::BakeParams),
               VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
               gpu::MemoryKind::HostUpload, "bake parameters"),
       sequence_(context) {
   using gpu::BindingType;
-  majorantPass_ = std::make_unique<BrickMajorantPass>(context, cache);
-  depthPass_ = lightDepthPipeline(context, cache);
+  majorantPass_ = std::make_unique<render::BrickMajorantPass>(context, cache);
+  depthPass_ = render::lightDepthPipeline(context, cache);
   // Its parameters too, as a storage buffer: bake_params.glsl.
   const std::vector<BindingType> march(11, BindingType::StorageBuffer);
   marchPass_ = std::make_unique<gpu::Pipeline>(
@@ -73,14 +73,14 @@ LightmapBaker::LightmapBaker(const gpu::Context& context, const gpu::PipelineCac
 
 LightmapBaker::~LightmapBaker() = default;
 
-void LightmapBaker::ensureCapacity(const VolumeGrid& grid, uint64_t lightmapValues) {
-  const auto& names = sixWayChannelNames();
-  for (int i = 0; i < kSixWayLights; ++i) {
+void LightmapBaker::ensureCapacity(const render::VolumeGrid& grid, uint64_t lightmapValues) {
+  const auto& names = render::sixWayChannelNames();
+  for (int i = 0; i < render::kSixWayLights; ++i) {
     const uint64_t bytes = grids_[i].nodeCount() * sizeof(float);
     if (depths_[i].size() < bytes)
       depths_[i] = gpu::Buffer::storage(*context_, bytes, "optical depths toward the " + names[i] + " light");
   }
-  const uint64_t brickBytes = BrickMajorantPass::bufferBytes(grid, kBrickCells);
+  const uint64_t brickBytes = render::BrickMajorantPass::bufferBytes(grid, kBrickCells);
   if (bricks_.size() < brickBytes)
     bricks_ = gpu::Buffer::storage(*context_, brickBytes, "empty-space bricks");
   if (lightmaps_.size() < lightmapValues * sizeof(float)) {
@@ -90,47 +90,53 @@ void LightmapBaker::ensureCapacity(const VolumeGrid& grid, uint64_t lightmapValu
   }
 }
 
-io::Image LightmapBaker::bake(const Volume& volume, const scene::Smoke& smoke, const Camera& camera,
-                              const ImagePlane& billboard, const BakeSettings& settings) {
+io::Image LightmapBaker::bake(const render::Volume& volume, const scene::Smoke& smoke,
+                              const render::Camera& camera, const render::ImagePlane& billboard,
+                              const BakeSettings& settings) {
   checkSettings(settings);
-  requireConsistent(volume);
+  render::requireConsistent(volume);
   const float cell = volume.grid.cellSize;
   const float maxStep = settings.stepCells * cell;
   // Widen the light grids' spacing until they fit the device.
-  const float spacing = widenedSpacing(settings.lightSpacingCells * cell, [&](float s) {
+  const float spacing = render::widenedSpacing(settings.lightSpacingCells * cell, [&](float s) {
     return fits(sixLightGrids(camera, volume.grid, s, maxStep), *context_);
   });
   grids_ = sixLightGrids(camera, volume.grid, spacing, maxStep);
   const uint64_t plane = uint64_t(settings.width) * uint64_t(settings.height);
-  ensureCapacity(volume.grid, kSixWayChannels * plane);
+  ensureCapacity(volume.grid, render::kSixWayChannels * plane);
   const glm::ivec3 bricks = (volume.grid.size + kBrickCells - 1) / kBrickCells;
 
-  layout::BakeParams p{};
-  p.volume = layout::volumeGrid(volume.grid);
-  p.camera = layout::cameraRays(camera, billboard);
+  render::layout::BakeParams p{};
+  p.volume = render::layout::volumeGrid(volume.grid);
+  p.camera = render::layout::cameraRays(camera, billboard);
   p.optics = glm::vec4(smoke.extinction, smoke.albedo, smoke.phaseG, smoke.emission.intensity);
   p.march = glm::vec4(maxStep, settings.minTransmittance, 0.0f, 0.0f);
-  const int rampKeys = layout::emissionRamp(smoke.emission, p.ramp);
+  const int rampKeys = render::layout::emissionRamp(smoke.emission, p.ramp);
   p.image = glm::ivec4(settings.width, settings.height, rampKeys, volume.temperature ? 1 : 0);
   p.bricks = glm::ivec4(bricks, kBrickCells);
-  for (int i = 0; i < kSixWayLights; ++i) p.lights[i] = layout::lightGrid(grids_[i]);
+  for (int i = 0; i < render::kSixWayLights; ++i) p.lights[i] = render::layout::lightGrid(grids_[i]);
   params_.upload(std::as_bytes(std::span(&p, 1)));
 
   const gpu::Buffer& density = *volume.density;
   const gpu::Buffer& temperature = volume.temperature ? *volume.temperature : density;
-  std::vector<uint64_t> key = {
-      handleKey(density.handle()),    handleKey(temperature.handle()), handleKey(bricks_.handle()),
-      handleKey(lightmaps_.handle()), uint64_t(settings.width),        uint64_t(settings.height),
-      uint64_t(volume.grid.size.x),   uint64_t(volume.grid.size.y),    uint64_t(volume.grid.size.z)};
-  for (int i = 0; i < kSixWayLights; ++i)
-    key.insert(key.end(),
-               {handleKey(depths_[i].handle()), uint64_t(grids_[i].nodes.x), uint64_t(grids_[i].nodes.y)});
+  std::vector<uint64_t> key = {render::handleKey(density.handle()),
+                               render::handleKey(temperature.handle()),
+                               render::handleKey(bricks_.handle()),
+                               render::handleKey(lightmaps_.handle()),
+                               uint64_t(settings.width),
+                               uint64_t(settings.height),
+                               uint64_t(volume.grid.size.x),
+                               uint64_t(volume.grid.size.y),
+                               uint64_t(volume.grid.size.z)};
+  for (int i = 0; i < render::kSixWayLights; ++i)
+    key.insert(key.end(), {render::handleKey(depths_[i].handle()), uint64_t(grids_[i].nodes.x),
+                           uint64_t(grids_[i].nodes.y)});
   last_ = &sequence_.get(key, [&](gpu::Sequence& s) {
     s.beginStage("empty-space bricks");
     majorantPass_->record(s, volume, kBrickCells, bricks_);
     s.endStage();
     s.beginStage("light depth");
-    for (uint32_t light = 0; light < kSixWayLights; ++light)
+    for (uint32_t light = 0; light < render::kSixWayLights; ++light)
       s.dispatch(*depthPass_,
                  {gpu::reads(params_), gpu::reads(density), gpu::reads(bricks_), gpu::writes(depths_[light])},
                  light, groups(grids_[light].nodes.x, 8), groups(grids_[light].nodes.y, 8));
@@ -150,9 +156,10 @@ io::Image LightmapBaker::bake(const Volume& volume, const scene::Smoke& smoke, c
   // Channel-planar on the GPU, interleaved in the image.
   const auto* values = static_cast<const float*>(readback_.mapped());
   io::Image image(settings.width, settings.height,
-                  {sixWayChannelNames().begin(), sixWayChannelNames().end()});
+                  {render::sixWayChannelNames().begin(), render::sixWayChannelNames().end()});
   for (uint64_t i = 0; i < plane; ++i)
-    for (int c = 0; c < kSixWayChannels; ++c) image.pixels[i * kSixWayChannels + c] = values[c * plane + i];
+    for (int c = 0; c < render::kSixWayChannels; ++c)
+      image.pixels[i * render::kSixWayChannels + c] = values[c * plane + i];
   return image;
 }
 
@@ -167,4 +174,4 @@ std::vector<float> LightmapBaker::lightDepths(int light) const {
   return values;
 }
 
-}  // namespace sixway::render
+}  // namespace sixway::reference

@@ -25,7 +25,7 @@ class Pipeline;
 class PipelineCache;
 }  // namespace sixway::gpu
 
-namespace sixway::render {
+namespace sixway::reference {
 
 struct BakeSettings {
   int width = 128, height = 128;   // lightmap pixels
@@ -42,28 +42,28 @@ class LightmapBaker {
   // The eight channels (sixWayChannelNames(), linear, premultiplied) of `volume` lit from the six directions
   // of `camera`, over the `billboard` rectangle of its image plane. Throws io::InputError for settings out
   // of range and an emission ramp with too many keys.
-  io::Image bake(const Volume& volume, const scene::Smoke& smoke, const Camera& camera,
-                 const ImagePlane& billboard, const BakeSettings& settings);
+  io::Image bake(const render::Volume& volume, const scene::Smoke& smoke, const render::Camera& camera,
+                 const render::ImagePlane& billboard, const BakeSettings& settings);
 
   // Of the last bake: the light grids (channel order), GPU time per stage, and the optical depths on the
   // grid of light `light`, node index (c · ny + b) · nx + a.
-  const std::array<LightGrid, 6>& lightGrids() const { return grids_; }
+  const std::array<render::LightGrid, 6>& lightGrids() const { return grids_; }
   const std::vector<gpu::StageTime>& stageTimes() const;
   std::vector<float> lightDepths(int light) const;
 
   static constexpr int kBrickCells = 8;  // side of the empty-space bricks
 
  private:
-  void ensureCapacity(const VolumeGrid& grid, uint64_t lightmapValues);
+  void ensureCapacity(const render::VolumeGrid& grid, uint64_t lightmapValues);
 
   const gpu::Context* context_;
-  std::unique_ptr<BrickMajorantPass> majorantPass_;
+  std::unique_ptr<render::BrickMajorantPass> majorantPass_;
   std::unique_ptr<gpu::Pipeline> depthPass_, marchPass_;
   gpu::Buffer params_, bricks_, lightmaps_, readback_;
   std::array<gpu::Buffer, 6> depths_;
-  std::array<LightGrid, 6> grids_;
-  RecordedSequence sequence_;
+  std::array<render::LightGrid, 6> grids_;
+  render::RecordedSequence sequence_;
   gpu::Sequence* last_ = nullptr;
 };
 
-}  // namespace sixway::render
+}  // namespace sixway::reference

@@ -26,7 +26,7 @@ class Pipeline;
 class PipelineCache;
 }  // namespace sixway::gpu
 
-namespace sixway::render {
+namespace sixway::reference {
 
 struct TraceSettings {
   int width = 128, height = 128;
@@ -53,14 +53,14 @@ class PathTracer {
   // (radiance, including the background, emission and obstacles) and A (alpha = 1 − T of the camera ray; 1
   // where it meets an obstacle). `obstacles`, placed for the frame (ObstacleBvh::update), are opaque
   // Lambertian surfaces of the real-time pass's albedo (kObstacleAlbedo); none when null or empty.
-  void beginImage(const Volume& volume, const scene::Smoke& smoke, const Camera& camera,
-                  const ImagePlane& plane, const std::vector<scene::Light>& lights,
-                  const TraceSettings& settings, const ObstacleBvh* obstacles = nullptr);
+  void beginImage(const render::Volume& volume, const scene::Smoke& smoke, const render::Camera& camera,
+                  const render::ImagePlane& plane, const std::vector<scene::Light>& lights,
+                  const TraceSettings& settings, const render::ObstacleBvh* obstacles = nullptr);
   // Starts six-way lightmaps: the eight channels of sixway.h, each light channel lit by one white
   // directional light of irradiance π from its camera-relative direction, black world; emissive is the
   // emission seen directly. Background and environment are not used.
-  void beginSixWay(const Volume& volume, const scene::Smoke& smoke, const Camera& camera,
-                   const ImagePlane& billboard, const TraceSettings& settings);
+  void beginSixWay(const render::Volume& volume, const scene::Smoke& smoke, const render::Camera& camera,
+                   const render::ImagePlane& billboard, const TraceSettings& settings);
 
   // Adds `samplesPerPixel` samples (rounded up to whole passes).
   void accumulate(uint32_t samplesPerPixel);
@@ -71,24 +71,24 @@ class PathTracer {
   double traceMilliseconds() const { return traceMs_; }
 
  private:
-  void begin(const Volume& volume, const scene::Smoke& smoke, const Camera& camera, const ImagePlane& plane,
-             const TraceSettings& settings, bool sixWay);
+  void begin(const render::Volume& volume, const scene::Smoke& smoke, const render::Camera& camera,
+             const render::ImagePlane& plane, const TraceSettings& settings, bool sixWay);
 
   const gpu::Context* context_;
-  std::unique_ptr<BrickMajorantPass> majorantPass_;
+  std::unique_ptr<render::BrickMajorantPass> majorantPass_;
   std::unique_ptr<gpu::Pipeline> imagePass_, sixWayPass_;
   gpu::Buffer params_, majorants_, accumulation_, readback_;
   gpu::Buffer noObstacles_;  // bound in place of the obstacle buffers when there are none
-  const ObstacleBvh* obstacles_ = nullptr;
-  RecordedSequence prepare_, trace_;
-  mutable RecordedSequence read_;
+  const render::ObstacleBvh* obstacles_ = nullptr;
+  render::RecordedSequence prepare_, trace_;
+  mutable render::RecordedSequence read_;
   std::vector<uint64_t> traceKey_;
   std::vector<std::string> channels_;
   TraceSettings settings_;
   uint32_t samples_ = 0;
   double traceMs_ = 0;
   bool sixWay_ = false;
-  Volume volume_;
+  render::Volume volume_;
 };
 
-}  // namespace sixway::render
+}  // namespace sixway::reference

@@ -6,7 +6,7 @@
 #include "io/error.h"
 #include "render/sixway.h"
 
-namespace sixway::render {
+namespace sixway::reference {
 namespace {
 
 constexpr int kAlpha = 6, kEmissive = 7;
@@ -40,12 +40,14 @@ Tap tap(int x, int d, int lowSize) {
 io::Image upsampleAlphaGuided(const io::Image& low, const io::Image& full) {
   const int w = full.width, h = full.height, lw = low.width, lh = low.height;
   const int d = lw > 0 ? w / lw : 0;
-  if (low.channels.size() != size_t(kSixWayChannels) || full.channels.size() != size_t(kSixWayChannels) ||
-      d < 1 || lw * d != w || lh * d != h)
+  if (low.channels.size() != size_t(render::kSixWayChannels) ||
+      full.channels.size() != size_t(render::kSixWayChannels) || d < 1 || lw * d != w || lh * d != h)
     throw std::invalid_argument(
         "upsampleAlphaGuided: eight-channel images, the full size a multiple of the low");
   io::Image out(w, h, full.channels);
-  auto at = [&](int x, int y, int c) { return low.pixels[(size_t(y) * lw + x) * kSixWayChannels + c]; };
+  auto at = [&](int x, int y, int c) {
+    return low.pixels[(size_t(y) * lw + x) * render::kSixWayChannels + c];
+  };
   for (int y = 0; y < h; ++y) {
     const Tap ty = tap(y, d, lh);
     for (int x = 0; x < w; ++x) {
@@ -55,10 +57,10 @@ io::Image upsampleAlphaGuided(const io::Image& low, const io::Image& full) {
         const float bottom = (1.0f - tx.t) * at(tx.i0, ty.i1, c) + tx.t * at(tx.i1, ty.i1, c);
         return (1.0f - ty.t) * top + ty.t * bottom;
       };
-      const size_t p = (size_t(y) * w + x) * kSixWayChannels;
+      const size_t p = (size_t(y) * w + x) * render::kSixWayChannels;
       const float alphaLow = up(kAlpha), alphaFull = full.pixels[p + kAlpha];
       if (alphaLow <= kEmptyAlpha) continue;
-      for (int c = 0; c < kSixWayLights; ++c) out.pixels[p + c] = alphaFull * up(c) / alphaLow;
+      for (int c = 0; c < render::kSixWayLights; ++c) out.pixels[p + c] = alphaFull * up(c) / alphaLow;
       out.pixels[p + kEmissive] = alphaFull * up(kEmissive) / alphaLow;
     }
   }
@@ -76,9 +78,10 @@ double ScatteredLightmaps::milliseconds() const {
   return total;
 }
 
-io::Image ScatteredLightmaps::bake(const Volume& volume, const scene::Smoke& smoke, const Camera& camera,
-                                   const ImagePlane& billboard, const BakeSettings& settings,
-                                   Scattering scattering, const MultipleScattering& multiple) {
+io::Image ScatteredLightmaps::bake(const render::Volume& volume, const scene::Smoke& smoke,
+                                   const render::Camera& camera, const render::ImagePlane& billboard,
+                                   const BakeSettings& settings, Scattering scattering,
+                                   const MultipleScattering& multiple) {
   if (scattering == Scattering::Multiple) checkMultiple(multiple, settings);
   io::Image lightmaps = baker_.bake(volume, smoke, camera, billboard, settings);
   stages_ = baker_.stageTimes();
@@ -109,7 +112,7 @@ io::Image ScatteredLightmaps::bake(const Volume& volume, const scene::Smoke& smo
   if (multiple.traceAllOrders) {
     for (size_t p = 0; p < size_t(settings.width) * settings.height; ++p)
       for (int c : {0, 1, 2, 3, 4, 5, kEmissive})
-        lightmaps.pixels[p * kSixWayChannels + c] = traced.pixels[p * kSixWayChannels + c];
+        lightmaps.pixels[p * render::kSixWayChannels + c] = traced.pixels[p * render::kSixWayChannels + c];
     return lightmaps;
   }
   const io::Image higher = upsampleAlphaGuided(traced, lightmaps);
@@ -117,4 +120,4 @@ io::Image ScatteredLightmaps::bake(const Volume& volume, const scene::Smoke& smo
   return lightmaps;
 }
 
-}  // namespace sixway::render
+}  // namespace sixway::reference

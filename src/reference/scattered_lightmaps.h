@@ -26,7 +26,7 @@ class Context;
 class PipelineCache;
 }  // namespace sixway::gpu
 
-namespace sixway::render {
+namespace sixway::reference {
 
 struct MultipleScattering {
   uint32_t samples = 64;  // per traced pixel
@@ -45,8 +45,8 @@ class ScatteredLightmaps {
 
   // The eight channels (sixWayChannelNames()) of `volume` from `camera` over `billboard`, as
   // LightmapBaker::bake, with `scattering`. Throws io::InputError for settings out of range.
-  io::Image bake(const Volume& volume, const scene::Smoke& smoke, const Camera& camera,
-                 const ImagePlane& billboard, const BakeSettings& settings, Scattering scattering,
+  io::Image bake(const render::Volume& volume, const scene::Smoke& smoke, const render::Camera& camera,
+                 const render::ImagePlane& billboard, const BakeSettings& settings, Scattering scattering,
                  const MultipleScattering& multiple = {});
   // The last bake's exact single scattering (its result, or the part the multiple scattering was added to;
   // empty after a traced-all-orders bake).
@@ -70,4 +70,4 @@ class ScatteredLightmaps {
 // alpha says are empty. Returns eight channels with alpha and emissive 0.
 io::Image upsampleAlphaGuided(const io::Image& low, const io::Image& full);
 
-}  // namespace sixway::render
+}  // namespace sixway::reference

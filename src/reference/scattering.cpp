@@ -2,7 +2,7 @@
 
 #include "io/error.h"
 
-namespace sixway::render {
+namespace sixway::reference {
 
 const char* scatteringName(Scattering scattering) {
   return scattering == Scattering::Single ? "single" : "multiple";
@@ -14,4 +14,4 @@ Scattering parseScattering(const std::string& name, const std::string& source) {
   throw io::InputError(source, "unknown scattering \"" + name + "\" (single or multiple)");
 }
 
-}  // namespace sixway::render
+}  // namespace sixway::reference

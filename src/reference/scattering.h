@@ -3,11 +3,11 @@
 // scattering (all orders: what DCC tools bake, and the physically correct truth).
 #include <string>
 
-namespace sixway::render {
+namespace sixway::reference {
 
 enum class Scattering { Single, Multiple };
 const char* scatteringName(Scattering scattering);  // "single", "multiple"
 // Throws io::InputError naming `source` for another name.
 Scattering parseScattering(const std::string& name, const std::string& source);
 
-}  // namespace sixway::render
+}  // namespace sixway::reference

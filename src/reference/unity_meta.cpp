@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <vector>
 
-namespace sixway::render {
+namespace sixway::reference {
 namespace {
 
 // UnityEngine.TextureFormat values.
@@ -88,4 +88,4 @@ TextureImporter:
   return std::string(text.data(), std::size_t(length));
 }
 
-}  // namespace sixway::render
+}  // namespace sixway::reference

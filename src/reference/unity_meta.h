@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-namespace sixway::render {
+namespace sixway::reference {
 
 struct UnityTextureImport {
   std::string guid;        // 32 hex digits: Unity's asset id (unityGuid)
@@ -24,4 +24,4 @@ std::string unityGuid(std::string_view seed);
 // The `.meta` file's text (YAML, Unity's TextureImporter serialisation).
 std::string unityTextureMeta(const UnityTextureImport& texture);
 
-}  // namespace sixway::render
+}  // namespace sixway::reference

@@ -8,7 +8,7 @@
 #include "io/json_reader.h"
 #include "io/vdb.h"
 
-namespace sixway::render {
+namespace sixway::reference {
 namespace {
 
 bool usable(const io::VdbGridInfo& grid) {
@@ -30,7 +30,7 @@ std::vector<std::string> gridNames(const scene::VdbSource& source) {
 }
 
 // Cubic cells over [lo, hi], `cells` along the longest axis; the box grows at its max side to whole cells.
-VolumeGrid cubicLattice(glm::vec3 lo, glm::vec3 hi, int longestAxisCells) {
+render::VolumeGrid cubicLattice(glm::vec3 lo, glm::vec3 hi, int longestAxisCells) {
   const glm::vec3 extent = hi - lo;
   const float cell = std::max({extent.x, extent.y, extent.z}) / float(longestAxisCells);
   const glm::ivec3 cells = glm::max(glm::ivec3(glm::ceil(extent / cell - 1e-4f)), glm::ivec3(1));
@@ -38,8 +38,8 @@ VolumeGrid cubicLattice(glm::vec3 lo, glm::vec3 hi, int longestAxisCells) {
 }
 
 // A lattice of the file's space placed in the scene: the same cells, turned, scaled and moved.
-VolumeGrid inScene(const VolumeGrid& file, const scene::VdbSource& source) {
-  const Box box = file.bounds();
+render::VolumeGrid inScene(const render::VolumeGrid& file, const scene::VdbSource& source) {
+  const render::Box box = file.bounds();
   const glm::vec3 a = toScene(box.min, source.up), b = toScene(box.max, source.up);
   return {glm::abs(glm::ivec3(toScene(glm::vec3(file.size), source.up))),
           source.translate + source.scale * glm::min(a, b), source.scale * file.cellSize};
@@ -72,7 +72,7 @@ void requireWithinScene(const std::filesystem::path& file, const io::VdbGridInfo
 
 // The playback lattice: over the scene's box when it gives one, else over the union of the world boxes of
 // the grids read (sized in the file's own space, so that turning a file moves its cells exactly).
-VolumeGrid playbackLattice(const scene::VdbSource& source, std::vector<std::string>& notes) {
+render::VolumeGrid playbackLattice(const scene::VdbSource& source, std::vector<std::string>& notes) {
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
   bool anyTemperature = false;
   for (const auto& file : source.files) {
@@ -154,7 +154,7 @@ bool VdbSequence::load(int frame) {
   const int fileIndex = frame / source_.framesPerFile;
   if (fileIndex == loadedFile_) return !loadedEmpty_;
   // The lattice back in the file's space: the same box, its axes turned back.
-  const Box box = lattice_.bounds();
+  const render::Box box = lattice_.bounds();
   const glm::vec3 a = toFile((box.min - source_.translate) / source_.scale, source_.up);
   const glm::vec3 b = toFile((box.max - source_.translate) / source_.scale, source_.up);
   const glm::ivec3 fileCells = glm::abs(glm::ivec3(toFile(glm::vec3(lattice_.size), source_.up)));
@@ -182,14 +182,14 @@ bool VdbSequence::load(int frame) {
   return !loadedEmpty_;
 }
 
-std::optional<Volume> VdbSequence::frame(int index) {
+std::optional<render::Volume> VdbSequence::frame(int index) {
   if (!load(index)) return std::nullopt;
   return volume_.view();
 }
 
-Volume VdbSequence::volume(int index) {
+render::Volume VdbSequence::volume(int index) {
   load(index);
   return volume_.view();
 }
 
-}  // namespace sixway::render
+}  // namespace sixway::reference

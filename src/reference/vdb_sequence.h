@@ -15,9 +15,9 @@ namespace sixway::gpu {
 class Context;
 }
 
-namespace sixway::render {
+namespace sixway::reference {
 
-class VdbSequence : public VolumeSequence {
+class VdbSequence : public render::VolumeSequence {
  public:
   // Reads every file's grid list up front (so a missing or corrupt file fails before any work) and sizes the
   // lattice: source.voxels cells along the longest axis of the union of the grids' world boxes. Throws
@@ -31,12 +31,12 @@ class VdbSequence : public VolumeSequence {
   int frameCount() const override { return int(source_.files.size()) * source_.framesPerFile; }
   // Unlike a simulation, frames may be asked for in any order (the demo loops them); a file is read again
   // only when the frame asked for is in another file than the last one.
-  std::optional<Volume> frame(int index) override;
-  Volume volume(int index) override;
-  Box bounds() const override { return lattice_.bounds(); }
+  std::optional<render::Volume> frame(int index) override;
+  render::Volume volume(int index) override;
+  render::Box bounds() const override { return lattice_.bounds(); }
   std::string frameName(int index) const override { return file(index).filename().string(); }
 
-  const VolumeGrid& lattice() const { return lattice_; }
+  const render::VolumeGrid& lattice() const { return lattice_; }
   const scene::VdbSource& source() const { return source_; }
   const std::filesystem::path& file(int frame) const { return source_.files[frame / source_.framesPerFile]; }
   // What the reader skipped or changed so far, each once ("<file>: grid 'obstacles' is int32, not float:
@@ -49,10 +49,10 @@ class VdbSequence : public VolumeSequence {
 
   scene::VdbSource source_;
   std::vector<std::string> notes_;  // before lattice_: sizing the lattice adds notes
-  VolumeGrid lattice_;
-  DeviceVolume volume_;
+  render::VolumeGrid lattice_;
+  render::DeviceVolume volume_;
   int loadedFile_ = -1;
   bool loadedEmpty_ = true;
 };
 
-}  // namespace sixway::render
+}  // namespace sixway::reference

@@ -2,7 +2,7 @@
 // The real-time frame of docs/real-time-rendering.md, the one frame every tool renders: RealtimeFrame's
 // passes with a lightmap source (lightmap_source.h), recorded once per volume into one sequence and replayed,
 // and this frame's values written before each submission. SmokeRenderer runs it with the network; the modes
-// of `sixway render` (src/runtime/modes/) with theirs.
+// of `sixway render` (src/modes/) with theirs.
 #include <cstdint>
 #include <memory>
 #include <optional>

@@ -1,6 +1,6 @@
 #pragma once
 // What fills the six-way lightmaps of a real-time frame (frame_renderer.h): the network
-// (network_lightmaps.h), or one of the evaluation's methods (src/runtime/modes/). The frame records the
+// (network_lightmaps.h), or one of the evaluation's methods (src/modes/). The frame records the
 // source's GPU work between the guiding map and the shading, once per volume, and lets it write its values
 // before each submission.
 #include <vector>

@@ -278,7 +278,7 @@ struct VdbSource {
 
 struct Scene {
   std::string name;
-  // With vdb, grid is the playback lattice, filled in when the files are opened (sources/scene_volumes.h);
+  // With vdb, grid is the playback lattice, filled in when the files are opened (modes/scene_source.h);
   // fluid, boundaries, inlets and obstacles are empty.
   std::optional<VdbSource> vdb;
   Grid grid;

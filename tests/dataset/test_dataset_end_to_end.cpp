@@ -101,8 +101,8 @@ class DirectRenders {
   const scene::Scene& scene_;
   render::GuidingMap guiding_;
   gpu::Image guideImage_;
-  render::LightmapBaker baker_;
-  render::BakeSettings bake_;
+  reference::LightmapBaker baker_;
+  reference::BakeSettings bake_;
   std::unique_ptr<gpu::Sequence> sequence_;
 };
 
@@ -343,7 +343,7 @@ TEST_F(DatasetEndToEnd, VdbSequencesPlayBackWithoutMotion) {
   for (float m : shard.tensors[2].toFloat()) ASSERT_EQ(m, 0.0f) << "no motion field";
 
   scene::Scene scene = scene::parseScene(shard.metadata["scene"], "shard scene", "/");
-  render::VdbSequence volumes(context(), *scene.vdb);
+  reference::VdbSequence volumes(context(), *scene.vdb);
   const render::Box box = volumes.bounds();
   DirectRenders direct(context(), pipelineCache(), scene, size);
   double alpha = 0;

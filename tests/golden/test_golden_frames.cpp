@@ -11,7 +11,7 @@
 #include <filesystem>
 
 #include "io/exr.h"
-#include "runtime/modes/mode_renderer.h"
+#include "modes/mode_renderer.h"
 #include "runtime/scene_volumes.h"
 #include "scene/scene.h"
 #include "support/gpu_fixture.h"

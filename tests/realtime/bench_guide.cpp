@@ -121,8 +121,8 @@ int main(int argc, char** argv) {
   }
 
   render::GuideSettings defaults;
-  render::LightmapBaker baker(context, cache);
-  render::BakeSettings bake;
+  reference::LightmapBaker baker(context, cache);
+  reference::BakeSettings bake;
   bake.width = bake.height = int(defaults.size);
   const io::Image lightmaps =
       baker.bake(volume.view(), smoke, camera, render::billboardBounds(camera, box, 1.0f), bake);

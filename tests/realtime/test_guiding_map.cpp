@@ -362,8 +362,8 @@ TEST_F(GuidingMapTest, ApproximatesTheExactBakersFrontTopBottomSum) {
     for (size_t i = 0; i < mean.pixels.size(); ++i) mean.pixels[i] += next.pixels[i];
   }
   for (float& v : mean.pixels) v /= 16;
-  render::LightmapBaker baker(context(), pipelineCache());
-  render::BakeSettings bake;
+  reference::LightmapBaker baker(context(), pipelineCache());
+  reference::BakeSettings bake;
   bake.width = bake.height = 48;
   const io::Image exact =
       baker.bake(device.view(), smoke, camera, render::billboardBounds(camera, volume.box(), 1.0f), bake);
@@ -406,8 +406,8 @@ TEST_F(GuidingMapTest, FineAlphaIsTheExactBakersAlpha) {
   RecordProperty("fine_opacity_depths_worst", std::to_string(levelWorst));
   EXPECT_LE(levelWorst, 1e-3);
   const io::Image without = plain.frame(camera, smoke, 3);
-  render::LightmapBaker baker(context(), pipelineCache());
-  render::BakeSettings bake;
+  reference::LightmapBaker baker(context(), pipelineCache());
+  reference::BakeSettings bake;
   bake.width = bake.height = 48;
   const io::Image exact =
       baker.bake(device.view(), smoke, camera, render::billboardBounds(camera, volume.box(), 1.0f), bake);
@@ -442,8 +442,8 @@ TEST_F(GuidingMapTest, EmissionIsTheExactBakersEmission) {
   GuideRun emitting(context(), pipelineCache(), settings, device.view());
   const io::Image with = emitting.channels(camera, smoke, 2), without = plain.channels(camera, smoke, 2);
   const std::vector<float> emission = emitting.emission();
-  render::LightmapBaker baker(context(), pipelineCache());
-  render::BakeSettings bake;
+  reference::LightmapBaker baker(context(), pipelineCache());
+  reference::BakeSettings bake;
   bake.width = bake.height = 48;
   const io::Image exact =
       baker.bake(device.view(), smoke, camera, render::billboardBounds(camera, volume.box(), 1.0f), bake);
@@ -517,8 +517,8 @@ TEST_F(GuidingMapTest, ABoxBeyondAFloatIsAnErrorNotAHang) {
       render::Camera::lookAt({0.0f, 0.0f, 5.0f}, glm::vec3(0.0f), {0.0f, 1.0f, 0.0f}, 40.0f);
   const render::ImagePlane billboard =
       render::billboardBounds(camera, render::Box{{0, 0, 0}, {1, 1, 1}}, 1.0f);
-  render::LightmapBaker baker(context(), pipelineCache());
-  EXPECT_THROW(baker.bake(bakeVolume.view(), blobOptics(), camera, billboard, render::BakeSettings{}),
+  reference::LightmapBaker baker(context(), pipelineCache());
+  EXPECT_THROW(baker.bake(bakeVolume.view(), blobOptics(), camera, billboard, reference::BakeSettings{}),
                std::invalid_argument);
 
   EXPECT_THROW(render::lightGridFor(boxOverflows.grid, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}, 1e38f, 1e38f),

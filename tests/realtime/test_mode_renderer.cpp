@@ -1,4 +1,4 @@
-// Whole frames in the modes of `sixway render` (src/runtime/modes/mode_renderer.h) against independent
+// Whole frames in the modes of `sixway render` (src/modes/mode_renderer.h) against independent
 // references, on a static blob of smoke (no simulation):
 // - reference mode vs pathtrace mode with single scattering and one directional light along a six-way axis.
 //   For such a light the six-way model is exact (t = the one lightmap facing it, weight 1), so the two differ
@@ -19,12 +19,12 @@
 #include "cpu_shading.h"
 #include "io/safetensors.h"
 #include "io/vdb.h"
+#include "modes/mode_renderer.h"
 #include "render/billboard.h"
 #include "render/camera.h"
 #include "render/projection.h"
 #include "render/scene_frame.h"
 #include "render/volume.h"
-#include "runtime/modes/mode_renderer.h"
 #include "scene/scene.h"
 #include "support/gpu_fixture.h"
 

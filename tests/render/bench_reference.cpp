@@ -26,9 +26,9 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-void benchBake(render::LightmapBaker& baker, const render::Volume& volume, const scene::Smoke& smoke,
+void benchBake(reference::LightmapBaker& baker, const render::Volume& volume, const scene::Smoke& smoke,
                const render::Camera& camera, const char* view) {
-  render::BakeSettings settings;
+  reference::BakeSettings settings;
   settings.width = settings.height = 256;
   const render::ImagePlane billboard = render::billboardBounds(camera, volume.grid.bounds(), 1.0f);
   std::map<std::string, std::vector<double>> stages;
@@ -50,9 +50,9 @@ void benchBake(render::LightmapBaker& baker, const render::Volume& volume, const
   for (const auto& [name, times] : stages) std::printf("  %-24s %.1f ms\n", name.c_str(), median(times));
 }
 
-void benchTrace(render::PathTracer& tracer, const render::Volume& volume, const scene::Smoke& smoke,
+void benchTrace(reference::PathTracer& tracer, const render::Volume& volume, const scene::Smoke& smoke,
                 const render::Camera& camera, int orders) {
-  render::TraceSettings settings;
+  reference::TraceSettings settings;
   settings.width = settings.height = 256;
   settings.maxOrders = orders;
   settings.samplesPerPass = 4;
@@ -83,10 +83,10 @@ int main() {
   const render::Camera oblique = render::Camera::lookAt(
       box.centre() + glm::length(box.size()) * glm::vec3(0.9f, 0.6f, 1.2f), box.centre(), {0, 1, 0}, 40.0f);
 
-  render::LightmapBaker baker(context, cache);
+  reference::LightmapBaker baker(context, cache);
   benchBake(baker, volume.view(), smoke, front, "front (axis-aligned)");
   benchBake(baker, volume.view(), smoke, oblique, "oblique");
-  render::PathTracer tracer(context, cache);
+  reference::PathTracer tracer(context, cache);
   benchTrace(tracer, volume.view(), smoke, front, 1);
   benchTrace(tracer, volume.view(), smoke, front, 64);
   return 0;

@@ -92,7 +92,7 @@ int main(int argc, char** argv) {
   const std::filesystem::path out = argv[1];
   gpu::Context context;
   gpu::PipelineCache cache(context);
-  render::VdbSequence sequence(context, {SIXWAY_TEST_DATA_DIR "/vdb/smoke_000003.vdb"}, 96, false);
+  reference::VdbSequence sequence(context, {SIXWAY_TEST_DATA_DIR "/vdb/smoke_000003.vdb"}, 96, false);
   const render::Volume volume = *sequence.frame(0);
   const render::Box box = sequence.bounds();
   // Blender is z-up: look at the column of smoke from the side, z up.
@@ -106,15 +106,15 @@ int main(int argc, char** argv) {
   std::printf("lattice %dx%dx%d, cell %.4f\n", volume.grid.size.x, volume.grid.size.y, volume.grid.size.z,
               volume.grid.cellSize);
 
-  render::LightmapBaker baker(context, cache);
-  render::BakeSettings bake;
+  reference::LightmapBaker baker(context, cache);
+  reference::BakeSettings bake;
   bake.width = bake.height = kSize;
   const io::Image baked = baker.bake(volume, smoke, camera, billboard, bake);
   double bakeMs = 0;
   for (const auto& t : baker.stageTimes()) bakeMs += t.milliseconds;
 
-  render::PathTracer tracer(context, cache);
-  render::TraceSettings trace;
+  reference::PathTracer tracer(context, cache);
+  reference::TraceSettings trace;
   trace.width = trace.height = kSize;
   trace.jitter = false;
   trace.samplesPerPass = 16;

@@ -49,7 +49,7 @@ void printRow(const std::string& method, const std::vector<double>& psnr, double
   std::printf(" %.0f | %s |\n", ms, samples > 0 ? std::to_string(int(traceMs * 1e6 / samples)).c_str() : "–");
 }
 
-double traceMilliseconds(const render::ScatteredLightmaps& lightmaps) {
+double traceMilliseconds(const reference::ScatteredLightmaps& lightmaps) {
   for (const gpu::StageTime& t : lightmaps.stageTimes())
     if (t.name == "path trace") return t.milliseconds;
   return 0.0;
@@ -73,17 +73,17 @@ int main(int argc, char** argv) {
   const render::Camera camera = render::Camera::lookAt(
       box.centre() + glm::length(box.size()) * glm::vec3(0.9f, 0.6f, 1.2f), box.centre(), {0, 1, 0}, 40.0f);
   const render::ImagePlane billboard = render::billboardBounds(camera, box, 1.0f);
-  render::BakeSettings settings;
+  reference::BakeSettings settings;
   settings.width = settings.height = size;
 
-  render::ScatteredLightmaps lightmaps(context, cache);
-  auto bake = [&](render::Scattering scattering, const render::MultipleScattering& m) {
+  reference::ScatteredLightmaps lightmaps(context, cache);
+  auto bake = [&](reference::Scattering scattering, const reference::MultipleScattering& m) {
     return lightmaps.bake(volume.view(), smoke, camera, billboard, settings, scattering, m);
   };
-  render::MultipleScattering reference;
+  reference::MultipleScattering reference;
   reference.traceAllOrders = true;
   reference.samples = truthSpp;
-  const io::Image truth = bake(render::Scattering::Multiple, reference);
+  const io::Image truth = bake(reference::Scattering::Multiple, reference);
   const double truthMs = lightmaps.milliseconds();
   std::printf("\n| method | right | left | top | bottom | back | front | all six | GPU ms | ns/sample |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
@@ -92,18 +92,18 @@ int main(int argc, char** argv) {
            double(size) * size * truthSpp);
   reference.seed = 2;
   reference.samples = truthSpp / 16;
-  const io::Image lessSamples = bake(render::Scattering::Multiple, reference);
+  const io::Image lessSamples = bake(reference::Scattering::Multiple, reference);
   printRow("all orders traced, " + std::to_string(truthSpp / 16) + " spp", maskedPsnr(lessSamples, truth),
            lightmaps.milliseconds(), traceMilliseconds(lightmaps), double(size) * size * reference.samples);
-  const io::Image single = bake(render::Scattering::Single, {});
+  const io::Image single = bake(reference::Scattering::Single, {});
   printRow("single scattering (exact baker)", maskedPsnr(single, truth), lightmaps.milliseconds(), 0, 0);
   for (int d : {1, 2, 4})
     for (uint32_t spp : {16u, 64u, 256u}) {
-      render::MultipleScattering split;
+      reference::MultipleScattering split;
       split.downsample = d;
       split.samples = spp;
       split.seed = 3;
-      const io::Image image = bake(render::Scattering::Multiple, split);
+      const io::Image image = bake(reference::Scattering::Multiple, split);
       printRow("split, 1/" + std::to_string(d) + ", " + std::to_string(spp) + " spp",
                maskedPsnr(image, truth), lightmaps.milliseconds(), traceMilliseconds(lightmaps),
                double(size / d) * (size / d) * spp);

@@ -24,19 +24,19 @@ const std::filesystem::path kVdb = SIXWAY_TEST_DATA_DIR "/vdb";
 
 class BakeFlipbookTest : public RenderTest {
  protected:
-  render::FlipbookBake job(const render::VolumeSequence& sequence, int frames) {
-    render::FlipbookBake j;
+  reference::FlipbookBake job(const render::VolumeSequence& sequence, int frames) {
+    reference::FlipbookBake j;
     j.out = dir.path() / "bake";
     j.frameCount = frames;
     j.camera = render::framingCamera(sequence.bounds());
     j.smoke.extinction = 2.0f;
     j.settings.width = j.settings.height = 16;
-    j.scattering = render::Scattering::Single;  // the exact baker's tiles, compared with direct bakes
+    j.scattering = reference::Scattering::Single;  // the exact baker's tiles, compared with direct bakes
     return j;
   }
-  render::FlipbookBakeResult bake(render::VolumeSequence& sequence, const render::FlipbookBake& j) {
-    return render::bakeFlipbook(context(), pipelineCache(), sequence, j,
-                                [this](const std::string& line) { lines.push_back(line); });
+  reference::FlipbookBakeResult bake(render::VolumeSequence& sequence, const reference::FlipbookBake& j) {
+    return reference::bakeFlipbook(context(), pipelineCache(), sequence, j,
+                                   [this](const std::string& line) { lines.push_back(line); });
   }
   TempDir dir;
   std::vector<std::string> lines;
@@ -44,7 +44,7 @@ class BakeFlipbookTest : public RenderTest {
 
 // densityAndHeat.vdb has voxels of 0.703 × 0.703 × 0.716: the lattice covers its world box with cubic cells.
 TEST_F(BakeFlipbookTest, LatticeCoversTheFilesWorldBoxWithCubicCells) {
-  render::VdbSequence sequence(context(), {kVdb / "densityAndHeat.vdb"}, 24, true);
+  reference::VdbSequence sequence(context(), {kVdb / "densityAndHeat.vdb"}, 24, true);
   const io::VdbFile info = io::readVdbInfo(kVdb / "densityAndHeat.vdb");
   const render::Box box = sequence.bounds();
   const float cell = sequence.lattice().cellSize;
@@ -65,11 +65,11 @@ TEST_F(BakeFlipbookTest, LatticeCoversTheFilesWorldBoxWithCubicCells) {
 // the same lattice (read back from the file independently). This smoke is optically thick (σ_t · cell ≈ 2.3
 // at the densest cells): the light grids' interpolation still stays within 2% of each channel's peak.
 TEST_F(BakeFlipbookTest, FrameMatchesTheCpuOracleOnTheResampledGrid) {
-  render::VdbSequence sequence(context(), {kVdb / "densityAndHeat.vdb"}, 24, true);
-  render::FlipbookBake j = job(sequence, 1);
+  reference::VdbSequence sequence(context(), {kVdb / "densityAndHeat.vdb"}, 24, true);
+  reference::FlipbookBake j = job(sequence, 1);
   j.smoke.emission.intensity = 1.0f;
   j.smoke.emission.ramp = {{0.0f, {0, 0, 0}}, {1.0f, {1.0f, 0.6f, 0.2f}}};
-  const render::FlipbookBakeResult result = bake(sequence, j);
+  const reference::FlipbookBakeResult result = bake(sequence, j);
   const io::Image baked = io::readExr(j.out / "frames" / "frame_0000.exr").image;
 
   const render::Box box = sequence.bounds();
@@ -96,11 +96,11 @@ TEST_F(BakeFlipbookTest, FrameMatchesTheCpuOracleOnTheResampledGrid) {
 // straight value: alpha · s · ramp gradient(e / (alpha · s)), black at 0 and proportional beyond the last
 // key).
 TEST_F(BakeFlipbookTest, UnitysEmissionOnTheMaskIsSixwaysEmission) {
-  render::VdbSequence sequence(context(), {kVdb / "densityAndHeat.vdb"}, 24, true);
-  render::FlipbookBake j = job(sequence, 1);
+  reference::VdbSequence sequence(context(), {kVdb / "densityAndHeat.vdb"}, 24, true);
+  reference::FlipbookBake j = job(sequence, 1);
   j.smoke.emission.intensity = 3.0f;
   j.smoke.emission.ramp = {{0.0f, {0, 0, 0}}, {0.5f, {0.8f, 0.2f, 0.05f}}, {1.0f, {1.6f, 1.2f, 0.7f}}};
-  const render::FlipbookBakeResult result = bake(sequence, j);
+  const reference::FlipbookBakeResult result = bake(sequence, j);
   ASSERT_TRUE(result.emissiveMask);
   const nlohmann::json unity = nlohmann::json::parse(std::ifstream(result.sidecar))["emissive"]["unity"];
   const float multiplier = unity["emissive_multiplier"];
@@ -147,16 +147,16 @@ TEST_F(BakeFlipbookTest, UnitysEmissionOnTheMaskIsSixwaysEmission) {
 // All four third-party files as one sequence: Blender's first frame (every grid empty) is a transparent tile,
 // the others are not; the flipbook reads back to the per-frame EXRs (half precision).
 TEST_F(BakeFlipbookTest, RealVdbFilesBakeAndTheEmptyFrameIsTransparent) {
-  render::VdbSequence sequence(context(),
-                               {kVdb / "densityAndHeat.vdb", kVdb / "smoke_000001.vdb",
-                                kVdb / "smoke_000002.vdb", kVdb / "smoke_000003.vdb"},
-                               32, false);
-  const render::FlipbookBakeResult result = bake(sequence, job(sequence, 4));
+  reference::VdbSequence sequence(context(),
+                                  {kVdb / "densityAndHeat.vdb", kVdb / "smoke_000001.vdb",
+                                   kVdb / "smoke_000002.vdb", kVdb / "smoke_000003.vdb"},
+                                  32, false);
+  const reference::FlipbookBakeResult result = bake(sequence, job(sequence, 4));
   ASSERT_EQ(lines.size(), 4u);
   EXPECT_THAT(lines[1], ::testing::HasSubstr("smoke_000001.vdb): empty"));
   EXPECT_THAT(sequence.notes(), ::testing::Contains(::testing::HasSubstr("grid 'density' is empty")));
 
-  const render::Flipbook book = render::readFlipbook(result.sidecar);
+  const reference::Flipbook book = reference::readFlipbook(result.sidecar);
   ASSERT_EQ(book.frames.size(), 4u);
   EXPECT_EQ(book.layout.columns, 2);
   for (int f = 0; f < 4; ++f) {
@@ -183,18 +183,18 @@ TEST_F(BakeFlipbookTest, RealVdbFilesBakeAndTheEmptyFrameIsTransparent) {
 // Multiple scattering (the default of `sixway bake`) adds the higher orders to the six light channels;
 // alpha and emission stay the exact ones. The sidecar says which scattering the flipbook holds.
 TEST_F(BakeFlipbookTest, MultipleScatteringAddsToTheLightChannelsAndIsNamed) {
-  render::VdbSequence sequence(context(), {kVdb / "smoke_000002.vdb"}, 24, false);
-  render::FlipbookBake j = job(sequence, 1);
-  const render::Flipbook singleBook = render::readFlipbook(bake(sequence, j).sidecar);
-  EXPECT_EQ(singleBook.scattering, render::Scattering::Single);
+  reference::VdbSequence sequence(context(), {kVdb / "smoke_000002.vdb"}, 24, false);
+  reference::FlipbookBake j = job(sequence, 1);
+  const reference::Flipbook singleBook = reference::readFlipbook(bake(sequence, j).sidecar);
+  EXPECT_EQ(singleBook.scattering, reference::Scattering::Single);
   const io::Image single = singleBook.frames.at(0);
   j.out = dir.path() / "multiple";
-  j.scattering = render::Scattering::Multiple;
+  j.scattering = reference::Scattering::Multiple;
   j.multiple.samples = 64;
   j.multiple.maxOrders = 32;
   j.multiple.seed = 5;
-  const render::Flipbook multipleBook = render::readFlipbook(bake(sequence, j).sidecar);
-  EXPECT_EQ(multipleBook.scattering, render::Scattering::Multiple);
+  const reference::Flipbook multipleBook = reference::readFlipbook(bake(sequence, j).sidecar);
+  EXPECT_EQ(multipleBook.scattering, reference::Scattering::Multiple);
   const io::Image multiple = multipleBook.frames.at(0);
   double gain = 0;
   for (int y = 0; y < 16; ++y)
@@ -207,16 +207,17 @@ TEST_F(BakeFlipbookTest, MultipleScatteringAddsToTheLightChannelsAndIsNamed) {
 }
 
 TEST_F(BakeFlipbookTest, FramesOutsideTheSequenceAndCamerasInsideTheBoxAreErrors) {
-  render::VdbSequence sequence(context(), {kVdb / "smoke_000002.vdb"}, 16, false);
-  render::FlipbookBake j = job(sequence, 2);
+  reference::VdbSequence sequence(context(), {kVdb / "smoke_000002.vdb"}, 16, false);
+  reference::FlipbookBake j = job(sequence, 2);
   EXPECT_THAT(inputErrorMessage([&] { bake(sequence, j); }),
               ::testing::HasSubstr("frames: 0..1 are outside"));
   j.frameCount = 1;
   j.camera = render::Camera::lookAt(sequence.bounds().centre(),
                                     sequence.bounds().centre() + glm::vec3(0, 0, -1), {0, 1, 0}, 40);
   EXPECT_THAT(inputErrorMessage([&] { bake(sequence, j); }), ::testing::HasSubstr("behind the camera"));
-  EXPECT_THAT(inputErrorMessage([&] { render::VdbSequence(context(), {kVdb / "missing.vdb"}, 16, false); }),
-              ::testing::HasSubstr("missing.vdb: no such file"));
+  EXPECT_THAT(
+      inputErrorMessage([&] { reference::VdbSequence(context(), {kVdb / "missing.vdb"}, 16, false); }),
+      ::testing::HasSubstr("missing.vdb: no such file"));
 }
 
 }  // namespace

@@ -17,13 +17,13 @@ class BakerTest : public RenderTest {
   io::Image bake(const CpuVolume& volume, const scene::Smoke& smoke, const render::Camera& camera, int size,
                  float lightSpacingCells = 1.0f, float stepCells = 0.5f) {
     const render::DeviceVolume device = upload(volume);
-    render::BakeSettings settings;
+    reference::BakeSettings settings;
     settings.width = settings.height = size;
     settings.lightSpacingCells = lightSpacingCells;
     settings.stepCells = stepCells;
     return baker_.bake(device.view(), smoke, camera, squareBillboard(camera, volume.box()), settings);
   }
-  render::LightmapBaker baker_{context(), pipelineCache()};
+  reference::LightmapBaker baker_{context(), pipelineCache()};
 };
 
 // Alpha and emission do not involve the light grids: the GPU (float) and the CPU (double) march the same

@@ -18,7 +18,7 @@
 namespace sixway::test {
 namespace {
 
-using render::FlipbookLayout;
+using reference::FlipbookLayout;
 
 // Frame f, channel c, pixel (x, y) holds a value that names all four.
 float code(int f, int c, int x, int y) {
@@ -49,34 +49,35 @@ void expectFramesNear(const std::vector<io::Image>& actual, const std::vector<io
 }
 
 TEST(FlipbookLayoutTest, IsANearSquareRowMajorGrid) {
-  const FlipbookLayout five = render::flipbookLayout(5, 16, 8);
+  const FlipbookLayout five = reference::flipbookLayout(5, 16, 8);
   EXPECT_EQ(five.columns, 3);
   EXPECT_EQ(five.rows, 2);
-  EXPECT_EQ(render::flipbookLayout(16, 4, 4).columns, 4);
-  EXPECT_EQ(render::flipbookLayout(1, 4, 4).rows, 1);
-  const FlipbookLayout strip = render::flipbookLayout(6, 4, 4, 6);
+  EXPECT_EQ(reference::flipbookLayout(16, 4, 4).columns, 4);
+  EXPECT_EQ(reference::flipbookLayout(1, 4, 4).rows, 1);
+  const FlipbookLayout strip = reference::flipbookLayout(6, 4, 4, 6);
   EXPECT_EQ(strip.columns, 6);
   EXPECT_EQ(strip.rows, 1);
 }
 
 TEST(FlipbookLayoutTest, TexturesBeyondTheLargestSideAreRefused) {
-  EXPECT_NO_THROW(render::requireFlipbookFits(render::flipbookLayout(64, 2048, 2048), "--frames/--tile"));
+  EXPECT_NO_THROW(
+      reference::requireFlipbookFits(reference::flipbookLayout(64, 2048, 2048), "--frames/--tile"));
   EXPECT_THAT(inputErrorMessage([] {
-                render::requireFlipbookFits(render::flipbookLayout(64, 4096, 4096), "--frames/--tile");
+                reference::requireFlipbookFits(reference::flipbookLayout(64, 4096, 4096), "--frames/--tile");
               }),
               namesFileAndProblem("--frames/--tile",
                                   "make a 32768x32768 flipbook, more than 16384 per side; "
                                   "reduce the frames or the tile size"));
   // One long row: the width alone.
-  EXPECT_THROW(render::requireFlipbookFits(render::flipbookLayout(100, 256, 256, 100), "flipbook"),
+  EXPECT_THROW(reference::requireFlipbookFits(reference::flipbookLayout(100, 256, 256, 100), "flipbook"),
                io::InputError);
 }
 
 // Unity: A = (Right, Top, Back, alpha), B = (Left, Bottom, Front, emissive); frame f at column f % columns,
 // row f / columns, row 0 at the top of the texture.
 TEST(FlipbookPackingTest, PlacesFramesAndChannelsAsUnityExpects) {
-  const FlipbookLayout layout = render::flipbookLayout(5, 4, 3);
-  const auto textures = render::packFlipbook(codedFrames(5, 4, 3), layout, render::unityPacking());
+  const FlipbookLayout layout = reference::flipbookLayout(5, 4, 3);
+  const auto textures = reference::packFlipbook(codedFrames(5, 4, 3), layout, reference::unityPacking());
   ASSERT_EQ(textures.size(), 2u);
   ASSERT_EQ(textures[0].width, 12);
   ASSERT_EQ(textures[0].height, 6);
@@ -89,8 +90,8 @@ TEST(FlipbookPackingTest, PlacesFramesAndChannelsAsUnityExpects) {
       EXPECT_EQ(textures[1].at(tx, ty, k), code(f, b[k], x, y)) << f << " " << k;
     }
   EXPECT_EQ(textures[0].at(11, 5, 3), 0.0f) << "the unused sixth tile is transparent";
-  expectFramesNear(render::unpackFlipbook(textures, layout, render::unityPacking()), codedFrames(5, 4, 3),
-                   0.0f);
+  expectFramesNear(reference::unpackFlipbook(textures, layout, reference::unityPacking()),
+                   codedFrames(5, 4, 3), 0.0f);
 }
 
 // Each preset's two textures hold, component by component, the channels docs/formats.md lists for it.
@@ -105,19 +106,19 @@ TEST(FlipbookPackingTest, PresetsPlaceTheChannelsAsDocumented) {
       {"unity", "A", "B", {Right, Top, Back, Alpha}, {Left, Bottom, Front, Emissive}},
       {"rlt-bbf", "RLT", "BBF", {Right, Left, Top, Alpha}, {Bottom, Back, Front, Emissive}},
       {"o3de", "TLRB", "FB", {Top, Left, Right, Bottom}, {Front, Back, Emissive, Alpha}}};
-  ASSERT_EQ(render::packingPresetNames().size(), presets.size());
-  const FlipbookLayout layout = render::flipbookLayout(2, 4, 3);
+  ASSERT_EQ(reference::packingPresetNames().size(), presets.size());
+  const FlipbookLayout layout = reference::flipbookLayout(2, 4, 3);
   for (const Expected& e : presets) {
-    const render::ChannelPacking packing = render::packingPreset(e.preset);
+    const reference::ChannelPacking packing = reference::packingPreset(e.preset);
     EXPECT_THAT(packing.textures, ::testing::ElementsAre(e.first, e.second));
-    const auto textures = render::packFlipbook(codedFrames(2, 4, 3), layout, packing);
+    const auto textures = reference::packFlipbook(codedFrames(2, 4, 3), layout, packing);
     for (int k = 0; k < 4; ++k) {
       EXPECT_EQ(textures[0].at(4 + 2, 1, k), code(1, e.firstChannels[k], 2, 1)) << e.preset << " " << k;
       EXPECT_EQ(textures[1].at(4 + 2, 1, k), code(1, e.secondChannels[k], 2, 1)) << e.preset << " " << k;
     }
-    expectFramesNear(render::unpackFlipbook(textures, layout, packing), codedFrames(2, 4, 3), 0.0f);
+    expectFramesNear(reference::unpackFlipbook(textures, layout, packing), codedFrames(2, 4, 3), 0.0f);
   }
-  EXPECT_THROW(render::packingPreset("unreal5"), std::invalid_argument);
+  EXPECT_THROW(reference::packingPreset("unreal5"), std::invalid_argument);
 }
 
 class FlipbookFilesTest : public ::testing::Test {
@@ -129,10 +130,10 @@ class FlipbookFilesTest : public ::testing::Test {
 };
 
 TEST_F(FlipbookFilesTest, WritesExrPngTgaAndASidecarThatReadsBack) {
-  const FlipbookLayout layout = render::flipbookLayout(3, 5, 4);
+  const FlipbookLayout layout = reference::flipbookLayout(3, 5, 4);
   const auto frames = codedFrames(3, 5, 4);
-  const auto sidecar = render::writeFlipbook(dir.path(), "flipbook", frames, layout, render::unityPacking(),
-                                             {{"note", "test"}});
+  const auto sidecar = reference::writeFlipbook(dir.path(), "flipbook", frames, layout,
+                                                reference::unityPacking(), {{"note", "test"}});
   for (const char* file : {"flipbook_A.exr", "flipbook_A.png", "flipbook_A.tga", "flipbook_B.exr",
                            "flipbook_B.png", "flipbook_B.tga", "flipbook.json"})
     EXPECT_TRUE(std::filesystem::exists(dir / file)) << file;
@@ -152,29 +153,31 @@ TEST_F(FlipbookFilesTest, WritesExrPngTgaAndASidecarThatReadsBack) {
   EXPECT_EQ(json["color_space"], "srgb");
   EXPECT_EQ(json["eight_bit"]["clipped_fraction"], 0.0);
   EXPECT_EQ(json["layout"]["columns"], 2);
-  const render::Flipbook book = render::readFlipbook(sidecar);
+  const reference::Flipbook book = reference::readFlipbook(sidecar);
   EXPECT_EQ(book.layout.frames, 3);
   expectFramesNear(book.frames, frames, 2e-4f);  // EXR half
   // The sidecar naming only the PNGs: they read back through its color_space, within half an sRGB code at 1.
   nlohmann::json pngOnly = json;
   pngOnly["textures"] = {{"A", "flipbook_A.png"}, {"B", "flipbook_B.png"}};
   writeDescription(pngOnly);
-  expectFramesNear(render::readFlipbook(dir / "book.json").frames, frames, 6e-3f);
+  expectFramesNear(reference::readFlipbook(dir / "book.json").frames, frames, 6e-3f);
 }
 
 // By default the emissive component is Unity's Single Channel mask e / (alpha · luminance scale),
 // which Unity multiplies by opacity; the sidecar holds the scale and Unity's settings, and readFlipbook turns
 // the mask back into the premultiplied luminance.
 TEST_F(FlipbookFilesTest, AnEmissiveMaskReadsBackAsPremultipliedLuminance) {
-  const FlipbookLayout layout = render::flipbookLayout(3, 5, 4);
+  const FlipbookLayout layout = reference::flipbookLayout(3, 5, 4);
   auto frames = codedFrames(3, 5, 4);
   frames[2].at(1, 1, render::Emissive) = 1.5f;  // over the mask's 1: clamped
   frames[1].at(2, 3, render::Alpha) = 0.0f;     // no opacity: no emission
-  const render::EmissiveMask mask{.luminanceScale = 2.0f,
-                                  .gradient = {{0.0f, glm::vec3(0.0f)}, {1.0f, glm::vec3(1.0f, 0.5f, 0.25f)}},
-                                  .multiplier = 3.0f};
-  const auto sidecar = render::writeFlipbook(dir.path(), "flipbook", frames, layout, render::unityPacking(),
-                                             {{"note", "test"}}, std::nullopt, mask);
+  const reference::EmissiveMask mask{
+      .luminanceScale = 2.0f,
+      .gradient = {{0.0f, glm::vec3(0.0f)}, {1.0f, glm::vec3(1.0f, 0.5f, 0.25f)}},
+      .multiplier = 3.0f};
+  const auto sidecar =
+      reference::writeFlipbook(dir.path(), "flipbook", frames, layout, reference::unityPacking(),
+                               {{"note", "test"}}, std::nullopt, mask);
   const nlohmann::json json = nlohmann::json::parse(std::ifstream(sidecar));
   EXPECT_EQ(json["emissive"]["encoding"], "mask");
   EXPECT_EQ(json["emissive"]["luminance_scale"], 2.0);
@@ -182,7 +185,7 @@ TEST_F(FlipbookFilesTest, AnEmissiveMaskReadsBackAsPremultipliedLuminance) {
   EXPECT_EQ(json["emissive"]["unity"]["emissive_multiplier"], 3.0);
   EXPECT_EQ(json["emissive"]["unity"]["emissive_gradient"].size(), 2u);
   const io::Image b = io::readExr(dir / "flipbook_B.exr").image;
-  const render::Flipbook book = render::readFlipbook(sidecar);
+  const reference::Flipbook book = reference::readFlipbook(sidecar);
   for (int f = 0; f < 3; ++f)
     for (int y = 0; y < 4; ++y)
       for (int x = 0; x < 5; ++x) {
@@ -194,10 +197,11 @@ TEST_F(FlipbookFilesTest, AnEmissiveMaskReadsBackAsPremultipliedLuminance) {
       }
   EXPECT_NEAR(book.frames[0].at(3, 2, render::Emissive), frames[0].at(3, 2, render::Emissive), 1e-3f);
   // Without a mask the component holds e itself, and says so.
-  render::writeFlipbook(dir.path(), "plain", frames, layout, render::unityPacking(), {{"note", "test"}});
+  reference::writeFlipbook(dir.path(), "plain", frames, layout, reference::unityPacking(),
+                           {{"note", "test"}});
   EXPECT_EQ(nlohmann::json::parse(std::ifstream(dir / "plain.json"))["emissive"]["encoding"],
             "premultiplied");
-  expectFramesNear(render::readFlipbook(dir / "plain.json").frames, frames, 2e-3f);
+  expectFramesNear(reference::readFlipbook(dir / "plain.json").frames, frames, 2e-3f);
 }
 
 // The value of `key` in a Unity .meta file: the first line "<indent><key>: <value>" after the line `after`
@@ -221,9 +225,9 @@ std::string metaValue(const std::filesystem::path& file, const std::string& key,
 // Each texture has Unity's import settings beside it: linear, no rescale, uncompressed RGBA half
 // for EXR (BC6H would drop alpha) and RGBA 8-bit for PNG/TGA, the flipbook grid; a stable id per texture.
 TEST_F(FlipbookFilesTest, WritesUnityImportSettingsBesideEachTexture) {
-  const FlipbookLayout layout = render::flipbookLayout(5, 48, 40);  // 3 × 2 tiles: 144 × 80 pixels
+  const FlipbookLayout layout = reference::flipbookLayout(5, 48, 40);  // 3 × 2 tiles: 144 × 80 pixels
   const auto frames = codedFrames(5, 48, 40);
-  render::writeFlipbook(dir.path(), "book", frames, layout, render::unityPacking(), {{"source", "a"}});
+  reference::writeFlipbook(dir.path(), "book", frames, layout, reference::unityPacking(), {{"source", "a"}});
   for (const char* texture : {"book_A", "book_B"})
     for (const std::string extension : {".exr", ".png", ".tga"}) {
       const std::filesystem::path meta = dir / (texture + extension + ".meta");
@@ -245,16 +249,16 @@ TEST_F(FlipbookFilesTest, WritesUnityImportSettingsBesideEachTexture) {
   const std::string a = metaValue(dir / "book_A.exr.meta", "guid");
   EXPECT_NE(a, metaValue(dir / "book_A.png.meta", "guid"));
   EXPECT_NE(a, metaValue(dir / "book_B.exr.meta", "guid"));
-  render::writeFlipbook(dir.path(), "book", frames, layout, render::unityPacking(), {{"source", "a"}});
+  reference::writeFlipbook(dir.path(), "book", frames, layout, reference::unityPacking(), {{"source", "a"}});
   EXPECT_EQ(metaValue(dir / "book_A.exr.meta", "guid"), a);
-  render::writeFlipbook(dir.path(), "book", frames, layout, render::unityPacking(), {{"source", "b"}});
+  reference::writeFlipbook(dir.path(), "book", frames, layout, reference::unityPacking(), {{"source", "b"}});
   EXPECT_NE(metaValue(dir / "book_A.exr.meta", "guid"), a);
 }
 
 // Another tool's packing (here EmberGen-style "RLT"/"BBF" textures as TGA: R = Right, G = Left, B = Top,
 // A = alpha; R = Bottom, G = Back, B = Front, A = emissive), read through a hand-written description.
 TEST_F(FlipbookFilesTest, ReadsAnotherToolsPackingThroughADescription) {
-  render::ChannelPacking rltBbf;
+  reference::ChannelPacking rltBbf;
   rltBbf.textures = {"RLT", "BBF"};
   rltBbf.slots[render::Right] = {0, 0};
   rltBbf.slots[render::Left] = {0, 1};
@@ -264,9 +268,9 @@ TEST_F(FlipbookFilesTest, ReadsAnotherToolsPackingThroughADescription) {
   rltBbf.slots[render::Back] = {1, 1};
   rltBbf.slots[render::Front] = {1, 2};
   rltBbf.slots[render::Emissive] = {1, 3};
-  const FlipbookLayout layout = render::flipbookLayout(4, 6, 5);
+  const FlipbookLayout layout = reference::flipbookLayout(4, 6, 5);
   const auto frames = codedFrames(4, 6, 5);
-  const auto textures = render::packFlipbook(frames, layout, rltBbf);
+  const auto textures = reference::packFlipbook(frames, layout, rltBbf);
   io::writeTga(dir / "smoke_RLT.tga", textures[0]);
   io::writeTga(dir / "smoke_BBF.tga", textures[1]);
   writeDescription({{"layout", {{"columns", 2}, {"rows", 2}, {"tile_width", 6}, {"tile_height", 5}}},
@@ -280,7 +284,7 @@ TEST_F(FlipbookFilesTest, ReadsAnotherToolsPackingThroughADescription) {
                       {"back", "BBF.G"},
                       {"front", "BBF.B"},
                       {"emissive", "BBF.A"}}}});
-  expectFramesNear(render::readFlipbook(dir / "book.json").frames, frames, 0.5f / 255 + 1e-6f);
+  expectFramesNear(reference::readFlipbook(dir / "book.json").frames, frames, 0.5f / 255 + 1e-6f);
 }
 
 // sRGB-encoded 8-bit textures are decoded (colour channels only); straight-alpha lightmaps are premultiplied.
@@ -302,7 +306,7 @@ TEST_F(FlipbookFilesTest, DecodesSrgbAndPremultipliesStraightAlpha) {
                       {"front", "B.B"}}},
                     {"color_space", "srgb"},
                     {"premultiplied", false}});
-  const io::Image frame = render::readFlipbook(dir / "book.json").frames.at(0);
+  const io::Image frame = reference::readFlipbook(dir / "book.json").frames.at(0);
   const float decoded = std::pow((128 / 255.0f + 0.055f) / 1.055f, 2.4f);
   EXPECT_NEAR(frame.at(0, 0, render::Alpha), 128 / 255.0f, 1e-6f) << "alpha is never sRGB-decoded";
   EXPECT_NEAR(frame.at(0, 0, render::Right), decoded * 128 / 255.0f, 1e-6f);
@@ -319,10 +323,10 @@ TEST_F(FlipbookFilesTest, BadDescriptionsAreOneLineErrors) {
   const auto file = dir / "book.json";
   auto problem = [&](nlohmann::json description) {
     writeDescription(description);
-    return inputErrorMessage([&] { render::readFlipbook(file); });
+    return inputErrorMessage([&] { reference::readFlipbook(file); });
   };
   const nlohmann::json good = {{"layout", layout}, {"textures", {{"T", "t.png"}}}, {"channels", channels}};
-  EXPECT_NO_THROW(render::readFlipbook((writeDescription(good), file)));
+  EXPECT_NO_THROW(reference::readFlipbook((writeDescription(good), file)));
 
   nlohmann::json d = good;
   d["channels"].erase("alpha");
@@ -354,7 +358,8 @@ TEST_F(FlipbookFilesTest, BadDescriptionsAreOneLineErrors) {
   d = good;
   d["scattering"] = "double";
   EXPECT_THAT(problem(d), namesFileAndProblem(file, "scattering: must be one of \"single\", \"multiple\""));
-  EXPECT_FALSE(render::readFlipbook((writeDescription(good), file)).scattering) << "another tool's: unknown";
+  EXPECT_FALSE(reference::readFlipbook((writeDescription(good), file)).scattering)
+      << "another tool's: unknown";
 }
 
 }  // namespace

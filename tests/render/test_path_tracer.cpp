@@ -20,7 +20,7 @@ namespace {
 class PathTracerTest : public RenderTest {
  protected:
   // An RGB + alpha image of `volume` with the oblique camera, pixel centres, no lights unless given.
-  io::Image traceImage(const CpuVolume& volume, const scene::Smoke& smoke, render::TraceSettings settings,
+  io::Image traceImage(const CpuVolume& volume, const scene::Smoke& smoke, reference::TraceSettings settings,
                        uint32_t samples, const std::vector<scene::Light>& lights = {}) {
     const render::DeviceVolume device = upload(volume);
     const render::Camera camera = obliqueCamera();
@@ -28,11 +28,11 @@ class PathTracerTest : public RenderTest {
     tracer_.accumulate(samples);
     return tracer_.image();
   }
-  render::PathTracer tracer_{context(), pipelineCache()};
+  reference::PathTracer tracer_{context(), pipelineCache()};
 };
 
-render::TraceSettings settings(int size, int maxOrders) {
-  render::TraceSettings s;
+reference::TraceSettings settings(int size, int maxOrders) {
+  reference::TraceSettings s;
   s.width = s.height = size;
   s.maxOrders = maxOrders;
   s.jitter = false;
@@ -60,7 +60,7 @@ TEST_F(PathTracerTest, AbsorbingBoxGivesTheAnalyticAlphaAndTransmittedBackground
   scene::Smoke smoke;
   smoke.extinction = 2.5f;
   smoke.albedo = 0.0f;
-  render::TraceSettings s = settings(16, 8);
+  reference::TraceSettings s = settings(16, 8);
   s.background = {0.2f, 0.5f, 1.0f};
   const uint32_t n = 1024;
   const io::Image image = traceImage(box, smoke, s, n);
@@ -87,7 +87,7 @@ TEST_F(PathTracerTest, WhiteSlabInAWhiteFurnaceConservesEnergy) {
   smoke.extinction = 8.0f;  // optical thickness 2 across the slab
   smoke.albedo = 1.0f;
   smoke.phaseG = 0.5f;
-  render::TraceSettings s = settings(16, 100000);
+  reference::TraceSettings s = settings(16, 100000);
   s.jitter = true;
   s.background = glm::vec3(1.0f);
   s.environment[0] = glm::vec3(1.0f);
@@ -120,11 +120,11 @@ TEST_F(PathTracerTest, SingleScatteringConvergesToTheBakerAsOneOverSqrtSpp) {
   const scene::Smoke smoke = puffOptics();
   const render::Camera camera = obliqueCamera();
   const render::ImagePlane plane = squareBillboard(camera, volume.box());
-  render::LightmapBaker baker(context(), pipelineCache());
-  render::BakeSettings coarse;
+  reference::LightmapBaker baker(context(), pipelineCache());
+  reference::BakeSettings coarse;
   coarse.width = coarse.height = 32;
   const io::Image baked = baker.bake(device.view(), smoke, camera, plane, coarse);
-  render::BakeSettings fineSettings = coarse;
+  reference::BakeSettings fineSettings = coarse;
   fineSettings.lightSpacingCells = 0.25f;
   fineSettings.stepCells = 0.125f;
   const io::Image fine = baker.bake(device.view(), smoke, camera, plane, fineSettings);
@@ -171,7 +171,7 @@ TEST_F(PathTracerTest, PointLightSingleScatteringMatchesTheCpuOracle) {
   smoke.emission.intensity = 0.0f;  // the oracle has no emission
   const glm::vec3 position(1.4f, 1.1f, 0.3f);
   const scene::Light lamp{scene::PointLight{position}, {1.0f, 0.7f, 0.4f}, 5.0f};
-  render::TraceSettings s = settings(16, 1);
+  reference::TraceSettings s = settings(16, 1);
   const io::Image a = traceImage(volume, smoke, s, 512, {lamp});
   s.seed = 2;
   const TwoSeeds traced = meanOfTwoSeeds(a, traceImage(volume, smoke, s, 512, {lamp}), {0, 1, 2});
@@ -196,7 +196,7 @@ TEST_F(PathTracerTest, EnvironmentSingleScatteringMatchesTheCpuOracle) {
   smoke.phaseG = 0.5f;
   const std::array<glm::vec3, 4> environment = {glm::vec3(0.5f), glm::vec3(0.45f, 0.0f, 0.0f),
                                                 glm::vec3(0.0f, 0.45f, 0.0f), glm::vec3(0.0f, 0.0f, 0.45f)};
-  render::TraceSettings s = settings(12, 1);
+  reference::TraceSettings s = settings(12, 1);
   s.environment = environment;
   const io::Image a = traceImage(volume, smoke, s, 1024);
   s.seed = 7;
@@ -239,11 +239,11 @@ TEST_F(PathTracerTest, SixLightmapsSumToTheUniformEnvironment) {
                           sumOfSix(bakeSixWay(volume, smoke, camera, plane, 12, 12, 0.5)), {0});
 
   const render::DeviceVolume device = upload(volume);
-  render::LightmapBaker baker(context(), pipelineCache());
-  render::BakeSettings bake;
+  reference::LightmapBaker baker(context(), pipelineCache());
+  reference::BakeSettings bake;
   bake.width = bake.height = 12;
   const io::Image expected = sumOfSix(baker.bake(device.view(), smoke, camera, plane, bake));
-  render::TraceSettings s = settings(12, 1);
+  reference::TraceSettings s = settings(12, 1);
   s.environment = white;
   const io::Image a = traceImage(volume, smoke, s, 1024);
   s.seed = 3;
@@ -269,7 +269,7 @@ TEST_F(PathTracerTest, SparseSmokeAcrossEmptyBricksMatchesTheCpuOracle) {
   const render::ImagePlane plane = squareBillboard(camera, volume.box());
   const io::Image cpu = bakeSixWay(volume, smoke, camera, plane, 24, 24, 0.5);
   auto trace = [&](uint32_t seed) {
-    render::TraceSettings s = settings(24, 1);
+    reference::TraceSettings s = settings(24, 1);
     s.seed = seed;
     tracer_.beginSixWay(device.view(), smoke, camera, plane, s);
     tracer_.accumulate(512);
@@ -298,7 +298,7 @@ TEST_F(PathTracerTest, LayerOnABrickFaceKeepsItsWholeOpticalDepth) {
     const render::ImagePlane plane = squareBillboard(camera, volume.box());
     const io::Image cpu = bakeSixWay(volume, smoke, camera, plane, 16, 16, 0.05);
     auto trace = [&](uint32_t seed) {
-      render::TraceSettings s = settings(16, 1);
+      reference::TraceSettings s = settings(16, 1);
       s.seed = seed;
       tracer_.beginSixWay(device.view(), smoke, camera, plane, s);
       tracer_.accumulate(256);
@@ -320,7 +320,7 @@ TEST_F(PathTracerTest, LayerOnABrickFaceKeepsItsWholeOpticalDepth) {
 // additions); another seed gives another image.
 TEST_F(PathTracerTest, FixedSeedReproducesTheImage) {
   const CpuVolume volume = puffs(10);
-  render::TraceSettings s = settings(12, 4);
+  reference::TraceSettings s = settings(12, 4);
   s.jitter = true;
   const scene::Light sun{scene::DirectionalLight{glm::normalize(glm::vec3(1.0f, 1.0f, 0.0f))}};
   const io::Image first = traceImage(volume, puffOptics(), s, 32, {sun});

@@ -56,7 +56,7 @@ class PathTracerObstacleTest : public RenderTest {
                   const std::vector<scene::Light>& lights, const render::ObstacleBvh& obstacles,
                   uint32_t seed, uint32_t samples) {
     const render::DeviceVolume device = upload(volume);
-    render::TraceSettings s;
+    reference::TraceSettings s;
     s.width = s.height = kSize;
     s.maxOrders = 1;
     s.jitter = false;
@@ -66,7 +66,7 @@ class PathTracerObstacleTest : public RenderTest {
     tracer_.accumulate(samples);
     return tracer_.image();
   }
-  render::PathTracer tracer_{context(), pipelineCache()};
+  reference::PathTracer tracer_{context(), pipelineCache()};
 };
 
 // The slab seen edge-on from the front (+z), a sphere of radius 0.2 above its middle: single scattering with
@@ -176,7 +176,7 @@ TEST_F(PathTracerObstacleTest, SphereInsideAbsorbingSmoke) {
   const dvec3 toLight = glm::normalize(dvec3(0.0, 1.0, 0.6));
   const scene::Light light = directionalLight(glm::vec3(toLight), 1.0f);
   const render::DeviceVolume device = upload(volume);
-  render::TraceSettings s;
+  reference::TraceSettings s;
   s.width = s.height = kSize;
   s.maxOrders = 1;
   s.jitter = false;

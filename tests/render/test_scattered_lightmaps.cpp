@@ -20,7 +20,7 @@ namespace {
 class ScatteredLightmapsTest : public RenderTest {
  protected:
   void SetUp() override { settings_.width = settings_.height = 32; }
-  io::Image bake(render::Scattering scattering, const render::MultipleScattering& multiple = {},
+  io::Image bake(reference::Scattering scattering, const reference::MultipleScattering& multiple = {},
                  scene::Smoke smoke = puffOptics()) {
     return lightmaps_.bake(volume_.view(), smoke, camera_, billboard_, settings_, scattering, multiple);
   }
@@ -28,8 +28,8 @@ class ScatteredLightmapsTest : public RenderTest {
   render::DeviceVolume volume_ = upload(cpuVolume_);
   render::Camera camera_ = obliqueCamera();
   render::ImagePlane billboard_ = squareBillboard(camera_, cpuVolume_.box());
-  render::BakeSettings settings_;
-  render::ScatteredLightmaps lightmaps_{context(), pipelineCache()};
+  reference::BakeSettings settings_;
+  reference::ScatteredLightmaps lightmaps_{context(), pipelineCache()};
 };
 
 // RMS over the pixels of channels [first, last).
@@ -47,8 +47,8 @@ double emissionRms(const io::Image& a, const io::Image& b) {
 }
 
 TEST_F(ScatteredLightmapsTest, TracingFromOrderTwoWithOneOrderIsBlackWithTheSameAlpha) {
-  render::PathTracer tracer(context(), pipelineCache());
-  render::TraceSettings s;
+  reference::PathTracer tracer(context(), pipelineCache());
+  reference::TraceSettings s;
   s.width = s.height = 16;
   s.maxOrders = 1;
   tracer.beginSixWay(volume_.view(), puffOptics(), camera_, billboard_, s);
@@ -77,7 +77,7 @@ TEST(UpsampleAlphaGuided, KeepsTheLightPerOpacityAndLeavesEmptyPixelsDark) {
     low.pixels[p * 8 + 6] = 0.8f;
   }
   for (size_t p = 0; p < 16; ++p) full.pixels[p * 8 + 6] = float(p) / 16.0f;
-  const io::Image up = render::upsampleAlphaGuided(low, full);
+  const io::Image up = reference::upsampleAlphaGuided(low, full);
   for (size_t p = 0; p < 16; ++p) {
     for (int c = 0; c < 6; ++c) EXPECT_NEAR(up.pixels[p * 8 + c], 0.5f * float(p) / 16.0f, 1e-6f) << p;
     EXPECT_EQ(up.pixels[p * 8 + 6], 0.0f);
@@ -86,21 +86,21 @@ TEST(UpsampleAlphaGuided, KeepsTheLightPerOpacityAndLeavesEmptyPixelsDark) {
   // Downsample 1 with the same alpha is the identity; where the traced alpha is 0 nothing is added.
   io::Image same = low;
   same.pixels[6] = 0.0f;
-  const io::Image identity = render::upsampleAlphaGuided(same, same);
+  const io::Image identity = reference::upsampleAlphaGuided(same, same);
   for (int c = 0; c < 6; ++c) {
     EXPECT_EQ(identity.pixels[c], 0.0f);
     EXPECT_NEAR(identity.pixels[8 + c], 0.4f, 1e-6f);
   }
-  EXPECT_THROW(render::upsampleAlphaGuided(low, io::Image(5, 4, low.channels)), std::invalid_argument);
+  EXPECT_THROW(reference::upsampleAlphaGuided(low, io::Image(5, 4, low.channels)), std::invalid_argument);
 }
 
 TEST_F(ScatteredLightmapsTest, AlbedoZeroHasNoMultipleScatteringAndMultipleOnlyAddsLight) {
   scene::Smoke black = puffOptics();
   black.albedo = 0.0f;
-  const io::Image single = bake(render::Scattering::Single, {}, black);
-  EXPECT_EQ(bake(render::Scattering::Multiple, {}, black).pixels, single.pixels);
+  const io::Image single = bake(reference::Scattering::Single, {}, black);
+  EXPECT_EQ(bake(reference::Scattering::Multiple, {}, black).pixels, single.pixels);
 
-  const io::Image ss = bake(render::Scattering::Single), ms = bake(render::Scattering::Multiple);
+  const io::Image ss = bake(reference::Scattering::Single), ms = bake(reference::Scattering::Multiple);
   double gain = 0, emissionGain = 0;
   for (size_t i = 0; i < ss.pixels.size(); ++i) {
     ASSERT_GE(ms.pixels[i], ss.pixels[i]) << i;
@@ -117,17 +117,18 @@ TEST_F(ScatteredLightmapsTest, AlbedoZeroHasNoMultipleScatteringAndMultipleOnlyA
 // samples. The reference has Monte Carlo noise of its own (measured from a second seed); what remains of
 // the split's error beyond it is a fraction of the light single scattering misses.
 TEST_F(ScatteredLightmapsTest, TheSplitMatchesTheAllOrdersTrace) {
-  render::MultipleScattering traced;
+  reference::MultipleScattering traced;
   traced.traceAllOrders = true;
   traced.samples = 1024;
-  const io::Image truth = bake(render::Scattering::Multiple, traced);
+  const io::Image truth = bake(reference::Scattering::Multiple, traced);
   traced.seed = 2;
-  const io::Image second = bake(render::Scattering::Multiple, traced);
+  const io::Image second = bake(reference::Scattering::Multiple, traced);
   const double truthNoise = lightRms(truth, second) / std::sqrt(2.0);
-  render::MultipleScattering split;
+  reference::MultipleScattering split;
   split.samples = 64;
   split.downsample = 2;  // through the upsampling
-  const io::Image fast = bake(render::Scattering::Multiple, split), single = bake(render::Scattering::Single);
+  const io::Image fast = bake(reference::Scattering::Multiple, split),
+                  single = bake(reference::Scattering::Single);
   const double splitError = lightRms(fast, truth);
   const double singleError = lightRms(single, truth);
 

@@ -10,13 +10,13 @@
 
 #include "io/error.h"
 #include "io/vdb.h"
+#include "modes/mode_renderer.h"
+#include "modes/scene_source.h"
 #include "reference/vdb_sequence.h"
-#include "runtime/modes/mode_renderer.h"
 #include "runtime/scene_volumes.h"
 #include "scene/fluid_physics.h"
 #include "scene/scene.h"
 #include "sim/simulation.h"
-#include "sources/scene_volumes.h"
 #include "support/gpu_fixture.h"
 #include "support/image_compare.h"
 #include "support/temp_dir.h"
@@ -81,7 +81,7 @@ TEST_F(VdbPlaybackTest, SimExportPlaysBackAsTheSameVolumesAndImages) {
   const scene::Scene simulated = scene::loadScene(kPlume);
   exportFrames(context(), pipelineCache(), simulated, dir.path());
   scene::Scene played = playbackScene(dir.path(), simulated.grid);
-  auto playback = sources::openSceneVolumes(context(), pipelineCache(), played, kFrames, "playback.json");
+  auto playback = modes::openSceneVolumes(context(), pipelineCache(), played, kFrames, "playback.json");
   runtime::SimulatedVolumes live(context(), pipelineCache(), simulated, kFrames);
 
   scene::Scene renderScene = simulated;
@@ -123,13 +123,13 @@ scene::VdbSource source(std::vector<fs::path> files) {
 }
 
 TEST_F(VdbPlaybackTest, TheTransformTurnsScalesAndMovesTheFileExactly) {
-  render::VdbSequence upright(context(), source({kVdb / "smoke_000002.vdb"}));
+  reference::VdbSequence upright(context(), source({kVdb / "smoke_000002.vdb"}));
   scene::VdbSource turned = source({kVdb / "smoke_000002.vdb"});
   turned.up = scene::VdbUp::Z;
   turned.scale = 0.5f;
   turned.translate = {1.0f, -2.0f, 3.0f};
   turned.densityScale = 2.0f;
-  render::VdbSequence blender(context(), turned);
+  reference::VdbSequence blender(context(), turned);
 
   const render::VolumeGrid& a = upright.lattice();
   const render::VolumeGrid& b = blender.lattice();
@@ -160,7 +160,7 @@ TEST_F(VdbPlaybackTest, TheTransformTurnsScalesAndMovesTheFileExactly) {
 TEST_F(VdbPlaybackTest, FramesRepeatPerFileAndAnEmptyFrameIsZero) {
   scene::VdbSource s = source({kVdb / "smoke_000002.vdb", kVdb / "smoke_000001.vdb"});
   s.framesPerFile = 2;
-  render::VdbSequence sequence(context(), s);
+  reference::VdbSequence sequence(context(), s);
   ASSERT_EQ(sequence.frameCount(), 4);
   EXPECT_EQ(sequence.frameName(1), "smoke_000002.vdb");
   EXPECT_EQ(sequence.frameName(2), "smoke_000001.vdb");
@@ -182,25 +182,25 @@ TEST_F(VdbPlaybackTest, FramesRepeatPerFileAndAnEmptyFrameIsZero) {
 TEST_F(VdbPlaybackTest, BadFilesAndFrameCountsGetOneLine) {
   scene::VdbSource wrongName = source({kVdb / "smoke_000002.vdb"});
   wrongName.densityGrid = "smoke";
-  EXPECT_THAT(inputErrorMessage([&] { render::VdbSequence(context(), wrongName); }),
+  EXPECT_THAT(inputErrorMessage([&] { reference::VdbSequence(context(), wrongName); }),
               ::testing::HasSubstr("smoke_000002.vdb: has no float grid 'smoke' (set vdb.density_grid"));
   // One file of a sequence without the density grid is an error, not an empty frame said only in a note.
   io::DenseGrid heat{.size = {4, 4, 4}, .values = std::vector<float>(64, 1.0f)};
   io::writeVdb(dir / "heat_only.vdb", {{"heat", &heat}});
   scene::VdbSource oneWithout = source({kVdb / "smoke_000002.vdb", dir / "heat_only.vdb"});
-  EXPECT_THAT(inputErrorMessage([&] { render::VdbSequence(context(), oneWithout); }),
+  EXPECT_THAT(inputErrorMessage([&] { reference::VdbSequence(context(), oneWithout); }),
               ::testing::HasSubstr("heat_only.vdb: has no float grid 'density'"));
   scene::VdbSource noHeat = source({kVdb / "smoke_000002.vdb"});
   noHeat.temperatureGrid = "heat";
-  EXPECT_THAT(inputErrorMessage([&] { render::VdbSequence(context(), noHeat); }),
+  EXPECT_THAT(inputErrorMessage([&] { reference::VdbSequence(context(), noHeat); }),
               ::testing::HasSubstr("grid 'heat' (vdb.temperature_grid)"));
   scene::VdbSource allEmpty = source({kVdb / "smoke_000001.vdb"});
-  EXPECT_THAT(inputErrorMessage([&] { render::VdbSequence(context(), allEmpty); }),
+  EXPECT_THAT(inputErrorMessage([&] { reference::VdbSequence(context(), allEmpty); }),
               ::testing::HasSubstr("non-empty float grid 'density'"));
 
   scene::Scene scene = scene::loadScene(SIXWAY_TEST_DATA_DIR "/scenes/vdb_blender.json");
   EXPECT_THAT(
-      inputErrorMessage([&] { sources::openSceneVolumes(context(), pipelineCache(), scene, 7, "v.json"); }),
+      inputErrorMessage([&] { modes::openSceneVolumes(context(), pipelineCache(), scene, 7, "v.json"); }),
       ::testing::HasSubstr("v.json: 7 frames asked for, but the vdb sequence has 6 (3 files"));
   EXPECT_THAT(inputErrorMessage([&] { sim::Simulation(context(), pipelineCache(), scene); }),
               ::testing::HasSubstr("there is nothing to simulate"));
@@ -211,18 +211,19 @@ TEST_F(VdbPlaybackTest, BadFilesAndFrameCountsGetOneLine) {
 TEST_F(VdbPlaybackTest, GridsBeyondTheScenesReachGetOneLine) {
   io::DenseGrid huge{.size = {4, 4, 4}, .dx = glm::vec3(1e30f), .values = std::vector<float>(64, 1.0f)};
   io::writeVdb(dir / "huge_voxels.vdb", {{"density", &huge}});
-  EXPECT_THAT(inputErrorMessage([&] { render::VdbSequence(context(), source({dir / "huge_voxels.vdb"})); }),
-              ::testing::MatchesRegex(
-                  ".*huge_voxels\\.vdb: grid 'density' reaches 4e\\+30 m from the origin \\(voxel "
-                  "size 1e\\+30 × vdb\\.scale 1\\), more than 1000000 m; .*"));
+  EXPECT_THAT(
+      inputErrorMessage([&] { reference::VdbSequence(context(), source({dir / "huge_voxels.vdb"})); }),
+      ::testing::MatchesRegex(
+          ".*huge_voxels\\.vdb: grid 'density' reaches 4e\\+30 m from the origin \\(voxel "
+          "size 1e\\+30 × vdb\\.scale 1\\), more than 1000000 m; .*"));
   scene::VdbSource scaled = source({kVdb / "smoke_000002.vdb"});
   scaled.scale = 1e6f;
-  EXPECT_THAT(inputErrorMessage([&] { render::VdbSequence(context(), scaled); }),
+  EXPECT_THAT(inputErrorMessage([&] { reference::VdbSequence(context(), scaled); }),
               ::testing::HasSubstr("smoke_000002.vdb: grid 'density' reaches"));
   // A box of the scene's own places the lattice: the file's voxel size then only samples it.
   scene::VdbSource boxed = source({dir / "huge_voxels.vdb"});
   boxed.box = std::pair(glm::vec3(0.0f), glm::vec3(1.0f));
-  EXPECT_NO_THROW(render::VdbSequence(context(), boxed));
+  EXPECT_NO_THROW(reference::VdbSequence(context(), boxed));
 }
 
 }  // namespace

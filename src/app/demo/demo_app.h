@@ -17,7 +17,7 @@
 #include "app/demo/orbit_camera.h"
 #include "app/demo/stage_timings.h"
 #include "gpu/context.h"
-#include "runtime/modes/render_mode.h"
+#include "modes/render_mode.h"
 #include "scene/scene.h"
 
 struct GLFWwindow;

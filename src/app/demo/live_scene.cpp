@@ -2,11 +2,11 @@
 
 #include <algorithm>
 
+#include "modes/scene_source.h"
 #include "render/scene_frame.h"
 #include "runtime/internal.h"
 #include "runtime/scene_lights.h"
 #include "runtime/scene_volumes.h"
-#include "sources/scene_volumes.h"
 
 namespace sixway::app::demo {
 std::vector<scene::Light> startingLights(const scene::Scene& scene) {
@@ -21,8 +21,8 @@ LiveScene::LiveScene(gpu::Context& context, gpu::PipelineCache& cache, const std
     : device_(runtime::Access::borrowDevice(context, cache)), options_(options) {
   playedScene_ = scene::loadScene(scene);
   if (playedScene_.vdb) {
-    playback_ = sources::openSceneVolumes(context, cache, playedScene_, scene::sceneFrameCount(playedScene_),
-                                          scene.string());
+    playback_ = modes::openSceneVolumes(context, cache, playedScene_, scene::sceneFrameCount(playedScene_),
+                                        scene.string());
     return;
   }
   simulation_ = std::make_unique<SmokeSimulation>(device_, scene);

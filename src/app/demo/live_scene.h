@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "gpu/sequence.h"
+#include "modes/mode_renderer.h"
 #include "render/volume_sequence.h"
-#include "runtime/modes/mode_renderer.h"
 #include "scene/scene.h"
 
 namespace sixway::gpu {

@@ -1,15 +1,15 @@
-#include "runtime/modes/baked_lightmaps.h"
+#include "modes/baked_lightmaps.h"
 
 namespace sixway::modes {
 
 BakedLightmaps::BakedLightmaps(const gpu::Context& context, const gpu::PipelineCache& cache,
-                               const scene::Scene& scene, render::Scattering scattering,
-                               const render::MultipleScattering& multiple)
+                               const scene::Scene& scene, reference::Scattering scattering,
+                               const reference::MultipleScattering& multiple)
     : BakedLightmaps(context, cache, scene, scattering, multiple, runtime::FrameStages::All) {}
 
 BakedLightmaps::BakedLightmaps(const gpu::Context& context, const gpu::PipelineCache& cache,
-                               const scene::Scene& scene, render::Scattering scattering,
-                               const render::MultipleScattering& multiple, runtime::FrameStages stages)
+                               const scene::Scene& scene, reference::Scattering scattering,
+                               const reference::MultipleScattering& multiple, runtime::FrameStages stages)
     : LightmapSource(stages),
       smoke_(scene.smoke),
       seed_(scene.render.seed),
@@ -25,9 +25,9 @@ render::ImagePlane BakedLightmaps::update(runtime::RealtimeFrame& frame,
 
 void BakedLightmaps::bake(runtime::RealtimeFrame& frame, const runtime::SourceFrame& current,
                           const render::Camera& camera, const render::ImagePlane& plane) {
-  render::BakeSettings bake;
+  reference::BakeSettings bake;
   bake.width = bake.height = int(frame.lightmapSize());
-  render::MultipleScattering multiple = multiple_;
+  reference::MultipleScattering multiple = multiple_;
   multiple.seed = seed_ + uint32_t(current.index);  // independent noise frame to frame
   frame.lightmaps().upload(baker_.bake(current.volume, smoke_, camera, plane, bake, scattering_, multiple));
 }

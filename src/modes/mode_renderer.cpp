@@ -1,12 +1,12 @@
-#include "runtime/modes/mode_renderer.h"
+#include "modes/mode_renderer.h"
 
 #include <glm/gtc/packing.hpp>
 
 #include "gpu/image.h"
+#include "modes/baked_lightmaps.h"
+#include "modes/flipbook_lightmaps.h"
+#include "modes/guide_lit_lightmaps.h"
 #include "render/shadow_maps.h"
-#include "runtime/modes/baked_lightmaps.h"
-#include "runtime/modes/flipbook_lightmaps.h"
-#include "runtime/modes/guide_lit_lightmaps.h"
 #include "runtime/network_lightmaps.h"
 
 namespace sixway::modes {
@@ -31,18 +31,20 @@ scene::Scene rasterScene(const scene::Scene& scene, RenderMode mode) {
 std::unique_ptr<runtime::LightmapSource> modeSource(const gpu::Context& context,
                                                     const gpu::PipelineCache& cache,
                                                     const scene::Scene& scene, const ModeOptions& o) {
-  const render::MultipleScattering& multiple = o.multipleScattering;
+  const reference::MultipleScattering& multiple = o.multipleScattering;
   switch (o.mode) {
     case RenderMode::Neural:
       return std::make_unique<runtime::NetworkLightmaps>(context, cache, scene, o.weights, o.fp16);
     case RenderMode::Reference:
-      return std::make_unique<BakedLightmaps>(context, cache, scene, render::Scattering::Single, multiple);
+      return std::make_unique<BakedLightmaps>(context, cache, scene, reference::Scattering::Single, multiple);
     case RenderMode::ReferenceMs:
-      return std::make_unique<BakedLightmaps>(context, cache, scene, render::Scattering::Multiple, multiple);
+      return std::make_unique<BakedLightmaps>(context, cache, scene, reference::Scattering::Multiple,
+                                              multiple);
     case RenderMode::Traditional:
-      return std::make_unique<FlipbookLightmaps>(context, cache, scene, render::Scattering::Single, multiple);
+      return std::make_unique<FlipbookLightmaps>(context, cache, scene, reference::Scattering::Single,
+                                                 multiple);
     case RenderMode::TraditionalMs:
-      return std::make_unique<FlipbookLightmaps>(context, cache, scene, render::Scattering::Multiple,
+      return std::make_unique<FlipbookLightmaps>(context, cache, scene, reference::Scattering::Multiple,
                                                  multiple);
     case RenderMode::Guide:
       return std::make_unique<runtime::LightmapSource>(runtime::FrameStages::UpToGuide);

@@ -1,4 +1,4 @@
-#include "runtime/modes/guide_lit_lightmaps.h"
+#include "modes/guide_lit_lightmaps.h"
 
 namespace sixway::modes {
 

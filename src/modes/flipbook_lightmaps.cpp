@@ -1,4 +1,4 @@
-#include "runtime/modes/flipbook_lightmaps.h"
+#include "modes/flipbook_lightmaps.h"
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/packing.hpp>
@@ -27,8 +27,8 @@ render::ImagePlane facingBillboard(const render::Camera& camera, const render::C
 }  // namespace
 
 FlipbookLightmaps::FlipbookLightmaps(const gpu::Context& context, const gpu::PipelineCache& cache,
-                                     const scene::Scene& scene, render::Scattering scattering,
-                                     const render::MultipleScattering& multiple)
+                                     const scene::Scene& scene, reference::Scattering scattering,
+                                     const reference::MultipleScattering& multiple)
     : BakedLightmaps(context, cache, scene, scattering, multiple, runtime::FrameStages::AllButGuide) {}
 
 render::ImagePlane FlipbookLightmaps::update(runtime::RealtimeFrame& frame,

@@ -20,10 +20,10 @@
 
 #include "gpu/sequence.h"
 #include "io/image.h"
+#include "modes/path_traced_smoke.h"
+#include "modes/render_mode.h"
 #include "render/volume.h"
 #include "runtime/frame_renderer.h"
-#include "runtime/modes/path_traced_smoke.h"
-#include "runtime/modes/render_mode.h"
 #include "scene/scene.h"
 
 namespace sixway::gpu {

@@ -33,7 +33,7 @@ struct ModeOptions {
   int pathTraceOrders = 64;          // pathtrace: scattering orders (1: single scattering, like the baker)
   uint32_t pathTraceSeedOffset = 0;  // pathtrace: added to its seed (render.seed + frame): other noise
   // reference-ms, traditional-ms: the higher orders' tracing (its seed is the scene's render.seed + frame)
-  render::MultipleScattering multipleScattering;
+  reference::MultipleScattering multipleScattering;
   // Shadow atlas tiles; unset: one per shadow-casting light of the scene (the demo reserves room for the
   // lights a user may add).
   std::optional<uint32_t> shadowTiles;

@@ -1,6 +1,6 @@
 #pragma once
-// guide-lit: the guide's mean light as all six lightmaps and its alpha, no network (render::GuideLightmaps,
-// stage "guide lightmaps"): the evaluation's "guide only" baseline.
+// guide-lit: the guide's mean light as all six lightmaps and its alpha, no network
+// (reference::GuideLightmaps, stage "guide lightmaps"): the evaluation's "guide only" baseline.
 #include "reference/guide_lightmaps.h"
 #include "runtime/lightmap_source.h"
 
@@ -13,7 +13,7 @@ class GuideLitLightmaps : public runtime::LightmapSource {
   void record(gpu::Sequence& sequence, runtime::RealtimeFrame& frame) override;
 
  private:
-  render::GuideLightmaps lightmaps_;
+  reference::GuideLightmaps lightmaps_;
 };
 
 }  // namespace sixway::modes

@@ -1,4 +1,4 @@
-#include "runtime/modes/path_traced_smoke.h"
+#include "modes/path_traced_smoke.h"
 
 #include <variant>
 
@@ -18,7 +18,7 @@ void PathTracedSmoke::setObstacleMotion(size_t obstacle, std::optional<scene::Mo
 
 void PathTracedSmoke::composite(io::Image& frame, const runtime::FrameView& view, int index, double seconds,
                                 const render::Volume& volume, std::vector<gpu::StageTime>& stages) {
-  render::TraceSettings trace;
+  reference::TraceSettings trace;
   trace.width = frame.width;
   trace.height = frame.height;
   trace.seed = scene_.render.seed + uint32_t(index) + options_.pathTraceSeedOffset;

@@ -1,4 +1,4 @@
-#include "runtime/modes/render_mode.h"
+#include "modes/render_mode.h"
 
 #include "io/error.h"
 

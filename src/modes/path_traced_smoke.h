@@ -1,5 +1,5 @@
 #pragma once
-// pathtrace: the volumetric path tracer's smoke and obstacles (the truth; render::PathTracer, stage "path
+// pathtrace: the volumetric path tracer's smoke and obstacles (the truth; reference::PathTracer, stage "path
 // trace") composited on the host over the frame's rasterized background.
 #include <memory>
 #include <optional>
@@ -7,10 +7,10 @@
 
 #include "gpu/sequence.h"
 #include "io/image.h"
+#include "modes/render_mode.h"
 #include "reference/path_tracer.h"
 #include "render/obstacle_bvh.h"
 #include "runtime/frame_renderer.h"
-#include "runtime/modes/render_mode.h"
 #include "scene/scene.h"
 
 namespace sixway::modes {
@@ -31,7 +31,7 @@ class PathTracedSmoke {
  private:
   const scene::Scene& scene_;
   const ModeOptions& options_;
-  render::PathTracer tracer_;
+  reference::PathTracer tracer_;
   std::unique_ptr<render::ObstacleBvh> obstacles_;  // none without obstacles
 };
 

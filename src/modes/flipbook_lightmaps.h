@@ -5,14 +5,14 @@
 #include <optional>
 #include <utility>
 
-#include "runtime/modes/baked_lightmaps.h"
+#include "modes/baked_lightmaps.h"
 
 namespace sixway::modes {
 
 class FlipbookLightmaps : public BakedLightmaps {
  public:
   FlipbookLightmaps(const gpu::Context& context, const gpu::PipelineCache& cache, const scene::Scene& scene,
-                    render::Scattering scattering, const render::MultipleScattering& multiple);
+                    reference::Scattering scattering, const reference::MultipleScattering& multiple);
 
   render::ImagePlane update(runtime::RealtimeFrame& frame, const runtime::SourceFrame& current) override;
 

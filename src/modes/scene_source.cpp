@@ -1,4 +1,4 @@
-#include "sources/scene_volumes.h"
+#include "modes/scene_source.h"
 
 #include <nlohmann/json.hpp>
 
@@ -6,7 +6,7 @@
 #include "reference/vdb_sequence.h"
 #include "runtime/scene_volumes.h"
 
-namespace sixway::sources {
+namespace sixway::modes {
 
 std::unique_ptr<render::VolumeSequence> openSceneVolumes(const gpu::Context& context,
                                                          const gpu::PipelineCache& cache, scene::Scene& scene,
@@ -18,7 +18,7 @@ std::unique_ptr<render::VolumeSequence> openSceneVolumes(const gpu::Context& con
                                      std::to_string(available) + " (" +
                                      std::to_string(scene.vdb->files.size()) + " files × frames_per_file " +
                                      std::to_string(scene.vdb->framesPerFile) + ")");
-  auto volumes = std::make_unique<render::VdbSequence>(context, *scene.vdb);
+  auto volumes = std::make_unique<reference::VdbSequence>(context, *scene.vdb);
   const render::VolumeGrid& lattice = volumes->lattice();
   scene.grid = {lattice.size, lattice.cellSize, lattice.origin, 1};
   return volumes;
@@ -28,7 +28,7 @@ nlohmann::json describeSource(const render::VolumeSequence& volumes) {
   const render::Box box = volumes.bounds();
   nlohmann::json j = {
       {"bounds", {{"min", {box.min.x, box.min.y, box.min.z}}, {"max", {box.max.x, box.max.y, box.max.z}}}}};
-  if (const auto* vdb = dynamic_cast<const render::VdbSequence*>(&volumes)) {
+  if (const auto* vdb = dynamic_cast<const reference::VdbSequence*>(&volumes)) {
     nlohmann::json files = nlohmann::json::array();
     for (const auto& file : vdb->source().files) files.push_back(file.string());
     const render::VolumeGrid& lattice = vdb->lattice();
@@ -41,4 +41,4 @@ nlohmann::json describeSource(const render::VolumeSequence& volumes) {
   return j;
 }
 
-}  // namespace sixway::sources
+}  // namespace sixway::modes

@@ -1,7 +1,7 @@
 #pragma once
 // Where a scene's smoke comes from, for the tools that take any scene (render, eval, bake, dataset, the
-// demo): its simulation, or its OpenVDB files played back (the scene's `vdb` section). The runtime library
-// does not read VDB files, so this sits above both it and the reference renderers.
+// demo): its simulation, or its OpenVDB files played back (the scene's `vdb` section). The runtime does not
+// read VDB files, so this is here, beside the modes, which link both it and the reference renderers.
 #include <memory>
 #include <string_view>
 
@@ -15,7 +15,7 @@ class Context;
 class PipelineCache;
 }  // namespace sixway::gpu
 
-namespace sixway::sources {
+namespace sixway::modes {
 
 // `frames` frames of the scene's smoke (frame i at (i + 1) · time.frame_dt). For a VDB scene, `scene.grid`
 // becomes the playback lattice, so that what places cameras, billboards and depth ranges sees the smoke's
@@ -27,4 +27,4 @@ std::unique_ptr<render::VolumeSequence> openSceneVolumes(const gpu::Context& con
 // What a report or sidecar records of where the smoke came from: the lattice, and the files when played back.
 nlohmann::json describeSource(const render::VolumeSequence& volumes);
 
-}  // namespace sixway::sources
+}  // namespace sixway::modes
