@@ -3,11 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <stdexcept>
 #include <vector>
 
 #include "app/tone_map.h"
-#include "metrics/image_metrics.h"
 
 namespace sixway::test {
 namespace {
@@ -45,14 +43,6 @@ TEST(ToneMapTest, ExposureInStopsThenTheCurveOrTheClamp) {
   EXPECT_NEAR(filmic.at(1, 0, 1), narkowicz(0.05), 1e-6);
   const io::Image same = app::toDisplay(frame, {});
   EXPECT_FLOAT_EQ(same.at(1, 0, 2), 0.4f) << "the default transform is the clamp at exposure 0";
-}
-
-TEST(ToneMapTest, CoverageCountsThePixelsWithAlphaAtTheThreshold) {
-  io::Image frame(4, 1, {"R", "G", "B", "A"});
-  for (int x = 0; x < 4; ++x) frame.at(x, 0, 3) = std::vector<float>{0.0f, 0.05f, 0.1f, 1.0f}[x];
-  EXPECT_DOUBLE_EQ(metrics::alphaCoverage(frame), 0.5);
-  EXPECT_DOUBLE_EQ(metrics::alphaCoverage(frame, 0.01f), 0.75);
-  EXPECT_THROW(metrics::alphaCoverage(io::Image(1, 1, {"R", "G", "B"})), std::invalid_argument);
 }
 
 }  // namespace

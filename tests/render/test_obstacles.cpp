@@ -10,10 +10,10 @@
 #include <numbers>
 #include <random>
 
+#include "cpu_obstacles.h"
 #include "gpu/image.h"
 #include "gpu/sequence.h"
 #include "io/error.h"
-#include "realtime/cpu_obstacles.h"
 #include "render/obstacle_meshes.h"
 #include "render/obstacle_pass.h"
 #include "render/projection.h"

@@ -3,7 +3,7 @@
 // (single and multiple scattering), and path-traced under a directional light beside the six-way shading of
 // its lightmaps (docs/conventions.md, "Shading"). Writes PNGs (sRGB, premultiplied over black) into the
 // directory given and prints the measured differences.
-// Usage: render_figures OUT_DIR
+// Usage: reference_figures OUT_DIR
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -86,7 +86,7 @@ io::Image shade(const io::Image& lightmaps, const render::Camera& camera, glm::v
 
 int main(int argc, char** argv) {
   if (argc != 2) {
-    std::fprintf(stderr, "usage: render_figures OUT_DIR\n");
+    std::fprintf(stderr, "usage: reference_figures OUT_DIR\n");
     return 2;
   }
   const std::filesystem::path out = argv[1];

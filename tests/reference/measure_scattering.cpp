@@ -2,7 +2,7 @@
 // scattering + orders ≥ 2 path-traced at 1/d resolution) against every order path-traced at full resolution
 // with many samples, for several d and sample counts: masked PSNR per light channel, pooled PSNR, and GPU
 // time. The volume: tests/data/vdb/densityAndHeat.vdb resampled onto a cube of `cells`³ cubic cells.
-// Usage: render_scattering [lightmap size = 64] [cells = 64] [truth spp = 4096]
+// Usage: reference_scattering [lightmap size = 64] [cells = 64] [truth spp = 4096]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

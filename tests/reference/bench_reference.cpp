@@ -2,7 +2,7 @@
 // eight-channel bake of a 256² lightmap from a 128³ volume, and the path tracer's samples per second.
 // GPU timestamps of the gpu::Sequence stages, median of 5 runs after a warm-up run.
 // The volume: tests/data/vdb/densityAndHeat.vdb resampled onto a 128³ cube of cubic cells around it.
-// Usage: render_bench
+// Usage: reference_bench
 #include <algorithm>
 #include <cstdio>
 #include <glm/geometric.hpp>

@@ -1,4 +1,4 @@
-#include "realtime/cpu_obstacles.h"
+#include "cpu_obstacles.h"
 
 #include <algorithm>
 #include <cmath>

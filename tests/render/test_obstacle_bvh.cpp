@@ -9,10 +9,10 @@
 #include <glm/geometric.hpp>
 #include <random>
 
+#include "cpu_obstacles.h"
 #include "gpu/buffer.h"
 #include "gpu/pipeline.h"
 #include "gpu/sequence.h"
-#include "realtime/cpu_obstacles.h"
 #include "render/obstacle_bvh.h"
 #include "render/obstacle_meshes.h"
 #include "support/gpu_fixture.h"
