@@ -4,12 +4,13 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
-#include <memory>
 #include <optional>
 #include <regex>
 #include <string>
 #include <vector>
 
+#include "app/bake_job.h"
+#include "app/bake_options.h"
 #include "app/device_limits.h"
 #include "app/options.h"
 #include "app/process_memory.h"
@@ -20,11 +21,9 @@
 #include "gpu/pipeline.h"
 #include "io/error.h"
 #include "io/report.h"
-#include "modes/scene_source.h"
 #include "reference/bake_flipbook.h"
 #include "reference/flipbook.h"
 #include "reference/vdb_sequence.h"
-#include "render/scene_frame.h"
 #include "runtime/internal.h"
 #include "scene/scene.h"
 
@@ -32,67 +31,6 @@ namespace sixway::app {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct BakeOptions {
-  CommonOptions common;
-  fs::path scene, out, report;
-  std::vector<fs::path> vdb;
-  bool force = false, traceAllOrders = false;
-  std::string scattering = "multiple";
-  std::string packing = "unity";
-  std::string emissive = "mask";
-  int first = 0;
-  std::optional<int> frames, columns, voxels, samples, orders, downsample;
-  std::optional<uint32_t> seed;
-  std::string tile;
-  std::vector<float> cameraPosition, cameraTarget, cameraUp;
-  std::optional<float> fov, extinction, albedo, g, emission, step, lightSpacing;
-};
-
-// "128" or "128x256".
-std::pair<int, int> parseTile(const std::string& text) {
-  std::smatch m;
-  if (!std::regex_match(text, m, std::regex(R"((\d{1,5})(?:x(\d{1,5}))?)")))
-    throw io::InputError("--tile", "expected N or WxH (got \"" + text + "\")");
-  const int w = std::stoi(m[1]), h = m[2].matched ? std::stoi(m[2]) : w;
-  if (w < 1 || h < 1 || w > 8192 || h > 8192) throw io::InputError("--tile", "each side must be in 1..8192");
-  return {w, h};
-}
-
-glm::vec3 vec3Of(const std::vector<float>& v) {
-  return {v[0], v[1], v[2]};
-}
-
-// The fixed view: --camera-* flags, else the scene's camera (at frame 0), else the default framing camera.
-render::Camera chooseCamera(const BakeOptions& o, const scene::Scene* scene, const render::Box& bounds) {
-  const float fov = o.fov.value_or(scene ? scene->camera.fovDeg : 40.0f);
-  if (!o.cameraPosition.empty()) {
-    const glm::vec3 up = o.cameraUp.empty() ? glm::vec3(0, 1, 0) : vec3Of(o.cameraUp);
-    try {
-      return render::Camera::lookAt(vec3Of(o.cameraPosition), vec3Of(o.cameraTarget), up, fov);
-    } catch (const std::invalid_argument& e) {
-      throw io::InputError("--camera-position", std::string(e.what()).substr(std::string("camera: ").size()));
-    }
-  }
-  if (scene) {
-    scene::Camera camera = scene->camera;
-    camera.fovDeg = fov;
-    return render::sceneCamera(camera, 0);
-  }
-  return render::framingCamera(bounds, fov);
-}
-
-// The five-key emission ramp used for OpenVDB files with --emission (temperature 0 … 1, black to white-hot).
-scene::Emission defaultRamp(float intensity) {
-  scene::Emission e;
-  e.intensity = intensity;
-  e.ramp = {{0.0f, {0.0f, 0.0f, 0.0f}},
-            {0.25f, {0.5f, 0.05f, 0.0f}},
-            {0.5f, {1.0f, 0.35f, 0.05f}},
-            {0.75f, {1.0f, 0.7f, 0.3f}},
-            {1.0f, {1.0f, 0.95f, 0.8f}}};
-  return e;
-}
 
 // The folder of the baked frames inside the output directory.
 const StagedDirectory::OutputFolders kBakeFolders{"frames"};
@@ -159,119 +97,39 @@ void printEmissiveSettings(const std::optional<reference::EmissiveMask>& mask, b
   std::printf(" (position:(linear RGB); also in the sidecar's \"emissive\")\n");
 }
 
-void run(const BakeOptions& o) {
-  const StopOnSignal stopOnSignal;
+// Outputs are checked before any work: a directory or special file under a name the bake replaces stops it
+// here.
+void checkOptions(const BakeOptions& o) {
   if (o.scene.empty() && o.vdb.empty()) throw io::InputError("bake", "give --scene S or --vdb F...");
   if (o.cameraPosition.empty() != o.cameraTarget.empty())
     throw io::InputError("--camera-position", "--camera-position and --camera-target go together");
-  // A directory or special file under a name the bake replaces stops it here, before any work.
   StagedDirectory::requireWritable(o.out, o.force, isBakeOutput, kBakeFolders);
   if (!o.report.empty()) io::requireWritableFile(o.report, o.force);
+}
 
-  std::optional<scene::Scene> scene;
-  if (!o.scene.empty()) scene = scene::loadScene(o.scene);
-  if (scene && o.voxels) {
-    if (!scene->vdb)
-      throw io::InputError("--voxels", "only for VDB input (--vdb, or a scene with a vdb section)");
-    scene->vdb->voxels = *o.voxels;
-  }
-  scene::Smoke smoke = scene ? scene->smoke : scene::Smoke{};
-  if (o.extinction) smoke.extinction = *o.extinction;
-  if (o.albedo) smoke.albedo = *o.albedo;
-  if (o.g) smoke.phaseG = *o.g;
-  if (o.emission) {
-    if (scene && !smoke.emission.ramp.empty()) {
-      smoke.emission.intensity = *o.emission;
-    } else {
-      smoke.emission = defaultRamp(*o.emission);
-    }
-  }
-  const auto [tileWidth, tileHeight] = o.tile.empty() ? std::pair(scene ? scene->render.lightmapSize : 128,
-                                                                  scene ? scene->render.lightmapSize : 128)
-                                                      : parseTile(o.tile);
-  // The flipbook's size is known before anything is simulated or loaded (a scene bakes 16 frames unless
-  // told).
-  const int sourceFrames = scene ? scene::sceneFrameCount(*scene) : int(o.vdb.size());
-  const int frameCount = o.frames.value_or(scene && !scene->vdb ? 16 : sourceFrames - o.first);
-  reference::requireFlipbookFits(
-      reference::flipbookLayout(frameCount, tileWidth, tileHeight, o.columns.value_or(0)), "--frames/--tile");
-
-  const Device device(o.common.deviceOptions());
-  const gpu::Context& context = runtime::Access::context(device);
-  const gpu::PipelineCache& cache = runtime::Access::pipelineCache(device);
-  std::unique_ptr<render::VolumeSequence> sequence;
-  nlohmann::json provenance;
-  if (scene) {
-    sequence =
-        withinDeviceLimits(o.scene.string(), scene->vdb ? "vdb.voxels" : gridSetting(scene->grid), [&] {
-          return modes::openSceneVolumes(context, cache, *scene, o.first + frameCount, o.scene.string());
-        });
-    provenance["source"] = {{"scene", fs::absolute(o.scene).string()}};
-    if (scene->vdb) provenance["source"].update(modes::describeSource(*sequence));
-  } else {
-    auto vdb = withinDeviceLimits("--voxels " + std::to_string(o.voxels.value_or(128)), "--voxels", [&] {
-      return std::make_unique<reference::VdbSequence>(context, o.vdb, o.voxels.value_or(128),
-                                                      smoke.emission.intensity > 0.0f);
-    });
-    nlohmann::json files = nlohmann::json::array();
-    for (const fs::path& f : o.vdb) files.push_back(fs::absolute(f).string());
-    const render::VolumeGrid& lattice = vdb->lattice();
-    provenance["source"] = {{"vdb", files},
-                            {"lattice",
-                             {{"cells", {lattice.size.x, lattice.size.y, lattice.size.z}},
-                              {"origin", {lattice.origin.x, lattice.origin.y, lattice.origin.z}},
-                              {"cell_size", lattice.cellSize}}}};
-    sequence = std::move(vdb);
-  }
-
-  reference::FlipbookBake job;
-  job.firstFrame = o.first;
-  job.frameCount = frameCount;
-  job.columns = o.columns.value_or(0);
-  job.packing = reference::packingPreset(o.packing);
-  job.emissiveMask = o.emissive == "mask";
-  job.camera = chooseCamera(o, scene ? &*scene : nullptr, sequence->bounds());
-  job.smoke = smoke;
-  job.settings.width = tileWidth;
-  job.settings.height = tileHeight;
-  if (o.step) job.settings.stepCells = *o.step;
-  if (o.lightSpacing) job.settings.lightSpacingCells = *o.lightSpacing;
-  job.scattering = reference::parseScattering(o.scattering, "--scattering");
-  if (job.scattering == reference::Scattering::Single &&
-      (o.samples || o.orders || o.downsample || o.seed || o.traceAllOrders))
-    throw io::InputError("--scattering single",
-                         "--spp, --orders, --ms-downsample, --ms-all-orders and --seed "
-                         "are for multiple scattering");
-  if (o.traceAllOrders && o.downsample)
-    throw io::InputError("--ms-all-orders", "traces at full resolution: no --ms-downsample");
-  if (o.samples) job.multiple.samples = uint32_t(*o.samples);
-  if (o.orders) job.multiple.maxOrders = *o.orders;
-  if (o.downsample) job.multiple.downsample = *o.downsample;
-  job.multiple.traceAllOrders = o.traceAllOrders;
-  job.multiple.seed = o.seed.value_or(scene ? scene->render.seed : 1u);
-  job.provenance = provenance;
-
-  // The bake is written into a staging directory and moved in when it has succeeded: an earlier bake stays
-  // whole until then, and a directory made for this bake goes again if it fails or is stopped.
-  StagedDirectory output(o.out, "bake", o.force, isBakeOutput, kBakeFolders);
-  job.out = output.staging();
+void printHeading(const reference::FlipbookBake& job, const std::string& packing) {
   std::printf("sixway bake: %d frames, tiles of %dx%d, %s scattering, packing %s: %s\n", job.frameCount,
-              tileWidth, tileHeight, reference::scatteringName(job.scattering), o.packing.c_str(),
-              describePacking(job.packing).c_str());
+              job.settings.width, job.settings.height, reference::scatteringName(job.scattering),
+              packing.c_str(), describePacking(job.packing).c_str());
   std::fflush(stdout);
+}
+
+// The bake into `output`'s staging directory, a line per frame with the memory in use after it recorded in
+// `memory`.
+reference::FlipbookBakeResult bake(const gpu::Context& context, const gpu::PipelineCache& cache,
+                                   const BakeOptions& o, render::VolumeSequence& sequence,
+                                   const reference::FlipbookBake& job, StagedDirectory& output,
+                                   std::vector<MemoryRow>& memory) {
   // The camera's errors name where it came from: the --camera-* options, else the scene (or the VDB files'
   // framing, which sees the whole volume).
   const fs::path cameraSource = !o.cameraPosition.empty() ? fs::path("--camera-position")
                                 : !o.scene.empty()        ? o.scene
                                                           : fs::path("--vdb");
-  std::vector<MemoryRow> memory;
-  memory.reserve(size_t(frameCount));
   reference::FlipbookBakeResult result;
-  throwIfStopped();  // a signal while the sequence was being loaded or simulated
   output.underFinalNames([&] {
     result = namingScene(o.scene, cameraSource, [&] {
       return withinDeviceLimits("--tile", "--tile", [&] {
-        return reference::bakeFlipbook(context, cache, *sequence, job, [&](const std::string& line) {
+        return reference::bakeFlipbook(context, cache, sequence, job, [&](const std::string& line) {
           std::printf("  %s\n", line.c_str());
           std::fflush(stdout);
           const gpu::MemoryUse device = context.memoryUse();
@@ -281,24 +139,60 @@ void run(const BakeOptions& o) {
       });
     });
   });
-  output.commit();
-  if (const auto* vdb = dynamic_cast<const reference::VdbSequence*>(sequence.get()))
+  return result;
+}
+
+void printResult(const StagedDirectory& output, const render::VolumeSequence& sequence,
+                 const reference::FlipbookBakeResult& result, const reference::FlipbookBake& job) {
+  if (const auto* vdb = dynamic_cast<const reference::VdbSequence*>(&sequence))
     for (const std::string& note : vdb->notes()) std::fprintf(stderr, "sixway: note: %s\n", note.c_str());
   std::printf("sixway bake: wrote %s\n", (output.directory() / result.sidecar.filename()).string().c_str());
   // What a Unity VFX Graph output needs besides the textures (their .meta files hold the import settings).
   std::printf("sixway bake: Unity: Flip Book Size %d x %d, %d frames; textures linear, RGBA half (EXR)\n",
               result.layout.columns, result.layout.rows, result.layout.frames);
   printEmissiveSettings(result.emissiveMask, job.emissiveMask);
-  if (!o.report.empty()) {
-    const uint64_t heldPerFrame =
-        uint64_t(tileWidth) * uint64_t(tileHeight) * render::sixWayChannelNames().size() * sizeof(float);
-    io::writeReport(o.report, {{"out", fs::absolute(o.out).string()},
-                               {"device", context.properties().deviceName},
-                               {"tile", {tileWidth, tileHeight}},
-                               {"scattering", reference::scatteringName(job.scattering)},
-                               {"held_bytes_per_frame", heldPerFrame},
-                               {"frames", frameRows(memory, result, job.firstFrame)}});
-  }
+}
+
+void writeBakeReport(const BakeOptions& o, const gpu::Context& context, const reference::FlipbookBake& job,
+                     const reference::FlipbookBakeResult& result, const std::vector<MemoryRow>& memory) {
+  const uint64_t heldPerFrame = uint64_t(job.settings.width) * uint64_t(job.settings.height) *
+                                render::sixWayChannelNames().size() * sizeof(float);
+  io::writeReport(o.report, {{"out", fs::absolute(o.out).string()},
+                             {"device", context.properties().deviceName},
+                             {"tile", {job.settings.width, job.settings.height}},
+                             {"scattering", reference::scatteringName(job.scattering)},
+                             {"held_bytes_per_frame", heldPerFrame},
+                             {"frames", frameRows(memory, result, job.firstFrame)}});
+}
+
+void run(const BakeOptions& o) {
+  const StopOnSignal stopOnSignal;
+  checkOptions(o);
+  std::optional<scene::Scene> scene = bakedScene(o);
+  scene::Scene* const baked = scene ? &*scene : nullptr;
+  const scene::Smoke smoke = bakedSmoke(o, baked);
+  const BakeTile tile = bakedTile(o, baked);
+  // The flipbook's size is known before anything is simulated or loaded.
+  const int frameCount = bakedFrameCount(o, baked, tile);
+
+  const Device device(o.common.deviceOptions());
+  const gpu::Context& context = runtime::Access::context(device);
+  const gpu::PipelineCache& cache = runtime::Access::pipelineCache(device);
+  const BakeSource source = openBakeSource(context, cache, o, baked, smoke, frameCount);
+  reference::FlipbookBake job = bakeJob(o, baked, source, smoke, tile, frameCount);
+
+  // The bake is written into a staging directory and moved in when it has succeeded: an earlier bake stays
+  // whole until then, and a directory made for this bake goes again if it fails or is stopped.
+  StagedDirectory output(o.out, "bake", o.force, isBakeOutput, kBakeFolders);
+  job.out = output.staging();
+  printHeading(job, o.packing);
+  std::vector<MemoryRow> memory;
+  memory.reserve(size_t(frameCount));
+  throwIfStopped();  // a signal while the sequence was being loaded or simulated
+  const reference::FlipbookBakeResult result = bake(context, cache, o, *source.sequence, job, output, memory);
+  output.commit();
+  printResult(output, *source.sequence, result, job);
+  if (!o.report.empty()) writeBakeReport(o, context, job, result, memory);
   requireNoValidationMessages(device);
 }
 

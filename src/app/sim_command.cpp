@@ -65,6 +65,121 @@ void checkOutputs(const SimOptions& o, const StagedDirectory::OutputNames& vdbFr
   if (!o.report.empty()) io::requireWritableFile(o.report, o.force);
 }
 
+// What the report collects over the frames.
+struct SimTotals {
+  nlohmann::json frames = nlohmann::json::array();
+  std::vector<nlohmann::json> forcesPerObstacle;  // per obstacle, per step
+  double lbmMs = 0, smokeMs = 0, totalMs = 0;
+  uint64_t updates = 0;
+  int frame = 0;
+};
+
+// The frame just simulated (`steps` steps) into the totals; returns its MLUPs.
+double recordFrame(SimTotals& totals, const sim::Simulation& simulation, uint32_t steps) {
+  const sim::AdvanceReport& r = simulation.report();
+  for (size_t s = 0; s < r.forces.size(); ++s)
+    for (size_t i = 0; i < r.forces[s].size(); ++i)
+      totals.forcesPerObstacle[i].push_back(vec(r.forces[s][i]));
+  const double mlups = double(simulation.lbm().cells()) * steps / (r.times.lbm * 1e3);
+  totals.lbmMs += r.times.lbm;
+  totals.smokeMs += r.times.smoke;
+  totals.totalMs += r.times.total();
+  totals.updates += simulation.lbm().cells() * steps;
+  totals.frames.push_back({{"frame", totals.frame},
+                           {"step", simulation.step()},
+                           {"time_s", simulation.seconds()},
+                           {"smoke_mass", r.smokeMass},
+                           {"max_speed_m_s", r.maxSpeed},
+                           {"max_lattice_speed", r.maxLatticeSpeed},
+                           {"obstacles_ms", r.times.obstacles},
+                           {"forces_ms", r.times.forces},
+                           {"lbm_ms", r.times.lbm},
+                           {"smoke_ms", r.times.smoke},
+                           {"watchdog_ms", r.times.watchdog},
+                           {"total_ms", r.times.total()},
+                           {"mlups", mlups}});
+  return mlups;
+}
+
+// On a terminal one line updated in place; into a file or pipe one line per frame, without '\r'.
+void printFrame(const sim::Simulation& simulation, uint32_t steps, int frame, double mlups, bool terminal) {
+  const sim::AdvanceReport& r = simulation.report();
+  std::printf(
+      "%sstep %6llu/%u  frame %4d  max speed %6.3f m/s (lattice %.3f)  smoke mass %.4g  %6.1f MLUPs%s",
+      terminal ? "\r" : "", (unsigned long long)simulation.step(), steps, frame, r.maxSpeed,
+      r.maxLatticeSpeed, r.smokeMass, mlups, terminal ? "" : "\n");
+  std::fflush(stdout);
+}
+
+void writeVdbFrame(StagedDirectory& out, sim::Simulation& simulation, const std::string& sceneName,
+                   int frame) {
+  auto [density, temperature] = simulation.smokeGrids();
+  out.underFinalNames([&] {
+    io::writeVdb(out.stagedPath(vdbFrameName(sceneName, frame)),
+                 {{"density", &density}, {"temperature", &temperature}});
+  });
+}
+
+// Runs the steps frame by frame; returns "ok", or what stopped the watchdog.
+std::string simulate(const SimOptions& o, const scene::Scene& scene, sim::Simulation& simulation,
+                     std::optional<StagedDirectory>& vdbOut, SimTotals& totals) {
+  const bool terminal = isatty(fileno(stdout));
+  std::string watchdog = "ok";
+  try {
+    while (simulation.step() < o.steps) {
+      throwIfStopped();
+      const uint32_t n = std::min<uint64_t>(simulation.units().stepsPerFrame, o.steps - simulation.step());
+      simulation.advance(n);
+      ++totals.frame;
+      const double mlups = recordFrame(totals, simulation, n);
+      printFrame(simulation, o.steps, totals.frame, mlups, terminal);
+      if (vdbOut) writeVdbFrame(*vdbOut, simulation, scene.name, totals.frame);
+    }
+  } catch (const sim::WatchdogError& e) {
+    watchdog = e.what();
+  }
+  if (terminal) std::printf("\n");
+  return watchdog;
+}
+
+void writeSimReport(const SimOptions& o, const scene::Scene& scene, const gpu::Context& context,
+                    const sim::Simulation& simulation, const SimTotals& totals, const std::string& watchdog,
+                    double wallSeconds) {
+  const sim::LatticeUnits& units = simulation.units();
+  const glm::ivec3 size = scene.grid.size;
+  // Memory-bound: the fraction of the device's copy bandwidth that the lattice update moves.
+  const double bandwidth = gpu::measureCopyBandwidth(context);
+  const double mlups = totals.updates / (totals.lbmMs * 1e3);
+  const double lbmBandwidth = mlups * 1e6 * sim::bytesPerCellUpdate(scene.fluid.populationStorage) / 1e9;
+  nlohmann::json obstacles = nlohmann::json::array();
+  for (const nlohmann::json& f : totals.forcesPerObstacle)
+    obstacles.push_back({{"force_lattice_per_step", f}});
+  io::writeReport(
+      o.report, {{"scene", scene.name},
+                 {"device", context.properties().deviceName},
+                 {"lattice", {size.x, size.y, size.z}},
+                 {"smoke_upres", scene.grid.smokeUpres},
+                 {"steps", simulation.step()},
+                 {"steps_per_frame", units.stepsPerFrame},
+                 {"step_seconds", units.stepSeconds},
+                 {"tau", units.tau},
+                 {"watchdog", watchdog},
+                 {"mlups", mlups},
+                 {"population_storage",
+                  scene.fluid.populationStorage == scene::PopulationStorage::Fp16 ? "fp16" : "fp32"},
+                 {"bytes_per_cell_update", sim::bytesPerCellUpdate(scene.fluid.populationStorage)},
+                 {"lbm_bandwidth_gb_s", lbmBandwidth},
+                 {"copy_bandwidth_gb_s", bandwidth},
+                 {"bandwidth_fraction", lbmBandwidth / bandwidth},
+                 {"lbm_ms", totals.lbmMs},
+                 {"smoke_ms", totals.smokeMs},
+                 {"gpu_ms", totals.totalMs},
+                 {"wall_seconds", wallSeconds},
+                 {"force_units", "lattice: rho0 = 1, cells/step^2; newtons = value * rho_air * dx^4 / dt^2"},
+                 {"obstacles", obstacles},
+                 {"frames", totals.frames}});
+}
+
 void run(const SimOptions& o) {
   const StopOnSignal stopOnSignal;
   const scene::Scene scene = scene::loadScene(o.scene);
@@ -88,96 +203,13 @@ void run(const SimOptions& o) {
               size.x, size.y, size.z, units.stepsPerFrame, scene.time.frameDt, units.tau,
               context.properties().deviceName);
 
-  nlohmann::json frames = nlohmann::json::array();
-  std::vector<nlohmann::json> forcesPerObstacle(simulation.obstacles().obstacleCount(),
-                                                nlohmann::json::array());
-  std::string watchdog = "ok";
-  double lbmMs = 0, smokeMs = 0, totalMs = 0;
-  uint64_t updates = 0;
-  int frame = 0;
+  SimTotals totals;
+  totals.forcesPerObstacle.assign(simulation.obstacles().obstacleCount(), nlohmann::json::array());
   const auto started = std::chrono::steady_clock::now();
-  const bool terminal = isatty(fileno(stdout));
-  try {
-    while (simulation.step() < o.steps) {
-      throwIfStopped();
-      const uint32_t n = std::min<uint64_t>(units.stepsPerFrame, o.steps - simulation.step());
-      simulation.advance(n);
-      ++frame;
-      const sim::AdvanceReport& r = simulation.report();
-      for (size_t s = 0; s < r.forces.size(); ++s)
-        for (size_t i = 0; i < r.forces[s].size(); ++i) forcesPerObstacle[i].push_back(vec(r.forces[s][i]));
-      const double mlups = double(simulation.lbm().cells()) * n / (r.times.lbm * 1e3);
-      lbmMs += r.times.lbm;
-      smokeMs += r.times.smoke;
-      totalMs += r.times.total();
-      updates += simulation.lbm().cells() * n;
-      frames.push_back({{"frame", frame},
-                        {"step", simulation.step()},
-                        {"time_s", simulation.seconds()},
-                        {"smoke_mass", r.smokeMass},
-                        {"max_speed_m_s", r.maxSpeed},
-                        {"max_lattice_speed", r.maxLatticeSpeed},
-                        {"obstacles_ms", r.times.obstacles},
-                        {"forces_ms", r.times.forces},
-                        {"lbm_ms", r.times.lbm},
-                        {"smoke_ms", r.times.smoke},
-                        {"watchdog_ms", r.times.watchdog},
-                        {"total_ms", r.times.total()},
-                        {"mlups", mlups}});
-      // On a terminal one line updated in place; into a file or pipe one line per frame, without '\r'.
-      std::printf(
-          "%sstep %6llu/%u  frame %4d  max speed %6.3f m/s (lattice %.3f)  smoke mass %.4g  %6.1f MLUPs%s",
-          terminal ? "\r" : "", (unsigned long long)simulation.step(), o.steps, frame, r.maxSpeed,
-          r.maxLatticeSpeed, r.smokeMass, mlups, terminal ? "" : "\n");
-      std::fflush(stdout);
-      if (vdbOut) {
-        auto [density, temperature] = simulation.smokeGrids();
-        vdbOut->underFinalNames([&] {
-          io::writeVdb(vdbOut->stagedPath(vdbFrameName(scene.name, frame)),
-                       {{"density", &density}, {"temperature", &temperature}});
-        });
-      }
-    }
-  } catch (const sim::WatchdogError& e) {
-    watchdog = e.what();
-  }
-  if (terminal) std::printf("\n");
+  const std::string watchdog = simulate(o, scene, simulation, vdbOut, totals);
   const double wallSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-
-  if (!o.report.empty()) {
-    // Memory-bound: the fraction of the device's copy bandwidth that the lattice update moves.
-    const double bandwidth = gpu::measureCopyBandwidth(context);
-    const double mlups = updates / (lbmMs * 1e3);
-    const double lbmBandwidth = mlups * 1e6 * sim::bytesPerCellUpdate(scene.fluid.populationStorage) / 1e9;
-    nlohmann::json obstacles = nlohmann::json::array();
-    for (auto& f : forcesPerObstacle) obstacles.push_back({{"force_lattice_per_step", f}});
-    io::writeReport(
-        o.report,
-        {{"scene", scene.name},
-         {"device", context.properties().deviceName},
-         {"lattice", {size.x, size.y, size.z}},
-         {"smoke_upres", scene.grid.smokeUpres},
-         {"steps", simulation.step()},
-         {"steps_per_frame", units.stepsPerFrame},
-         {"step_seconds", units.stepSeconds},
-         {"tau", units.tau},
-         {"watchdog", watchdog},
-         {"mlups", mlups},
-         {"population_storage",
-          scene.fluid.populationStorage == scene::PopulationStorage::Fp16 ? "fp16" : "fp32"},
-         {"bytes_per_cell_update", sim::bytesPerCellUpdate(scene.fluid.populationStorage)},
-         {"lbm_bandwidth_gb_s", lbmBandwidth},
-         {"copy_bandwidth_gb_s", bandwidth},
-         {"bandwidth_fraction", lbmBandwidth / bandwidth},
-         {"lbm_ms", lbmMs},
-         {"smoke_ms", smokeMs},
-         {"gpu_ms", totalMs},
-         {"wall_seconds", wallSeconds},
-         {"force_units", "lattice: rho0 = 1, cells/step^2; newtons = value * rho_air * dx^4 / dt^2"},
-         {"obstacles", obstacles},
-         {"frames", frames}});
-  }
+  if (!o.report.empty()) writeSimReport(o, scene, context, simulation, totals, watchdog, wallSeconds);
   // A stopped simulation's frames are not moved in: an earlier run's stay whole, and a directory made for
   // this run goes again.
   if (watchdog != "ok") throw sim::WatchdogError(o.scene.string() + ": " + watchdog);
