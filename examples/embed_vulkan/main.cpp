@@ -1,6 +1,8 @@
 // A minimal "engine": it owns its Vulkan instance and device, draws its own scene (a floor and a box) into a
 // colour and a depth image, and composites sixway's smoke over it through the public API, two frames in
-// flight, headless. Writes the last frame as a PNG; fails on any validation message.
+// flight, headless. Its camera is an engine's: reversed-Z with an infinite far plane and a TAA jitter each
+// frame, handed to sixway as its view and projection matrices. Writes the last frame as a PNG; fails on any
+// validation message.
 //   embed_vulkan --scene S.json --weights W.safetensors [--frames N] --out frame.png
 #include <sixway/device.h>
 #include <sixway/errors.h>
@@ -253,7 +255,7 @@ struct ScenePass {
     multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
     VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
     depth.depthTestEnable = depth.depthWriteEnable = VK_TRUE;
-    depth.depthCompareOp = VK_COMPARE_OP_LESS;
+    depth.depthCompareOp = VK_COMPARE_OP_GREATER;  // reversed-Z: nearer is larger
     VkPipelineColorBlendAttachmentState blend{};
     blend.colorWriteMask = 0xf;
     VkPipelineColorBlendStateCreateInfo blendState{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
@@ -296,7 +298,7 @@ struct ScenePass {
     colorAttachment.clearValue.color = {{0.05f, 0.06f, 0.08f, 1.0f}};
     VkRenderingAttachmentInfo depthAttachment = colorAttachment;
     depthAttachment.imageView = depth.view;
-    depthAttachment.clearValue.depthStencil = {1.0f, 0};
+    depthAttachment.clearValue.depthStencil = {0.0f, 0};  // reversed-Z: 0 is infinitely far
     VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
     info.renderArea = {{0, 0}, {width, height}};
     info.layerCount = 1;
@@ -346,6 +348,27 @@ float toSrgb(float linear) {
   return linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
 }
 
+// The engine's projection: 45° vertically, reversed-Z with an infinite far plane (depth = near / w, as
+// Unreal's), NDC y = −1 at the top row (a positive-height viewport), and this frame's TAA jitter: a Halton
+// (2, 3) point in the pixel, as a clip-space offset in the z column.
+glm::mat4 jitteredProjection(uint64_t frame, uint32_t width, uint32_t height) {
+  constexpr float kNear = 0.1f;
+  const float f = 1.0f / std::tan(0.5f * glm::radians(45.0f));
+  glm::mat4 p(0.0f);
+  p[0][0] = f * float(height) / float(width);
+  p[1][1] = -f;
+  p[2][3] = -1.0f;
+  p[3][2] = kNear;
+  auto halton = [](uint64_t i, uint64_t base) {
+    float value = 0.0f, scale = 1.0f;
+    for (uint64_t n = i + 1; n > 0; n /= base) value += (scale /= float(base)) * float(n % base);
+    return value;
+  };
+  p[2][0] += (halton(frame, 2) - 0.5f) * 2.0f / float(width);
+  p[2][1] += (halton(frame, 3) - 0.5f) * 2.0f / float(height);
+  return p;
+}
+
 int run(const Options& options) {
   constexpr uint32_t kWidth = 160, kHeight = 120, kFramesInFlight = 2;
   constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT, kDepthFormat = VK_FORMAT_D32_SFLOAT;
@@ -366,19 +389,9 @@ int run(const Options& options) {
   sixway::SmokeRenderer smoke(
       smokeDevice, simulation, {.weights = options.weights},
       {color.image, color.view, kColorFormat, depth.image, depth.view, kDepthFormat, kWidth, kHeight});
-  sixway::Camera camera;
-  camera.position = {0.9f, 0.8f, 2.2f};
-  camera.target = {0.0f, 0.55f, 0.0f};
-  camera.fovYDegrees = 45.0f;
-  camera.near = 0.1f;
-  camera.far = 20.0f;
-  smoke.setCamera(camera);
-  // The engine's projection: Vulkan's [0, 1] depth (what sixway decodes), +y up on screen.
-  glm::mat4 projection = glm::perspectiveRH_ZO(glm::radians(camera.fovYDegrees), float(kWidth) / kHeight,
-                                               camera.near, camera.far);
-  projection[1][1] *= -1.0f;
-  const ScenePass::Push push{projection * glm::lookAtRH(camera.position, camera.target, camera.up),
-                             glm::vec4(0.35f, 0.15f, 0.45f, 0.15f)};
+  const glm::mat4 view =
+      glm::lookAtRH(glm::vec3(0.9f, 0.8f, 2.2f), glm::vec3(0.0f, 0.55f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+  const glm::vec4 box(0.35f, 0.15f, 0.45f, 0.15f);  // centre, half size
 
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
@@ -409,7 +422,9 @@ int run(const Options& options) {
       toGeneral(cmd, depth.image, VK_IMAGE_ASPECT_DEPTH_BIT);
     }
     fullBarrier(cmd);  // the previous frame's smoke pass read and wrote these images
-    scenePass.record(cmd, color, depth, kWidth, kHeight, push);
+    const glm::mat4 projection = jitteredProjection(frame, kWidth, kHeight);
+    smoke.setViewProjection(view, projection);
+    scenePass.record(cmd, color, depth, kWidth, kHeight, {projection * view, box});
     simulation.record(cmd, frame);
     smoke.record(cmd, frame);  // over the engine's colour, hidden by its depth
     VK(vkEndCommandBuffer(cmd));

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <memory>
 #include <optional>
@@ -25,8 +26,9 @@ struct Access;
 class Device;
 class SmokeSimulation;
 
-// A perspective camera. An engine target's depth buffer must hold the depth of the standard Vulkan
-// projection with these near and far planes (0 at near, 1 at far, e.g. glm::perspectiveRH_ZO).
+// A look-at perspective camera over the whole target. An engine target's depth buffer must then hold the
+// depth of the standard Vulkan projection with these near and far planes (0 at near, 1 at far, e.g.
+// glm::perspectiveRH_ZO); engines with other conventions pass their matrices (setViewProjection).
 struct Camera {
   glm::vec3 position{0.0f, 0.0f, 5.0f};
   glm::vec3 target{0.0f};
@@ -36,8 +38,9 @@ struct Camera {
 };
 
 // An engine's render target, in VK_IMAGE_LAYOUT_GENERAL while sixway records (and left so). The colour
-// image needs COLOR_ATTACHMENT usage; the depth image (D32_SFLOAT or D16_UNORM) SAMPLED usage: the smoke is
-// drawn over the colour and hidden where the depth buffer is nearer than the smoke.
+// image needs COLOR_ATTACHMENT usage; the depth image SAMPLED usage, a depth format (D16_UNORM,
+// X8_D24_UNORM_PACK32, D24_UNORM_S8_UINT, D32_SFLOAT, D32_SFLOAT_S8_UINT) and a view of its depth aspect:
+// the smoke is drawn over the colour and hidden where the depth buffer is nearer than the smoke.
 struct RenderTarget {
   VkImage colorImage = VK_NULL_HANDLE;
   VkImageView colorView = VK_NULL_HANDLE;
@@ -70,6 +73,13 @@ class SmokeRenderer {
 
   // The camera from now on; until set, the scene's camera (on its path).
   void setCamera(const Camera& camera);
+  // The camera from now on as the engine's shaders have it (docs/embedding.md, "The camera"). `view`:
+  // world → view space, a rotation and a translation (right- or left-handed). `projection`: a perspective
+  // into Vulkan's clip space (w = ±z_view) for a viewport of positive height (NDC y = −1 at the target's top
+  // row), in any depth convention (standard, reversed-Z, infinite far plane), with this frame's TAA jitter
+  // in its z column. An engine target's depth buffer must hold this projection's depth. Throws
+  // std::invalid_argument for a view that is not rigid or a projection that is not such a perspective.
+  void setViewProjection(const glm::mat4& view, const glm::mat4& projection);
   // The lights from now on, at most maxLights() (the shading blends the lightmaps once per light); until
   // set, the scene's lights (on their paths). std::invalid_argument for more, for a negative or non-finite
   // colour or intensity, or a directional light without a direction.

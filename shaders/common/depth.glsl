@@ -104,10 +104,15 @@ float opacityInFront(OpacityCurve c, float d, float w) {
   return (opacityIntegral(c, d + w) - opacityIntegral(c, d - w)) / (2.0 * w);
 }
 
-// A depth-buffer value of render::projectionMatrix(plane, {near, far}) back to view depth:
-// d = far (z − near) / (z (far − near))  ⇔  z = near far / (far − d (far − near)).
-float viewDepthFromDepthBuffer(float d, vec2 range) {
-  return range.x * range.y / (range.y - d * (range.y - range.x));
+// A depth-buffer value back to view depth. Every perspective projection into Vulkan's clip space stores
+// d = offset + scale / v (render::DepthMapping: standard, reversed-Z, infinite far), so v = scale / (d − offset);
+// a value at or beyond the far end (a cleared infinite reversed-Z buffer, d = offset) is infinitely far. The
+// offset comes as a float and its rounding error (`offsetRest`): far away in standard depth d ≈ offset ≈ 1, and
+// d − offset, exact in float there (Sterbenz), would otherwise carry the offset's rounding as a relative error
+// of 1e-6 in v.
+float viewDepthFromDepthBuffer(float d, float offset, float offsetRest, float scale) {
+  precise float denominator = (d - offset) - offsetRest;
+  return denominator * scale > 0.0 ? scale / denominator : 1e30;
 }
 
 // The world point at view depth `viewDepth` behind image-plane point `q` (the plane at distance 1, x right,

@@ -38,7 +38,8 @@ void main() {
   float viewDepth = interpolatedShadedDepth(guide, uv, params.depths.xy, params.misc.x);
   float obstacle =
       push.frame.z != 0
-          ? viewDepthFromDepthBuffer(texelFetch(obstacleDepth, ivec2(gl_FragCoord.xy), 0).r, params.depths.zw)
+          ? viewDepthFromDepthBuffer(texelFetch(obstacleDepth, ivec2(gl_FragCoord.xy), 0).r, params.depths.z,
+                                     params.misc.w, params.depths.w)
           : 3.4e38;
   // `visible`: the share of the smoke's opacity in front of the obstacle, bilinear over the four nearest
   // guide texels' own shares; `shadowDepths`: the depths where the opacity reaches 0.1, 0.35, 0.6,

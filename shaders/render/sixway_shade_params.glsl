@@ -10,13 +10,15 @@
 layout(std430, binding = 0) readonly buffer ShadeParams {
   CameraRays camera;      // plane: the whole frame, i.e. the colour target
   vec4 frameToBillboard;  // the lightmaps' uv of frame uv f (both row 0 at the top): f · xy + zw
-  vec4 depths;          // xy: view-depth range of the shell depth (the volume box); zw: of the obstacle depth
+  vec4 depths;          // xy: view-depth range of the shell depth (the volume box); zw: the obstacle
+                        // depth buffer's render::DepthMapping (offset rounded to float, scale)
   vec4 clipCorners[4];  // the billboard quad in clip space: bottom-left, bottom-right, top-right, top-left
   vec4 color;           // rgb: tint or absorption colour; w: absorption range r (Unity's units, 1/π .. 1)
   vec4 lightmapRemap;   // (inMin, inMax, outMin, outMax) for the six light channels
   vec4 alphaRemap;      // (inMin, inMax, outMin, outMax) for alpha
   vec4 misc;            // x: view depth of the billboard (the shaded point where there is no shell);
-                        // y: emissive multiplier; z: emissive straight scale (0: Unity's gradient)
+                        // y: emissive multiplier; z: emissive straight scale (0: Unity's gradient);
+                        // w: the rest of the depth map's offset (offset − depths.z), depth.glsl
   ivec4 counts;         // x: lights; y: emissive gradient keys; z: flags (1 absorption, 2 lightmap remap,
                         // 4 alpha remap)
   vec4 ambient[4];      // rgb: L0, then L1 along the six-way x, y, z; radiance L(w) = L0 + L1·w; zero: none

@@ -20,7 +20,12 @@ uint32_t bytesPerTexel(VkFormat format) {
     case VK_FORMAT_D32_SFLOAT:
     case VK_FORMAT_R16G16_SFLOAT:
       return 4;
+    case VK_FORMAT_X8_D24_UNORM_PACK32:
+    case VK_FORMAT_D24_UNORM_S8_UINT:   // the depth aspect, as buffer copies hold it
+    case VK_FORMAT_D32_SFLOAT_S8_UINT:  // the same
+      return 4;
     case VK_FORMAT_R16_SFLOAT:
+    case VK_FORMAT_D16_UNORM:
       return 2;
     case VK_FORMAT_R8_UNORM:
       return 1;
@@ -35,7 +40,20 @@ uint32_t bytesPerTexel(VkFormat format) {
 }
 
 bool isDepthFormat(VkFormat format) {
-  return format == VK_FORMAT_D32_SFLOAT;
+  switch (format) {
+    case VK_FORMAT_D16_UNORM:
+    case VK_FORMAT_X8_D24_UNORM_PACK32:
+    case VK_FORMAT_D32_SFLOAT:
+    case VK_FORMAT_D24_UNORM_S8_UINT:
+    case VK_FORMAT_D32_SFLOAT_S8_UINT:
+      return true;
+    default:
+      return false;
+  }
+}
+
+bool hasStencil(VkFormat format) {
+  return format == VK_FORMAT_D24_UNORM_S8_UINT || format == VK_FORMAT_D32_SFLOAT_S8_UINT;
 }
 
 Image::Image(const Context& context, const ImageDesc& desc) : context_(&context), desc_(desc) {
@@ -99,6 +117,7 @@ Image::Image(const Context& context, const ImageDesc& desc) : context_(&context)
     barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     barrier.image = image_;
     barrier.subresourceRange = viewInfo.subresourceRange;
+    if (hasStencil(desc.format)) barrier.subresourceRange.aspectMask |= VK_IMAGE_ASPECT_STENCIL_BIT;
     VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
     dependency.imageMemoryBarrierCount = 1;
     dependency.pImageMemoryBarriers = &barrier;

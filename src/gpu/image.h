@@ -58,7 +58,10 @@ class Image {
 };
 
 uint32_t bytesPerTexel(VkFormat format);
+// The depth formats sixway samples (D16, D24, D32, with or without stencil); their views and copies take
+// the depth aspect.
 bool isDepthFormat(VkFormat format);
+bool hasStencil(VkFormat format);
 
 // A sampler for normalised coordinates, clamped to the edge.
 class Sampler {

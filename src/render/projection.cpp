@@ -20,6 +20,11 @@ glm::mat4 projectionMatrix(const ImagePlane& plane, DepthRange depth) {
                            plane.max.y * depth.near, depth.near, depth.far);
 }
 
+DepthMapping depthMapping(DepthRange range) {
+  const double near = range.near, far = range.far;
+  return {far / (far - near), -near * far / (far - near)};
+}
+
 DepthRange boxDepthRange(const Camera& camera, const Box& box, float margin, float minNear) {
   float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
   for (int corner = 0; corner < 8; ++corner) {

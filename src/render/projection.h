@@ -16,6 +16,17 @@ struct DepthRange {
   float near = 0.01f, far = 100.0f;
 };
 
+// What a depth buffer holds at view depth v: d = offset + scale / v. Every perspective projection into
+// Vulkan's clip space has this form: projectionMatrix's (0 at near, 1 at far), reversed-Z (1 at near, 0 at
+// far) and an infinite far plane (offset 0 reversed, 1 standard). shaders/common/depth.glsl inverts it.
+struct DepthMapping {
+  double offset = 0.0,
+         scale = 0.0;  // double: the shading takes the offset's float rounding apart (depth.glsl)
+};
+
+// projectionMatrix's depth: offset far / (far − near), scale −near far / (far − near).
+DepthMapping depthMapping(DepthRange range);
+
 // World → camera view space (x right, y up, −z forward).
 glm::mat4 viewMatrix(const Camera& camera);
 

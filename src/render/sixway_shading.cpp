@@ -173,8 +173,9 @@ SixWayShading::SixWayShading(const gpu::Context& context, const gpu::PipelineCac
 SixWayShading::~SixWayShading() = default;
 
 void SixWayShading::update(const Camera& camera, const ImagePlane& frame, const ImagePlane& billboard,
-                           DepthRange shellRange, DepthRange sceneRange, std::span<const ShadingLight> lights,
-                           const std::optional<scene::Ambient>& ambient, const ShadingControls& controls) {
+                           DepthRange shellRange, DepthMapping sceneDepth,
+                           std::span<const ShadingLight> lights, const std::optional<scene::Ambient>& ambient,
+                           const ShadingControls& controls) {
   if (lights.size() > maxLights_)
     throw io::InputError("shading", std::to_string(lights.size()) +
                                         " lights; the six-way shading takes at most " +
@@ -188,7 +189,8 @@ void SixWayShading::update(const Camera& camera, const ImagePlane& frame, const 
   const glm::dvec2 bMin(billboard.min), bMax(billboard.max), bSize = bMax - bMin;
   p.frameToBillboard = glm::vec4(fSize.x / bSize.x, fSize.y / bSize.y, (fMin.x - bMin.x) / bSize.x,
                                  (bMax.y - (fMin.y + fSize.y)) / bSize.y);
-  p.depths = glm::vec4(shellRange.near, shellRange.far, sceneRange.near, sceneRange.far);
+  const float offset = float(sceneDepth.offset);
+  p.depths = glm::vec4(shellRange.near, shellRange.far, offset, float(sceneDepth.scale));
   // The quad halfway through the volume's depth range (no depth attachment: only its footprint matters).
   const float depth = 0.5f * (shellRange.near + shellRange.far);
   const glm::mat4 viewProjection = projectionMatrix(frame, shellRange) * viewMatrix(camera);
@@ -200,7 +202,8 @@ void SixWayShading::update(const Camera& camera, const ImagePlane& frame, const 
   const RemapRange& am = controls.alphaRemap.value_or(identity);
   p.lightmapRemap = glm::vec4(lm.inMin, lm.inMax, lm.outMin, lm.outMax);
   p.alphaRemap = glm::vec4(am.inMin, am.inMax, am.outMin, am.outMax);
-  p.misc = glm::vec4(depth, controls.emissiveMultiplier, controls.emissiveStraightScale.value_or(0.0f), 0.0f);
+  p.misc = glm::vec4(depth, controls.emissiveMultiplier, controls.emissiveStraightScale.value_or(0.0f),
+                     float(sceneDepth.offset - double(offset)));
   std::vector<GradientKey> gradient = controls.emissiveGradient;
   if (gradient.empty()) gradient.push_back({1.0f, glm::vec3(1.0f)});
   for (size_t k = 0; k < gradient.size(); ++k)
@@ -230,10 +233,11 @@ void SixWayShading::record(gpu::Sequence& sequence, const gpu::Image& lightmapA,
   if (opacityDepths) requireSampledFloat(*opacityDepths, "the opacity depths");
   const auto& target = colorTarget.desc();
   if (obstacleDepth &&
-      (obstacleDepth->desc().format != VK_FORMAT_D32_SFLOAT || obstacleDepth->desc().width != target.width ||
+      (!gpu::isDepthFormat(obstacleDepth->desc().format) || obstacleDepth->desc().width != target.width ||
        obstacleDepth->desc().height != target.height))
     throw std::invalid_argument(
-        "six-way shading: the obstacle depth must be D32 and the colour target's size");
+        "six-way shading: the obstacle depth must be a depth format (D16, D24, D32) of the colour target's "
+        "size");
   uint32_t tiles = 0;
   if (shadows.depth) {
     const auto& atlas = shadows.depth->desc();

@@ -109,11 +109,11 @@ class SixWayShading {
 
   // The frame's values; call before each submission of the recorded sequence. `frame`: the image-plane
   // rectangle the colour target covers; `billboard`: the lightmaps' rectangle; `shellRange`: the view depths
-  // the guide's shell depth is encoded in (boxDepthRange of the volume box); `sceneRange`: the depth range
-  // of the obstacle depth buffer. Throws io::InputError (source "shading") for more lights than maxLights
+  // the guide's shell depth is encoded in (boxDepthRange of the volume box); `sceneDepth`: what the
+  // obstacle depth buffer holds. Throws io::InputError (source "shading") for more lights than maxLights
   // and for controls out of range.
   void update(const Camera& camera, const ImagePlane& frame, const ImagePlane& billboard,
-              DepthRange shellRange, DepthRange sceneRange, std::span<const ShadingLight> lights,
+              DepthRange shellRange, DepthMapping sceneDepth, std::span<const ShadingLight> lights,
               const std::optional<scene::Ambient>& ambient, const ShadingControls& controls);
 
   // Records the draw (timed stage "shade"). Lightmaps A and B: sampled float RGBA images over the billboard;

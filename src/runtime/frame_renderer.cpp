@@ -25,7 +25,7 @@ gpu::Sequence& FrameRenderer::prepare(const FrameInput& input) {
         frame_.record(s, volume, stages, [&](gpu::Sequence& s) { source_->record(s, frame_); });
       });
   const render::Camera& camera = input.view.camera;
-  frame_.updateScene(camera, input.view.lights, input.seconds, input.targetDepth);
+  frame_.updateScene(camera, input.view.lights, input.seconds, input.plane, input.targetDepth);
   notes_ = frame_.takeNotes();
   const render::Box volumeBox = volume.grid.bounds();
   const bool guided = stages == FrameStages::All || stages == FrameStages::UpToGuide;

@@ -39,8 +39,10 @@ struct FrameInput {
   FrameView view;
   int index = 0;         // the scene's frame: the guide's jitter, the sources' noise
   double seconds = 0.0;  // the obstacles' time
-  // The depth range of an engine's depth buffer (RealtimeFrame::updateScene); unset on sixway's own target.
-  std::optional<render::DepthRange> targetDepth;
+  // An engine's projection (RealtimeFrame::updateScene): the image-plane rectangle its target covers (unset:
+  // the camera's full frame) and what its depth buffer holds (unset on sixway's own target).
+  std::optional<render::ImagePlane> plane;
+  std::optional<render::DepthMapping> targetDepth;
 };
 
 class FrameRenderer {

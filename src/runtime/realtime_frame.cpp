@@ -59,13 +59,15 @@ void RealtimeFrame::record(gpu::Sequence& s, const render::Volume& volume, Frame
 }
 
 void RealtimeFrame::updateScene(const render::Camera& camera, const std::vector<scene::Light>& lights,
-                                double seconds, std::optional<render::DepthRange> targetDepth) {
+                                double seconds, const std::optional<render::ImagePlane>& plane,
+                                std::optional<render::DepthMapping> targetDepth) {
   meshes_.update(seconds);
   const render::Box bounds = render::sceneBounds(render::domainBox(scene_->grid), meshes_);
-  frame_ = render::fullFrame(camera, int(width_), int(height_));
-  sceneRange_ = targetDepth.value_or(render::boxDepthRange(camera, bounds));
+  frame_ = plane.value_or(render::fullFrame(camera, int(width_), int(height_)));
+  const render::DepthRange obstacleRange = render::boxDepthRange(camera, bounds);
+  targetDepth_ = targetDepth.value_or(render::depthMapping(obstacleRange));
   shadowMaps_.update(lights, bounds, meshes_);
-  if (obstacles_) obstacles_->update(camera, frame_, sceneRange_, lights, scene_->ambient, shadowMaps_);
+  if (obstacles_) obstacles_->update(camera, frame_, obstacleRange, lights, scene_->ambient, shadowMaps_);
 }
 
 render::ImagePlane RealtimeFrame::updateGuide(const render::Camera& camera, const render::Box& volumeBox,
@@ -82,7 +84,7 @@ void RealtimeFrame::updateShading(const render::Camera& camera, const std::vecto
   for (size_t l = 0; l < lights.size(); ++l)
     shadingLights.push_back(
         render::shadingLight(lights[l], shadowMaps_.tileOf(l), shadowMaps_.lightViewProjection(l)));
-  shading_.update(camera, frame_, billboard, render::boxDepthRange(camera, volumeBox), sceneRange_,
+  shading_.update(camera, frame_, billboard, render::boxDepthRange(camera, volumeBox), targetDepth_,
                   shadingLights, scene_->ambient, controls_);
 }
 

@@ -51,10 +51,12 @@ class RealtimeFrame {
   void record(gpu::Sequence& sequence, const render::Volume& volume, FrameStages stages,
               const std::function<void(gpu::Sequence&)>& lightmapStage);
 
-  // This frame's scene: obstacles at `seconds`, the lights, and the depth range the target's depth buffer
-  // holds (unset: the range the obstacle pass draws with, boxDepthRange of the scene bounds).
+  // This frame's scene: obstacles at `seconds`, the lights, the image-plane rectangle the target covers
+  // (unset: fullFrame) and what the target's depth buffer holds (unset: the obstacle pass's depth, drawn
+  // over boxDepthRange of the scene bounds).
   void updateScene(const render::Camera& camera, const std::vector<scene::Light>& lights, double seconds,
-                   std::optional<render::DepthRange> targetDepth = std::nullopt);
+                   const std::optional<render::ImagePlane>& plane = std::nullopt,
+                   std::optional<render::DepthMapping> targetDepth = std::nullopt);
   // This frame's billboard over `volumeBox` (billboardBounds) and the guide's values for it, at frame
   // `index`.
   render::ImagePlane updateGuide(const render::Camera& camera, const render::Box& volumeBox, int index);
@@ -94,7 +96,7 @@ class RealtimeFrame {
   render::SixWayShading shading_;
   render::ShadingControls controls_;
   render::ImagePlane frame_;
-  render::DepthRange sceneRange_;
+  render::DepthMapping targetDepth_;
 };
 
 }  // namespace sixway::runtime

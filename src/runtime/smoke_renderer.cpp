@@ -4,6 +4,7 @@
 #include <glm/gtc/packing.hpp>
 #include <stdexcept>
 
+#include "gpu/image.h"
 #include "render/scene_frame.h"
 #include "render/shadow_maps.h"
 #include "runtime/internal.h"
@@ -20,6 +21,9 @@ runtime::FrameTarget frameTarget(const gpu::Context& context, const scene::Scene
   if (!target->colorImage || !target->colorView || !target->depthImage || !target->depthView ||
       target->width == 0 || target->height == 0)
     throw std::invalid_argument("RenderTarget: colour and depth images, views and a size are needed");
+  if (!gpu::isDepthFormat(target->depthFormat))
+    throw std::invalid_argument("RenderTarget: depth format " + std::to_string(target->depthFormat) +
+                                " is not D16, D24 or D32 (with or without stencil)");
   return {target->width, target->height,
           gpu::Image::borrowed(context, target->colorImage, target->colorView,
                                {target->width, target->height, 1, target->colorFormat,
@@ -55,15 +59,17 @@ gpu::Sequence& SmokeRenderer::Impl::prepare() {
     renderer.frame().meshes().setMotion(o, sim.obstacleMotion(o));
   // The smoke after `frames` frames is frame frames − 1.
   const int index = std::max(0, simulation.framesSimulated() - 1);
-  runtime::FrameView view{
-      camera ? render::Camera::lookAt(camera->position, camera->target, camera->up, camera->fovYDegrees)
-             : render::sceneCamera(scene.camera, index),
-      lights ? *lights : render::sceneLights(scene.lights, index)};
+  runtime::FrameInput input{volumes.currentVolume(),
+                            runtime::Access::starts(simulation),
+                            {view ? view->camera : render::sceneCamera(scene.camera, index),
+                             lights ? *lights : render::sceneLights(scene.lights, index)},
+                            index,
+                            sim.seconds()};
   // A restarted simulation may reuse a handle value: the start count tells its volume apart. An engine's
   // depth buffer holds its projection's depth; sixway's own, the obstacle pass's.
-  return renderer.prepare(
-      {volumes.currentVolume(), runtime::Access::starts(simulation), std::move(view), index, sim.seconds(),
-       engineTarget ? std::optional(render::DepthRange{camera->near, camera->far}) : std::nullopt});
+  if (view) input.plane = view->plane;
+  if (engineTarget) input.targetDepth = view->depth;
+  return renderer.prepare(input);
 }
 
 SmokeRenderer::SmokeRenderer(Device& device, SmokeSimulation& simulation, const RendererOptions& options)
@@ -80,8 +86,15 @@ SmokeRenderer::~SmokeRenderer() = default;
 void SmokeRenderer::setCamera(const Camera& camera) {
   if (!(camera.near > 0.0f && camera.far > camera.near))
     throw std::invalid_argument("Camera: needs 0 < near < far");
-  render::Camera::lookAt(camera.position, camera.target, camera.up, camera.fovYDegrees);  // checks the axes
-  impl_->camera = camera;
+  render::EngineView view;
+  view.camera = render::Camera::lookAt(camera.position, camera.target, camera.up, camera.fovYDegrees);
+  view.plane = render::fullFrame(view.camera, int(width()), int(height()));
+  view.depth = render::depthMapping({camera.near, camera.far});
+  impl_->view = view;
+}
+
+void SmokeRenderer::setViewProjection(const glm::mat4& view, const glm::mat4& projection) {
+  impl_->view = render::engineView(view, projection);
 }
 
 void SmokeRenderer::setLights(const std::vector<Light>& lights) {
@@ -101,7 +114,8 @@ void SmokeRenderer::render() {
 
 void SmokeRenderer::record(VkCommandBuffer commands, uint64_t frame) {
   if (!impl_->engineTarget) throw std::invalid_argument("SmokeRenderer::record: needs an engine target");
-  if (!impl_->camera) throw std::invalid_argument("SmokeRenderer::record: set the engine's camera first");
+  if (!impl_->view)
+    throw std::invalid_argument("SmokeRenderer::record: set the engine's camera first (setViewProjection)");
   impl_->last = &impl_->prepare();
   impl_->last->record(commands, frame);
 }

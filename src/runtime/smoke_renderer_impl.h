@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "render/engine_view.h"
 #include "runtime/frame_renderer.h"
 #include "scene/scene.h"
 
@@ -24,7 +25,7 @@ struct SmokeRenderer::Impl {
   const scene::Scene& scene;  // the simulation's
   bool engineTarget;
   runtime::FrameRenderer renderer;
-  std::optional<Camera> camera;
+  std::optional<render::EngineView> view;  // setCamera's or setViewProjection's
   std::optional<std::vector<scene::Light>> lights;
   gpu::Sequence* last = nullptr;
 };

@@ -66,7 +66,8 @@ double medianMs(gpu::Sequence& sequence, render::SixWayShading& shading, const r
   controls.absorption = true;
   const std::optional<scene::Ambient> environment =
       ambient ? std::optional<scene::Ambient>(sh) : std::nullopt;
-  shading.update(camera, frame, billboard, range, {0.1f, 20.0f}, lights, environment, controls);
+  shading.update(camera, frame, billboard, range, render::depthMapping({0.1f, 20.0f}), lights, environment,
+                 controls);
   sequence.submit();  // warm-up
   std::vector<double> times;
   for (int i = 0; i < 21; ++i) {

@@ -201,8 +201,8 @@ class SixWayShadingTest : public GpuTest {
 
     std::vector<io::Image> images;
     for (const Frame& f : frames) {
-      shading.update(camera, in.frame, in.billboard, in.shellRange, in.sceneRange, f.lights, f.ambient,
-                     f.controls);
+      shading.update(camera, in.frame, in.billboard, in.shellRange, depthMapping(in.sceneRange), f.lights,
+                     f.ambient, f.controls);
       target.upload(std::as_bytes(std::span(background.pixels)));
       sequence.submit();
       io::Image image(kWidth, kHeight, {"R", "G", "B", "A"});
@@ -698,7 +698,8 @@ TEST_F(SixWayShadingTest, MoreLightsThanItTakesIsAnInputError) {
   render::SixWayShading shading(context(), pipelineCache(), VK_FORMAT_R32G32B32A32_SFLOAT, 4);
   const std::vector<ShadingLight> lights(5);
   const std::string message = inputErrorMessage([&] {
-    shading.update(camera, in.frame, in.billboard, in.shellRange, in.sceneRange, lights, std::nullopt, {});
+    shading.update(camera, in.frame, in.billboard, in.shellRange, depthMapping(in.sceneRange), lights,
+                   std::nullopt, {});
   });
   EXPECT_NE(message.find("5 lights"), std::string::npos) << message;
   EXPECT_NE(message.find("at most 4"), std::string::npos) << message;
