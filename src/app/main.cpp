@@ -14,11 +14,13 @@
 #include "app/eval_command.h"
 #include "app/info_command.h"
 #include "app/options.h"
+#include "app/process_memory.h"
 #include "app/render_command.h"
 #include "app/sim_command.h"
 #include "app/stop_on_signal.h"
 
 int main(int argc, char** argv) {
+  sixway::app::oneMallocArenaUnderAddressLimit();
   CLI::App app("sixway: real-time smoke rendering with neural six-way lightmaps");
   app.require_subcommand(1);
   sixway::app::addInfoCommand(app);

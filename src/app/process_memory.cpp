@@ -1,5 +1,7 @@
 #include "app/process_memory.h"
 
+#include <malloc.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <fstream>
@@ -11,6 +13,11 @@ uint64_t residentSetBytes() {
   uint64_t sizePages = 0, residentPages = 0;
   if (!(statm >> sizePages >> residentPages)) return 0;
   return residentPages * uint64_t(sysconf(_SC_PAGESIZE));
+}
+
+void oneMallocArenaUnderAddressLimit() {
+  rlimit limit{};
+  if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) mallopt(M_ARENA_MAX, 1);
 }
 
 }  // namespace sixway::app

@@ -9,9 +9,11 @@
 namespace sixway::gpu {
 
 // Address space a command needs beside what the process maps once its device exists, measured on lavapipe
-// (Mesa 22.3, 2 cores) with `sixway render`, whose device maps about 750 MiB: the 16² test plume crashed with
-// 202 MiB to spare and ran with 226; the default scene (512², 64² maps) crashed with 324, failed with bad_alloc
-// with 373 and ran with 397. Some smaller scenes would run with less: the bound is the default scene's.
+// (Mesa 22.3, 2 cores) with `sixway render` with a malloc arena per thread, its device mapping up to 750 MiB
+// (the command line now keeps one arena under a limit: 366 MiB, app/process_memory.h): the 16² test plume
+// crashed with 202 MiB to spare and ran with 226; the default scene (512², 64² maps) crashed with 324, failed
+// with bad_alloc with 373 and ran with 397. Some smaller scenes would run with less: the bound is the default
+// scene's.
 constexpr uint64_t kAddressSpaceHeadroomBytes = uint64_t(448) << 20;
 
 // The message refusing `limitBytes` of address space of which `mappedBytes` are mapped, or nothing when the
