@@ -10,6 +10,8 @@
 #include <OpenEXR/ImfVersion.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cstdint>
 #include <fstream>
 
 #include "io/error.h"
@@ -32,6 +34,51 @@ bool hasExrMagic(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   in.read(magic, sizeof(magic));
   return in && Imf::isImfMagic(magic);
+}
+
+// A header string (name or type): NUL-terminated, at most 255 bytes (OpenEXR's long names); "" at the end of
+// a header or past the end of the file.
+std::string headerString(std::ifstream& in) {
+  std::string text;
+  for (char c; in.get(c) && c != '\0';) {
+    if (text.size() == 255) return text;  // too long: the size check below fails on what follows
+    text += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
+  }
+  return text;
+}
+
+// OpenEXR allocates the size an attribute states before it reads the value: a corrupt 1.5 KB header stating
+// 1.6 GB took seconds and that memory. So each attribute must fit in what is left of the file. Layout: magic,
+// version (bit 12: multi-part), then per header (name\0 type\0 int32 size, value) up to an empty name; a
+// multi-part file's list of headers ends with an empty header.
+void requireAttributesFitTheFile(const std::filesystem::path& path) {
+  const std::string source = path.string();
+  std::error_code error;
+  const uint64_t fileSize = std::filesystem::file_size(path, error);
+  if (error) throw InputError(source, "cannot read: " + error.message());
+  std::ifstream in(path, std::ios::binary);
+  char version[4] = {};
+  in.seekg(4);
+  in.read(version, sizeof(version));
+  const bool multiPart = (static_cast<unsigned char>(version[1]) & 0x10) != 0;
+  for (;;) {
+    int attributes = 0;
+    for (std::string name = headerString(in); !name.empty(); name = headerString(in), ++attributes) {
+      headerString(in);  // the type
+      unsigned char bytes[4] = {};
+      in.read(reinterpret_cast<char*>(bytes), sizeof(bytes));
+      if (!in) throw InputError(source, "truncated OpenEXR header (in attribute '" + name + "')");
+      const int64_t size = int32_t(uint32_t(bytes[0]) | uint32_t(bytes[1]) << 8 | uint32_t(bytes[2]) << 16 |
+                                   uint32_t(bytes[3]) << 24);
+      const uint64_t left = fileSize - uint64_t(in.tellg());
+      if (size < 0 || uint64_t(size) > left)
+        throw InputError(source, "corrupt OpenEXR header: attribute '" + name + "' states " +
+                                     std::to_string(size) + " bytes, more than the " + std::to_string(left) +
+                                     " left in the file");
+      in.seekg(size, std::ios::cur);
+    }
+    if (!multiPart || attributes == 0) return;
+  }
 }
 
 std::string channelList(const Imf::ChannelList& channels) {
@@ -97,6 +144,7 @@ ExrImage readExr(const std::filesystem::path& path, const std::vector<std::strin
   const std::string source = path.string();
   requireRegularFile(path);
   if (!hasExrMagic(path)) throw InputError(source, "not an OpenEXR file (no OpenEXR magic number)");
+  requireAttributesFitTheFile(path);
 
   ExrImage result;
   try {

@@ -21,7 +21,7 @@ void requireRigid(const glm::mat4& view) {
     for (int j = 0; j < 3; ++j)
       if (std::abs(gram[i][j] - (i == j ? 1.0f : 0.0f)) > 1e-4f)
         throw std::invalid_argument("engine view: the view matrix is not a rotation and a translation");
-  if (!near0(view[0][3], 1) || !near0(view[1][3], 1) || !near0(view[2][3], 1) || view[3][3] != 1.0f)
+  if (!near0(view[0][3], 1) || !near0(view[1][3], 1) || !near0(view[2][3], 1) || !near0(view[3][3] - 1.0f, 1))
     throw std::invalid_argument("engine view: the view matrix has a projective row");
 }
 

@@ -1,0 +1,86 @@
+/* The C API (C99) over include/sixway/'s C++ classes, for engines and languages that take C: opaque handles,
+ * a result code from every call that can fail and the one-line message of the last failure on the calling
+ * thread; nothing is thrown across it. The contracts are those of the C++ headers named at each call
+ * (docs/embedding.md, "The C API"). Destroy renderers before their simulation and both before their device. */
+#ifndef SIXWAY_SIXWAY_H
+#define SIXWAY_SIXWAY_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <vulkan/vulkan.h>
+
+#include "sixway/version.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct SixwayDevice_T* SixwayDevice;
+typedef struct SixwaySimulation_T* SixwaySimulation;
+typedef struct SixwayRenderer_T* SixwayRenderer;
+
+typedef enum SixwayResult {
+  SIXWAY_SUCCESS = 0,
+  SIXWAY_ERROR = 1,                  /* sixway::Error: bad input, a device limit, Vulkan, the watchdog */
+  SIXWAY_ERROR_INVALID_ARGUMENT = 2, /* misuse: a null handle, a size of 0, a value out of range */
+  SIXWAY_ERROR_OUT_OF_MEMORY = 3,    /* host memory */
+  SIXWAY_ERROR_UNEXPECTED = 4        /* anything else (a bug: please report the message) */
+} SixwayResult;
+
+/* The message of the last call that failed on this thread ("" if none), valid until the next failure on it.
+ */
+const char* sixwayLastError(void);
+/* The library's version (SIXWAY_VERSION_* are the headers'). */
+void sixwayVersion(uint32_t* major, uint32_t* minor, uint32_t* patch);
+
+/* sixway::Device: its own headless device (validate: the Khronos validation layer), or an engine's. */
+SixwayResult sixwayCreateOwnDevice(int validate, SixwayDevice* device);
+typedef struct SixwayEngineDevice {
+  VkInstance instance;
+  VkPhysicalDevice physicalDevice;
+  VkDevice device;
+  VkQueue queue;
+  uint32_t queueFamily;
+  const char* const* enabledExtensions; /* as given to vkCreateDevice */
+  uint32_t enabledExtensionCount;
+  const void* enabledFeatures; /* the VkPhysicalDeviceFeatures2 chain given to vkCreateDevice */
+  uint32_t framesInFlight;     /* 1..8 */
+} SixwayEngineDevice;
+SixwayResult sixwayCreateEngineDevice(const SixwayEngineDevice* engine, SixwayDevice* device);
+void sixwayDestroyDevice(SixwayDevice device);
+
+/* sixway::SmokeSimulation of a scene file. */
+SixwayResult sixwayCreateSimulation(SixwayDevice device, const char* scenePath, SixwaySimulation* simulation);
+SixwayResult sixwaySimulationAdvance(SixwaySimulation simulation);
+SixwayResult sixwaySimulationRecord(SixwaySimulation simulation, VkCommandBuffer commands, uint64_t frame);
+void sixwayDestroySimulation(SixwaySimulation simulation);
+
+/* sixway::SmokeRenderer with the network of `weightsPath`, into its own image (target NULL) or an engine's.
+ */
+typedef struct SixwayRenderTarget {
+  VkImage colorImage;
+  VkImageView colorView;
+  VkFormat colorFormat;
+  VkImage depthImage;
+  VkImageView depthView;
+  VkFormat depthFormat;
+  uint32_t width, height;
+} SixwayRenderTarget;
+SixwayResult sixwayCreateRenderer(SixwayDevice device, SixwaySimulation simulation, const char* weightsPath,
+                                  const SixwayRenderTarget* target, SixwayRenderer* renderer);
+/* SmokeRenderer::setViewProjection; both matrices column-major, 16 floats (glm's and GLSL's layout). */
+SixwayResult sixwayRendererSetViewProjection(SixwayRenderer renderer, const float view[16],
+                                             const float projection[16]);
+SixwayResult sixwayRendererRecord(SixwayRenderer renderer, VkCommandBuffer commands, uint64_t frame);
+/* Own image: renders and waits; then copies its width × height RGBA floats (linear, premultiplied, row 0 at
+ * the top) into `pixels`, which holds `count` floats. */
+SixwayResult sixwayRendererRender(SixwayRenderer renderer);
+SixwayResult sixwayRendererSize(SixwayRenderer renderer, uint32_t* width, uint32_t* height);
+SixwayResult sixwayRendererImage(SixwayRenderer renderer, float* pixels, size_t count);
+void sixwayDestroyRenderer(SixwayRenderer renderer);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,204 @@
+// include/sixway/sixway.h over the C++ API: every call that can fail catches what the C++ call throws, keeps
+// its message for sixwayLastError() on this thread and returns the matching code.
+#include <sixway/device.h>
+#include <sixway/errors.h>
+#include <sixway/sixway.h>
+#include <sixway/smoke_renderer.h>
+#include <sixway/smoke_simulation.h>
+
+#include <algorithm>
+#include <cstring>
+#include <glm/gtc/type_ptr.hpp>
+#include <new>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+struct SixwayDevice_T {
+  sixway::Device device;
+};
+struct SixwaySimulation_T {
+  sixway::SmokeSimulation simulation;
+};
+struct SixwayRenderer_T {
+  sixway::SmokeRenderer renderer;
+};
+
+namespace {
+
+thread_local std::string lastError;
+
+// Keeps the message, its parts joined, as the thread's last error; nothing escapes (no memory: no message).
+template <typename... Parts>
+SixwayResult fail(SixwayResult result, const char* message, Parts... more) {
+  try {
+    lastError.assign(message);
+    (lastError.append(more), ...);
+  } catch (...) {
+    lastError.clear();  // no memory for the message: the code says enough
+  }
+  return result;
+}
+
+// Runs `call`, translating what it throws.
+template <typename Call>
+SixwayResult guarded(Call&& call) {
+  try {
+    call();
+    return SIXWAY_SUCCESS;
+  } catch (const sixway::Error& e) {
+    return fail(SIXWAY_ERROR, e.what());
+  } catch (const std::invalid_argument& e) {
+    return fail(SIXWAY_ERROR_INVALID_ARGUMENT, e.what());
+  } catch (const std::bad_alloc&) {
+    return fail(SIXWAY_ERROR_OUT_OF_MEMORY, "out of host memory");
+  } catch (const std::exception& e) {
+    return fail(SIXWAY_ERROR_UNEXPECTED, e.what());
+  } catch (...) {
+    return fail(SIXWAY_ERROR_UNEXPECTED, "an unknown exception");
+  }
+}
+
+SixwayResult nullArgument(const char* call, const char* what) {
+  return fail(SIXWAY_ERROR_INVALID_ARGUMENT, call, ": ", what, " is null");
+}
+
+}  // namespace
+
+extern "C" {
+
+const char* sixwayLastError(void) {
+  return lastError.c_str();
+}
+
+void sixwayVersion(uint32_t* major, uint32_t* minor, uint32_t* patch) {
+  const sixway::Version v = sixway::version();
+  if (major) *major = v.major;
+  if (minor) *minor = v.minor;
+  if (patch) *patch = v.patch;
+}
+
+SixwayResult sixwayCreateOwnDevice(int validate, SixwayDevice* device) {
+  if (!device) return nullArgument("sixwayCreateOwnDevice", "device");
+  *device = nullptr;
+  return guarded([&] {
+    *device = new SixwayDevice_T{sixway::Device(sixway::DeviceOptions{.validate = validate != 0})};
+  });
+}
+
+SixwayResult sixwayCreateEngineDevice(const SixwayEngineDevice* engine, SixwayDevice* device) {
+  if (!engine || !device) return nullArgument("sixwayCreateEngineDevice", engine ? "device" : "engine");
+  *device = nullptr;
+  return guarded([&] {
+    if (engine->enabledExtensionCount > 0 && !engine->enabledExtensions)
+      throw std::invalid_argument("sixwayCreateEngineDevice: enabledExtensions is null");
+    sixway::EngineDevice e{engine->instance,        engine->physicalDevice, engine->device,
+                           engine->queue,           engine->queueFamily,    {},
+                           engine->enabledFeatures, engine->framesInFlight};
+    for (uint32_t i = 0; i < engine->enabledExtensionCount; ++i)
+      if (!engine->enabledExtensions[i])
+        throw std::invalid_argument("sixwayCreateEngineDevice: enabledExtensions[" + std::to_string(i) +
+                                    "] is null");
+    for (uint32_t i = 0; i < engine->enabledExtensionCount; ++i)
+      e.enabledExtensions.emplace_back(engine->enabledExtensions[i]);
+    *device = new SixwayDevice_T{sixway::Device(e)};
+  });
+}
+
+void sixwayDestroyDevice(SixwayDevice device) {
+  delete device;
+}
+
+SixwayResult sixwayCreateSimulation(SixwayDevice device, const char* scenePath,
+                                    SixwaySimulation* simulation) {
+  if (!device || !scenePath || !simulation)
+    return nullArgument("sixwayCreateSimulation", !device      ? "device"
+                                                  : !scenePath ? "scenePath"
+                                                               : "simulation");
+  *simulation = nullptr;
+  return guarded(
+      [&] { *simulation = new SixwaySimulation_T{sixway::SmokeSimulation(device->device, scenePath)}; });
+}
+
+SixwayResult sixwaySimulationAdvance(SixwaySimulation simulation) {
+  if (!simulation) return nullArgument("sixwaySimulationAdvance", "simulation");
+  return guarded([&] { simulation->simulation.advance(); });
+}
+
+SixwayResult sixwaySimulationRecord(SixwaySimulation simulation, VkCommandBuffer commands, uint64_t frame) {
+  if (!simulation) return nullArgument("sixwaySimulationRecord", "simulation");
+  return guarded([&] { simulation->simulation.record(commands, frame); });
+}
+
+void sixwayDestroySimulation(SixwaySimulation simulation) {
+  delete simulation;
+}
+
+SixwayResult sixwayCreateRenderer(SixwayDevice device, SixwaySimulation simulation, const char* weightsPath,
+                                  const SixwayRenderTarget* target, SixwayRenderer* renderer) {
+  if (!device || !simulation || !weightsPath || !renderer)
+    return nullArgument("sixwayCreateRenderer", !device        ? "device"
+                                                : !simulation  ? "simulation"
+                                                : !weightsPath ? "weightsPath"
+                                                               : "renderer");
+  *renderer = nullptr;
+  return guarded([&] {
+    const sixway::RendererOptions options{.weights = weightsPath};
+    if (!target) {
+      *renderer =
+          new SixwayRenderer_T{sixway::SmokeRenderer(device->device, simulation->simulation, options)};
+      return;
+    }
+    const sixway::RenderTarget t{target->colorImage, target->colorView, target->colorFormat,
+                                 target->depthImage, target->depthView, target->depthFormat,
+                                 target->width,      target->height};
+    *renderer =
+        new SixwayRenderer_T{sixway::SmokeRenderer(device->device, simulation->simulation, options, t)};
+  });
+}
+
+SixwayResult sixwayRendererSetViewProjection(SixwayRenderer renderer, const float view[16],
+                                             const float projection[16]) {
+  if (!renderer || !view || !projection)
+    return nullArgument("sixwayRendererSetViewProjection", !renderer ? "renderer"
+                                                           : !view   ? "view"
+                                                                     : "projection");
+  return guarded(
+      [&] { renderer->renderer.setViewProjection(glm::make_mat4(view), glm::make_mat4(projection)); });
+}
+
+SixwayResult sixwayRendererRecord(SixwayRenderer renderer, VkCommandBuffer commands, uint64_t frame) {
+  if (!renderer) return nullArgument("sixwayRendererRecord", "renderer");
+  return guarded([&] { renderer->renderer.record(commands, frame); });
+}
+
+SixwayResult sixwayRendererRender(SixwayRenderer renderer) {
+  if (!renderer) return nullArgument("sixwayRendererRender", "renderer");
+  return guarded([&] { renderer->renderer.render(); });
+}
+
+SixwayResult sixwayRendererSize(SixwayRenderer renderer, uint32_t* width, uint32_t* height) {
+  if (!renderer || !width || !height)
+    return nullArgument("sixwayRendererSize", !renderer ? "renderer" : !width ? "width" : "height");
+  *width = renderer->renderer.width();
+  *height = renderer->renderer.height();
+  return SIXWAY_SUCCESS;
+}
+
+SixwayResult sixwayRendererImage(SixwayRenderer renderer, float* pixels, size_t count) {
+  if (!renderer || !pixels) return nullArgument("sixwayRendererImage", !renderer ? "renderer" : "pixels");
+  return guarded([&] {
+    const size_t size = size_t(renderer->renderer.width()) * renderer->renderer.height() * 4;
+    if (count != size)
+      throw std::invalid_argument("sixwayRendererImage: " + std::to_string(count) +
+                                  " floats given, the image has " + std::to_string(size));
+    const std::vector<float> image = renderer->renderer.image();
+    std::copy(image.begin(), image.end(), pixels);
+  });
+}
+
+void sixwayDestroyRenderer(SixwayRenderer renderer) {
+  delete renderer;
+}
+
+}  // extern "C"
