@@ -5,6 +5,7 @@
 // its command buffer (docs/embedding.md).
 #include <vulkan/vulkan.h>
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <glm/mat4x4.hpp>
@@ -49,6 +50,20 @@ struct RenderTarget {
   VkImageView depthView = VK_NULL_HANDLE;
   VkFormat depthFormat = VK_FORMAT_UNDEFINED;
   uint32_t width = 0, height = 0;
+};
+
+// The last frame's six-way lightmaps and where they go (docs/embedding.md, "A frame", lightmaps only): two
+// images in Unity's packing, A = (right, top, back, alpha), B = (left, bottom, front,
+// emissive) (docs/conventions.md, "Channels and packing"), sampled, in VK_IMAGE_LAYOUT_GENERAL, written by
+// the frame's recorded work (a full barrier after it); and the camera-facing quad they cover, in the world,
+// at the middle of the smoke's depth: texel row 0 along its top edge. The images and views live as long as
+// the renderer; the corners change with the camera and the smoke.
+struct LightmapTextures {
+  VkImage a = VK_NULL_HANDLE, b = VK_NULL_HANDLE;
+  VkImageView viewA = VK_NULL_HANDLE, viewB = VK_NULL_HANDLE;
+  VkFormat format = VK_FORMAT_UNDEFINED;  // VK_FORMAT_R16G16B16A16_SFLOAT
+  uint32_t width = 0, height = 0;
+  std::array<glm::vec3, 4> corners{};  // bottom-left, bottom-right, top-right, top-left
 };
 
 struct RendererOptions {
@@ -101,11 +116,8 @@ class SmokeRenderer {
   std::vector<float> image() const;
   uint32_t width() const;
   uint32_t height() const;
-  // The six-way lightmaps of the last frame in Unity's packing, RGBA16F, lightmap size², in
-  // VK_IMAGE_LAYOUT_GENERAL, for engines that shade the billboard themselves: A = (right, top, back,
-  // alpha), B = (left, bottom, front, emissive) (docs/conventions.md, "Channels and packing").
-  VkImage lightmapA() const;
-  VkImage lightmapB() const;
+  // The six-way lightmaps of the last frame, for engines that shade the billboard themselves.
+  LightmapTextures lightmaps() const;
 
  private:
   friend runtime::Access;  // sixway's own tools (src/runtime/internal.h, not installed)

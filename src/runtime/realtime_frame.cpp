@@ -84,8 +84,9 @@ void RealtimeFrame::updateShading(const render::Camera& camera, const std::vecto
   for (size_t l = 0; l < lights.size(); ++l)
     shadingLights.push_back(
         render::shadingLight(lights[l], shadowMaps_.tileOf(l), shadowMaps_.lightViewProjection(l)));
-  shading_.update(camera, frame_, billboard, render::boxDepthRange(camera, volumeBox), targetDepth_,
-                  shadingLights, scene_->ambient, controls_);
+  const render::DepthRange shell = render::boxDepthRange(camera, volumeBox);
+  shading_.update(camera, frame_, billboard, shell, targetDepth_, shadingLights, scene_->ambient, controls_);
+  billboardCorners_ = render::billboardCorners(camera, billboard, 0.5f * (shell.near + shell.far));
 }
 
 }  // namespace sixway::runtime

@@ -3,6 +3,7 @@
 // obstacle shadow maps, the obstacles drawn into the target (sixway's own image only; an engine draws its
 // own), the guiding map, a lightmap stage (the network's, or whatever the caller records), and six-way
 // shading over the colour target. FrameRenderer (frame_renderer.h) drives them.
+#include <array>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -60,7 +61,8 @@ class RealtimeFrame {
   // This frame's billboard over `volumeBox` (billboardBounds) and the guide's values for it, at frame
   // `index`.
   render::ImagePlane updateGuide(const render::Camera& camera, const render::Box& volumeBox, int index);
-  // The shading's values, for the billboard the lightmaps cover.
+  // The shading's values, for the billboard the lightmaps cover (whose world corners are then
+  // billboardCorners().
   void updateShading(const render::Camera& camera, const std::vector<scene::Light>& lights,
                      const render::ImagePlane& billboard, const render::Box& volumeBox);
 
@@ -79,6 +81,8 @@ class RealtimeFrame {
   uint32_t height() const { return height_; }
   uint32_t lightmapSize() const { return lightmapSize_; }
   uint32_t maxLights() const { return shading_.maxLights(); }  // per frame
+  // The quad the shading draws, in the world: bottom-left, bottom-right, top-right, top-left.
+  const std::array<glm::vec3, 4>& billboardCorners() const { return billboardCorners_; }
   // Notes of the last updateScene() for the user (e.g. a light without a shadow map).
   std::vector<std::string> takeNotes() { return shadowMaps_.takeNotes(); }
 
@@ -97,6 +101,7 @@ class RealtimeFrame {
   render::ShadingControls controls_;
   render::ImagePlane frame_;
   render::DepthMapping targetDepth_;
+  std::array<glm::vec3, 4> billboardCorners_{};
 };
 
 }  // namespace sixway::runtime

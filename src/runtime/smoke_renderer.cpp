@@ -151,12 +151,13 @@ uint32_t SmokeRenderer::height() const {
   return impl_->renderer.frame().height();
 }
 
-VkImage SmokeRenderer::lightmapA() const {
-  return impl_->renderer.frame().lightmaps().a.handle();
-}
-
-VkImage SmokeRenderer::lightmapB() const {
-  return impl_->renderer.frame().lightmaps().b.handle();
+LightmapTextures SmokeRenderer::lightmaps() const {
+  const runtime::RealtimeFrame& frame = impl_->renderer.frame();
+  const gpu::Image& a = frame.lightmaps().a;
+  return {a.handle(),      frame.lightmaps().b.handle(),
+          a.view(),        frame.lightmaps().b.view(),
+          a.desc().format, a.desc().width,
+          a.desc().height, frame.billboardCorners()};
 }
 
 }  // namespace sixway

@@ -460,6 +460,67 @@ TEST(Runtime, AnEngineDepthConventionAndFormatGiveTheSameSmoke) {
   EXPECT_EQ(own.validationMessages(), 0u);
 }
 
+// An engine that shades the billboard itself gets the lightmaps and the world quad they cover: the smoke
+// sixway draws lies inside that quad's projection.
+TEST(Runtime, TheLightmapsQuadHoldsTheSmoke) {
+  TempDir dir;
+  const std::filesystem::path scene = sceneWithoutObstacles(dir.path());
+  Device own({.validate = true});
+  BorrowingEngine engine(own);
+  const scene::Scene parsed = scene::loadScene(scene);
+  const uint32_t width = uint32_t(parsed.render.width), height = uint32_t(parsed.render.height);
+  EngineTargets targets(engine.context, width, height);
+  SmokeSimulation simulation(engine.device, scene);
+  SmokeRenderer renderer(engine.device, simulation, {.weights = kWeights}, targets.target());
+  const Camera camera = sceneCamera();
+  const glm::mat4 view = glm::lookAtRH(camera.position, camera.target, camera.up);
+  const glm::mat4 projection = engineProjection(DepthConvention::Standard, glm::radians(camera.fovYDegrees),
+                                                float(width) / float(height), camera.near, camera.far);
+  renderer.setViewProjection(view, projection);
+  const float transparent[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  for (uint64_t frame = 0; frame < 3; ++frame) {
+    VkCommandBuffer commands = engine.begin();
+    targets.recordClear(commands, transparent);
+    simulation.record(commands, frame);
+    renderer.record(commands, frame);
+    engine.submitAndWait();
+  }
+  const LightmapTextures maps = renderer.lightmaps();
+  EXPECT_NE(maps.a, VK_NULL_HANDLE);
+  EXPECT_NE(maps.b, VK_NULL_HANDLE);
+  EXPECT_NE(maps.viewA, VK_NULL_HANDLE);
+  EXPECT_NE(maps.viewB, VK_NULL_HANDLE);
+  EXPECT_EQ(maps.format, VK_FORMAT_R16G16B16A16_SFLOAT);
+  EXPECT_EQ(maps.width, runtime::Access::frame(renderer).lightmapSize());
+  EXPECT_EQ(maps.height, maps.width);
+
+  // The quad's corners in pixels (x right, y down), and the smoke's pixels (alpha over a clear target).
+  glm::vec2 lo(1e9f), hi(-1e9f);
+  for (const glm::vec3& corner : maps.corners) {
+    const glm::vec4 clip = projection * view * glm::vec4(corner, 1.0f);
+    const glm::vec2 pixel = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(width, height);
+    lo = glm::min(lo, pixel);
+    hi = glm::max(hi, pixel);
+  }
+  EXPECT_LT(maps.corners[0].y, maps.corners[3].y) << "the top edge is above the bottom one";
+  std::vector<float> image;
+  for (uint16_t h : targets.color.download<uint16_t>()) image.push_back(glm::unpackHalf1x16(h));
+  size_t smoke = 0, outside = 0;
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      if (image[(size_t(y) * width + x) * 4 + 3] <= 1e-3f) continue;
+      ++smoke;
+      const glm::vec2 centre(x + 0.5f, y + 0.5f);
+      if (glm::any(glm::lessThan(centre, lo - 1.0f)) || glm::any(glm::greaterThan(centre, hi + 1.0f)))
+        ++outside;
+    }
+  std::printf("quad [%.1f, %.1f] x [%.1f, %.1f], %zu smoke pixels\n", lo.x, hi.x, lo.y, hi.y, smoke);
+  EXPECT_GT(smoke, 50u);
+  EXPECT_EQ(outside, 0u) << "smoke outside the quad [" << lo.x << ", " << hi.x << "] x [" << lo.y << ", "
+                         << hi.y << "]";
+  EXPECT_EQ(own.validationMessages(), 0u);
+}
+
 // Steering an obstacle replaces the simulation's recorded steps while earlier frames may still be in flight
 // or unread; frame numbers may skip. Every frame's measurements still arrive, and nothing trips validation.
 TEST(Runtime, AnEngineSteersAnObstacleBetweenFrames) {
