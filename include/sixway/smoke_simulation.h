@@ -57,7 +57,8 @@ class SmokeSimulation {
   int framesSimulated() const;
   double seconds() const;  // simulated time
   // GPU time of the simulation's steps in the last advance() ("sim/obstacles", "sim/lbm", "sim/smoke",
-  // "sim/forces+watchdog"); empty before the first.
+  // "sim/forces+watchdog"), or with an engine of the latest recorded frame whose times are in (framesInFlight
+  // frames late); empty before.
   std::vector<StageTime> stageTimes() const;
 
   size_t obstacleCount() const;

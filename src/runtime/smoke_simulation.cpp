@@ -70,8 +70,10 @@ double SmokeSimulation::seconds() const {
 }
 
 std::vector<StageTime> SmokeSimulation::stageTimes() const {
-  if (!impl_->advanced) return {};
-  const sim::StepTimes& t = impl_->volumes->frameTimes();
+  // advance()'s own frame, or on the engine path the latest recorded frame whose measurements are in.
+  const sim::Simulation& simulation = impl_->volumes->simulation();
+  if (!impl_->advanced && simulation.framesReported() == 0) return {};
+  const sim::StepTimes& t = impl_->advanced ? impl_->volumes->frameTimes() : simulation.report().times;
   return {{"sim/obstacles", t.obstacles},
           {"sim/lbm", t.lbm},
           {"sim/smoke", t.smoke},

@@ -205,6 +205,7 @@ void Simulation::checkRecordedFrame(uint64_t frame) {
             : nullptr;
     summarize(done.firstStep, done.steps, done.sequence->stageTimes(), forces, stats(*speedStats_),
               stats(*densityStats_));
+    ++framesReported_;
   }
   // Replaced sequences that no frame in flight runs and no unread frame holds.
   std::erase_if(retired_, [&](const auto& r) { return r.first + inFlight < frame; });

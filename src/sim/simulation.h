@@ -79,6 +79,8 @@ class Simulation {
 
   // The last submission's measurements (forces of every step in it).
   const AdvanceReport& report() const { return report_; }
+  // How many recorded frames' measurements have become report() (record's readbacks).
+  uint64_t framesReported() const { return framesReported_; }
   uint64_t step() const { return step_; }
   // Steps whose cell flags were computed (the others kept the last: FlagsSchedule).
   uint64_t flagPasses() const { return flagsSchedule_.passes(); }
@@ -122,6 +124,7 @@ class Simulation {
   std::vector<RecordedFrame> recorded_;
   std::vector<std::pair<uint64_t, std::unique_ptr<gpu::Sequence>>> retired_;
   uint64_t lastRecordedFrame_ = 0;
+  uint64_t framesReported_ = 0;
   uint64_t step_ = 0;
   float inletStrength_ = 1.0f;
   AdvanceReport report_;

@@ -534,6 +534,11 @@ TEST(Runtime, AnEngineSteersAnObstacleBetweenFrames) {
     engine.submitAndWait();
   }
   EXPECT_EQ(simulation.framesSimulated(), 8);
+  // The stage times of an earlier recorded frame have come back.
+  const std::vector<StageTime> times = simulation.stageTimes();
+  ASSERT_EQ(times.size(), 4u);
+  EXPECT_EQ(times[1].name, "sim/lbm");
+  EXPECT_GT(times[1].milliseconds, 0.0);
   const SmokeVolume volume = simulation.volume();
   EXPECT_NE(volume.density, VK_NULL_HANDLE);
   EXPECT_EQ(volume.cells, glm::ivec3(24, 32, 24) * scene::loadScene(kScene).grid.smokeUpres);
