@@ -4,6 +4,7 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -34,6 +35,11 @@ struct EngineDevice {
   std::vector<std::string> enabledExtensions;  // as given to vkCreateDevice
   const void* enabledFeatures = nullptr;       // the VkPhysicalDeviceFeatures2 chain given to vkCreateDevice
   uint32_t framesInFlight = 2;                 // 1..8
+  // Where sixway's one-time work goes (uploads and first layouts, while objects are made and when the first
+  // frame of a volume is recorded): the engine records it by calling `record` on a primary command buffer
+  // of its own, submits it and waits for it, on the queue and thread it chooses. Unset: sixway submits to
+  // `queue` itself and waits on a fence (hostWaits()). Never called for a frame's own work.
+  std::function<void(const std::function<void(VkCommandBuffer)>& record)> submitAndWait;
 };
 
 // What an engine enables on its device for sixway: Vulkan 1.3 with synchronization2, dynamicRendering and

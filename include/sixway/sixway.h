@@ -1,7 +1,8 @@
 /* The C API (C99) over include/sixway/'s C++ classes, for engines and languages that take C: opaque handles,
  * a result code from every call that can fail and the one-line message of the last failure on the calling
  * thread; nothing is thrown across it. The contracts are those of the C++ headers named at each call
- * (docs/embedding.md, "The C API"). Destroy renderers before their simulation and both before their device. */
+ * (docs/embedding.md, "The C API"). Destroy renderers before their simulation and both before their device.
+ */
 #ifndef SIXWAY_SIXWAY_H
 #define SIXWAY_SIXWAY_H
 
@@ -45,6 +46,12 @@ typedef struct SixwayEngineDevice {
   uint32_t enabledExtensionCount;
   const void* enabledFeatures; /* the VkPhysicalDeviceFeatures2 chain given to vkCreateDevice */
   uint32_t framesInFlight;     /* 1..8 */
+  /* Optional (NULL: sixway submits to `queue` and waits itself): where one-time work goes (EngineDevice::
+   * submitAndWait). The engine calls record(recordContext, commands) on a recording primary command buffer
+   * of its own, then submits it and waits for it. */
+  void (*submitAndWait)(void* user, void (*record)(void* recordContext, VkCommandBuffer commands),
+                        void* recordContext);
+  void* submitUser;
 } SixwayEngineDevice;
 SixwayResult sixwayCreateEngineDevice(const SixwayEngineDevice* engine, SixwayDevice* device);
 void sixwayDestroyDevice(SixwayDevice device);

@@ -171,7 +171,8 @@ Context::Context(const ExternalDevice& external)
       queue_(external.queue),
       queueFamily_(external.queueFamily),
       ownsDevice_(false),
-      framesInFlight_(external.framesInFlight) {
+      framesInFlight_(external.framesInFlight),
+      externalSubmit_(external.submitAndWait) {
   if (!instance_ || !physicalDevice_ || !device_ || !queue_)
     throw GpuError("external device: instance, physical device, device and queue must all be given");
   if (framesInFlight_ < 1 || framesInFlight_ > 8)

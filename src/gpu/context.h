@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -34,6 +35,10 @@ struct ExternalDevice {
   const void* enabledFeatures = nullptr;       // the VkPhysicalDeviceFeatures2 chain passed to vkCreateDevice
   // Frames the caller has in flight: when it records frame n, frame n − framesInFlight has completed.
   uint32_t framesInFlight = 2;
+  // Where one-time work (uploads, first layouts: submitOnce) goes: the caller records it with the function
+  // given into a primary command buffer of its own, submits and waits. Unset: sixway submits to `queue` and
+  // waits on a fence of its own (a host wait).
+  std::function<void(const std::function<void(VkCommandBuffer)>&)> submitAndWait;
 };
 
 // What the stages need to know about the device to size their work.
@@ -110,6 +115,10 @@ class Context {
   // waits for each submission).
   uint32_t framesInFlight() const { return framesInFlight_; }
   uint64_t hostWaits() const { return hostWaits_.load(); }
+  // ExternalDevice::submitAndWait, or empty.
+  const std::function<void(const std::function<void(VkCommandBuffer)>&)>& externalSubmit() const {
+    return externalSubmit_;
+  }
 
   // Throws a LimitError naming `what` when a storage buffer of `bytes` cannot be bound or held.
   void requireStorageBufferFits(uint64_t bytes, const std::string& what) const;
@@ -137,6 +146,7 @@ class Context {
   uint32_t framesInFlight_ = 1;
   mutable std::atomic<int64_t> liveAllocations_{0}, liveBytes_{0};
   mutable std::atomic<uint64_t> hostWaits_{0};
+  std::function<void(const std::function<void(VkCommandBuffer)>&)> externalSubmit_;
 };
 
 // Throws the Context's GpuError for a requested device index (--device, SIXWAY_DEVICE) that no device has,

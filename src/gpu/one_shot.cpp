@@ -6,6 +6,10 @@
 namespace sixway::gpu {
 
 void submitOnce(const Context& context, const std::function<void(VkCommandBuffer)>& record) {
+  if (context.externalSubmit()) {
+    context.externalSubmit()(record);
+    return;
+  }
   VkDevice device = context.device();
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;

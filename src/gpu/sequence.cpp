@@ -440,6 +440,11 @@ void Sequence::recordInto(VkCommandBuffer commands, uint64_t frame, bool withRea
 }
 
 void Sequence::submit() {
+  if (context_->externalSubmit()) {  // an engine's device whose engine runs one-time work itself
+    context_->externalSubmit()([&](VkCommandBuffer commands) { recordInto(commands, submissions_++, false); });
+    collectTimes(slots_[(submissions_ - 1) % slots_.size()], true);
+    return;
+  }
   SIXWAY_VK(vkResetCommandBuffer(primary_, 0));
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;

@@ -147,7 +147,8 @@ class Sequence {
 
   // Ends recording; the sequence can then be submitted any number of times.
   void finish();
-  // Submits, waits for completion and collects the stage times.
+  // Submits, waits for completion and collects the stage times (through ExternalDevice::submitAndWait where
+  // the device has one).
   void submit();
   // Records the sequence into `commands`, a primary command buffer being recorded outside a render pass, as
   // frame number `frame` (any increasing count): the frame-parameter buffers it binds are written into the

@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <exception>
+#include <functional>
 #include <glm/gtc/type_ptr.hpp>
 #include <new>
 #include <stdexcept>
@@ -59,6 +61,22 @@ SixwayResult guarded(Call&& call) {
   }
 }
 
+// EngineDevice::submitAndWait through the C callback: what the recording throws is carried across the
+// engine's C frames and thrown again on this side.
+struct Recording {
+  const std::function<void(VkCommandBuffer)>* record;
+  std::exception_ptr failure;
+};
+
+void recordTrampoline(void* context, VkCommandBuffer commands) {
+  auto* recording = static_cast<Recording*>(context);
+  try {
+    (*recording->record)(commands);
+  } catch (...) {
+    recording->failure = std::current_exception();
+  }
+}
+
 SixwayResult nullArgument(const char* call, const char* what) {
   return fail(SIXWAY_ERROR_INVALID_ARGUMENT, call, ": ", what, " is null");
 }
@@ -101,6 +119,13 @@ SixwayResult sixwayCreateEngineDevice(const SixwayEngineDevice* engine, SixwayDe
                                     "] is null");
     for (uint32_t i = 0; i < engine->enabledExtensionCount; ++i)
       e.enabledExtensions.emplace_back(engine->enabledExtensions[i]);
+    if (engine->submitAndWait)
+      e.submitAndWait = [submit = engine->submitAndWait,
+                         user = engine->submitUser](const std::function<void(VkCommandBuffer)>& record) {
+        Recording recording{&record, nullptr};
+        submit(user, recordTrampoline, &recording);
+        if (recording.failure) std::rethrow_exception(recording.failure);
+      };
     *device = new SixwayDevice_T{sixway::Device(e)};
   });
 }

@@ -48,7 +48,7 @@ Device::Device(const DeviceOptions& options)
 Device::Device(const EngineDevice& engine) {
   gpu::ExternalDevice external{engine.instance,        engine.physicalDevice, engine.device,
                                engine.queue,           engine.queueFamily,    engine.enabledExtensions,
-                               engine.enabledFeatures, engine.framesInFlight};
+                               engine.enabledFeatures, engine.framesInFlight, engine.submitAndWait};
   impl_ = std::make_unique<Impl>(std::make_unique<gpu::Context>(external));
 }
 

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <glm/gtc/packing.hpp>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -233,10 +234,12 @@ struct EngineTargets {
 // An "engine" on sixway's own device: the device borrowed through the public API, a command buffer and a
 // fence, one frame at a time.
 struct BorrowingEngine {
-  explicit BorrowingEngine(const Device& own)
+  // `submit`: EngineDevice::submitAndWait (unset: sixway submits its one-time work itself).
+  explicit BorrowingEngine(const Device& own,
+                           std::function<void(const std::function<void(VkCommandBuffer)>&)> submit = {})
       : context(runtime::Access::context(own)),
         features(gpu::DeviceFeatures::toEnable(gpu::DeviceFeatures::supportedBy(context.physicalDevice()))),
-        device(engineDevice(context, features)) {
+        device(engineDevice(context, features, std::move(submit))) {
     VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
     poolInfo.queueFamilyIndex = context.queueFamily();
@@ -251,7 +254,8 @@ struct BorrowingEngine {
     vkDestroyFence(context.device(), fence, nullptr);
     vkDestroyCommandPool(context.device(), pool, nullptr);
   }
-  static Device engineDevice(const gpu::Context& context, gpu::DeviceFeatures& features) {
+  static Device engineDevice(const gpu::Context& context, gpu::DeviceFeatures& features,
+                             std::function<void(const std::function<void(VkCommandBuffer)>&)> submit) {
     const std::vector<const char*> extensions = gpu::requiredDeviceExtensions();
     return Device(EngineDevice{context.instance(),
                                context.physicalDevice(),
@@ -260,7 +264,8 @@ struct BorrowingEngine {
                                context.queueFamily(),
                                {extensions.begin(), extensions.end()},
                                features.chain(),
-                               2});
+                               2,
+                               std::move(submit)});
   }
   VkCommandBuffer begin() {
     SIXWAY_VK(vkResetCommandBuffer(commands, 0));
@@ -518,6 +523,69 @@ TEST(Runtime, TheLightmapsQuadHoldsTheSmoke) {
   EXPECT_GT(smoke, 50u);
   EXPECT_EQ(outside, 0u) << "smoke outside the quad [" << lo.x << ", " << hi.x << "] x [" << lo.y << ", "
                          << hi.y << "]";
+  EXPECT_EQ(own.validationMessages(), 0u);
+}
+
+// An engine that runs sixway's one-time work itself (EngineDevice::submitAndWait): sixway never submits or
+// waits, from the device's creation on, and the frames are the same.
+TEST(Runtime, AnEngineRunsSixwaysOneTimeWork) {
+  TempDir dir;
+  const std::filesystem::path scene = sceneWithoutObstacles(dir.path());
+  Device own({.validate = true});
+  const gpu::Context& context = runtime::Access::context(own);
+  // The engine's upload path: its own pool, command buffer and fence.
+  VkCommandPool pool = VK_NULL_HANDLE;
+  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  poolInfo.queueFamilyIndex = context.queueFamily();
+  SIXWAY_VK(vkCreateCommandPool(context.device(), &poolInfo, nullptr, &pool));
+  VkCommandBuffer upload = VK_NULL_HANDLE;
+  VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, pool,
+                                        VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
+  SIXWAY_VK(vkAllocateCommandBuffers(context.device(), &allocInfo, &upload));
+  VkFence fence = VK_NULL_HANDLE;
+  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  SIXWAY_VK(vkCreateFence(context.device(), &fenceInfo, nullptr, &fence));
+  int calls = 0;
+  auto submit = [&](const std::function<void(VkCommandBuffer)>& record) {
+    ++calls;
+    SIXWAY_VK(vkResetCommandBuffer(upload, 0));
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    SIXWAY_VK(vkBeginCommandBuffer(upload, &begin));
+    record(upload);
+    SIXWAY_VK(vkEndCommandBuffer(upload));
+    VkSubmitInfo info{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    info.commandBufferCount = 1;
+    info.pCommandBuffers = &upload;
+    SIXWAY_VK(vkResetFences(context.device(), 1, &fence));
+    SIXWAY_VK(vkQueueSubmit(context.queue(), 1, &info, fence));
+    SIXWAY_VK(vkWaitForFences(context.device(), 1, &fence, VK_TRUE, UINT64_MAX));
+  };
+
+  std::vector<float> images[2];
+  for (int hooked = 0; hooked < 2; ++hooked) {
+    BorrowingEngine engine(
+        own, hooked ? std::function<void(const std::function<void(VkCommandBuffer)>&)>(submit) : nullptr);
+    const scene::Scene parsed = scene::loadScene(scene);
+    EngineTargets targets(engine.context, uint32_t(parsed.render.width), uint32_t(parsed.render.height));
+    SmokeSimulation simulation(engine.device, scene);
+    SmokeRenderer renderer(engine.device, simulation, {.weights = kWeights}, targets.target());
+    renderer.setCamera(sceneCamera());
+    const float background[4] = {0.1f, 0.2f, 0.3f, 1.0f};
+    for (uint64_t frame = 0; frame < 3; ++frame) {
+      VkCommandBuffer commands = engine.begin();
+      targets.recordClear(commands, background);
+      simulation.record(commands, frame);
+      renderer.record(commands, frame);
+      engine.submitAndWait();
+    }
+    if (hooked) EXPECT_EQ(engine.device.hostWaits(), 0u) << "sixway waited on the GPU itself";
+    for (uint16_t h : targets.color.download<uint16_t>()) images[hooked].push_back(glm::unpackHalf1x16(h));
+  }
+  EXPECT_GT(calls, 0);
+  EXPECT_EQ(maxDifference(images[0], images[1]), 0.0);
+  vkDestroyFence(context.device(), fence, nullptr);
+  vkDestroyCommandPool(context.device(), pool, nullptr);
   EXPECT_EQ(own.validationMessages(), 0u);
 }
 
