@@ -212,6 +212,12 @@ struct EngineTargets {
     vkCmdClearDepthStencilImage(commands, depth.handle(), VK_IMAGE_LAYOUT_GENERAL, &clearDepth, 1,
                                 &depthRange);
   }
+  // The colour target's RGBA values.
+  std::vector<float> colorPixels() const {
+    std::vector<float> pixels;
+    for (uint16_t h : color.download<uint16_t>()) pixels.push_back(glm::unpackHalf1x16(h));
+    return pixels;
+  }
   // Fills the depth buffer with `values` (0..1, row 0 at the top) in its format.
   void uploadDepth(const std::vector<double>& values) {
     const VkFormat format = depth.desc().format;
@@ -292,6 +298,20 @@ struct BorrowingEngine {
   VkFence fence = VK_NULL_HANDLE;
 };
 
+// `frames` frames of `simulation` and `renderer` into `targets`, cleared to `background` first (the depth
+// too, unless `clearDepth` is false), each submitted and waited for.
+void recordFrames(BorrowingEngine& engine, const EngineTargets& targets, SmokeSimulation& simulation,
+                  SmokeRenderer& renderer, const float background[4], bool clearDepth = true,
+                  int frames = 3) {
+  for (uint64_t frame = 0; frame < uint64_t(frames); ++frame) {
+    VkCommandBuffer commands = engine.begin();
+    targets.recordClear(commands, background, clearDepth);
+    simulation.record(commands, frame);
+    renderer.record(commands, frame);
+    engine.submitAndWait();
+  }
+}
+
 TEST(Runtime, AnEngineRecordsTheSameFramesWithoutHostWaits) {
   TempDir dir;
   const std::filesystem::path scene = sceneWithoutObstacles(dir.path());
@@ -325,8 +345,7 @@ TEST(Runtime, AnEngineRecordsTheSameFramesWithoutHostWaits) {
   }
   EXPECT_EQ(engine.device.hostWaits(), waitsAfterFirstFrame) << "sixway blocked the host in frames 1..3";
 
-  std::vector<float> image;
-  for (uint16_t h : targets.color.download<uint16_t>()) image.push_back(glm::unpackHalf1x16(h));
+  const std::vector<float> image = targets.colorPixels();
   ASSERT_EQ(image.size(), expected.size());
   EXPECT_LT(maxDifference(image, expected), 1e-3);
   EXPECT_GT(*std::max_element(image.begin(), image.end()), 0.05f) << "no smoke in the image";
@@ -357,15 +376,8 @@ std::vector<float> engineFrame(BorrowingEngine& engine, const std::filesystem::p
   SmokeRenderer renderer(engine.device, simulation, {.weights = kWeights}, targets.target());
   renderer.setViewProjection(f.view, f.projection);
   const float background[4] = {0.1f, 0.2f, 0.3f, 1.0f};
-  for (uint64_t frame = 0; frame < 3; ++frame) {
-    VkCommandBuffer commands = engine.begin();
-    targets.recordClear(commands, background, false);
-    simulation.record(commands, frame);
-    renderer.record(commands, frame);
-    engine.submitAndWait();
-  }
-  std::vector<float> image;
-  for (uint16_t h : targets.color.download<uint16_t>()) image.push_back(glm::unpackHalf1x16(h));
+  recordFrames(engine, targets, simulation, renderer, background, false);
+  const std::vector<float> image = targets.colorPixels();
   return image;
 }
 
@@ -483,13 +495,7 @@ TEST(Runtime, TheLightmapsQuadHoldsTheSmoke) {
                                                 float(width) / float(height), camera.near, camera.far);
   renderer.setViewProjection(view, projection);
   const float transparent[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-  for (uint64_t frame = 0; frame < 3; ++frame) {
-    VkCommandBuffer commands = engine.begin();
-    targets.recordClear(commands, transparent);
-    simulation.record(commands, frame);
-    renderer.record(commands, frame);
-    engine.submitAndWait();
-  }
+  recordFrames(engine, targets, simulation, renderer, transparent);
   const LightmapTextures maps = renderer.lightmaps();
   EXPECT_NE(maps.a, VK_NULL_HANDLE);
   EXPECT_NE(maps.b, VK_NULL_HANDLE);
@@ -508,8 +514,7 @@ TEST(Runtime, TheLightmapsQuadHoldsTheSmoke) {
     hi = glm::max(hi, pixel);
   }
   EXPECT_LT(maps.corners[0].y, maps.corners[3].y) << "the top edge is above the bottom one";
-  std::vector<float> image;
-  for (uint16_t h : targets.color.download<uint16_t>()) image.push_back(glm::unpackHalf1x16(h));
+  const std::vector<float> image = targets.colorPixels();
   size_t smoke = 0, outside = 0;
   for (uint32_t y = 0; y < height; ++y)
     for (uint32_t x = 0; x < width; ++x) {
@@ -572,15 +577,9 @@ TEST(Runtime, AnEngineRunsSixwaysOneTimeWork) {
     SmokeRenderer renderer(engine.device, simulation, {.weights = kWeights}, targets.target());
     renderer.setCamera(sceneCamera());
     const float background[4] = {0.1f, 0.2f, 0.3f, 1.0f};
-    for (uint64_t frame = 0; frame < 3; ++frame) {
-      VkCommandBuffer commands = engine.begin();
-      targets.recordClear(commands, background);
-      simulation.record(commands, frame);
-      renderer.record(commands, frame);
-      engine.submitAndWait();
-    }
+    recordFrames(engine, targets, simulation, renderer, background);
     if (hooked) EXPECT_EQ(engine.device.hostWaits(), 0u) << "sixway waited on the GPU itself";
-    for (uint16_t h : targets.color.download<uint16_t>()) images[hooked].push_back(glm::unpackHalf1x16(h));
+    images[hooked] = targets.colorPixels();
   }
   EXPECT_GT(calls, 0);
   EXPECT_EQ(maxDifference(images[0], images[1]), 0.0);
