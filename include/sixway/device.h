@@ -40,6 +40,15 @@ struct EngineDevice {
   // of its own, submits it and waits for it, on the queue and thread it chooses. Unset: sixway submits to
   // `queue` itself and waits on a fence (hostWaits()). Never called for a frame's own work.
   std::function<void(const std::function<void(VkCommandBuffer)>& record)> submitAndWait;
+  // Host memory callbacks for every Vulkan object sixway creates and destroys on the device (buffers,
+  // images, memory, views, samplers, pipelines, command pools, fences, query pools); null: the driver's.
+  const VkAllocationCallbacks* allocator = nullptr;
+  // The engine's pipeline cache: sixway creates its pipelines through it and reads or writes no cache file
+  // (the engine saves it with its own). Null: sixway's own cache in $XDG_CACHE_HOME/sixway.
+  VkPipelineCache pipelineCache = VK_NULL_HANDLE;
+  // Where sixway's notes go, one line each without a newline (e.g. a pipeline cache file it could not read or
+  // write); unset: stderr. Errors are thrown, never logged.
+  std::function<void(const std::string& line)> log;
 };
 
 // What an engine enables on its device for sixway: Vulkan 1.3 with synchronization2, dynamicRendering and

@@ -52,6 +52,12 @@ typedef struct SixwayEngineDevice {
   void (*submitAndWait)(void* user, void (*record)(void* recordContext, VkCommandBuffer commands),
                         void* recordContext);
   void* submitUser;
+  /* Optional (EngineDevice's): host memory callbacks for sixway's Vulkan objects; the engine's pipeline
+   * cache (no cache file then); where notes go, one line each with `logUser` (NULL: stderr). */
+  const VkAllocationCallbacks* allocator;
+  VkPipelineCache pipelineCache;
+  void (*log)(void* user, const char* line);
+  void* logUser;
 } SixwayEngineDevice;
 SixwayResult sixwayCreateEngineDevice(const SixwayEngineDevice* engine, SixwayDevice* device);
 void sixwayDestroyDevice(SixwayDevice device);
@@ -79,6 +85,25 @@ SixwayResult sixwayCreateRenderer(SixwayDevice device, SixwaySimulation simulati
 SixwayResult sixwayRendererSetViewProjection(SixwayRenderer renderer, const float view[16],
                                              const float projection[16]);
 SixwayResult sixwayRendererRecord(SixwayRenderer renderer, VkCommandBuffer commands, uint64_t frame);
+/* A renderer whose targets come with each record (SmokeRenderer's VkFormat constructor and
+ * record(commands, frame, FrameTargets)): the images, the layouts they are in and are to be left in, their
+ * size and the camera's viewport (a zero extent: the whole image). */
+typedef struct SixwayTargetImage {
+  VkImage image;
+  VkImageView view;
+  VkFormat format;
+  VkImageLayout layout, finalLayout;
+} SixwayTargetImage;
+typedef struct SixwayFrameTargets {
+  SixwayTargetImage color, depth;
+  uint32_t width, height;
+  VkRect2D viewport;
+} SixwayFrameTargets;
+SixwayResult sixwayCreateRendererForFormat(SixwayDevice device, SixwaySimulation simulation,
+                                           const char* weightsPath, VkFormat colorFormat,
+                                           SixwayRenderer* renderer);
+SixwayResult sixwayRendererRecordTargets(SixwayRenderer renderer, VkCommandBuffer commands, uint64_t frame,
+                                         const SixwayFrameTargets* targets);
 /* Own image: renders and waits; then copies its width × height RGBA floats (linear, premultiplied, row 0 at
  * the top) into `pixels`, which holds `count` floats. */
 SixwayResult sixwayRendererRender(SixwayRenderer renderer);

@@ -38,7 +38,8 @@ struct Camera {
   float near = 0.05f, far = 100.0f;
 };
 
-// An engine's render target, in VK_IMAGE_LAYOUT_GENERAL while sixway records (and left so). The colour
+// An engine's render target fixed for the renderer's life, in VK_IMAGE_LAYOUT_GENERAL while sixway records
+// (and left so): record(commands, frame) draws into it as FrameTargets with GENERAL layouts would. The colour
 // image needs COLOR_ATTACHMENT usage; the depth image SAMPLED usage, a depth format (D16_UNORM,
 // X8_D24_UNORM_PACK32, D24_UNORM_S8_UINT, D32_SFLOAT, D32_SFLOAT_S8_UINT) and a view of its depth aspect:
 // the smoke is drawn over the colour and hidden where the depth buffer is nearer than the smoke.
@@ -50,6 +51,30 @@ struct RenderTarget {
   VkImageView depthView = VK_NULL_HANDLE;
   VkFormat depthFormat = VK_FORMAT_UNDEFINED;
   uint32_t width = 0, height = 0;
+};
+
+// One engine image as a record() finds it and is to leave it: mip level 0 and array layer 0 (its view's),
+// in `layout` when the command buffer reaches sixway's composite, moved by sixway to
+// VK_IMAGE_LAYOUT_GENERAL for it and then to `finalLayout` (docs/embedding.md, "Targets and layouts"). Both
+// GENERAL: no layout change, the engine's barriers stand. Neither may be UNDEFINED or PREINITIALIZED: the
+// smoke is drawn over the colour and tested against the depth.
+struct TargetImage {
+  VkImage image = VK_NULL_HANDLE;
+  VkImageView view = VK_NULL_HANDLE;
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL;
+  VkImageLayout finalLayout = VK_IMAGE_LAYOUT_GENERAL;
+};
+
+// The engine's images of one frame: colour (COLOR_ATTACHMENT usage, the format the renderer was made for)
+// and depth (SAMPLED usage, D16, X8D24, D24S8, D32 or D32S8, a view of its depth aspect), both width ×
+// height, any size from frame to frame; `viewport`: the rectangle the engine's camera renders into (its
+// VkViewport, which the projection of setViewProjection maps onto; a zero extent: the whole image). The
+// smoke is drawn inside the viewport only.
+struct FrameTargets {
+  TargetImage color, depth;
+  uint32_t width = 0, height = 0;
+  VkRect2D viewport{};
 };
 
 // The last frame's six-way lightmaps and where they go (docs/embedding.md, "A frame", lightmaps only): two
@@ -82,6 +107,10 @@ class SmokeRenderer {
   // Renders into the engine's target; the engine draws its scene (and the obstacles) itself.
   SmokeRenderer(Device& device, SmokeSimulation& simulation, const RendererOptions& options,
                 const RenderTarget& target);
+  // Renders into the engine's images of each frame (record with FrameTargets), whose colour format is
+  // `colorFormat` (the shading's pipeline is made for it).
+  SmokeRenderer(Device& device, SmokeSimulation& simulation, const RendererOptions& options,
+                VkFormat colorFormat);
   ~SmokeRenderer();
   SmokeRenderer(const SmokeRenderer&) = delete;
   SmokeRenderer& operator=(const SmokeRenderer&) = delete;
@@ -106,6 +135,10 @@ class SmokeRenderer {
   // Engine target: records the frame into `commands` (primary, recording, outside a render pass), as
   // frame number `frame`, after SmokeSimulation::record of the same frame. Nothing waits.
   void record(VkCommandBuffer commands, uint64_t frame);
+  // The same into this frame's `targets`, with the layout changes they ask for. A target not seen in the
+  // last four frames' records, or of a new size or viewport, costs one recording of the composite on the
+  // host (docs/embedding.md, "Targets and layouts"). std::invalid_argument for targets that do not fit.
+  void record(VkCommandBuffer commands, uint64_t frame, const FrameTargets& targets);
 
   // GPU time per stage of the latest frame whose times are in (a frame or more late with an engine).
   std::vector<StageTime> stageTimes() const;
@@ -114,6 +147,7 @@ class SmokeRenderer {
   std::vector<std::string> notes() const;
   // Own image: the last frame, RGBA floats (linear, premultiplied), row 0 at the top.
   std::vector<float> image() const;
+  // The camera's image in pixels: the own image's or the engine target's, the last record's viewport.
   uint32_t width() const;
   uint32_t height() const;
   // The six-way lightmaps of the last frame, for engines that shade the billboard themselves.

@@ -25,8 +25,8 @@ layout(binding = 7) uniform sampler2D opacityDepths;  // where the smoke's opaci
 layout(location = 0) out vec4 outColor;
 
 void main() {
-  // The pixel's point of the image plane (the frame covers params.camera.plane; row 0 at the top).
-  vec2 frameUv = gl_FragCoord.xy / vec2(push.frame.xy);
+  // The pixel's point of the image plane (the viewport covers params.camera.plane; row 0 at the top).
+  vec2 frameUv = (gl_FragCoord.xy - vec2(push.viewport.xy)) / vec2(push.viewport.zw);
   vec4 plane = params.camera.plane;
   vec2 q = vec2(mix(plane.x, plane.z, frameUv.x), mix(plane.w, plane.y, frameUv.y));
   vec2 uv = frameUv * params.frameToBillboard.xy + params.frameToBillboard.zw;

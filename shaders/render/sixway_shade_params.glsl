@@ -38,10 +38,10 @@ layout(std430, binding = 1) readonly buffer ShadeLights {
 };
 
 layout(push_constant) uniform ShadePush {
-  ivec4 frame;  // xy: the colour target's size in pixels; z: 1 with an obstacle depth image; w: 1 with
-                // opacity depths
-  ivec4 atlas;  // x: shadow tile size in texels (0: no shadow atlas); y: tiles
-  vec4 shadow;  // x: PCF radius in texels; y: depth bias (depth-buffer units)
+  ivec4 frame;     // z: 1 with an obstacle depth image; w: 1 with opacity depths (xy unused)
+  ivec4 atlas;     // x: shadow tile size in texels (0: no shadow atlas); y: tiles
+  vec4 shadow;     // x: PCF radius in texels; y: depth bias (depth-buffer units)
+  ivec4 viewport;  // the pixels of the colour target the camera's image covers: xy offset, zw extent
 }
 push;
 

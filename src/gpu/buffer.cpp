@@ -26,7 +26,7 @@ Buffer::Buffer(const Context& context, uint64_t bytes, VkBufferUsageFlags usage,
   info.size = bytes;
   info.usage = usage;
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-  SIXWAY_VK(vkCreateBuffer(context.device(), &info, nullptr, &buffer_));
+  SIXWAY_VK(vkCreateBuffer(context.device(), &info, context.allocator(), &buffer_));
 
   VkMemoryRequirements requirements;
   vkGetBufferMemoryRequirements(context.device(), buffer_, &requirements);
@@ -46,7 +46,7 @@ Buffer::Buffer(const Context& context, uint64_t bytes, VkBufferUsageFlags usage,
         context.findMemoryType(requirements.memoryTypeBits,
                                VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
   }
-  VkResult result = vkAllocateMemory(context.device(), &alloc, nullptr, &memory_);
+  VkResult result = vkAllocateMemory(context.device(), &alloc, context.allocator(), &memory_);
   if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY) {
     release();
     throw LimitError(name_ + ": out of device memory allocating " + formatBytes(bytes));
@@ -100,9 +100,9 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
 
 void Buffer::release() {
   if (!context_) return;
-  if (buffer_) vkDestroyBuffer(context_->device(), buffer_, nullptr);
+  if (buffer_) vkDestroyBuffer(context_->device(), buffer_, context_->allocator());
   if (memory_) {
-    vkFreeMemory(context_->device(), memory_, nullptr);
+    vkFreeMemory(context_->device(), memory_, context_->allocator());
     context_->countAllocation(-int64_t(size_));
   }
   buffer_ = VK_NULL_HANDLE;
@@ -152,7 +152,7 @@ BufferView::BufferView(const Context& context, const Buffer& buffer, VkFormat fo
   info.buffer = buffer.handle();
   info.format = format;
   info.range = VK_WHOLE_SIZE;
-  SIXWAY_VK(vkCreateBufferView(context.device(), &info, nullptr, &view_));
+  SIXWAY_VK(vkCreateBufferView(context.device(), &info, context.allocator(), &view_));
 }
 
 BufferView::~BufferView() {
@@ -174,7 +174,7 @@ BufferView& BufferView::operator=(BufferView&& other) noexcept {
 }
 
 void BufferView::release() {
-  if (context_ && view_) vkDestroyBufferView(context_->device(), view_, nullptr);
+  if (context_ && view_) vkDestroyBufferView(context_->device(), view_, context_->allocator());
   view_ = VK_NULL_HANDLE;
 }
 

@@ -164,6 +164,13 @@ Context::Context(const ContextOptions& options) {
   }
 }
 
+void Context::note(const std::string& line) const {
+  if (log_)
+    log_(line);
+  else
+    std::fprintf(stderr, "sixway: note: %s\n", line.c_str());
+}
+
 Context::Context(const ExternalDevice& external)
     : instance_(external.instance),
       physicalDevice_(external.physicalDevice),
@@ -172,7 +179,10 @@ Context::Context(const ExternalDevice& external)
       queueFamily_(external.queueFamily),
       ownsDevice_(false),
       framesInFlight_(external.framesInFlight),
-      externalSubmit_(external.submitAndWait) {
+      externalSubmit_(external.submitAndWait),
+      allocator_(external.allocator),
+      externalPipelineCache_(external.pipelineCache),
+      log_(external.log) {
   if (!instance_ || !physicalDevice_ || !device_ || !queue_)
     throw GpuError("external device: instance, physical device, device and queue must all be given");
   if (framesInFlight_ < 1 || framesInFlight_ > 8)

@@ -39,6 +39,12 @@ struct ExternalDevice {
   // given into a primary command buffer of its own, submits and waits. Unset: sixway submits to `queue` and
   // waits on a fence of its own (a host wait).
   std::function<void(const std::function<void(VkCommandBuffer)>&)> submitAndWait;
+  // Host memory callbacks for every object sixway creates on the device; null: the driver's.
+  const VkAllocationCallbacks* allocator = nullptr;
+  // The caller's pipeline cache for sixway's pipelines (PipelineCache borrows it); null: sixway's own.
+  VkPipelineCache pipelineCache = VK_NULL_HANDLE;
+  // Where notes go (Context::note); unset: stderr.
+  std::function<void(const std::string&)> log;
 };
 
 // What the stages need to know about the device to size their work.
@@ -120,6 +126,13 @@ class Context {
     return externalSubmit_;
   }
 
+  // ExternalDevice::allocator: pass it to every vkCreate*, vkAllocateMemory, vkDestroy* and vkFreeMemory.
+  const VkAllocationCallbacks* allocator() const { return allocator_; }
+  // ExternalDevice::pipelineCache, or null.
+  VkPipelineCache externalPipelineCache() const { return externalPipelineCache_; }
+  // A line for the user that is not an error (e.g. a pipeline cache file left unread): to the caller's log
+  // (ExternalDevice::log), else stderr as "sixway: note: <line>".
+  void note(const std::string& line) const;
   // Throws a LimitError naming `what` when a storage buffer of `bytes` cannot be bound or held.
   void requireStorageBufferFits(uint64_t bytes, const std::string& what) const;
 
@@ -147,6 +160,9 @@ class Context {
   mutable std::atomic<int64_t> liveAllocations_{0}, liveBytes_{0};
   mutable std::atomic<uint64_t> hostWaits_{0};
   std::function<void(const std::function<void(VkCommandBuffer)>&)> externalSubmit_;
+  const VkAllocationCallbacks* allocator_ = nullptr;
+  VkPipelineCache externalPipelineCache_ = VK_NULL_HANDLE;
+  std::function<void(const std::string&)> log_;
 };
 
 // Throws the Context's GpuError for a requested device index (--device, SIXWAY_DEVICE) that no device has,

@@ -80,7 +80,7 @@ Image::Image(const Context& context, const ImageDesc& desc) : context_(&context)
   info.usage = desc.usage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  SIXWAY_VK(vkCreateImage(context.device(), &info, nullptr, &image_));
+  SIXWAY_VK(vkCreateImage(context.device(), &info, context.allocator(), &image_));
 
   VkMemoryRequirements requirements;
   vkGetImageMemoryRequirements(context.device(), image_, &requirements);
@@ -88,7 +88,7 @@ Image::Image(const Context& context, const ImageDesc& desc) : context_(&context)
   alloc.allocationSize = requirements.size;
   alloc.memoryTypeIndex =
       context.findMemoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  const VkResult result = vkAllocateMemory(context.device(), &alloc, nullptr, &memory_);
+  const VkResult result = vkAllocateMemory(context.device(), &alloc, context.allocator(), &memory_);
   if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY) {
     release();
     throw LimitError(desc.name + ": out of device memory allocating " + formatBytes(requirements.size));
@@ -104,25 +104,33 @@ Image::Image(const Context& context, const ImageDesc& desc) : context_(&context)
   viewInfo.viewType = is3d ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
   viewInfo.format = desc.format;
   viewInfo.subresourceRange = {aspect, 0, 1, 0, 1};
-  SIXWAY_VK(vkCreateImageView(context.device(), &viewInfo, nullptr, &view_));
+  SIXWAY_VK(vkCreateImageView(context.device(), &viewInfo, context.allocator(), &view_));
 
   submitOnce(context, [&](VkCommandBuffer cmd) {
-    VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-    barrier.srcStageMask = VK_PIPELINE_STAGE_2_NONE;
-    barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
-    barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    barrier.newLayout = VK_IMAGE_LAYOUT_GENERAL;
-    barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    barrier.image = image_;
-    barrier.subresourceRange = viewInfo.subresourceRange;
-    if (hasStencil(desc.format)) barrier.subresourceRange.aspectMask |= VK_IMAGE_ASPECT_STENCIL_BIT;
-    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dependency.imageMemoryBarrierCount = 1;
-    dependency.pImageMemoryBarriers = &barrier;
-    vkCmdPipelineBarrier2(cmd, &dependency);
+    recordLayoutChange(cmd, image_, desc.format, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
   });
+}
+
+void recordLayoutChange(VkCommandBuffer commands, VkImage image, VkFormat format, VkImageLayout from,
+                        VkImageLayout to) {
+  VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+  barrier.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  barrier.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+  barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+  barrier.oldLayout = from;
+  barrier.newLayout = to;
+  barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.image = image;
+  barrier.subresourceRange = {
+      VkImageAspectFlags(isDepthFormat(format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0, 1,
+      0, 1};
+  if (hasStencil(format)) barrier.subresourceRange.aspectMask |= VK_IMAGE_ASPECT_STENCIL_BIT;
+  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dependency.imageMemoryBarrierCount = 1;
+  dependency.pImageMemoryBarriers = &barrier;
+  vkCmdPipelineBarrier2(commands, &dependency);
 }
 
 Image::~Image() {
@@ -158,10 +166,10 @@ Image Image::borrowed(const Context& context, VkImage image, VkImageView view, c
 
 void Image::release() {
   if (!context_ || !owned_) return;
-  if (view_) vkDestroyImageView(context_->device(), view_, nullptr);
-  if (image_) vkDestroyImage(context_->device(), image_, nullptr);
+  if (view_) vkDestroyImageView(context_->device(), view_, context_->allocator());
+  if (image_) vkDestroyImage(context_->device(), image_, context_->allocator());
   if (memory_) {
-    vkFreeMemory(context_->device(), memory_, nullptr);
+    vkFreeMemory(context_->device(), memory_, context_->allocator());
     context_->countAllocation(-int64_t(byteSize()));
   }
   view_ = VK_NULL_HANDLE;
@@ -222,11 +230,11 @@ Sampler::Sampler(const Context& context, VkFilter filter) : context_(&context) {
   info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
   info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   info.maxLod = 0.0f;
-  SIXWAY_VK(vkCreateSampler(context.device(), &info, nullptr, &sampler_));
+  SIXWAY_VK(vkCreateSampler(context.device(), &info, context.allocator(), &sampler_));
 }
 
 Sampler::~Sampler() {
-  vkDestroySampler(context_->device(), sampler_, nullptr);
+  vkDestroySampler(context_->device(), sampler_, context_->allocator());
 }
 
 }  // namespace sixway::gpu

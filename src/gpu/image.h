@@ -57,6 +57,11 @@ class Image {
   bool owned_ = true;
 };
 
+// Records a barrier that moves mip level 0, array layer 0 of `image` (every aspect of `format`) from layout
+// `from` to `to`, after every earlier command's writes and before every later command's accesses.
+void recordLayoutChange(VkCommandBuffer commands, VkImage image, VkFormat format, VkImageLayout from,
+                        VkImageLayout to);
+
 uint32_t bytesPerTexel(VkFormat format);
 // The depth formats sixway samples (D16, D24, D32, with or without stencil); their views and copies take
 // the depth aspect.

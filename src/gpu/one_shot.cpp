@@ -15,7 +15,7 @@ void submitOnce(const Context& context, const std::function<void(VkCommandBuffer
   poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
   poolInfo.queueFamilyIndex = context.queueFamily();
   VkCommandPool pool;
-  SIXWAY_VK(vkCreateCommandPool(device, &poolInfo, nullptr, &pool));
+  SIXWAY_VK(vkCreateCommandPool(device, &poolInfo, context.allocator(), &pool));
   VkFence fence = VK_NULL_HANDLE;
   try {
     VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
@@ -31,7 +31,7 @@ void submitOnce(const Context& context, const std::function<void(VkCommandBuffer
     SIXWAY_VK(vkEndCommandBuffer(cmd));
 
     VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    SIXWAY_VK(vkCreateFence(device, &fenceInfo, nullptr, &fence));
+    SIXWAY_VK(vkCreateFence(device, &fenceInfo, context.allocator(), &fence));
     VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     submit.commandBufferCount = 1;
     submit.pCommandBuffers = &cmd;
@@ -39,12 +39,12 @@ void submitOnce(const Context& context, const std::function<void(VkCommandBuffer
     context.countHostWait();
     SIXWAY_VK(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX));
   } catch (...) {
-    if (fence) vkDestroyFence(device, fence, nullptr);
-    vkDestroyCommandPool(device, pool, nullptr);
+    if (fence) vkDestroyFence(device, fence, context.allocator());
+    vkDestroyCommandPool(device, pool, context.allocator());
     throw;
   }
-  vkDestroyFence(device, fence, nullptr);
-  vkDestroyCommandPool(device, pool, nullptr);
+  vkDestroyFence(device, fence, context.allocator());
+  vkDestroyCommandPool(device, pool, context.allocator());
 }
 
 void recordFullBarrier(VkCommandBuffer commands) {

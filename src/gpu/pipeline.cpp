@@ -41,20 +41,22 @@ VkDescriptorType descriptorType(BindingType type) {
 // A shader module that lives as long as pipeline creation needs it.
 class ShaderModule {
  public:
-  ShaderModule(VkDevice device, const std::string& shader) : device_(device) {
+  ShaderModule(const Context& context, const std::string& shader)
+      : device_(context.device()), allocator_(context.allocator()) {
     auto words = shaders::spirv(shader);
     VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
     info.codeSize = words.size_bytes();
     info.pCode = words.data();
-    SIXWAY_VK(vkCreateShaderModule(device, &info, nullptr, &module_));
+    SIXWAY_VK(vkCreateShaderModule(device_, &info, allocator_, &module_));
   }
-  ~ShaderModule() { vkDestroyShaderModule(device_, module_, nullptr); }
+  ~ShaderModule() { vkDestroyShaderModule(device_, module_, allocator_); }
   ShaderModule(const ShaderModule&) = delete;
   ShaderModule& operator=(const ShaderModule&) = delete;
   VkShaderModule handle() const { return module_; }
 
  private:
   VkDevice device_;
+  const VkAllocationCallbacks* allocator_;
   VkShaderModule module_ = VK_NULL_HANDLE;
 };
 
@@ -92,9 +94,9 @@ void checkSpecConstants(const SpecConstants& spec, std::initializer_list<std::st
 // The largest pipeline cache read: a driver's cache of every sixway pipeline is a few MiB.
 constexpr off_t kMaxPipelineCacheBytes = off_t(256) << 20;
 
-void notePipelineCache(const std::filesystem::path& file, const std::string& problem) {
-  std::fprintf(stderr, "sixway: note: pipeline cache %s %s; starting without it\n", file.c_str(),
-               problem.c_str());
+void notePipelineCache(const Context& context, const std::filesystem::path& file,
+                       const std::string& problem) {
+  context.note("pipeline cache " + file.string() + " " + problem + "; starting without it");
 }
 
 // What is wrong with reading the open file `fd` as a cache ("" when nothing is).
@@ -127,18 +129,19 @@ std::vector<char> readUpTo(int fd, off_t size) {
 // The cache file's bytes; empty when there is none. Anything but a regular file of at most
 // kMaxPipelineCacheBytes (a FIFO, which would block, a directory, a device that never ends) is left unread
 // with one note: a bad cache costs the compile time it would have saved, never the command.
-std::vector<char> readCacheFile(const std::filesystem::path& file) {
+std::vector<char> readCacheFile(const Context& context, const std::filesystem::path& file) {
   // O_NONBLOCK: opening a FIFO does not wait for a writer; fstat then tells what was opened.
   const int fd = ::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) {
-    if (errno != ENOENT) notePipelineCache(file, std::string("cannot be opened: ") + std::strerror(errno));
+    if (errno != ENOENT)
+      notePipelineCache(context, file, std::string("cannot be opened: ") + std::strerror(errno));
     return {};
   }
   off_t size = 0;
   const std::string problem = unreadableCache(fd, size);
   std::vector<char> data = problem.empty() ? readUpTo(fd, size) : std::vector<char>{};
   ::close(fd);
-  if (!problem.empty()) notePipelineCache(file, problem);
+  if (!problem.empty()) notePipelineCache(context, file, problem);
   return data;
 }
 
@@ -195,25 +198,32 @@ std::filesystem::path defaultPipelineCacheFile(const Context& context) {
 
 PipelineCache::PipelineCache(const Context& context, std::filesystem::path file)
     : context_(&context), file_(std::move(file)) {
+  if (context.externalPipelineCache()) {
+    cache_ = context.externalPipelineCache();
+    owned_ = false;
+    file_.clear();
+    return;
+  }
   // The driver checks the header (vendor, device, cache UUID) and ignores data that does not match.
-  std::vector<char> data = file_.empty() ? std::vector<char>{} : readCacheFile(file_);
+  std::vector<char> data = file_.empty() ? std::vector<char>{} : readCacheFile(context, file_);
   VkPipelineCacheCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
   info.initialDataSize = data.size();
   info.pInitialData = data.empty() ? nullptr : data.data();
-  if (vkCreatePipelineCache(context.device(), &info, nullptr, &cache_) != VK_SUCCESS) {
+  if (vkCreatePipelineCache(context.device(), &info, context.allocator(), &cache_) != VK_SUCCESS) {
     info.initialDataSize = 0;  // a corrupt cache file is not an error: start empty
     info.pInitialData = nullptr;
-    SIXWAY_VK(vkCreatePipelineCache(context.device(), &info, nullptr, &cache_));
+    SIXWAY_VK(vkCreatePipelineCache(context.device(), &info, context.allocator(), &cache_));
   }
 }
 
 PipelineCache::~PipelineCache() {
+  if (!owned_) return;
   try {
     save();
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "sixway: note: pipeline cache not saved: %s\n", e.what());
+    context_->note(std::string("pipeline cache not saved: ") + e.what());
   }
-  vkDestroyPipelineCache(context_->device(), cache_, nullptr);
+  vkDestroyPipelineCache(context_->device(), cache_, context_->allocator());
 }
 
 void PipelineCache::save() const {
@@ -243,9 +253,9 @@ void Pipeline::createOrRelease(VkResult result) {
 
 void Pipeline::release() {
   VkDevice device = context_->device();
-  if (pipeline_) vkDestroyPipeline(device, pipeline_, nullptr);
-  if (layout_) vkDestroyPipelineLayout(device, layout_, nullptr);
-  if (setLayout_) vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
+  if (pipeline_) vkDestroyPipeline(device, pipeline_, context_->allocator());
+  if (layout_) vkDestroyPipelineLayout(device, layout_, context_->allocator());
+  if (setLayout_) vkDestroyDescriptorSetLayout(device, setLayout_, context_->allocator());
   pipeline_ = VK_NULL_HANDLE;
   layout_ = VK_NULL_HANDLE;
   setLayout_ = VK_NULL_HANDLE;
@@ -264,7 +274,7 @@ void Pipeline::createLayout(const std::vector<BindingType>& bindings, uint32_t p
   setInfo.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
   setInfo.bindingCount = static_cast<uint32_t>(layoutBindings.size());
   setInfo.pBindings = layoutBindings.data();
-  SIXWAY_VK(vkCreateDescriptorSetLayout(context_->device(), &setInfo, nullptr, &setLayout_));
+  SIXWAY_VK(vkCreateDescriptorSetLayout(context_->device(), &setInfo, context_->allocator(), &setLayout_));
 
   VkPushConstantRange range{stages_, 0, pushConstantBytes};
   VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
@@ -272,7 +282,7 @@ void Pipeline::createLayout(const std::vector<BindingType>& bindings, uint32_t p
   layoutInfo.pSetLayouts = &setLayout_;
   layoutInfo.pushConstantRangeCount = pushConstantBytes ? 1 : 0;
   layoutInfo.pPushConstantRanges = &range;
-  createOrRelease(vkCreatePipelineLayout(context_->device(), &layoutInfo, nullptr, &layout_));
+  createOrRelease(vkCreatePipelineLayout(context_->device(), &layoutInfo, context_->allocator(), &layout_));
 }
 
 Pipeline::Pipeline(const Context& context, const PipelineCache& cache, const ComputePipelineDesc& desc)
@@ -283,7 +293,7 @@ Pipeline::Pipeline(const Context& context, const PipelineCache& cache, const Com
       bindings_(desc.bindings),
       pushConstantBytes_(desc.pushConstantBytes) {
   checkSpecConstants(desc.spec, {desc.shader});
-  ShaderModule module(context.device(), desc.shader);
+  ShaderModule module(context, desc.shader);
   createLayout(desc.bindings, desc.pushConstantBytes);
   VkSpecializationInfo spec = desc.spec.info();
   VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
@@ -293,7 +303,8 @@ Pipeline::Pipeline(const Context& context, const PipelineCache& cache, const Com
   info.stage.pName = "main";
   info.stage.pSpecializationInfo = desc.spec.empty() ? nullptr : &spec;
   info.layout = layout_;
-  createOrRelease(vkCreateComputePipelines(context.device(), cache.handle(), 1, &info, nullptr, &pipeline_));
+  createOrRelease(
+      vkCreateComputePipelines(context.device(), cache.handle(), 1, &info, context.allocator(), &pipeline_));
 }
 
 Pipeline::Pipeline(const Context& context, const PipelineCache& cache, const GraphicsPipelineDesc& desc)
@@ -304,8 +315,8 @@ Pipeline::Pipeline(const Context& context, const PipelineCache& cache, const Gra
       bindings_(desc.bindings),
       pushConstantBytes_(desc.pushConstantBytes) {
   checkSpecConstants(desc.spec, {desc.vertexShader, desc.fragmentShader});
-  ShaderModule vertex(context.device(), desc.vertexShader);
-  ShaderModule fragment(context.device(), desc.fragmentShader);
+  ShaderModule vertex(context, desc.vertexShader);
+  ShaderModule fragment(context, desc.fragmentShader);
   createLayout(desc.bindings, desc.pushConstantBytes);
   VkSpecializationInfo spec = desc.spec.info();
   VkPipelineShaderStageCreateInfo shaderStages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
@@ -387,7 +398,8 @@ Pipeline::Pipeline(const Context& context, const PipelineCache& cache, const Gra
   info.pColorBlendState = &colorBlend;
   info.pDynamicState = &dynamic;
   info.layout = layout_;
-  createOrRelease(vkCreateGraphicsPipelines(context.device(), cache.handle(), 1, &info, nullptr, &pipeline_));
+  createOrRelease(
+      vkCreateGraphicsPipelines(context.device(), cache.handle(), 1, &info, context.allocator(), &pipeline_));
 }
 
 Pipeline::~Pipeline() {

@@ -43,7 +43,8 @@ class SpecConstants {
 // A VkPipelineCache, loaded from and saved to a file so later runs skip shader compilation.
 class PipelineCache {
  public:
-  // An empty path keeps the cache in memory only (tests).
+  // An empty path keeps the cache in memory only (tests). On a context with an external pipeline cache
+  // (ExternalDevice::pipelineCache) that cache is used, and no file is read or written.
   PipelineCache(const Context& context, std::filesystem::path file = {});
   ~PipelineCache();  // saves to the file, if there is one
   PipelineCache(const PipelineCache&) = delete;
@@ -55,6 +56,7 @@ class PipelineCache {
   const Context* context_;
   std::filesystem::path file_;
   VkPipelineCache cache_ = VK_NULL_HANDLE;
+  bool owned_ = true;
 };
 
 // $XDG_CACHE_HOME/sixway (or ~/.cache/sixway)/pipelines-<device uuid>.bin

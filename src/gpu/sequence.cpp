@@ -41,14 +41,14 @@ Sequence::Sequence(const Context& context, uint32_t maxStages) : context_(&conte
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;  // submit() re-records primary_
   poolInfo.queueFamilyIndex = context.queueFamily();
-  SIXWAY_VK(vkCreateCommandPool(device, &poolInfo, nullptr, &pool_));
+  SIXWAY_VK(vkCreateCommandPool(device, &poolInfo, context.allocator(), &pool_));
   VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
   allocInfo.commandPool = pool_;
   allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
   allocInfo.commandBufferCount = 1;
   SIXWAY_VK(vkAllocateCommandBuffers(device, &allocInfo, &primary_));
   VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  SIXWAY_VK(vkCreateFence(device, &fenceInfo, nullptr, &fence_));
+  SIXWAY_VK(vkCreateFence(device, &fenceInfo, context.allocator(), &fence_));
 
   // One copy of the work per frame in flight, each with its own timestamps: frame n runs slot n mod K, whose
   // last run (frame n − K) has completed, so no command buffer or query is in use twice at once.
@@ -65,7 +65,7 @@ Sequence::Sequence(const Context& context, uint32_t maxStages) : context_(&conte
     VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
     queryInfo.queryCount = 2 * maxStages_ + 1;  // the last: writeTimestamp()'s scratch
-    SIXWAY_VK(vkCreateQueryPool(device, &queryInfo, nullptr, &slot.queries));
+    SIXWAY_VK(vkCreateQueryPool(device, &queryInfo, context.allocator(), &slot.queries));
     vkCmdResetQueryPool(slot.commands, slot.queries, 0, 2 * maxStages_ + 1);
   }
 }
@@ -73,9 +73,9 @@ Sequence::Sequence(const Context& context, uint32_t maxStages) : context_(&conte
 Sequence::~Sequence() {
   VkDevice device = context_->device();
   for (const Slot& slot : slots_)
-    if (slot.queries) vkDestroyQueryPool(device, slot.queries, nullptr);
-  vkDestroyFence(device, fence_, nullptr);
-  vkDestroyCommandPool(device, pool_, nullptr);
+    if (slot.queries) vkDestroyQueryPool(device, slot.queries, context_->allocator());
+  vkDestroyFence(device, fence_, context_->allocator());
+  vkDestroyCommandPool(device, pool_, context_->allocator());
 }
 
 void Sequence::requireRecording(const char* what) const {
@@ -441,7 +441,8 @@ void Sequence::recordInto(VkCommandBuffer commands, uint64_t frame, bool withRea
 
 void Sequence::submit() {
   if (context_->externalSubmit()) {  // an engine's device whose engine runs one-time work itself
-    context_->externalSubmit()([&](VkCommandBuffer commands) { recordInto(commands, submissions_++, false); });
+    context_->externalSubmit()(
+        [&](VkCommandBuffer commands) { recordInto(commands, submissions_++, false); });
     collectTimes(slots_[(submissions_ - 1) % slots_.size()], true);
     return;
   }

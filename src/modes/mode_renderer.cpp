@@ -70,7 +70,7 @@ ModeRenderer::ModeRenderer(const gpu::Context& context, const gpu::PipelineCache
       raster_(rasterScene(scene, options.mode)),
       options_(options),
       frame_(context, cache, raster_,
-             runtime::FrameTarget{uint32_t(scene.render.width), uint32_t(scene.render.height), {}, {}},
+             runtime::OwnTarget{uint32_t(scene.render.width), uint32_t(scene.render.height)},
              shadowTiles(raster_, options), modeSource(context, cache, raster_, options)) {
   if (options.mode == RenderMode::PathTrace)
     pathTraced_ = std::make_unique<PathTracedSmoke>(context, cache, scene_, options_);

@@ -23,14 +23,18 @@ class RecordedSequence {
       fresh->finish();
       sequence_ = std::move(fresh);
       key_ = key;
+      ++recordings_;
     }
     return *sequence_;
   }
+  // How many times a sequence was recorded: what was recorded with an earlier one may be gone.
+  uint64_t recordings() const { return recordings_; }
 
  private:
   const gpu::Context* context_;
   std::vector<uint64_t> key_;
   std::unique_ptr<gpu::Sequence> sequence_;
+  uint64_t recordings_ = 0;
 };
 
 // The handle of a Vulkan object as a key element.

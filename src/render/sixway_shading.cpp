@@ -48,6 +48,7 @@ struct ShadePush {
   glm::ivec4 frame;
   glm::ivec4 atlas;
   glm::vec4 shadow;
+  glm::ivec4 viewport;
 };
 
 enum Flags : int { kAbsorption = 1, kLightmapRemap = 2, kAlphaRemap = 4 };
@@ -226,7 +227,7 @@ void SixWayShading::update(const Camera& camera, const ImagePlane& frame, const 
 void SixWayShading::record(gpu::Sequence& sequence, const gpu::Image& lightmapA, const gpu::Image& lightmapB,
                            const gpu::Image* guide, const gpu::Image* opacityDepths,
                            const gpu::Image* obstacleDepth, const ShadowAtlas& shadows,
-                           const gpu::Image& colorTarget) const {
+                           const gpu::Image& colorTarget, const std::optional<VkRect2D>& viewport) const {
   requireSampledFloat(lightmapA, "lightmap A");
   requireSampledFloat(lightmapB, "lightmap B");
   if (guide) requireSampledFloat(*guide, "the guide");
@@ -250,9 +251,15 @@ void SixWayShading::record(gpu::Sequence& sequence, const gpu::Image& lightmapA,
     tiles = atlas.height / shadows.tileSize;
   }
 
-  const ShadePush push{glm::ivec4(target.width, target.height, obstacleDepth ? 1 : 0, opacityDepths ? 1 : 0),
+  const VkRect2D area = viewport.value_or(VkRect2D{{0, 0}, {target.width, target.height}});
+  if (area.offset.x < 0 || area.offset.y < 0 || area.extent.width == 0 || area.extent.height == 0 ||
+      area.offset.x + area.extent.width > target.width || area.offset.y + area.extent.height > target.height)
+    throw std::invalid_argument(
+        "six-way shading: the viewport must be a non-empty rectangle inside the target");
+  const ShadePush push{glm::ivec4(0, 0, obstacleDepth ? 1 : 0, opacityDepths ? 1 : 0),
                        glm::ivec4(shadows.depth ? shadows.tileSize : 0, tiles, 0, 0),
-                       glm::vec4(shadows.pcfRadiusTexels, shadows.depthBias, 0.0f, 0.0f)};
+                       glm::vec4(shadows.pcfRadiusTexels, shadows.depthBias, 0.0f, 0.0f),
+                       glm::ivec4(area.offset.x, area.offset.y, area.extent.width, area.extent.height)};
   const gpu::Draw quad{pipeline_.get(),
                        {gpu::reads(params_), gpu::reads(lights_), gpu::samples(lightmapA, *linear_),
                         gpu::samples(lightmapB, *linear_), gpu::samples(guide ? *guide : noGuide_, *nearest_),
@@ -262,7 +269,9 @@ void SixWayShading::record(gpu::Sequence& sequence, const gpu::Image& lightmapA,
                        gpu::pushBytes(push),
                        nullptr,
                        nullptr,
-                       6};
+                       6,
+                       1,
+                       area};
   sequence.beginStage("shade");
   sequence.render({{&colorTarget}, nullptr, std::nullopt, std::nullopt}, std::span(&quad, 1));
   sequence.endStage();

@@ -119,11 +119,14 @@ class SixWayShading {
   // Records the draw (timed stage "shade"). Lightmaps A and B: sampled float RGBA images over the billboard;
   // `guide`: the guiding map (shell depth in B), none: no pixel has a shell; `opacityDepths`: where the
   // smoke's opacity builds up (GuidingMap::opacityDepths), none: the smoke is a card at the shell depth;
-  // `obstacleDepth`: D32, the colour target's size, none: nothing hides the smoke. Throws
-  // std::invalid_argument for images that do not fit.
+  // `obstacleDepth`: D32, the colour target's size, none: nothing hides the smoke; `viewport`: the
+  // rectangle of the colour target that the frame's image plane covers (the draw's viewport and scissor),
+  // none: the whole target. Throws std::invalid_argument for images that do not fit and a viewport outside
+  // the target.
   void record(gpu::Sequence& sequence, const gpu::Image& lightmapA, const gpu::Image& lightmapB,
               const gpu::Image* guide, const gpu::Image* opacityDepths, const gpu::Image* obstacleDepth,
-              const ShadowAtlas& shadows, const gpu::Image& colorTarget) const;
+              const ShadowAtlas& shadows, const gpu::Image& colorTarget,
+              const std::optional<VkRect2D>& viewport = std::nullopt) const;
 
   uint32_t maxLights() const { return maxLights_; }
 

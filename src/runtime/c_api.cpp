@@ -113,6 +113,12 @@ SixwayResult sixwayCreateEngineDevice(const SixwayEngineDevice* engine, SixwayDe
     sixway::EngineDevice e{engine->instance,        engine->physicalDevice, engine->device,
                            engine->queue,           engine->queueFamily,    {},
                            engine->enabledFeatures, engine->framesInFlight};
+    e.allocator = engine->allocator;
+    e.pipelineCache = engine->pipelineCache;
+    if (engine->log)
+      e.log = [log = engine->log, user = engine->logUser](const std::string& line) {
+        log(user, line.c_str());
+      };
     for (uint32_t i = 0; i < engine->enabledExtensionCount; ++i)
       if (!engine->enabledExtensions[i])
         throw std::invalid_argument("sixwayCreateEngineDevice: enabledExtensions[" + std::to_string(i) +
@@ -195,6 +201,35 @@ SixwayResult sixwayRendererSetViewProjection(SixwayRenderer renderer, const floa
 SixwayResult sixwayRendererRecord(SixwayRenderer renderer, VkCommandBuffer commands, uint64_t frame) {
   if (!renderer) return nullArgument("sixwayRendererRecord", "renderer");
   return guarded([&] { renderer->renderer.record(commands, frame); });
+}
+
+SixwayResult sixwayCreateRendererForFormat(SixwayDevice device, SixwaySimulation simulation,
+                                           const char* weightsPath, VkFormat colorFormat,
+                                           SixwayRenderer* renderer) {
+  if (!device || !simulation || !weightsPath || !renderer)
+    return nullArgument("sixwayCreateRendererForFormat", !device        ? "device"
+                                                         : !simulation  ? "simulation"
+                                                         : !weightsPath ? "weightsPath"
+                                                                        : "renderer");
+  *renderer = nullptr;
+  return guarded([&] {
+    *renderer = new SixwayRenderer_T{
+        sixway::SmokeRenderer(device->device, simulation->simulation, {.weights = weightsPath}, colorFormat)};
+  });
+}
+
+SixwayResult sixwayRendererRecordTargets(SixwayRenderer renderer, VkCommandBuffer commands, uint64_t frame,
+                                         const SixwayFrameTargets* targets) {
+  if (!renderer || !targets)
+    return nullArgument("sixwayRendererRecordTargets", !renderer ? "renderer" : "targets");
+  auto image = [](const SixwayTargetImage& i) {
+    return sixway::TargetImage{i.image, i.view, i.format, i.layout, i.finalLayout};
+  };
+  return guarded([&] {
+    renderer->renderer.record(
+        commands, frame,
+        {image(targets->color), image(targets->depth), targets->width, targets->height, targets->viewport});
+  });
 }
 
 SixwayResult sixwayRendererRender(SixwayRenderer renderer) {

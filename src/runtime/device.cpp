@@ -10,7 +10,9 @@ namespace sixway {
 Device::Impl::Impl(std::unique_ptr<gpu::Context> own)
     : context(own.get()),
       ownContext_(std::move(own)),
-      ownCache_(std::make_unique<gpu::PipelineCache>(*context, gpu::defaultPipelineCacheFile(*context))) {
+      ownCache_(std::make_unique<gpu::PipelineCache>(
+          *context, context->externalPipelineCache() ? std::filesystem::path()
+                                                     : gpu::defaultPipelineCacheFile(*context))) {
   cache = ownCache_.get();
 }
 
@@ -48,7 +50,8 @@ Device::Device(const DeviceOptions& options)
 Device::Device(const EngineDevice& engine) {
   gpu::ExternalDevice external{engine.instance,        engine.physicalDevice, engine.device,
                                engine.queue,           engine.queueFamily,    engine.enabledExtensions,
-                               engine.enabledFeatures, engine.framesInFlight, engine.submitAndWait};
+                               engine.enabledFeatures, engine.framesInFlight, engine.submitAndWait,
+                               engine.allocator,       engine.pipelineCache,  engine.log};
   impl_ = std::make_unique<Impl>(std::make_unique<gpu::Context>(external));
 }
 

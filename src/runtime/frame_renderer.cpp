@@ -1,5 +1,7 @@
 #include "runtime/frame_renderer.h"
 
+#include <algorithm>
+
 #include "render/billboard.h"
 #include "render/scene_frame.h"
 
@@ -14,7 +16,8 @@ FrameRenderer::FrameRenderer(const gpu::Context& context, const gpu::PipelineCac
                              std::unique_ptr<LightmapSource> source)
     : source_(std::move(source)),
       frame_(context, cache, scene, std::move(target), shadowTiles, source_->guide(scene)),
-      sequence_(context) {}
+      sequence_(context),
+      context_(&context) {}
 
 gpu::Sequence& FrameRenderer::prepare(const FrameInput& input) {
   const render::Volume& volume = input.volume;
@@ -34,6 +37,28 @@ gpu::Sequence& FrameRenderer::prepare(const FrameInput& input) {
   frame_.updateShading(camera, input.view.lights,
                        source_->update(frame_, {volume, camera, billboard, input.index}), volumeBox);
   return sequence;
+}
+
+gpu::Sequence& FrameRenderer::composite() {
+  // Four: an engine's frames in flight (two or three) and one more.
+  constexpr size_t kKept = 4;
+  if (compositesOf_ != sequence_.recordings()) {  // the passes it reads may have been made anew
+    composites_.clear();
+    compositesOf_ = sequence_.recordings();
+  }
+  const std::vector<uint64_t> key = frame_.engineTargetKey();
+  auto found =
+      std::find_if(composites_.begin(), composites_.end(), [&](const Composite& c) { return c.key == key; });
+  if (found == composites_.end()) {
+    auto fresh = std::make_unique<gpu::Sequence>(*context_);
+    frame_.recordComposite(*fresh);
+    fresh->finish();
+    if (composites_.size() == kKept) composites_.pop_back();
+    composites_.insert(composites_.begin(), Composite{key, std::move(fresh)});
+  } else {
+    std::rotate(composites_.begin(), found, found + 1);
+  }
+  return *composites_.front().sequence;
 }
 
 }  // namespace sixway::runtime

@@ -52,8 +52,12 @@ class FrameRenderer {
                 FrameTarget target, uint32_t shadowTiles, std::unique_ptr<LightmapSource> source);
 
   // Records the passes when the volume differs from the last frame's, writes this frame's values, and returns
-  // the sequence to submit or record.
+  // the sequence to submit or record: the whole frame, or with an engine target all but the composite.
   gpu::Sequence& prepare(const FrameInput& input);
+  // With an engine target, after prepare(): the shading into the frame's target (RealtimeFrame::
+  // setEngineTarget), recorded once per target while the prepared sequence stays; the last few targets'
+  // recordings are kept, so an engine that cycles through its frames' images records each once.
+  gpu::Sequence& composite();
 
   // What the last prepare() could not do as asked, for the user (RealtimeFrame::takeNotes).
   const std::vector<std::string>& notes() const { return notes_; }
@@ -65,6 +69,13 @@ class FrameRenderer {
   std::unique_ptr<LightmapSource> source_;  // before the frame, whose guide it sets
   RealtimeFrame frame_;
   render::RecordedSequence sequence_;
+  struct Composite {
+    std::vector<uint64_t> key;
+    std::unique_ptr<gpu::Sequence> sequence;
+  };
+  std::vector<Composite> composites_;  // most recently used first
+  uint64_t compositesOf_ = 0;          // the prepared sequence's recording they were made with
+  const gpu::Context* context_;
   std::vector<std::string> notes_;
 };
 

@@ -1,6 +1,10 @@
 #include "runtime/realtime_frame.h"
 
+#include <stdexcept>
+#include <string>
+
 #include "render/billboard.h"
+#include "render/recorded_sequence.h"
 #include "render/scene_frame.h"
 
 namespace sixway::runtime {
@@ -19,21 +23,19 @@ RealtimeFrame::RealtimeFrame(const gpu::Context& context, const gpu::PipelineCac
                              const scene::Scene& scene, FrameTarget target, uint32_t shadowTiles,
                              const render::GuideSettings& guide)
     : scene_(&scene),
-      width_(target.width),
-      height_(target.height),
       lightmapSize_(uint32_t(scene.render.lightmapSize)),
-      engineColor_(std::move(target.engineColor)),
-      engineDepth_(std::move(target.engineDepth)),
+      engineFormat_(std::holds_alternative<VkFormat>(target) ? std::optional(std::get<VkFormat>(target))
+                                                             : std::nullopt),
       guide_(ownImage(context, lightmapSize_, lightmapSize_, kColorFormat,
                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "guiding map")),
       lightmaps_(context, lightmapSize_, lightmapSize_),
       meshes_(context, scene.obstacles),
       shadowMaps_(context, cache, render::kDefaultShadowTileSize, shadowTiles),
       guiding_(context, cache, guide),
-      shading_(context, cache, engineColor_ ? engineColor_->desc().format : kColorFormat) {
-  if (engineColor_.has_value() != engineDepth_.has_value())
-    throw std::invalid_argument("RealtimeFrame: an engine target needs both colour and depth");
-  if (!engineColor_) {
+      shading_(context, cache, engineFormat_.value_or(kColorFormat)) {
+  if (const OwnTarget* own = std::get_if<OwnTarget>(&target)) {
+    width_ = own->width;
+    height_ = own->height;
     color_ = ownImage(context, width_, height_, kColorFormat,
                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "frame colour");
     depth_ =
@@ -46,6 +48,50 @@ RealtimeFrame::RealtimeFrame(const gpu::Context& context, const gpu::PipelineCac
   controls_.emissiveStraightScale = render::emissiveStraightScale(scene.smoke);
 }
 
+void RealtimeFrame::setEngineTarget(EngineTarget target) {
+  if (!engineFormat_) throw std::invalid_argument("RealtimeFrame: drawn into its own target");
+  const gpu::ImageDesc& color = target.color.desc();
+  const gpu::ImageDesc& depth = target.depth.desc();
+  if (color.format != *engineFormat_)
+    throw std::invalid_argument("the colour target's format " + std::to_string(color.format) +
+                                " is not the format the renderer was made for, " +
+                                std::to_string(*engineFormat_));
+  if (!gpu::isDepthFormat(depth.format))
+    throw std::invalid_argument("the depth target's format " + std::to_string(depth.format) +
+                                " is not D16, D24 or D32 (with or without stencil)");
+  if (depth.width != color.width || depth.height != color.height)
+    throw std::invalid_argument("the depth target is " + std::to_string(depth.width) + "x" +
+                                std::to_string(depth.height) + ", the colour target " +
+                                std::to_string(color.width) + "x" + std::to_string(color.height));
+  VkRect2D& v = target.viewport;
+  if (v.extent.width == 0 && v.extent.height == 0) v = {{0, 0}, {color.width, color.height}};
+  if (v.offset.x < 0 || v.offset.y < 0 || v.extent.width == 0 || v.extent.height == 0 ||
+      uint64_t(v.offset.x) + v.extent.width > color.width ||
+      uint64_t(v.offset.y) + v.extent.height > color.height)
+    throw std::invalid_argument("the viewport (" + std::to_string(v.offset.x) + ", " +
+                                std::to_string(v.offset.y) + ") " + std::to_string(v.extent.width) + "x" +
+                                std::to_string(v.extent.height) + " is not a rectangle inside the " +
+                                std::to_string(color.width) + "x" + std::to_string(color.height) + " target");
+  width_ = v.extent.width;
+  height_ = v.extent.height;
+  engine_ = std::move(target);
+}
+
+std::vector<uint64_t> RealtimeFrame::engineTargetKey() const {
+  if (!engine_) return {};
+  const VkRect2D& v = engine_->viewport;
+  return {render::handleKey(engine_->color.handle()),
+          render::handleKey(engine_->color.view()),
+          render::handleKey(engine_->depth.handle()),
+          render::handleKey(engine_->depth.view()),
+          engine_->color.desc().width,
+          engine_->color.desc().height,
+          uint64_t(v.offset.x),
+          uint64_t(v.offset.y),
+          v.extent.width,
+          v.extent.height};
+}
+
 void RealtimeFrame::record(gpu::Sequence& s, const render::Volume& volume, FrameStages stages,
                            const std::function<void(gpu::Sequence&)>& lightmapStage) {
   shadowMaps_.record(s, meshes_);
@@ -54,8 +100,17 @@ void RealtimeFrame::record(gpu::Sequence& s, const render::Volume& volume, Frame
   if (stages != FrameStages::AllButGuide) guiding_.record(s, volume, guide_, guideEmission());
   if (stages == FrameStages::UpToGuide) return;
   if (lightmapStage) lightmapStage(s);
+  if (!engineFormat_) recordShading(s, std::nullopt);
+}
+
+void RealtimeFrame::recordComposite(gpu::Sequence& s) {
+  if (!engine_) throw std::invalid_argument("RealtimeFrame: no engine target set for the composite");
+  recordShading(s, engine_->viewport);
+}
+
+void RealtimeFrame::recordShading(gpu::Sequence& s, const std::optional<VkRect2D>& viewport) {
   shading_.record(s, lightmaps_.a, lightmaps_.b, &guide_, &guiding_.opacityDepths(), &depth(),
-                  render::ShadowAtlas{&shadowMaps_.atlas(), shadowMaps_.tileSize()}, color());
+                  render::ShadowAtlas{&shadowMaps_.atlas(), shadowMaps_.tileSize()}, color(), viewport);
 }
 
 void RealtimeFrame::updateScene(const render::Camera& camera, const std::vector<scene::Light>& lights,

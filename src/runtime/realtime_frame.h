@@ -7,6 +7,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <variant>
 #include <vector>
 
 #include "gpu/image.h"
@@ -29,12 +30,19 @@ class PipelineCache;
 
 namespace sixway::runtime {
 
-// Where the frame is drawn: sixway's own RGBA16F colour + D32 depth of a size (with the scene's obstacles
-// drawn first), or an engine's images (VK_IMAGE_LAYOUT_GENERAL; the engine draws its scene).
-struct FrameTarget {
+// sixway's own RGBA16F colour + D32 depth of a size, the scene's obstacles drawn first.
+struct OwnTarget {
   uint32_t width = 0, height = 0;
-  std::optional<gpu::Image> engineColor, engineDepth;  // both or neither
 };
+// An engine's colour and depth images for a frame (borrowed; VK_IMAGE_LAYOUT_GENERAL while the frame's
+// composite runs) and the rectangle of them the camera's image covers; the engine draws its scene.
+struct EngineTarget {
+  gpu::Image color, depth;
+  VkRect2D viewport{};
+};
+// Where the frame is drawn: its own images, or an engine's of this colour format, set per frame
+// (RealtimeFrame::setEngineTarget).
+using FrameTarget = std::variant<OwnTarget, VkFormat>;
 
 // Which passes a recorded frame has: all of them; up to the guiding map; only the obstacles; or all but the
 // guiding map (a flipbook's shell depth is uploaded into guide() instead).
@@ -48,9 +56,19 @@ class RealtimeFrame {
                 FrameTarget target, uint32_t shadowTiles, const render::GuideSettings& guide);
 
   // Records the passes for `volume` into `sequence`; `lightmaps` records what fills lightmaps() between the
-  // guiding map and the shading (nothing: the caller uploads them before each submission).
+  // guiding map and the shading (nothing: the caller uploads them before each submission). With an engine
+  // target the shading is left out: recordComposite records it, per target.
   void record(gpu::Sequence& sequence, const render::Volume& volume, FrameStages stages,
               const std::function<void(gpu::Sequence&)>& lightmapStage);
+  // The shading into the engine target of this frame (after setEngineTarget).
+  void recordComposite(gpu::Sequence& sequence);
+  // An engine's target: this frame's images and viewport. std::invalid_argument for a colour format other
+  // than the one the frame was made for, a depth image that is not a depth format of the colour's size, or
+  // a viewport outside the images.
+  void setEngineTarget(EngineTarget target);
+  bool drawsIntoEngineTarget() const { return engineFormat_.has_value(); }
+  // What a composite recording depends on: the target's images, size and viewport.
+  std::vector<uint64_t> engineTargetKey() const;
 
   // This frame's scene: obstacles at `seconds`, the lights, the image-plane rectangle the target covers
   // (unset: fullFrame) and what the target's depth buffer holds (unset: the obstacle pass's depth, drawn
@@ -66,8 +84,8 @@ class RealtimeFrame {
   void updateShading(const render::Camera& camera, const std::vector<scene::Light>& lights,
                      const render::ImagePlane& billboard, const render::Box& volumeBox);
 
-  const gpu::Image& color() const { return engineColor_ ? *engineColor_ : color_; }
-  const gpu::Image& depth() const { return engineDepth_ ? *engineDepth_ : depth_; }
+  const gpu::Image& color() const { return engine_ ? engine_->color : color_; }
+  const gpu::Image& depth() const { return engine_ ? engine_->depth : depth_; }
   gpu::Image& guide() { return guide_; }
   const gpu::Image& guide() const { return guide_; }
   // The guide's emission (GuideSettings::emission), or nullptr.
@@ -77,6 +95,7 @@ class RealtimeFrame {
   render::ObstacleMeshes& meshes() { return meshes_; }
   const render::GuidingMap& guiding() const { return guiding_; }
   render::GuidingMap& guiding() { return guiding_; }
+  // The camera's image in pixels: the own target, or the engine target's viewport.
   uint32_t width() const { return width_; }
   uint32_t height() const { return height_; }
   uint32_t lightmapSize() const { return lightmapSize_; }
@@ -87,9 +106,12 @@ class RealtimeFrame {
   std::vector<std::string> takeNotes() { return shadowMaps_.takeNotes(); }
 
  private:
+  void recordShading(gpu::Sequence& sequence, const std::optional<VkRect2D>& viewport);
+
   const scene::Scene* scene_;
-  uint32_t width_, height_, lightmapSize_;
-  std::optional<gpu::Image> engineColor_, engineDepth_;
+  uint32_t width_ = 0, height_ = 0, lightmapSize_;
+  std::optional<VkFormat> engineFormat_;
+  std::optional<EngineTarget> engine_;
   gpu::Image color_, depth_, guide_;
   std::optional<gpu::Image> guideEmission_;
   render::LightmapImages lightmaps_;

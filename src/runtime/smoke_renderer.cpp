@@ -15,22 +15,52 @@
 namespace sixway {
 namespace {
 
-runtime::FrameTarget frameTarget(const gpu::Context& context, const scene::Scene& scene,
-                                 const RenderTarget* target) {
-  if (!target) return {uint32_t(scene.render.width), uint32_t(scene.render.height), {}, {}};
-  if (!target->colorImage || !target->colorView || !target->depthImage || !target->depthView ||
-      target->width == 0 || target->height == 0)
+// The fixed target of the RenderTarget constructor as every frame's targets, in VK_IMAGE_LAYOUT_GENERAL.
+FrameTargets fixedTargets(const RenderTarget& target) {
+  if (!target.colorImage || !target.colorView || !target.depthImage || !target.depthView ||
+      target.width == 0 || target.height == 0)
     throw std::invalid_argument("RenderTarget: colour and depth images, views and a size are needed");
-  if (!gpu::isDepthFormat(target->depthFormat))
-    throw std::invalid_argument("RenderTarget: depth format " + std::to_string(target->depthFormat) +
+  if (!gpu::isDepthFormat(target.depthFormat))
+    throw std::invalid_argument("RenderTarget: depth format " + std::to_string(target.depthFormat) +
                                 " is not D16, D24 or D32 (with or without stencil)");
-  return {target->width, target->height,
-          gpu::Image::borrowed(context, target->colorImage, target->colorView,
-                               {target->width, target->height, 1, target->colorFormat,
-                                VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, "engine colour"}),
-          gpu::Image::borrowed(context, target->depthImage, target->depthView,
-                               {target->width, target->height, 1, target->depthFormat,
-                                VK_IMAGE_USAGE_SAMPLED_BIT, "engine depth"})};
+  FrameTargets targets;
+  targets.color = {target.colorImage, target.colorView, target.colorFormat};
+  targets.depth = {target.depthImage, target.depthView, target.depthFormat};
+  targets.width = target.width;
+  targets.height = target.height;
+  return targets;
+}
+
+void requireLayouts(const TargetImage& image, const char* which) {
+  for (VkImageLayout layout : {image.layout, image.finalLayout})
+    if (layout == VK_IMAGE_LAYOUT_UNDEFINED || layout == VK_IMAGE_LAYOUT_PREINITIALIZED)
+      throw std::invalid_argument(std::string("FrameTargets: the ") + which +
+                                  " image's layouts may not be UNDEFINED or PREINITIALIZED (its contents are "
+                                  "read)");
+}
+
+runtime::EngineTarget borrowedTarget(const gpu::Context& context, const FrameTargets& t) {
+  if (!t.color.image || !t.color.view || !t.depth.image || !t.depth.view || t.width == 0 || t.height == 0)
+    throw std::invalid_argument("FrameTargets: colour and depth images, views and a size are needed");
+  requireLayouts(t.color, "colour");
+  requireLayouts(t.depth, "depth");
+  return {gpu::Image::borrowed(
+              context, t.color.image, t.color.view,
+              {t.width, t.height, 1, t.color.format, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, "engine colour"}),
+          gpu::Image::borrowed(
+              context, t.depth.image, t.depth.view,
+              {t.width, t.height, 1, t.depth.format, VK_IMAGE_USAGE_SAMPLED_BIT, "engine depth"}),
+          t.viewport};
+}
+
+void changeLayouts(VkCommandBuffer commands, const FrameTargets& t, bool toGeneral) {
+  for (const TargetImage* image : {&t.color, &t.depth}) {
+    const VkImageLayout engine = toGeneral ? image->layout : image->finalLayout;
+    if (engine == VK_IMAGE_LAYOUT_GENERAL) continue;
+    gpu::recordLayoutChange(commands, image->image, image->format,
+                            toGeneral ? engine : VK_IMAGE_LAYOUT_GENERAL,
+                            toGeneral ? VK_IMAGE_LAYOUT_GENERAL : engine);
+  }
 }
 
 uint32_t shadowTiles(const scene::Scene& scene, const RendererOptions& options) {
@@ -43,12 +73,17 @@ uint32_t shadowTiles(const scene::Scene& scene, const RendererOptions& options) 
 
 SmokeRenderer::Impl::Impl(const gpu::Context& context, const gpu::PipelineCache& cache,
                           const SmokeSimulation& simulation, const RendererOptions& options,
-                          const RenderTarget* target)
-    : simulation(simulation),
+                          std::optional<VkFormat> engineFormat)
+    : context(context),
+      simulation(simulation),
       scene(runtime::Access::scene(simulation)),
-      engineTarget(target != nullptr),
+      engineTarget(engineFormat.has_value()),
       renderer(
-          context, cache, scene, frameTarget(context, scene, target), shadowTiles(scene, options),
+          context, cache, scene,
+          engineFormat ? runtime::FrameTarget(*engineFormat)
+                       : runtime::FrameTarget(
+                             runtime::OwnTarget{uint32_t(scene.render.width), uint32_t(scene.render.height)}),
+          shadowTiles(scene, options),
           std::make_unique<runtime::NetworkLightmaps>(context, cache, scene, options.weights, options.fp16)) {
 }
 
@@ -67,19 +102,39 @@ gpu::Sequence& SmokeRenderer::Impl::prepare() {
                             sim.seconds()};
   // A restarted simulation may reuse a handle value: the start count tells its volume apart. An engine's
   // depth buffer holds its projection's depth; sixway's own, the obstacle pass's.
-  if (view) input.plane = view->plane;
+  if (view && !planeFromTarget) input.plane = view->plane;
   if (engineTarget) input.targetDepth = view->depth;
   return renderer.prepare(input);
 }
 
+void SmokeRenderer::Impl::record(VkCommandBuffer commands, uint64_t frame, const FrameTargets& targets) {
+  if (!view)
+    throw std::invalid_argument("SmokeRenderer::record: set the engine's camera first (setViewProjection)");
+  renderer.frame().setEngineTarget(borrowedTarget(context, targets));
+  gpu::Sequence& compute = prepare();
+  gpu::Sequence& composite = renderer.composite();
+  compute.record(commands, frame);
+  changeLayouts(commands, targets, true);
+  composite.record(commands, frame);
+  changeLayouts(commands, targets, false);
+  last = &compute;
+  lastComposite = &composite;
+}
+
 SmokeRenderer::SmokeRenderer(Device& device, SmokeSimulation& simulation, const RendererOptions& options)
     : impl_(std::make_unique<Impl>(runtime::Access::context(device), runtime::Access::pipelineCache(device),
-                                   simulation, options, nullptr)) {}
+                                   simulation, options, std::nullopt)) {}
 
 SmokeRenderer::SmokeRenderer(Device& device, SmokeSimulation& simulation, const RendererOptions& options,
                              const RenderTarget& target)
+    : SmokeRenderer(device, simulation, options, target.colorFormat) {
+  impl_->fixedTargets = fixedTargets(target);
+}
+
+SmokeRenderer::SmokeRenderer(Device& device, SmokeSimulation& simulation, const RendererOptions& options,
+                             VkFormat colorFormat)
     : impl_(std::make_unique<Impl>(runtime::Access::context(device), runtime::Access::pipelineCache(device),
-                                   simulation, options, &target)) {}
+                                   simulation, options, colorFormat)) {}
 
 SmokeRenderer::~SmokeRenderer() = default;
 
@@ -88,13 +143,14 @@ void SmokeRenderer::setCamera(const Camera& camera) {
     throw std::invalid_argument("Camera: needs 0 < near < far");
   render::EngineView view;
   view.camera = render::Camera::lookAt(camera.position, camera.target, camera.up, camera.fovYDegrees);
-  view.plane = render::fullFrame(view.camera, int(width()), int(height()));
   view.depth = render::depthMapping({camera.near, camera.far});
   impl_->view = view;
+  impl_->planeFromTarget = true;
 }
 
 void SmokeRenderer::setViewProjection(const glm::mat4& view, const glm::mat4& projection) {
   impl_->view = render::engineView(view, projection);
+  impl_->planeFromTarget = false;
 }
 
 void SmokeRenderer::setLights(const std::vector<Light>& lights) {
@@ -113,17 +169,23 @@ void SmokeRenderer::render() {
 }
 
 void SmokeRenderer::record(VkCommandBuffer commands, uint64_t frame) {
+  if (!impl_->fixedTargets)
+    throw std::invalid_argument(impl_->engineTarget
+                                    ? "SmokeRenderer::record: pass this frame's targets (FrameTargets)"
+                                    : "SmokeRenderer::record: needs an engine target");
+  impl_->record(commands, frame, *impl_->fixedTargets);
+}
+
+void SmokeRenderer::record(VkCommandBuffer commands, uint64_t frame, const FrameTargets& targets) {
   if (!impl_->engineTarget) throw std::invalid_argument("SmokeRenderer::record: needs an engine target");
-  if (!impl_->view)
-    throw std::invalid_argument("SmokeRenderer::record: set the engine's camera first (setViewProjection)");
-  impl_->last = &impl_->prepare();
-  impl_->last->record(commands, frame);
+  impl_->record(commands, frame, targets);
 }
 
 std::vector<StageTime> SmokeRenderer::stageTimes() const {
   std::vector<StageTime> times;
-  if (impl_->last)
-    for (const gpu::StageTime& t : impl_->last->stageTimes()) times.push_back({t.name, t.milliseconds});
+  for (const gpu::Sequence* s : {impl_->last, impl_->lastComposite})
+    if (s)
+      for (const gpu::StageTime& t : s->stageTimes()) times.push_back({t.name, t.milliseconds});
   return times;
 }
 

@@ -1,0 +1,244 @@
+// The engine's targets passed per record() (FrameTargets): images in the engine's own layouts, moved by
+// sixway to GENERAL and on to the layouts asked for; a target of another size, a viewport inside a larger
+// target, and an engine that alternates between two targets frame by frame, each against the same frames
+// recorded into one fixed target; the same through the C API; targets that do not fit refused before anything
+// is recorded.
+#include <gtest/gtest.h>
+#include <sixway/device.h>
+#include <sixway/sixway.h>
+#include <sixway/smoke_renderer.h>
+#include <sixway/smoke_simulation.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "gpu/image.h"
+#include "runtime/engine_harness.h"
+#include "scene/scene.h"
+#include "support/engine_projections.h"
+#include "support/temp_dir.h"
+
+namespace sixway::test {
+namespace {
+
+constexpr int kFrames = 4;
+const float kBackground[4] = {0.1f, 0.2f, 0.3f, 1.0f};
+
+// Colour and depth in GENERAL, as FrameTargets, with a viewport (zero: the whole image).
+FrameTargets generalTargets(const EngineTargets& t, VkRect2D viewport = {}) {
+  FrameTargets targets;
+  targets.color = {t.color.handle(), t.color.view(), t.color.desc().format};
+  targets.depth = {t.depth.handle(), t.depth.view(), t.depth.desc().format};
+  targets.width = t.color.desc().width;
+  targets.height = t.color.desc().height;
+  targets.viewport = viewport;
+  return targets;
+}
+
+// The pixels of `image` (RGBA, `width` wide) inside `rect`, row by row.
+std::vector<float> crop(const std::vector<float>& image, uint32_t width, VkRect2D rect) {
+  std::vector<float> inside;
+  for (uint32_t y = 0; y < rect.extent.height; ++y) {
+    const size_t row = (size_t(rect.offset.y) + y) * width + uint32_t(rect.offset.x);
+    inside.insert(inside.end(), image.begin() + ptrdiff_t(row * 4),
+                  image.begin() + ptrdiff_t((row + rect.extent.width) * 4));
+  }
+  return inside;
+}
+
+class EngineTargetsTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    scene = sceneWithoutObstacles(dir.path());
+    const scene::Scene parsed = scene::loadScene(scene);
+    width = uint32_t(parsed.render.width);
+    height = uint32_t(parsed.render.height);
+    // Frames 0..kFrames − 1 into one fixed target in GENERAL: what every variant must give.
+    EngineTargets fixed(engine.context, width, height);
+    SmokeSimulation simulation(engine.device, scene);
+    SmokeRenderer renderer(engine.device, simulation, {.weights = kWeights}, fixed.target());
+    renderer.setCamera(sceneCamera());
+    for (uint64_t frame = 0; frame < kFrames; ++frame) {
+      VkCommandBuffer commands = engine.begin();
+      fixed.recordClear(commands, kBackground);
+      simulation.record(commands, frame);
+      renderer.record(commands, frame);
+      engine.submitAndWait();
+      expected.push_back(fixed.colorPixels());
+    }
+    ASSERT_GT(*std::max_element(expected.back().begin(), expected.back().end()), 0.2f) << "no smoke";
+  }
+
+  TempDir dir;
+  std::filesystem::path scene;
+  Device own{{.validate = true}};
+  BorrowingEngine engine{own};
+  uint32_t width = 0, height = 0;
+  std::vector<std::vector<float>> expected;  // per frame
+};
+
+// The engine keeps its colour in COLOR_ATTACHMENT_OPTIMAL and wants it back in TRANSFER_SRC_OPTIMAL (it
+// copies it on); its depth in DEPTH_STENCIL_READ_ONLY_OPTIMAL, wanted back as an attachment.
+// Validation checks every layout each command sees.
+TEST_F(EngineTargetsTest, OptimalLayoutsAreMovedAsAskedAndGiveTheSameSmoke) {
+  EngineTargets targets(engine.context, width, height);
+  SmokeSimulation simulation(engine.device, scene);
+  SmokeRenderer renderer(engine.device, simulation, {.weights = kWeights}, targets.color.desc().format);
+  renderer.setCamera(sceneCamera());
+  FrameTargets frameTargets = generalTargets(targets);
+  frameTargets.color.layout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  frameTargets.color.finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+  frameTargets.depth.layout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+  frameTargets.depth.finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+  for (uint64_t frame = 0; frame < kFrames; ++frame) {
+    VkCommandBuffer commands = engine.begin();
+    targets.recordClear(commands, kBackground);  // in GENERAL, then into the engine's layouts
+    const VkImage color = targets.color.handle(), depth = targets.depth.handle();
+    const VkFormat colorFormat = targets.color.desc().format, depthFormat = targets.depth.desc().format;
+    gpu::recordLayoutChange(commands, color, colorFormat, VK_IMAGE_LAYOUT_GENERAL, frameTargets.color.layout);
+    gpu::recordLayoutChange(commands, depth, depthFormat, VK_IMAGE_LAYOUT_GENERAL, frameTargets.depth.layout);
+    simulation.record(commands, frame);
+    renderer.record(commands, frame, frameTargets);
+    gpu::recordLayoutChange(commands, color, colorFormat, frameTargets.color.finalLayout,
+                            VK_IMAGE_LAYOUT_GENERAL);
+    gpu::recordLayoutChange(commands, depth, depthFormat, frameTargets.depth.finalLayout,
+                            VK_IMAGE_LAYOUT_GENERAL);
+    engine.submitAndWait();
+    EXPECT_EQ(maxDifference(targets.colorPixels(), expected[frame]), 0.0) << "frame " << frame;
+  }
+  EXPECT_EQ(own.validationMessages(), 0u);
+}
+
+// Frame by frame the engine alternates between its full-size target and a larger one whose viewport holds
+// the camera's image (dynamic resolution, split screen): the smoke inside the viewport is the fixed target's,
+// nothing outside it is touched, and the host never waits.
+TEST_F(EngineTargetsTest, AnotherSizeAndAViewportGiveTheSameCameraImage) {
+  EngineTargets full(engine.context, width, height);
+  EngineTargets larger(engine.context, width + 40, height + 24);
+  const VkRect2D viewport{{16, 8}, {width, height}};
+  SmokeSimulation simulation(engine.device, scene);
+  SmokeRenderer renderer(engine.device, simulation, {.weights = kWeights}, full.color.desc().format);
+  renderer.setCamera(sceneCamera());
+  uint64_t waitsAfterFirstTwo = 0;
+  for (uint64_t frame = 0; frame < kFrames; ++frame) {
+    const bool inLarger = frame % 2 == 1;
+    const EngineTargets& targets = inLarger ? larger : full;
+    VkCommandBuffer commands = engine.begin();
+    targets.recordClear(commands, kBackground);
+    simulation.record(commands, frame);
+    renderer.record(commands, frame, generalTargets(targets, inLarger ? viewport : VkRect2D{}));
+    if (frame == 1) waitsAfterFirstTwo = engine.device.hostWaits();
+    engine.submitAndWait();
+    EXPECT_EQ(renderer.width(), width);
+    const std::vector<float> image = targets.colorPixels();
+    if (!inLarger) {
+      EXPECT_EQ(maxDifference(image, expected[frame]), 0.0) << "frame " << frame;
+      continue;
+    }
+    EXPECT_LT(maxDifference(crop(image, width + 40, viewport), expected[frame]), 1e-6) << "frame " << frame;
+    // Outside the viewport: the clear colour, as the fixed target's corner holds it (no smoke there).
+    size_t outside = 0, touched = 0;
+    for (uint32_t y = 0; y < height + 24; ++y)
+      for (uint32_t x = 0; x < width + 40; ++x) {
+        if (x >= 16 && x < 16 + width && y >= 8 && y < 8 + height) continue;
+        ++outside;
+        for (int c = 0; c < 4; ++c)
+          if (image[(size_t(y) * (width + 40) + x) * 4 + c] != expected[0][c]) {
+            ++touched;
+            break;
+          }
+      }
+    EXPECT_GT(outside, 0u);
+    EXPECT_EQ(touched, 0u) << "pixels outside the viewport were drawn";
+  }
+  EXPECT_EQ(engine.device.hostWaits(), waitsAfterFirstTwo) << "sixway blocked the host after the first two";
+  EXPECT_EQ(own.validationMessages(), 0u);
+}
+
+// sixwayCreateRendererForFormat and sixwayRendererRecordTargets on the engine's device: the same frames.
+TEST_F(EngineTargetsTest, TheCApiTakesTheSameTargets) {
+  const gpu::Context& context = engine.context;
+  const std::vector<const char*> extensions = gpu::requiredDeviceExtensions();
+  const SixwayEngineDevice description{context.instance(),
+                                       context.physicalDevice(),
+                                       context.device(),
+                                       context.queue(),
+                                       context.queueFamily(),
+                                       extensions.data(),
+                                       uint32_t(extensions.size()),
+                                       engine.features.chain(),
+                                       2,
+                                       nullptr,
+                                       nullptr};
+  SixwayDevice device = nullptr;
+  ASSERT_EQ(sixwayCreateEngineDevice(&description, &device), SIXWAY_SUCCESS) << sixwayLastError();
+  SixwaySimulation simulation = nullptr;
+  ASSERT_EQ(sixwayCreateSimulation(device, scene.c_str(), &simulation), SIXWAY_SUCCESS) << sixwayLastError();
+  EngineTargets targets(context, width, height);
+  SixwayRenderer renderer = nullptr;
+  ASSERT_EQ(sixwayCreateRendererForFormat(device, simulation, kWeights.c_str(), targets.color.desc().format,
+                                          &renderer),
+            SIXWAY_SUCCESS)
+      << sixwayLastError();
+  const Camera camera = sceneCamera();
+  const glm::mat4 view = glm::lookAtRH(camera.position, camera.target, camera.up);
+  const glm::mat4 projection = engineProjection(DepthConvention::Standard, glm::radians(camera.fovYDegrees),
+                                                float(width) / float(height), camera.near, camera.far);
+  ASSERT_EQ(sixwayRendererSetViewProjection(renderer, &view[0][0], &projection[0][0]), SIXWAY_SUCCESS);
+  const FrameTargets t = generalTargets(targets);
+  const SixwayFrameTargets frameTargets{
+      {t.color.image, t.color.view, t.color.format, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL},
+      {t.depth.image, t.depth.view, t.depth.format, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL},
+      width,
+      height,
+      {}};
+  for (uint64_t frame = 0; frame < kFrames; ++frame) {
+    VkCommandBuffer commands = engine.begin();
+    targets.recordClear(commands, kBackground);
+    ASSERT_EQ(sixwaySimulationRecord(simulation, commands, frame), SIXWAY_SUCCESS) << sixwayLastError();
+    ASSERT_EQ(sixwayRendererRecordTargets(renderer, commands, frame, &frameTargets), SIXWAY_SUCCESS)
+        << sixwayLastError();
+    engine.submitAndWait();
+    EXPECT_LT(maxDifference(targets.colorPixels(), expected[frame]), 1e-3) << "frame " << frame;
+  }
+  SixwayFrameTargets undefined = frameTargets;
+  undefined.depth.layout = VK_IMAGE_LAYOUT_UNDEFINED;
+  VkCommandBuffer commands = engine.begin();
+  EXPECT_EQ(sixwayRendererRecordTargets(renderer, commands, kFrames, &undefined),
+            SIXWAY_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(sixwayLastError()).find("UNDEFINED"), std::string::npos) << sixwayLastError();
+  EXPECT_EQ(sixwayRendererRecordTargets(renderer, commands, kFrames, nullptr), SIXWAY_ERROR_INVALID_ARGUMENT);
+  engine.submitAndWait();
+  sixwayDestroyRenderer(renderer);
+  sixwayDestroySimulation(simulation);
+  sixwayDestroyDevice(device);
+  EXPECT_EQ(own.validationMessages(), 0u);
+}
+
+TEST_F(EngineTargetsTest, TargetsThatDoNotFitAreRefusedBeforeAnythingIsRecorded) {
+  EngineTargets targets(engine.context, width, height);
+  SmokeSimulation simulation(engine.device, scene);
+  SmokeRenderer renderer(engine.device, simulation, {.weights = kWeights}, targets.color.desc().format);
+  renderer.setCamera(sceneCamera());
+  VkCommandBuffer commands = engine.begin();
+  EXPECT_THROW(renderer.record(commands, 0), std::invalid_argument) << "no targets passed";
+  FrameTargets undefined = generalTargets(targets);
+  undefined.color.layout = VK_IMAGE_LAYOUT_UNDEFINED;
+  EXPECT_THROW(renderer.record(commands, 0, undefined), std::invalid_argument);
+  FrameTargets otherFormat = generalTargets(targets);
+  otherFormat.color.format = VK_FORMAT_R8G8B8A8_UNORM;
+  EXPECT_THROW(renderer.record(commands, 0, otherFormat), std::invalid_argument);
+  EXPECT_THROW(renderer.record(commands, 0, generalTargets(targets, {{8, 0}, {width, height}})),
+               std::invalid_argument)
+      << "a viewport beyond the image";
+  FrameTargets colorDepth = generalTargets(targets);
+  colorDepth.depth = colorDepth.color;
+  EXPECT_THROW(renderer.record(commands, 0, colorDepth), std::invalid_argument) << "a colour image as depth";
+  engine.submitAndWait();  // nothing was recorded into it
+  EXPECT_EQ(own.validationMessages(), 0u);
+}
+
+}  // namespace
+}  // namespace sixway::test
