@@ -66,6 +66,10 @@ void sixwayDestroyDevice(SixwayDevice device);
 SixwayResult sixwayCreateSimulation(SixwayDevice device, const char* scenePath, SixwaySimulation* simulation);
 SixwayResult sixwaySimulationAdvance(SixwaySimulation simulation);
 SixwayResult sixwaySimulationRecord(SixwaySimulation simulation, VkCommandBuffer commands, uint64_t frame);
+/* SmokeSimulation::record for `seconds` of frame time; `steps` (may be NULL) receives the lattice steps
+ * recorded. */
+SixwayResult sixwaySimulationRecordSeconds(SixwaySimulation simulation, VkCommandBuffer commands,
+                                           uint64_t frame, double seconds, uint32_t* steps);
 void sixwayDestroySimulation(SixwaySimulation simulation);
 
 /* sixway::SmokeRenderer with the network of `weightsPath`, into its own image (target NULL) or an engine's.

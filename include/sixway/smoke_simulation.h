@@ -47,6 +47,19 @@ class SmokeSimulation {
   // outside a render pass — as frame number `frame` (increasing). Nothing waits; the watchdog checks the
   // frame recorded framesInFlight frames earlier, so its Error arrives that much later.
   void record(VkCommandBuffer commands, uint64_t frame);
+  // The same for `seconds` of the engine's frame time (docs/embedding.md, "Frame time"): whole lattice steps
+  // of stepSeconds() each, the remainder carried to the next call, at most maxStepsPerRecord() (the time
+  // beyond them dropped: the smoke slows down rather than the frame). The smoke moves at the same speed at
+  // any frame rate. Returns the steps recorded; 0: nothing is recorded and the volume stays as it was.
+  // std::invalid_argument for negative or non-finite seconds.
+  uint32_t record(VkCommandBuffer commands, uint64_t frame, double seconds);
+  // One lattice step's simulated time: the scene's time.frame_dt over its steps per frame.
+  double stepSeconds() const;
+  // Default: twice the scene's steps per frame (real time down to half the scene's frame rate). 1 to
+  // stepCapacity(); std::invalid_argument outside.
+  void setMaxStepsPerRecord(uint32_t steps);
+  uint32_t maxStepsPerRecord() const;
+  uint32_t stepCapacity() const;
 
   // Back to the scene's first frame: the fluid at rest, no smoke, obstacles on the scene's motions. The
   // volume's buffers change (a renderer follows). With an engine's device, the GPU must have finished the

@@ -161,6 +161,15 @@ SixwayResult sixwaySimulationRecord(SixwaySimulation simulation, VkCommandBuffer
   return guarded([&] { simulation->simulation.record(commands, frame); });
 }
 
+SixwayResult sixwaySimulationRecordSeconds(SixwaySimulation simulation, VkCommandBuffer commands,
+                                           uint64_t frame, double seconds, uint32_t* steps) {
+  if (!simulation) return nullArgument("sixwaySimulationRecordSeconds", "simulation");
+  return guarded([&] {
+    const uint32_t recorded = simulation->simulation.record(commands, frame, seconds);
+    if (steps) *steps = recorded;
+  });
+}
+
 void sixwayDestroySimulation(SixwaySimulation simulation) {
   delete simulation;
 }

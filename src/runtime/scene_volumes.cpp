@@ -35,8 +35,11 @@ render::Volume SimulatedVolumes::volume(int index) {
   return volume_.view();
 }
 
-void SimulatedVolumes::recordFrame(VkCommandBuffer commands, uint64_t frame) {
-  simulation_.record(commands, frame);
+void SimulatedVolumes::recordFrame(VkCommandBuffer commands, uint64_t frame, std::optional<uint32_t> steps) {
+  if (steps)
+    simulation_.record(commands, frame, *steps);
+  else
+    simulation_.record(commands, frame);
   exportSmoke_.record(commands, frame);
   ++simulated_;
 }

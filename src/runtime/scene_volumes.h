@@ -3,6 +3,7 @@
 // is the one place where the renderers meet the simulation: the smoke goes from the simulation's
 // grid to the renderers' volume buffers on the GPU.
 #include <memory>
+#include <optional>
 
 #include "gpu/sequence.h"
 #include "render/volume.h"
@@ -31,9 +32,10 @@ class SimulatedVolumes : public render::VolumeSequence {
 
   // The volume of frame `index` even when it is empty; indices in increasing order.
   render::Volume volume(int index) override;
-  // Records the next frame's simulation and the smoke's export into the volume into `commands`, a caller's
-  // command buffer, as frame `frame`; nothing waits (sim::Simulation::record).
-  void recordFrame(VkCommandBuffer commands, uint64_t frame);
+  // Records the next frame's simulation (`steps` lattice steps, unset: the scene's per frame) and the smoke's
+  // export into the volume into `commands`, a caller's command buffer, as frame `frame`; nothing waits
+  // (sim::Simulation::record).
+  void recordFrame(VkCommandBuffer commands, uint64_t frame, std::optional<uint32_t> steps = std::nullopt);
   // The volume the frames are exported into (its buffers stay the same).
   render::Volume currentVolume() const { return volume_.view(); }
   // The simulation itself (e.g. its velocity, lbm().macro(), for `sixway dataset`'s motion field).

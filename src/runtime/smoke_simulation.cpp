@@ -1,17 +1,22 @@
 #include <sixway/smoke_simulation.h>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
 #include "runtime/internal.h"
 #include "runtime/smoke_simulation_impl.h"
+#include "scene/fluid_physics.h"
 
 namespace sixway {
 
 SmokeSimulation::Impl::Impl(const gpu::Context& context, const gpu::PipelineCache& cache, scene::Scene scene)
     : context(context), cache(cache), scene(std::move(scene)) {
   start();
+  maxStepsPerRecord =
+      std::min(2 * uint32_t(scene::lbmStepsPerFrame(this->scene)), volumes->simulation().stepCapacity());
 }
 
 void SmokeSimulation::Impl::start() {
@@ -20,6 +25,7 @@ void SmokeSimulation::Impl::start() {
       std::make_unique<runtime::SimulatedVolumes>(context, cache, scene, std::numeric_limits<int>::max());
   frames = 0;
   advanced = false;
+  carried = 0.0;
   ++starts;
 }
 
@@ -49,6 +55,41 @@ void SmokeSimulation::advance() {
 void SmokeSimulation::record(VkCommandBuffer commands, uint64_t frame) {
   impl_->volumes->recordFrame(commands, frame);
   ++impl_->frames;
+}
+
+uint32_t SmokeSimulation::record(VkCommandBuffer commands, uint64_t frame, double seconds) {
+  if (!(seconds >= 0.0) || !std::isfinite(seconds))
+    throw std::invalid_argument("SmokeSimulation::record: frame time " + std::to_string(seconds) +
+                                " s; needs a finite time >= 0");
+  const double step = stepSeconds();
+  // A whole step that rounding leaves a hair short still counts: the step is a float (relative error 6e-8),
+  // so a frame of n steps can read n − 1e-6; within 1e-4 of a step is taken as the whole.
+  const double available = std::floor((impl_->carried + seconds) / step + 1e-4);
+  const uint32_t steps = uint32_t(std::min(available, double(impl_->maxStepsPerRecord)));
+  impl_->carried = available > double(steps) ? 0.0 : std::max(0.0, impl_->carried + seconds - steps * step);
+  if (steps == 0) return 0;
+  impl_->volumes->recordFrame(commands, frame, steps);
+  ++impl_->frames;
+  return steps;
+}
+
+double SmokeSimulation::stepSeconds() const {
+  return impl_->volumes->simulation().units().stepSeconds;
+}
+
+void SmokeSimulation::setMaxStepsPerRecord(uint32_t steps) {
+  if (steps == 0 || steps > stepCapacity())
+    throw std::invalid_argument("SmokeSimulation::setMaxStepsPerRecord: " + std::to_string(steps) +
+                                "; 1 to " + std::to_string(stepCapacity()));
+  impl_->maxStepsPerRecord = steps;
+}
+
+uint32_t SmokeSimulation::maxStepsPerRecord() const {
+  return impl_->maxStepsPerRecord;
+}
+
+uint32_t SmokeSimulation::stepCapacity() const {
+  return impl_->volumes->simulation().stepCapacity();
 }
 
 void SmokeSimulation::restart() {

@@ -23,6 +23,8 @@ struct SmokeSimulation::Impl {
   int frames = 0;         // frames simulated (or recorded) since the start
   uint64_t starts = 0;    // how often the simulation was started: a renderer re-records after a restart
   bool advanced = false;  // stage times exist
+  double carried = 0.0;   // frame time not yet simulated (s), less than a step
+  uint32_t maxStepsPerRecord = 0;
 };
 
 }  // namespace sixway

@@ -179,8 +179,14 @@ void Simulation::summarize(uint64_t firstStep, uint32_t steps, const std::vector
 }
 
 void Simulation::record(VkCommandBuffer commands, uint64_t frame) {
+  record(commands, frame, uint32_t(units_.stepsPerFrame));
+}
+
+void Simulation::record(VkCommandBuffer commands, uint64_t frame, uint32_t steps) {
+  if (steps == 0 || steps > capacity_)
+    throw std::invalid_argument("Simulation::record: " + std::to_string(steps) + " steps; 1 to " +
+                                std::to_string(capacity_) + " a frame");
   checkRecordedFrame(frame);
-  const uint32_t steps = uint32_t(units_.stepsPerFrame);
   fillStepParameters(steps);
   gpu::Sequence& sequence = sequenceFor(steps, int(step_ % 2));
   sequence.record(commands, frame);

@@ -57,6 +57,10 @@ class Simulation {
   // Context::framesInFlight() frames earlier, complete by then, become report(), and the watchdog checks
   // them: a WatchdogError arrives that many frames late.
   void record(VkCommandBuffer commands, uint64_t frame);
+  // The same with `steps` lattice steps, 1..stepCapacity() (std::invalid_argument outside).
+  void record(VkCommandBuffer commands, uint64_t frame, uint32_t steps);
+  // The most steps one submission or recorded frame holds.
+  uint32_t stepCapacity() const { return capacity_; }
   // Sets the velocity (m/s) and density (ρ/ρ₀) of every lattice cell, x fastest, and the
   // populations to their equilibrium; for analytic initial conditions.
   void setFlow(const std::vector<glm::vec3>& velocity, const std::vector<float>& density);

@@ -24,6 +24,9 @@ TEST(CApi, NullHandlesAreInvalidArgumentsNamingTheCall) {
   EXPECT_EQ(std::string(sixwayLastError()), "sixwayCreateOwnDevice: device is null");
   EXPECT_EQ(sixwaySimulationAdvance(nullptr), SIXWAY_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(std::string(sixwayLastError()), "sixwaySimulationAdvance: simulation is null");
+  EXPECT_EQ(sixwaySimulationRecordSeconds(nullptr, VK_NULL_HANDLE, 0, 0.1, nullptr),
+            SIXWAY_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(std::string(sixwayLastError()), "sixwaySimulationRecordSeconds: simulation is null");
   const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
   EXPECT_EQ(sixwayRendererSetViewProjection(nullptr, identity, identity), SIXWAY_ERROR_INVALID_ARGUMENT);
   sixwayDestroyRenderer(nullptr);  // no-ops, as free(NULL)

@@ -53,6 +53,7 @@ class EngineTargetsTest : public ::testing::Test {
   void SetUp() override {
     scene = sceneWithoutObstacles(dir.path());
     const scene::Scene parsed = scene::loadScene(scene);
+    frameSeconds = parsed.time.frameDt;
     width = uint32_t(parsed.render.width);
     height = uint32_t(parsed.render.height);
     // Frames 0..kFrames − 1 into one fixed target in GENERAL: what every variant must give.
@@ -76,6 +77,7 @@ class EngineTargetsTest : public ::testing::Test {
   Device own{{.validate = true}};
   BorrowingEngine engine{own};
   uint32_t width = 0, height = 0;
+  double frameSeconds = 0.0;                 // the scene's time.frame_dt
   std::vector<std::vector<float>> expected;  // per frame
 };
 
@@ -157,7 +159,8 @@ TEST_F(EngineTargetsTest, AnotherSizeAndAViewportGiveTheSameCameraImage) {
   EXPECT_EQ(own.validationMessages(), 0u);
 }
 
-// sixwayCreateRendererForFormat and sixwayRendererRecordTargets on the engine's device: the same frames.
+// sixwayCreateRendererForFormat, sixwaySimulationRecordSeconds and sixwayRendererRecordTargets on the
+// engine's device: the same frames.
 TEST_F(EngineTargetsTest, TheCApiTakesTheSameTargets) {
   const gpu::Context& context = engine.context;
   const std::vector<const char*> extensions = gpu::requiredDeviceExtensions();
@@ -197,7 +200,11 @@ TEST_F(EngineTargetsTest, TheCApiTakesTheSameTargets) {
   for (uint64_t frame = 0; frame < kFrames; ++frame) {
     VkCommandBuffer commands = engine.begin();
     targets.recordClear(commands, kBackground);
-    ASSERT_EQ(sixwaySimulationRecord(simulation, commands, frame), SIXWAY_SUCCESS) << sixwayLastError();
+    uint32_t steps = 0;  // one scene frame of time: the scene's steps, as the fixed target's frames had
+    ASSERT_EQ(sixwaySimulationRecordSeconds(simulation, commands, frame, frameSeconds, &steps),
+              SIXWAY_SUCCESS)
+        << sixwayLastError();
+    EXPECT_GT(steps, 0u);
     ASSERT_EQ(sixwayRendererRecordTargets(renderer, commands, frame, &frameTargets), SIXWAY_SUCCESS)
         << sixwayLastError();
     engine.submitAndWait();
