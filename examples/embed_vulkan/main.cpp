@@ -1,8 +1,13 @@
 // A minimal "engine": it owns its Vulkan instance and device, draws its own scene (a floor and a box) into a
-// colour and a depth image, and composites sixway's smoke over it through the public API, two frames in
-// flight, headless. Its camera is an engine's: reversed-Z with an infinite far plane and a TAA jitter each
-// frame, handed to sixway as its view and projection matrices. Writes the last frame as a PNG; fails on any
-// validation message.
+// colour and a depth image, and composites sixway's smoke over it through the public API, headless. What an
+// engine does that sixway must follow: its camera is reversed-Z with an infinite far plane and a TAA jitter
+// each frame, handed over as view and projection matrices; three frames in flight, each with its own colour
+// and depth images in optimal layouts (sixway moves them to what it needs and back); a frame time that
+// varies (30 and 144 fps, hitches) and the smoke's speed does not; its own host allocator and pipeline cache;
+// sixway's one-time work submitted by the engine itself; mid-run the window grows (the targets are made anew
+// at the new size), the emitter is switched off and on, and an obstacle is moved by the engine's own logic.
+// Writes the last frame as a PNG and prints what sixway submitted and waited for after the first frame; fails
+// on any validation message.
 //   embed_vulkan --scene S.json --weights W.safetensors [--frames N] --out frame.png
 #include <sixway/device.h>
 #include <sixway/errors.h>
@@ -19,9 +24,13 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/packing.hpp>
 #include <glm/mat4x4.hpp>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -99,7 +108,7 @@ struct Engine {
     VkDebugUtilsMessengerCreateInfoEXT messengerInfo{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
     messengerInfo.messageSeverity =
         VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-    // Not the performance hints: sixway (like this example) keeps its images in VK_IMAGE_LAYOUT_GENERAL.
+    // Not the performance hints: sixway keeps its own images in VK_IMAGE_LAYOUT_GENERAL.
     messengerInfo.messageType =
         VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT;
     messengerInfo.pfnUserCallback = onMessage;
@@ -292,12 +301,13 @@ struct ScenePass {
               const Push& push) const {
     VkRenderingAttachmentInfo colorAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     colorAttachment.imageView = color.view;
-    colorAttachment.imageLayout = VK_IMAGE_LAYOUT_GENERAL;
+    colorAttachment.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     colorAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
     colorAttachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     colorAttachment.clearValue.color = {{0.05f, 0.06f, 0.08f, 1.0f}};
     VkRenderingAttachmentInfo depthAttachment = colorAttachment;
     depthAttachment.imageView = depth.view;
+    depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
     depthAttachment.clearValue.depthStencil = {0.0f, 0};  // reversed-Z: 0 is infinitely far
     VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
     info.renderArea = {{0, 0}, {width, height}};
@@ -328,12 +338,15 @@ void fullBarrier(VkCommandBuffer cmd) {
   vkCmdPipelineBarrier2(cmd, &dependency);
 }
 
-void toGeneral(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect) {
+// The engine's layout changes: `from` UNDEFINED discards the contents (each frame clears them anyway).
+void changeLayout(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from,
+                  VkImageLayout to) {
   VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
   barrier.srcStageMask = barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  barrier.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
   barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
-  barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  barrier.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+  barrier.oldLayout = from;
+  barrier.newLayout = to;
   barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.image = image;
   barrier.subresourceRange = {aspect, 0, 1, 0, 1};
@@ -342,6 +355,63 @@ void toGeneral(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect) {
   dependency.pImageMemoryBarriers = &barrier;
   vkCmdPipelineBarrier2(cmd, &dependency);
 }
+
+// The engine's host allocator, handed to sixway for its Vulkan objects: counts what is live.
+struct HostAllocator {
+  std::mutex mutex;
+  std::map<void*, size_t> live;
+  VkAllocationCallbacks callbacks{};
+
+  HostAllocator() {
+    callbacks.pUserData = this;
+    callbacks.pfnAllocation = [](void* user, size_t size, size_t alignment, VkSystemAllocationScope) {
+      return static_cast<HostAllocator*>(user)->allocate(size, alignment);
+    };
+    callbacks.pfnReallocation = [](void* user, void* old, size_t size, size_t alignment,
+                                   VkSystemAllocationScope) -> void* {
+      auto* self = static_cast<HostAllocator*>(user);
+      if (!old) return self->allocate(size, alignment);
+      void* fresh = size ? self->allocate(size, alignment) : nullptr;
+      if (fresh) std::memcpy(fresh, old, std::min(size, self->sizeOf(old)));
+      if (fresh || size == 0) self->release(old);
+      return fresh;
+    };
+    callbacks.pfnFree = [](void* user, void* memory) { static_cast<HostAllocator*>(user)->release(memory); };
+  }
+  void* allocate(size_t size, size_t alignment) {
+    void* memory = std::aligned_alloc(alignment, (size + alignment - 1) / alignment * alignment);
+    std::lock_guard lock(mutex);
+    if (memory) live[memory] = size;
+    return memory;
+  }
+  size_t sizeOf(void* memory) {
+    std::lock_guard lock(mutex);
+    return live.at(memory);
+  }
+  void release(void* memory) {
+    if (!memory) return;
+    {
+      std::lock_guard lock(mutex);
+      live.erase(memory);
+    }
+    std::free(memory);
+  }
+};
+
+// One frame in flight's colour and depth images, at the window's size.
+struct FrameImages {
+  Image color, depth;
+  uint32_t width, height;
+  bool fresh = true;  // not yet in a layout of the engine's
+
+  FrameImages(const Engine& e, uint32_t w, uint32_t h, VkFormat colorFormat, VkFormat depthFormat)
+      : color(e, w, h, colorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+              VK_IMAGE_ASPECT_COLOR_BIT),
+        depth(e, w, h, depthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+              VK_IMAGE_ASPECT_DEPTH_BIT),
+        width(w),
+        height(h) {}
+};
 
 float toSrgb(float linear) {
   linear = std::clamp(linear, 0.0f, 1.0f);
@@ -369,78 +439,71 @@ glm::mat4 jitteredProjection(uint64_t frame, uint32_t width, uint32_t height) {
   return p;
 }
 
-int run(const Options& options) {
-  constexpr uint32_t kWidth = 160, kHeight = 120, kFramesInFlight = 2;
-  constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT, kDepthFormat = VK_FORMAT_D32_SFLOAT;
-  Engine engine;
-  Image color(engine, kWidth, kHeight, kColorFormat,
-              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-              VK_IMAGE_ASPECT_COLOR_BIT);
-  Image depth(engine, kWidth, kHeight, kDepthFormat,
-              VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
-              VK_IMAGE_ASPECT_DEPTH_BIT);
-  ScenePass scenePass(engine, kColorFormat, kDepthFormat);
+// The engine's frame time: mostly 30 fps, every other frame 144 fps, every fifth a hitch of 80 ms.
+double frameSeconds(uint64_t frame) {
+  if (frame % 5 == 4) return 0.08;
+  return frame % 2 == 0 ? 1.0 / 30.0 : 1.0 / 144.0;
+}
 
-  // sixway on the engine's device: the smoke simulation and its renderer into the engine's target.
-  sixway::Device smokeDevice(sixway::EngineDevice{engine.instance, engine.physicalDevice, engine.device,
-                                                  engine.queue, engine.queueFamily, engine.extensions,
-                                                  engine.requirements->features(), kFramesInFlight});
-  sixway::SmokeSimulation simulation(smokeDevice, options.scene);
-  sixway::SmokeRenderer smoke(
-      smokeDevice, simulation, {.weights = options.weights},
-      {color.image, color.view, kColorFormat, depth.image, depth.view, kDepthFormat, kWidth, kHeight});
-  const glm::mat4 view =
-      glm::lookAtRH(glm::vec3(0.9f, 0.8f, 2.2f), glm::vec3(0.0f, 0.55f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
-  const glm::vec4 box(0.35f, 0.15f, 0.45f, 0.15f);  // centre, half size
+// The engine's command buffers, fences and the one-time work it runs for sixway.
+struct FrameLoop {
+  static constexpr uint32_t kFramesInFlight = 3;
+  const Engine& engine;
+  VkCommandPool pool = VK_NULL_HANDLE;
+  std::array<VkCommandBuffer, kFramesInFlight + 1> commands{};  // the last: one-time work and the readback
+  std::array<VkFence, kFramesInFlight + 1> fences{};
+  uint64_t oneTimeJobs = 0;  // sixway's one-time work the engine submitted
 
-  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-  poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-  poolInfo.queueFamilyIndex = engine.queueFamily;
-  VkCommandPool pool;
-  VK(vkCreateCommandPool(engine.device, &poolInfo, nullptr, &pool));
-  std::array<VkCommandBuffer, kFramesInFlight> commands;
-  VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, pool,
-                                        VK_COMMAND_BUFFER_LEVEL_PRIMARY, kFramesInFlight};
-  VK(vkAllocateCommandBuffers(engine.device, &allocInfo, commands.data()));
-  std::array<VkFence, kFramesInFlight> fences;
-  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO, nullptr, VK_FENCE_CREATE_SIGNALED_BIT};
-  for (VkFence& f : fences) VK(vkCreateFence(engine.device, &fenceInfo, nullptr, &f));
-
-  uint64_t waitsAfterFirstFrame = 0;
-  for (uint64_t frame = 0; frame < uint64_t(options.frames); ++frame) {
-    // Frames in flight: before reusing this slot, its previous frame (frame − 2) must be done.
-    const size_t slot = frame % kFramesInFlight;
+  explicit FrameLoop(const Engine& e) : engine(e) {
+    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    poolInfo.queueFamilyIndex = e.queueFamily;
+    VK(vkCreateCommandPool(e.device, &poolInfo, nullptr, &pool));
+    VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, pool,
+                                          VK_COMMAND_BUFFER_LEVEL_PRIMARY, uint32_t(commands.size())};
+    VK(vkAllocateCommandBuffers(e.device, &allocInfo, commands.data()));
+    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO, nullptr, VK_FENCE_CREATE_SIGNALED_BIT};
+    for (VkFence& f : fences) VK(vkCreateFence(e.device, &fenceInfo, nullptr, &f));
+  }
+  ~FrameLoop() {
+    vkDeviceWaitIdle(engine.device);
+    for (VkFence f : fences) vkDestroyFence(engine.device, f, nullptr);
+    vkDestroyCommandPool(engine.device, pool, nullptr);
+  }
+  // Waits for the slot's previous submission and begins its command buffer.
+  VkCommandBuffer begin(size_t slot) {
     VK(vkWaitForFences(engine.device, 1, &fences[slot], VK_TRUE, UINT64_MAX));
     VK(vkResetFences(engine.device, 1, &fences[slot]));
-    VkCommandBuffer cmd = commands[slot];
-    VK(vkResetCommandBuffer(cmd, 0));
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    VK(vkBeginCommandBuffer(cmd, &begin));
-    if (frame == 0) {
-      toGeneral(cmd, color.image, VK_IMAGE_ASPECT_COLOR_BIT);
-      toGeneral(cmd, depth.image, VK_IMAGE_ASPECT_DEPTH_BIT);
-    }
-    fullBarrier(cmd);  // the previous frame's smoke pass read and wrote these images
-    const glm::mat4 projection = jitteredProjection(frame, kWidth, kHeight);
-    smoke.setViewProjection(view, projection);
-    scenePass.record(cmd, color, depth, kWidth, kHeight, {projection * view, box});
-    simulation.record(cmd, frame);
-    smoke.record(cmd, frame);  // over the engine's colour, hidden by its depth
-    VK(vkEndCommandBuffer(cmd));
-    if (frame == 0)
-      waitsAfterFirstFrame = smokeDevice.hostWaits();  // the first frame records sixway's passes
-    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &cmd;
-    VK(vkQueueSubmit(engine.queue, 1, &submit, fences[slot]));
+    VK(vkResetCommandBuffer(commands[slot], 0));
+    VkCommandBufferBeginInfo info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    info.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    VK(vkBeginCommandBuffer(commands[slot], &info));
+    return commands[slot];
   }
-  VK(vkWaitForFences(engine.device, kFramesInFlight, fences.data(), VK_TRUE, UINT64_MAX));
-  const uint64_t waitsPerFrame = (smokeDevice.hostWaits() - waitsAfterFirstFrame) / uint64_t(options.frames);
+  void submit(size_t slot) {
+    VK(vkEndCommandBuffer(commands[slot]));
+    VkSubmitInfo info{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    info.commandBufferCount = 1;
+    info.pCommandBuffers = &commands[slot];
+    VK(vkQueueSubmit(engine.queue, 1, &info, fences[slot]));
+  }
+  void waitAll() {
+    VK(vkWaitForFences(engine.device, uint32_t(fences.size()), fences.data(), VK_TRUE, UINT64_MAX));
+  }
+  // EngineDevice::submitAndWait: sixway's one-time work in the engine's command buffer, on its queue.
+  void oneTime(const std::function<void(VkCommandBuffer)>& record) {
+    VkCommandBuffer cmd = begin(kFramesInFlight);
+    record(cmd);
+    submit(kFramesInFlight);
+    VK(vkWaitForFences(engine.device, 1, &fences[kFramesInFlight], VK_TRUE, UINT64_MAX));
+    ++oneTimeJobs;
+  }
+};
 
-  // Read the last frame back and write it as an sRGB PNG.
+// The colour image as an sRGB PNG (it is in TRANSFER_SRC_OPTIMAL, where sixway left it).
+bool writePng(const Engine& engine, FrameLoop& loop, const FrameImages& images, const std::string& path) {
   VkBufferCreateInfo bufferInfo{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
-  bufferInfo.size = uint64_t(kWidth) * kHeight * 8;
+  bufferInfo.size = uint64_t(images.width) * images.height * 8;
   bufferInfo.usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
   VkBuffer readback;
   VK(vkCreateBuffer(engine.device, &bufferInfo, nullptr, &readback));
@@ -453,45 +516,132 @@ int run(const Options& options) {
   VkDeviceMemory readbackMemory;
   VK(vkAllocateMemory(engine.device, &alloc, nullptr, &readbackMemory));
   VK(vkBindBufferMemory(engine.device, readback, readbackMemory, 0));
-  VkCommandBuffer cmd = commands[0];
-  VK(vkResetCommandBuffer(cmd, 0));
-  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-  VK(vkBeginCommandBuffer(cmd, &begin));
+  const size_t slot = FrameLoop::kFramesInFlight;
+  VkCommandBuffer cmd = loop.begin(slot);
   fullBarrier(cmd);
   VkBufferImageCopy region{};
   region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  region.imageExtent = {kWidth, kHeight, 1};
-  vkCmdCopyImageToBuffer(cmd, color.image, VK_IMAGE_LAYOUT_GENERAL, readback, 1, &region);
+  region.imageExtent = {images.width, images.height, 1};
+  vkCmdCopyImageToBuffer(cmd, images.color.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback, 1, &region);
   fullBarrier(cmd);
-  VK(vkEndCommandBuffer(cmd));
-  VK(vkResetFences(engine.device, 1, &fences[0]));
-  VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-  submit.commandBufferCount = 1;
-  submit.pCommandBuffers = &cmd;
-  VK(vkQueueSubmit(engine.queue, 1, &submit, fences[0]));
-  VK(vkWaitForFences(engine.device, 1, &fences[0], VK_TRUE, UINT64_MAX));
+  loop.submit(slot);
+  loop.waitAll();
   void* mapped;
   VK(vkMapMemory(engine.device, readbackMemory, 0, VK_WHOLE_SIZE, 0, &mapped));
-  std::vector<uint8_t> srgb(size_t(kWidth) * kHeight * 4);
+  std::vector<uint8_t> srgb(size_t(images.width) * images.height * 4);
   const auto* halves = static_cast<const uint16_t*>(mapped);
   for (size_t i = 0; i < srgb.size(); ++i) {
     const float value = glm::unpackHalf1x16(halves[i]);
     srgb[i] = uint8_t(std::lround(255.0f * (i % 4 == 3 ? std::clamp(value, 0.0f, 1.0f) : toSrgb(value))));
   }
   vkUnmapMemory(engine.device, readbackMemory);
-  const bool written =
-      stbi_write_png(options.out.c_str(), int(kWidth), int(kHeight), 4, srgb.data(), int(kWidth) * 4);
-
   vkDestroyBuffer(engine.device, readback, nullptr);
   vkFreeMemory(engine.device, readbackMemory, nullptr);
-  for (VkFence f : fences) vkDestroyFence(engine.device, f, nullptr);
-  vkDestroyCommandPool(engine.device, pool, nullptr);
+  return stbi_write_png(path.c_str(), int(images.width), int(images.height), 4, srgb.data(),
+                        int(images.width) * 4) != 0;
+}
+
+int run(const Options& options) {
+  constexpr uint32_t kFramesInFlight = FrameLoop::kFramesInFlight;
+  constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT, kDepthFormat = VK_FORMAT_D32_SFLOAT;
+  Engine engine;
+  ScenePass scenePass(engine, kColorFormat, kDepthFormat);
+  FrameLoop loop(engine);
+  HostAllocator allocator;
+  VkPipelineCache pipelineCache;
+  VkPipelineCacheCreateInfo cacheInfo{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
+  VK(vkCreatePipelineCache(engine.device, &cacheInfo, nullptr, &pipelineCache));
+
+  // sixway on the engine's device: its allocator, pipeline cache, log and one-time submissions.
+  sixway::EngineDevice description{
+      engine.instance,   engine.physicalDevice,           engine.device,  engine.queue, engine.queueFamily,
+      engine.extensions, engine.requirements->features(), kFramesInFlight};
+  description.submitAndWait = [&](const std::function<void(VkCommandBuffer)>& record) {
+    loop.oneTime(record);
+  };
+  description.allocator = &allocator.callbacks;
+  description.pipelineCache = pipelineCache;
+  description.log = [](const std::string& line) { std::printf("sixway note: %s\n", line.c_str()); };
+  const glm::mat4 view =
+      glm::lookAtRH(glm::vec3(0.9f, 0.8f, 2.2f), glm::vec3(0.0f, 0.55f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+  const glm::vec4 box(0.35f, 0.15f, 0.45f, 0.15f);  // centre, half size
+  uint64_t jobsAfterFirstFrame = 0, waitsAfterFirstFrame = 0, waitsAtEnd = 0;
+  std::vector<sixway::StageTime> times;
+  bool written = false;
+  {
+    sixway::Device smokeDevice(description);
+    sixway::SmokeSimulation simulation(smokeDevice, options.scene);
+    sixway::SmokeRenderer smoke(smokeDevice, simulation, {.weights = options.weights}, kColorFormat);
+    const glm::vec3 obstacleStart =
+        simulation.obstacleCount() > 0 ? simulation.obstaclePosition(0) : glm::vec3(0.0f);
+
+    // Each frame in flight draws into its own images; halfway through, the window grows.
+    std::vector<std::unique_ptr<FrameImages>> images;
+    auto makeImages = [&](uint32_t width, uint32_t height) {
+      images.clear();
+      for (uint32_t i = 0; i < kFramesInFlight; ++i)
+        images.push_back(std::make_unique<FrameImages>(engine, width, height, kColorFormat, kDepthFormat));
+    };
+    makeImages(160, 120);
+    const uint64_t frames = uint64_t(options.frames);
+    for (uint64_t frame = 0; frame < frames; ++frame) {
+      if (frame == frames / 2) {  // a resize: the engine waits for its frames and makes its targets anew
+        loop.waitAll();
+        makeImages(200, 150);
+      }
+      const size_t slot = frame % kFramesInFlight;
+      FrameImages& target = *images[slot];
+      VkCommandBuffer cmd = loop.begin(slot);
+      changeLayout(cmd, target.color.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                   VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+      changeLayout(cmd, target.depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                   VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
+      const glm::mat4 projection = jitteredProjection(frame, target.width, target.height);
+      smoke.setViewProjection(view, projection);
+      scenePass.record(cmd, target.color, target.depth, target.width, target.height,
+                       {projection * view, box});
+
+      // The engine's world: the emitter off through the middle third, the obstacle on a circle.
+      if (frame == frames / 3) simulation.setInletStrength(0.0f);
+      if (frame == 2 * frames / 3) simulation.setInletStrength(1.0f);
+      if (simulation.obstacleCount() > 0) {
+        const float angle = 0.6f * float(frame);
+        simulation.steerObstacle(
+            0, obstacleStart + 0.15f * glm::vec3(std::cos(angle) - 1.0f, 0.0f, std::sin(angle)));
+      }
+      simulation.record(cmd, frame, frameSeconds(frame));
+      // Over the engine's colour, hidden by its depth; the colour is left ready to copy.
+      smoke.record(cmd, frame,
+                   {{target.color.image, target.color.view, kColorFormat,
+                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL},
+                    {target.depth.image, target.depth.view, kDepthFormat,
+                     VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL},
+                    target.width,
+                    target.height,
+                    {}});
+      loop.submit(slot);
+      if (frame == 0) {  // the first frame records sixway's passes and uploads what they need
+        jobsAfterFirstFrame = loop.oneTimeJobs;
+        waitsAfterFirstFrame = smokeDevice.hostWaits();
+      }
+    }
+    loop.waitAll();
+    waitsAtEnd = smokeDevice.hostWaits();
+    written = writePng(engine, loop, *images[(frames - 1) % kFramesInFlight], options.out);
+    times = simulation.stageTimes();
+    const std::vector<sixway::StageTime> shading = smoke.stageTimes();
+    times.insert(times.end(), shading.begin(), shading.end());
+  }
+  vkDestroyPipelineCache(engine.device, pipelineCache, nullptr);
   if (!written) throw std::runtime_error(options.out + ": cannot write the PNG");
-  std::printf("wrote %s: %d frames, %d validation messages, %llu host waits per frame\n", options.out.c_str(),
-              options.frames, validationMessages.load(), static_cast<unsigned long long>(waitsPerFrame));
-  for (const sixway::StageTime& t : smoke.stageTimes())
-    std::printf("  %-12s %8.2f ms\n", t.name.c_str(), t.milliseconds);
-  return validationMessages.load() == 0 ? 0 : 1;
+  std::printf(
+      "wrote %s: %d frames, %d validation messages, %llu host waits and %llu submissions by sixway "
+      "after the first frame, %zu host allocations left\n",
+      options.out.c_str(), options.frames, validationMessages.load(),
+      static_cast<unsigned long long>(waitsAtEnd - waitsAfterFirstFrame),
+      static_cast<unsigned long long>(loop.oneTimeJobs - jobsAfterFirstFrame), allocator.live.size());
+  for (const sixway::StageTime& t : times) std::printf("  %-20s %8.2f ms\n", t.name.c_str(), t.milliseconds);
+  return validationMessages.load() == 0 && allocator.live.empty() ? 0 : 1;
 }
 
 }  // namespace

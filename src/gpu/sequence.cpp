@@ -462,6 +462,11 @@ void Sequence::submit() {
   collectTimes(slots_[(submissions_ - 1) % slots_.size()], true);
 }
 
+const std::vector<StageTime>& Sequence::timesOfFrame(uint64_t frame) {
+  collectTimes(slots_[frame % slots_.size()], false);
+  return times_;
+}
+
 void Sequence::collectTimes(const Slot& slot, bool wait) {
   if (wait) times_.clear();
   if (!slot.queries || stageNames_.empty()) return;

@@ -163,6 +163,10 @@ class Sequence {
   // completed. The slots are reused after Context::framesInFlight() further frames.
   std::span<const std::byte> readback(const Buffer& source, uint64_t frame) const;
   const std::vector<StageTime>& stageTimes() const { return times_; }
+  // The stage times of the execution recorded as `frame`, which must have completed, read now (record()
+  // reads a frame's times only when its copy of the work is recorded again, which a sequence that is not
+  // recorded every frame may never be); stageTimes() then holds them.
+  const std::vector<StageTime>& timesOfFrame(uint64_t frame);
   uint32_t barrierCount() const { return barriers_; }
 
  private:

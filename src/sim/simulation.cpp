@@ -209,8 +209,8 @@ void Simulation::checkRecordedFrame(uint64_t frame) {
         obstacles_->obstacleCount() > 0
             ? reinterpret_cast<const glm::vec4*>(done.sequence->readback(forces_, done.frame).data())
             : nullptr;
-    summarize(done.firstStep, done.steps, done.sequence->stageTimes(), forces, stats(*speedStats_),
-              stats(*densityStats_));
+    summarize(done.firstStep, done.steps, done.sequence->timesOfFrame(done.frame), forces,
+              stats(*speedStats_), stats(*densityStats_));
     ++framesReported_;
   }
   // Replaced sequences that no frame in flight runs and no unread frame holds.
