@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <memory>
 #include <vector>
@@ -22,8 +23,9 @@ class Device;
 
 // The smoke on the device, for engines that march or shade it themselves: density and temperature as one
 // float per cell (x fastest, then y, then z; density per unit of the scene's smoke.extinction), on a lattice
-// of cubic cells whose cell (0, 0, 0) has its corner at `origin`. The buffers stay the same for the
-// simulation's life; a recorded frame writes them (storage-buffer writes, followed by a full barrier).
+// of cubic cells whose cell (0, 0, 0) has its corner at `origin` (scene space: placement() puts it in the
+// world). The buffers stay the same for the simulation's life; a recorded frame writes them (storage-buffer
+// writes, followed by a full barrier).
 struct SmokeVolume {
   VkBuffer density = VK_NULL_HANDLE;
   VkBuffer temperature = VK_NULL_HANDLE;
@@ -73,6 +75,14 @@ class SmokeSimulation {
   // "sim/forces+watchdog"), or with an engine of the latest recorded frame whose times are in (framesInFlight
   // frames late); empty before.
   std::vector<StageTime> stageTimes() const;
+
+  // Where the scene stands in the engine's world (docs/embedding.md, "Placement"): world = placement ·
+  // scene, a rotation about the vertical axis (y stays up: the smoke rises along it) and a translation.
+  // Renderers of this simulation take the engine's camera and lights in the world and give the lightmaps'
+  // corners there; the obstacle calls below are in the world too. Default: the identity.
+  // std::invalid_argument for anything else (a tilt, a scale, a projection, not finite).
+  void setPlacement(const glm::mat4& worldFromScene);
+  glm::mat4 placement() const;
 
   size_t obstacleCount() const;
   glm::vec3 obstaclePosition(size_t obstacle) const;  // world (m), now

@@ -9,6 +9,7 @@
 #include "render/shadow_maps.h"
 #include "runtime/internal.h"
 #include "runtime/network_lightmaps.h"
+#include "runtime/placement.h"
 #include "runtime/scene_lights.h"
 #include "runtime/smoke_renderer_impl.h"
 
@@ -87,6 +88,33 @@ SmokeRenderer::Impl::Impl(const gpu::Context& context, const gpu::PipelineCache&
           std::make_unique<runtime::NetworkLightmaps>(context, cache, scene, options.weights, options.fp16)) {
 }
 
+std::optional<render::EngineView> SmokeRenderer::Impl::sceneView() const {
+  const glm::mat4 placement = simulation.placement();
+  if (const Camera* c = std::get_if<Camera>(&camera)) {
+    render::EngineView view;
+    view.camera = render::Camera::lookAt(runtime::scenePoint(placement, c->position),
+                                         runtime::scenePoint(placement, c->target),
+                                         runtime::sceneDirection(placement, c->up), c->fovYDegrees);
+    view.depth = render::depthMapping({c->near, c->far});
+    return view;
+  }
+  if (const Matrices* m = std::get_if<Matrices>(&camera))
+    return render::engineView(m->view * placement, m->projection);
+  return std::nullopt;
+}
+
+std::optional<std::vector<scene::Light>> SmokeRenderer::Impl::sceneLights() const {
+  if (!lights) return std::nullopt;
+  const glm::mat4 placement = simulation.placement();
+  std::vector<scene::Light> converted;
+  for (Light l : *lights) {
+    l.direction = runtime::sceneDirection(placement, l.direction);
+    l.position = runtime::scenePoint(placement, l.position);
+    converted.push_back(runtime::sceneLight(l));
+  }
+  return converted;
+}
+
 gpu::Sequence& SmokeRenderer::Impl::prepare() {
   const runtime::SimulatedVolumes& volumes = runtime::Access::volumes(simulation);
   const sim::Simulation& sim = volumes.simulation();
@@ -94,21 +122,24 @@ gpu::Sequence& SmokeRenderer::Impl::prepare() {
     renderer.frame().meshes().setMotion(o, sim.obstacleMotion(o));
   // The smoke after `frames` frames is frame frames − 1.
   const int index = std::max(0, simulation.framesSimulated() - 1);
+  const std::optional<render::EngineView> view = sceneView();
+  const std::optional<std::vector<scene::Light>> frameLights = sceneLights();
   runtime::FrameInput input{volumes.currentVolume(),
                             runtime::Access::starts(simulation),
                             {view ? view->camera : render::sceneCamera(scene.camera, index),
-                             lights ? *lights : render::sceneLights(scene.lights, index)},
+                             frameLights ? *frameLights : render::sceneLights(scene.lights, index)},
                             index,
                             sim.seconds()};
   // A restarted simulation may reuse a handle value: the start count tells its volume apart. An engine's
-  // depth buffer holds its projection's depth; sixway's own, the obstacle pass's.
-  if (view && !planeFromTarget) input.plane = view->plane;
+  // depth buffer holds its projection's depth; sixway's own, the obstacle pass's. setCamera's image plane is
+  // the target's (or viewport's) full frame.
+  if (std::holds_alternative<Matrices>(camera)) input.plane = view->plane;
   if (engineTarget) input.targetDepth = view->depth;
   return renderer.prepare(input);
 }
 
 void SmokeRenderer::Impl::record(VkCommandBuffer commands, uint64_t frame, const FrameTargets& targets) {
-  if (!view)
+  if (std::holds_alternative<std::monostate>(camera))
     throw std::invalid_argument("SmokeRenderer::record: set the engine's camera first (setViewProjection)");
   renderer.frame().setEngineTarget(borrowedTarget(context, targets));
   gpu::Sequence& compute = prepare();
@@ -141,25 +172,21 @@ SmokeRenderer::~SmokeRenderer() = default;
 void SmokeRenderer::setCamera(const Camera& camera) {
   if (!(camera.near > 0.0f && camera.far > camera.near))
     throw std::invalid_argument("Camera: needs 0 < near < far");
-  render::EngineView view;
-  view.camera = render::Camera::lookAt(camera.position, camera.target, camera.up, camera.fovYDegrees);
-  view.depth = render::depthMapping({camera.near, camera.far});
-  impl_->view = view;
-  impl_->planeFromTarget = true;
+  render::Camera::lookAt(camera.position, camera.target, camera.up, camera.fovYDegrees);  // checks it
+  impl_->camera = camera;
 }
 
 void SmokeRenderer::setViewProjection(const glm::mat4& view, const glm::mat4& projection) {
-  impl_->view = render::engineView(view, projection);
-  impl_->planeFromTarget = false;
+  render::engineView(view, projection);  // checks them
+  impl_->camera = Impl::Matrices{view, projection};
 }
 
 void SmokeRenderer::setLights(const std::vector<Light>& lights) {
   if (lights.size() > maxLights())
     throw std::invalid_argument("SmokeRenderer::setLights: " + std::to_string(lights.size()) +
                                 " lights; at most " + std::to_string(maxLights()));
-  std::vector<scene::Light> converted;
-  for (const Light& l : lights) converted.push_back(runtime::sceneLight(l));
-  impl_->lights = std::move(converted);
+  for (const Light& l : lights) runtime::sceneLight(l);  // checks each
+  impl_->lights = lights;
 }
 
 void SmokeRenderer::render() {
@@ -216,10 +243,12 @@ uint32_t SmokeRenderer::height() const {
 LightmapTextures SmokeRenderer::lightmaps() const {
   const runtime::RealtimeFrame& frame = impl_->renderer.frame();
   const gpu::Image& a = frame.lightmaps().a;
+  std::array<glm::vec3, 4> corners = frame.billboardCorners();
+  for (glm::vec3& c : corners) c = runtime::worldPoint(impl_->simulation.placement(), c);
   return {a.handle(),      frame.lightmaps().b.handle(),
           a.view(),        frame.lightmaps().b.view(),
           a.desc().format, a.desc().width,
-          a.desc().height, frame.billboardCorners()};
+          a.desc().height, corners};
 }
 
 }  // namespace sixway

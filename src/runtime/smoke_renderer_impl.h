@@ -6,6 +6,7 @@
 #include <sixway/smoke_simulation.h>
 
 #include <optional>
+#include <variant>
 #include <vector>
 
 #include "render/engine_view.h"
@@ -30,10 +31,16 @@ struct SmokeRenderer::Impl {
   const scene::Scene& scene;  // the simulation's
   bool engineTarget;
   runtime::FrameRenderer renderer;
+  // The camera and lights in the scene this frame (the engine's, through the simulation's placement).
+  std::optional<render::EngineView> sceneView() const;
+  std::optional<std::vector<scene::Light>> sceneLights() const;
+
   std::optional<FrameTargets> fixedTargets;  // the RenderTarget constructor's
-  std::optional<render::EngineView> view;    // setCamera's or setViewProjection's
-  bool planeFromTarget = false;              // setCamera's: the view's plane is the target's full frame
-  std::optional<std::vector<scene::Light>> lights;
+  struct Matrices {
+    glm::mat4 view, projection;
+  };
+  std::variant<std::monostate, Camera, Matrices> camera;  // setCamera's or setViewProjection's, in the world
+  std::optional<std::vector<Light>> lights;               // setLights', in the world
   gpu::Sequence* last = nullptr;
   gpu::Sequence* lastComposite = nullptr;
 };

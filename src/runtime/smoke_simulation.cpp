@@ -7,6 +7,7 @@
 #include <string>
 
 #include "runtime/internal.h"
+#include "runtime/placement.h"
 #include "runtime/smoke_simulation_impl.h"
 #include "scene/fluid_physics.h"
 
@@ -125,15 +126,24 @@ size_t SmokeSimulation::obstacleCount() const {
   return impl_->scene.obstacles.size();
 }
 
+void SmokeSimulation::setPlacement(const glm::mat4& worldFromScene) {
+  impl_->placement = runtime::uprightPlacement(worldFromScene);
+}
+
+glm::mat4 SmokeSimulation::placement() const {
+  return impl_->placement;
+}
+
 glm::vec3 SmokeSimulation::obstaclePosition(size_t obstacle) const {
   if (obstacle >= obstacleCount())
     throw std::invalid_argument("SmokeSimulation::obstaclePosition: no obstacle " + std::to_string(obstacle));
   const sim::Simulation& simulation = impl_->volumes->simulation();
-  return simulation.obstacles().positionAt(obstacle, simulation.seconds());
+  return runtime::worldPoint(impl_->placement,
+                             simulation.obstacles().positionAt(obstacle, simulation.seconds()));
 }
 
 void SmokeSimulation::steerObstacle(size_t obstacle, glm::vec3 target) {
-  impl_->volumes->simulation().steerObstacle(obstacle, target);
+  impl_->volumes->simulation().steerObstacle(obstacle, runtime::scenePoint(impl_->placement, target));
 }
 
 void SmokeSimulation::setInletStrength(float strength) {

@@ -2,6 +2,7 @@
 // What a sixway::SmokeSimulation holds: its scene and the simulated volumes on the device.
 #include <sixway/smoke_simulation.h>
 
+#include <glm/mat4x4.hpp>
 #include <memory>
 
 #include "gpu/context.h"
@@ -25,6 +26,7 @@ struct SmokeSimulation::Impl {
   bool advanced = false;  // stage times exist
   double carried = 0.0;   // frame time not yet simulated (s), less than a step
   uint32_t maxStepsPerRecord = 0;
+  glm::mat4 placement{1.0f};  // world from scene
 };
 
 }  // namespace sixway
