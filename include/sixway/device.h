@@ -22,6 +22,26 @@ struct DeviceOptions {
   std::optional<int> index;  // a physical device index (as `sixway info` lists them); else the best one
 };
 
+// A block of device memory from the engine's allocator: sixway binds a buffer or image to `memory` at
+// `offset`; `mapped`, when sixway asked for a mapped block, is the block's first byte in host memory (mapped
+// for the block's life); `token` is the engine's own.
+struct MemoryBlock {
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkDeviceSize offset = 0;
+  void* mapped = nullptr;
+  uint64_t token = 0;
+};
+
+// The engine's device-memory sub-allocator, for every buffer and image sixway makes. `allocate`: a block of
+// requirements.size bytes at a multiple of requirements.alignment, of memory type `type` (one of
+// requirements.memoryTypeBits, chosen by sixway: device-local, or host-visible and coherent for uploads and
+// readbacks), mapped when `map`; memory VK_NULL_HANDLE when it has none left (sixway throws its LimitError,
+// naming what it was making). `free`: the block back, once the GPU is done with it. Both or neither.
+struct DeviceMemoryAllocator {
+  std::function<MemoryBlock(const VkMemoryRequirements& requirements, uint32_t type, bool map)> allocate;
+  std::function<void(const MemoryBlock& block)> free;
+};
+
 // An engine's device. sixway destroys nothing of it. The device must have been created with
 // DeviceRequirements' extensions and features (a missing one is an Error naming it), and the queue must do
 // graphics and compute. The engine promises that when it records frame n, frame n − framesInFlight has
@@ -49,6 +69,8 @@ struct EngineDevice {
   // Where sixway's notes go, one line each without a newline (e.g. a pipeline cache file it could not read or
   // write); unset: stderr. Errors are thrown, never logged.
   std::function<void(const std::string& line)> log;
+  // Where buffers and images get their memory; unset: one vkAllocateMemory each.
+  DeviceMemoryAllocator memory;
 };
 
 // What an engine enables on its device for sixway: Vulkan 1.3 with synchronization2, dynamicRendering and

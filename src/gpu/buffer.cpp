@@ -36,32 +36,31 @@ Buffer::Buffer(const Context& context, uint64_t bytes, VkBufferUsageFlags usage,
   if (kind == MemoryKind::HostReadback)
     properties = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT |
                  VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
-  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  alloc.allocationSize = requirements.size;
+  uint32_t type = 0;
   try {
-    alloc.memoryTypeIndex = context.findMemoryType(requirements.memoryTypeBits, properties);
+    type = context.findMemoryType(requirements.memoryTypeBits, properties);
   } catch (const GpuError&) {  // cached host memory is a preference, coherent host memory a must
     if (kind != MemoryKind::HostReadback) throw;
-    alloc.memoryTypeIndex =
-        context.findMemoryType(requirements.memoryTypeBits,
-                               VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    type = context.findMemoryType(requirements.memoryTypeBits,
+                                  VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
   }
-  VkResult result = vkAllocateMemory(context.device(), &alloc, context.allocator(), &memory_);
-  if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY) {
+  const bool host = kind == MemoryKind::HostUpload || kind == MemoryKind::HostReadback;
+  try {
+    memory_ = context.allocateMemory(requirements, type, host, name_);
+  } catch (...) {
     release();
-    throw LimitError(name_ + ": out of device memory allocating " + formatBytes(bytes));
+    throw;
   }
-  SIXWAY_VK(result);
   context.countAllocation(int64_t(bytes));
-  SIXWAY_VK(vkBindBufferMemory(context.device(), buffer_, memory_, 0));
+  SIXWAY_VK(vkBindBufferMemory(context.device(), buffer_, memory_.memory, memory_.offset));
   // New memory holds whatever was there before (after a free: another run's data, even NaN), so
   // every buffer starts as zeros.
   if (kind == MemoryKind::FrameParameters) {
     hostCopy_.assign(bytes, std::byte{0});
     mapped_ = hostCopy_.data();
     submitOnce(context, [&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, buffer_, 0, VK_WHOLE_SIZE, 0); });
-  } else if (kind != MemoryKind::Device) {
-    SIXWAY_VK(vkMapMemory(context.device(), memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
+  } else if (host) {
+    mapped_ = memory_.mapped;
     std::memset(mapped_, 0, bytes);
   } else if (usage & VK_BUFFER_USAGE_TRANSFER_DST_BIT) {
     submitOnce(context, [&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, buffer_, 0, VK_WHOLE_SIZE, 0); });
@@ -88,7 +87,7 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
     release();
     context_ = std::exchange(other.context_, nullptr);
     buffer_ = std::exchange(other.buffer_, VK_NULL_HANDLE);
-    memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
+    memory_ = std::exchange(other.memory_, MemoryBlock{});
     size_ = std::exchange(other.size_, 0);
     mapped_ = std::exchange(other.mapped_, nullptr);
     kind_ = other.kind_;
@@ -101,12 +100,12 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
 void Buffer::release() {
   if (!context_) return;
   if (buffer_) vkDestroyBuffer(context_->device(), buffer_, context_->allocator());
-  if (memory_) {
-    vkFreeMemory(context_->device(), memory_, context_->allocator());
+  if (memory_.memory) {
+    context_->freeMemory(memory_);
     context_->countAllocation(-int64_t(size_));
   }
   buffer_ = VK_NULL_HANDLE;
-  memory_ = VK_NULL_HANDLE;
+  memory_ = {};
   mapped_ = nullptr;
 }
 

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "gpu/memory_block.h"
+
 namespace sixway::gpu {
 
 class Context;
@@ -54,7 +56,7 @@ class Buffer {
 
   const Context* context_ = nullptr;
   VkBuffer buffer_ = VK_NULL_HANDLE;
-  VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  MemoryBlock memory_;
   uint64_t size_ = 0;
   void* mapped_ = nullptr;
   MemoryKind kind_ = MemoryKind::Device;

@@ -164,6 +164,46 @@ Context::Context(const ContextOptions& options) {
   }
 }
 
+MemoryBlock Context::allocateMemory(const VkMemoryRequirements& requirements, uint32_t type, bool map,
+                                    const std::string& what) const {
+  const auto exhausted = [&] {
+    return LimitError(what + ": out of device memory allocating " + formatBytes(requirements.size));
+  };
+  if (memoryAllocator_.allocate) {
+    const MemoryBlock block = memoryAllocator_.allocate(requirements, type, map);
+    if (!block.memory) throw exhausted();
+    if (block.offset % requirements.alignment != 0 || (map && !block.mapped)) {
+      memoryAllocator_.free(block);
+      throw GpuError(what + ": the engine's allocator gave a block " +
+                     (map && !block.mapped ? "without its mapping" : "off the required alignment"));
+    }
+    return block;
+  }
+  VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  info.allocationSize = requirements.size;
+  info.memoryTypeIndex = type;
+  MemoryBlock block;
+  const VkResult result = vkAllocateMemory(device_, &info, allocator_, &block.memory);
+  if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY) throw exhausted();
+  SIXWAY_VK(result);
+  if (map) {
+    const VkResult mapped = vkMapMemory(device_, block.memory, 0, VK_WHOLE_SIZE, 0, &block.mapped);
+    if (mapped != VK_SUCCESS) {
+      vkFreeMemory(device_, block.memory, allocator_);
+      SIXWAY_VK(mapped);
+    }
+  }
+  return block;
+}
+
+void Context::freeMemory(const MemoryBlock& block) const {
+  if (!block.memory) return;
+  if (memoryAllocator_.free)
+    memoryAllocator_.free(block);
+  else
+    vkFreeMemory(device_, block.memory, allocator_);
+}
+
 void Context::note(const std::string& line) const {
   if (log_)
     log_(line);
@@ -182,7 +222,10 @@ Context::Context(const ExternalDevice& external)
       externalSubmit_(external.submitAndWait),
       allocator_(external.allocator),
       externalPipelineCache_(external.pipelineCache),
-      log_(external.log) {
+      log_(external.log),
+      memoryAllocator_(external.memory) {
+  if (bool(memoryAllocator_.allocate) != bool(memoryAllocator_.free))
+    throw GpuError("external device: a memory allocator needs both its allocate and its free function");
   if (!instance_ || !physicalDevice_ || !device_ || !queue_)
     throw GpuError("external device: instance, physical device, device and queue must all be given");
   if (framesInFlight_ < 1 || framesInFlight_ > 8)

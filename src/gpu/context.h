@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "gpu/cooperative_matrix.h"
+#include "gpu/memory_block.h"
 
 namespace sixway::gpu {
 
@@ -45,6 +46,8 @@ struct ExternalDevice {
   VkPipelineCache pipelineCache = VK_NULL_HANDLE;
   // Where notes go (Context::note); unset: stderr.
   std::function<void(const std::string&)> log;
+  // Where buffers and images get their memory; unset: one vkAllocateMemory each.
+  MemoryAllocator memory;
 };
 
 // What the stages need to know about the device to size their work.
@@ -108,6 +111,11 @@ class Context {
   PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
 
   uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required) const;
+  // A block for `requirements` of memory type `type` (ExternalDevice::memory's, or one vkAllocateMemory),
+  // mapped when `map`; LimitError naming `what` when the memory is exhausted.
+  MemoryBlock allocateMemory(const VkMemoryRequirements& requirements, uint32_t type, bool map,
+                             const std::string& what) const;
+  void freeMemory(const MemoryBlock& block) const;
   MemoryUse memoryUse() const { return {uint64_t(liveAllocations_.load()), uint64_t(liveBytes_.load())}; }
   // Buffer and Image call this with +bytes when they allocate and −bytes when they free.
   void countAllocation(int64_t bytes) const {
@@ -163,6 +171,7 @@ class Context {
   const VkAllocationCallbacks* allocator_ = nullptr;
   VkPipelineCache externalPipelineCache_ = VK_NULL_HANDLE;
   std::function<void(const std::string&)> log_;
+  MemoryAllocator memoryAllocator_;
 };
 
 // Throws the Context's GpuError for a requested device index (--device, SIXWAY_DEVICE) that no device has,

@@ -84,18 +84,17 @@ Image::Image(const Context& context, const ImageDesc& desc) : context_(&context)
 
   VkMemoryRequirements requirements;
   vkGetImageMemoryRequirements(context.device(), image_, &requirements);
-  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  alloc.allocationSize = requirements.size;
-  alloc.memoryTypeIndex =
-      context.findMemoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  const VkResult result = vkAllocateMemory(context.device(), &alloc, context.allocator(), &memory_);
-  if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY) {
+  try {
+    memory_ = context.allocateMemory(
+        requirements,
+        context.findMemoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT), false,
+        desc.name);
+  } catch (...) {
     release();
-    throw LimitError(desc.name + ": out of device memory allocating " + formatBytes(requirements.size));
+    throw;
   }
-  SIXWAY_VK(result);
   context.countAllocation(int64_t(byteSize()));
-  SIXWAY_VK(vkBindImageMemory(context.device(), image_, memory_, 0));
+  SIXWAY_VK(vkBindImageMemory(context.device(), image_, memory_.memory, memory_.offset));
 
   const VkImageAspectFlags aspect =
       isDepthFormat(desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
@@ -147,7 +146,7 @@ Image& Image::operator=(Image&& other) noexcept {
     context_ = std::exchange(other.context_, nullptr);
     desc_ = std::move(other.desc_);
     image_ = std::exchange(other.image_, VK_NULL_HANDLE);
-    memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
+    memory_ = std::exchange(other.memory_, MemoryBlock{});
     view_ = std::exchange(other.view_, VK_NULL_HANDLE);
     owned_ = std::exchange(other.owned_, true);
   }
@@ -168,13 +167,13 @@ void Image::release() {
   if (!context_ || !owned_) return;
   if (view_) vkDestroyImageView(context_->device(), view_, context_->allocator());
   if (image_) vkDestroyImage(context_->device(), image_, context_->allocator());
-  if (memory_) {
-    vkFreeMemory(context_->device(), memory_, context_->allocator());
+  if (memory_.memory) {
+    context_->freeMemory(memory_);
     context_->countAllocation(-int64_t(byteSize()));
   }
   view_ = VK_NULL_HANDLE;
   image_ = VK_NULL_HANDLE;
-  memory_ = VK_NULL_HANDLE;
+  memory_ = {};
 }
 
 uint64_t Image::byteSize() const {

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "gpu/memory_block.h"
+
 namespace sixway::gpu {
 
 class Context;
@@ -52,7 +54,7 @@ class Image {
   const Context* context_ = nullptr;
   ImageDesc desc_;
   VkImage image_ = VK_NULL_HANDLE;
-  VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  MemoryBlock memory_;
   VkImageView view_ = VK_NULL_HANDLE;
   bool owned_ = true;
 };

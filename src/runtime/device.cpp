@@ -1,5 +1,7 @@
 #include <sixway/device.h>
 
+#include <stdexcept>
+
 #include "gpu/cooperative_matrix.h"
 #include "gpu/device_features.h"
 #include "runtime/device_impl.h"
@@ -52,6 +54,18 @@ Device::Device(const EngineDevice& engine) {
                                engine.queue,           engine.queueFamily,    engine.enabledExtensions,
                                engine.enabledFeatures, engine.framesInFlight, engine.submitAndWait,
                                engine.allocator,       engine.pipelineCache,  engine.log};
+  if (engine.memory.allocate && engine.memory.free) {
+    external.memory.allocate = [allocate = engine.memory.allocate](const VkMemoryRequirements& requirements,
+                                                                   uint32_t type, bool map) {
+      const MemoryBlock b = allocate(requirements, type, map);
+      return gpu::MemoryBlock{b.memory, b.offset, b.mapped, b.token};
+    };
+    external.memory.free = [free = engine.memory.free](const gpu::MemoryBlock& b) {
+      free(MemoryBlock{b.memory, b.offset, b.mapped, b.token});
+    };
+  } else if (engine.memory.allocate || engine.memory.free) {
+    throw std::invalid_argument("EngineDevice::memory: needs both allocate and free");
+  }
   impl_ = std::make_unique<Impl>(std::make_unique<gpu::Context>(external));
 }
 

@@ -1,8 +1,10 @@
 // The engine's host hooks on its device (EngineDevice): allocation callbacks that see every host allocation
 // of sixway's Vulkan objects, each freed again; the engine's pipeline cache used instead of a cache file;
-// notes to the engine's log instead of stderr.
+// notes to the engine's log instead of stderr; the engine's device-memory sub-allocator for every buffer and
+// image, with the same image as sixway's own allocations and its exhaustion a LimitError.
 #include <gtest/gtest.h>
 #include <sixway/device.h>
+#include <sixway/errors.h>
 #include <sixway/smoke_renderer.h>
 #include <sixway/smoke_simulation.h>
 
@@ -114,10 +116,58 @@ class CacheHome {
   std::optional<std::string> old_, oldMesa_;
 };
 
+// An engine's device-memory sub-allocator: chunks of 64 MiB per memory type (larger blocks get their own),
+// handed out in aligned slices and never reused; host-visible chunks mapped whole.
+struct ChunkAllocator {
+  struct Chunk {
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    VkDeviceSize size = 0, used = 0;
+    void* mapped = nullptr;
+  };
+  VkDevice device;
+  VkPhysicalDeviceMemoryProperties properties{};
+  std::map<uint32_t, std::vector<Chunk>> chunks;
+  uint64_t blocks = 0, freed = 0;
+  bool exhausted = false;  // answer every request with no memory
+
+  explicit ChunkAllocator(const gpu::Context& context) : device(context.device()) {
+    vkGetPhysicalDeviceMemoryProperties(context.physicalDevice(), &properties);
+  }
+  ~ChunkAllocator() {
+    for (auto& [type, list] : chunks)
+      for (Chunk& c : list) vkFreeMemory(device, c.memory, nullptr);
+  }
+  DeviceMemoryAllocator hooks() {
+    return {[this](const VkMemoryRequirements& r, uint32_t type, bool map) { return allocate(r, type, map); },
+            [this](const MemoryBlock&) { ++freed; }};
+  }
+  static VkDeviceSize aligned(VkDeviceSize offset, VkDeviceSize alignment) {
+    return (offset + alignment - 1) / alignment * alignment;
+  }
+  MemoryBlock allocate(const VkMemoryRequirements& r, uint32_t type, bool map) {
+    if (exhausted) return {};
+    std::vector<Chunk>& list = chunks[type];
+    if (list.empty() || aligned(list.back().used, r.alignment) + r.size > list.back().size) {
+      Chunk c;
+      c.size = std::max<VkDeviceSize>(r.size, VkDeviceSize(64) << 20);
+      VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, c.size, type};
+      if (vkAllocateMemory(device, &info, nullptr, &c.memory) != VK_SUCCESS) return {};
+      if (properties.memoryTypes[type].propertyFlags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT)
+        SIXWAY_VK(vkMapMemory(device, c.memory, 0, VK_WHOLE_SIZE, 0, &c.mapped));
+      list.push_back(c);
+    }
+    Chunk& c = list.back();
+    const VkDeviceSize offset = aligned(c.used, r.alignment);
+    c.used = offset + r.size;
+    ++blocks;
+    return {c.memory, offset, map && c.mapped ? static_cast<std::byte*>(c.mapped) + offset : nullptr, blocks};
+  }
+};
+
 // The engine's device as BorrowingEngine has it, with hooks.
 Device hookedDevice(const gpu::Context& context, gpu::DeviceFeatures& features,
                     const VkAllocationCallbacks* allocator, VkPipelineCache cache,
-                    std::function<void(const std::string&)> log) {
+                    std::function<void(const std::string&)> log, DeviceMemoryAllocator memory = {}) {
   const std::vector<const char*> extensions = gpu::requiredDeviceExtensions();
   EngineDevice engine{context.instance(),    context.physicalDevice(),
                       context.device(),      context.queue(),
@@ -126,6 +176,7 @@ Device hookedDevice(const gpu::Context& context, gpu::DeviceFeatures& features,
   engine.allocator = allocator;
   engine.pipelineCache = cache;
   engine.log = std::move(log);
+  engine.memory = std::move(memory);
   return Device(engine);
 }
 
@@ -183,6 +234,40 @@ TEST(EngineHooks, NotesGoToTheEnginesLog) {
   EXPECT_NE(lines[0].find("is a directory"), std::string::npos) << lines[0];
   EXPECT_NE(lines[0].find(file.string()), std::string::npos) << lines[0];
   EXPECT_EQ(printed, "");
+  EXPECT_EQ(own.validationMessages(), 0u);
+}
+
+TEST(EngineHooks, BuffersAndImagesTakeTheirMemoryFromTheEnginesAllocator) {
+  TempDir dir;
+  const std::filesystem::path scene = sceneWithoutObstacles(dir.path());
+  Device own({.validate = true});
+  BorrowingEngine engine(own);
+  const float background[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+  EngineTargets targets(engine.context, 64, 64);
+  std::vector<float> expected;
+  {
+    SmokeSimulation simulation(engine.device, scene);
+    SmokeRenderer renderer(engine.device, simulation, {.weights = kWeights}, targets.target());
+    renderer.setCamera(sceneCamera());
+    recordFrames(engine, targets, simulation, renderer, background);
+    expected = targets.colorPixels();
+  }
+  ChunkAllocator chunks(engine.context);
+  {
+    Device device =
+        hookedDevice(engine.context, engine.features, nullptr, VK_NULL_HANDLE, {}, chunks.hooks());
+    SmokeSimulation simulation(device, scene);
+    SmokeRenderer renderer(device, simulation, {.weights = kWeights}, targets.target());
+    renderer.setCamera(sceneCamera());
+    recordFrames(engine, targets, simulation, renderer, background);
+    EXPECT_EQ(maxDifference(targets.colorPixels(), expected), 0.0);
+    EXPECT_GT(chunks.blocks, 0u);
+    EXPECT_EQ(chunks.blocks - chunks.freed, device.memoryUse().allocations)
+        << "a buffer or image did not take its memory from the engine";
+    chunks.exhausted = true;
+    EXPECT_THROW(SmokeSimulation another(device, scene), Error) << "an exhausted allocator is a LimitError";
+  }
+  EXPECT_EQ(chunks.freed, chunks.blocks) << "blocks not given back";
   EXPECT_EQ(own.validationMessages(), 0u);
 }
 
