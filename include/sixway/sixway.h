@@ -36,6 +36,13 @@ void sixwayVersion(uint32_t* major, uint32_t* minor, uint32_t* patch);
 
 /* sixway::Device: its own headless device (validate: the Khronos validation layer), or an engine's. */
 SixwayResult sixwayCreateOwnDevice(int validate, SixwayDevice* device);
+/* sixway::MemoryBlock: `memory` at `offset`, `mapped` when asked for, `token` the engine's own. */
+typedef struct SixwayMemoryBlock {
+  VkDeviceMemory memory;
+  VkDeviceSize offset;
+  void* mapped;
+  uint64_t token;
+} SixwayMemoryBlock;
 typedef struct SixwayEngineDevice {
   VkInstance instance;
   VkPhysicalDevice physicalDevice;
@@ -58,6 +65,11 @@ typedef struct SixwayEngineDevice {
   VkPipelineCache pipelineCache;
   void (*log)(void* user, const char* line);
   void* logUser;
+  /* Optional, both or neither (EngineDevice::memory): the engine's device-memory sub-allocator. */
+  SixwayMemoryBlock (*allocateMemory)(void* user, const VkMemoryRequirements* requirements, uint32_t type,
+                                      int map);
+  void (*freeMemory)(void* user, const SixwayMemoryBlock* block);
+  void* memoryUser;
 } SixwayEngineDevice;
 SixwayResult sixwayCreateEngineDevice(const SixwayEngineDevice* engine, SixwayDevice* device);
 void sixwayDestroyDevice(SixwayDevice device);
@@ -70,6 +82,8 @@ SixwayResult sixwaySimulationRecord(SixwaySimulation simulation, VkCommandBuffer
  * recorded. */
 SixwayResult sixwaySimulationRecordSeconds(SixwaySimulation simulation, VkCommandBuffer commands,
                                            uint64_t frame, double seconds, uint32_t* steps);
+/* SmokeSimulation::setPlacement; column-major, 16 floats. */
+SixwayResult sixwaySimulationSetPlacement(SixwaySimulation simulation, const float worldFromScene[16]);
 void sixwayDestroySimulation(SixwaySimulation simulation);
 
 /* sixway::SmokeRenderer with the network of `weightsPath`, into its own image (target NULL) or an engine's.

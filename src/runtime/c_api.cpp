@@ -115,6 +115,19 @@ SixwayResult sixwayCreateEngineDevice(const SixwayEngineDevice* engine, SixwayDe
                            engine->enabledFeatures, engine->framesInFlight};
     e.allocator = engine->allocator;
     e.pipelineCache = engine->pipelineCache;
+    if (bool(engine->allocateMemory) != bool(engine->freeMemory))
+      throw std::invalid_argument("sixwayCreateEngineDevice: allocateMemory and freeMemory go together");
+    if (engine->allocateMemory) {
+      e.memory.allocate = [allocate = engine->allocateMemory, user = engine->memoryUser](
+                              const VkMemoryRequirements& requirements, uint32_t type, bool map) {
+        const SixwayMemoryBlock b = allocate(user, &requirements, type, map ? 1 : 0);
+        return sixway::MemoryBlock{b.memory, b.offset, b.mapped, b.token};
+      };
+      e.memory.free = [free = engine->freeMemory, user = engine->memoryUser](const sixway::MemoryBlock& b) {
+        const SixwayMemoryBlock block{b.memory, b.offset, b.mapped, b.token};
+        free(user, &block);
+      };
+    }
     if (engine->log)
       e.log = [log = engine->log, user = engine->logUser](const std::string& line) {
         log(user, line.c_str());
@@ -168,6 +181,12 @@ SixwayResult sixwaySimulationRecordSeconds(SixwaySimulation simulation, VkComman
     const uint32_t recorded = simulation->simulation.record(commands, frame, seconds);
     if (steps) *steps = recorded;
   });
+}
+
+SixwayResult sixwaySimulationSetPlacement(SixwaySimulation simulation, const float worldFromScene[16]) {
+  if (!simulation || !worldFromScene)
+    return nullArgument("sixwaySimulationSetPlacement", !simulation ? "simulation" : "worldFromScene");
+  return guarded([&] { simulation->simulation.setPlacement(glm::make_mat4(worldFromScene)); });
 }
 
 void sixwayDestroySimulation(SixwaySimulation simulation) {

@@ -27,6 +27,8 @@ TEST(CApi, NullHandlesAreInvalidArgumentsNamingTheCall) {
   EXPECT_EQ(sixwaySimulationRecordSeconds(nullptr, VK_NULL_HANDLE, 0, 0.1, nullptr),
             SIXWAY_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(std::string(sixwayLastError()), "sixwaySimulationRecordSeconds: simulation is null");
+  EXPECT_EQ(sixwaySimulationSetPlacement(nullptr, nullptr), SIXWAY_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(std::string(sixwayLastError()), "sixwaySimulationSetPlacement: simulation is null");
   const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
   EXPECT_EQ(sixwayRendererSetViewProjection(nullptr, identity, identity), SIXWAY_ERROR_INVALID_ARGUMENT);
   sixwayDestroyRenderer(nullptr);  // no-ops, as free(NULL)
@@ -59,6 +61,15 @@ TEST(CApi, ErrorsAndMisuseComeBackAsCodesWithTheirMessages) {
   const float ortho[16] = {1, 0, 0, 0, 0, -1, 0, 0, 0, 0, -0.1f, 0, 0, 0, 0.5f, 1};
   EXPECT_EQ(sixwayRendererSetViewProjection(renderer, view, ortho), SIXWAY_ERROR_INVALID_ARGUMENT);
   EXPECT_NE(std::string(sixwayLastError()).find("not a perspective"), std::string::npos) << sixwayLastError();
+
+  const float doubled[16] = {2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 1};
+  EXPECT_EQ(sixwaySimulationSetPlacement(simulation, doubled), SIXWAY_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(sixwayLastError()).find("no tilt, scale or mirror"), std::string::npos)
+      << sixwayLastError();
+  const float moved[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 4, 0, 0, 1};
+  EXPECT_EQ(sixwaySimulationSetPlacement(simulation, moved), SIXWAY_SUCCESS);
+  const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  EXPECT_EQ(sixwaySimulationSetPlacement(simulation, identity), SIXWAY_SUCCESS);
 
   ASSERT_EQ(sixwaySimulationAdvance(simulation), SIXWAY_SUCCESS);
   ASSERT_EQ(sixwayRendererRender(renderer), SIXWAY_SUCCESS);
