@@ -42,6 +42,16 @@ DeviceFeatures DeviceFeatures::supportedBy(VkPhysicalDevice device) {
   return supported;
 }
 
+namespace {
+
+// A chain element as the structure its sType names.
+template <typename Features>
+const Features& as(const VkBaseInStructure* s) {
+  return *reinterpret_cast<const Features*>(s);
+}
+
+}  // namespace
+
 DeviceFeatures DeviceFeatures::fromChain(const void* chain) {
   DeviceFeatures found;
   // Copy each known structure's features, keeping our own sType/pNext links.
@@ -67,6 +77,43 @@ DeviceFeatures DeviceFeatures::fromChain(const void* chain) {
       case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT:
         copyFeatures(found.atomics_, s);
         break;
+      default:
+        break;
+    }
+  }
+  // The same features enabled through their own structures (the extensions promoted into 1.1-1.3), which a
+  // chain holds instead of the aggregate of their version.
+  for (auto* s = static_cast<const VkBaseInStructure*>(chain); s; s = s->pNext) {
+    switch (s->sType) {
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES:
+        found.v13_.synchronization2 |= as<VkPhysicalDeviceSynchronization2Features>(s).synchronization2;
+        break;
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES:
+        found.v13_.dynamicRendering |= as<VkPhysicalDeviceDynamicRenderingFeatures>(s).dynamicRendering;
+        break;
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES:
+        found.v13_.maintenance4 |= as<VkPhysicalDeviceMaintenance4Features>(s).maintenance4;
+        break;
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_SIZE_CONTROL_FEATURES:
+        found.v13_.subgroupSizeControl |=
+            as<VkPhysicalDeviceSubgroupSizeControlFeatures>(s).subgroupSizeControl;
+        break;
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_16BIT_STORAGE_FEATURES:
+        found.v11_.storageBuffer16BitAccess |=
+            as<VkPhysicalDevice16BitStorageFeatures>(s).storageBuffer16BitAccess;
+        break;
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES:
+        found.v12_.shaderFloat16 |= as<VkPhysicalDeviceShaderFloat16Int8Features>(s).shaderFloat16;
+        break;
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_HOST_QUERY_RESET_FEATURES:
+        found.v12_.hostQueryReset |= as<VkPhysicalDeviceHostQueryResetFeatures>(s).hostQueryReset;
+        break;
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_MEMORY_MODEL_FEATURES: {
+        const auto& model = as<VkPhysicalDeviceVulkanMemoryModelFeatures>(s);
+        found.v12_.vulkanMemoryModel |= model.vulkanMemoryModel;
+        found.v12_.vulkanMemoryModelDeviceScope |= model.vulkanMemoryModelDeviceScope;
+        break;
+      }
       default:
         break;
     }

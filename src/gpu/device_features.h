@@ -18,7 +18,9 @@ class DeviceFeatures {
   // What `device` supports.
   static DeviceFeatures supportedBy(VkPhysicalDevice device);
   // Read from the pNext chain a device was created with (VkPhysicalDeviceFeatures2 or
-  // VkDeviceCreateInfo::pNext); structures the chain lacks count as all features off.
+  // VkDeviceCreateInfo::pNext): the 1.1-1.3 aggregates, or the structures of the promoted features sixway
+  // uses (synchronization2, dynamic rendering, maintenance4, ...); structures the chain lacks count as all
+  // features off.
   static DeviceFeatures fromChain(const void* chain);
   // What sixway enables: the required features, and the optional ones (16-bit storage, fp16 arithmetic,
   // 64-bit integers, ...) where `supported` has them.
