@@ -588,6 +588,7 @@ int run(const Options& options) {
       if (frame == frames / 2) {  // a resize: the engine waits for its frames and makes its targets anew
         loop.waitAll();
         makeImages(200, 150);
+        smoke.forgetTargets();  // the old images are gone; the new ones may reuse their handles
       }
       const size_t slot = frame % kFramesInFlight;
       FrameImages& target = *images[slot];

@@ -36,7 +36,8 @@ struct MemoryBlock {
 // requirements.size bytes at a multiple of requirements.alignment, of memory type `type` (one of
 // requirements.memoryTypeBits, chosen by sixway: device-local, or host-visible and coherent for uploads and
 // readbacks), mapped when `map`; memory VK_NULL_HANDLE when it has none left (sixway throws its LimitError,
-// naming what it was making). `free`: the block back, once the GPU is done with it. Both or neither.
+// naming what it was making). `free`: the block back, once the GPU is done with it. Both or neither. Blocks
+// of buffers and of images (optimal tiling) in one VkDeviceMemory keep bufferImageGranularity apart.
 struct DeviceMemoryAllocator {
   std::function<MemoryBlock(const VkMemoryRequirements& requirements, uint32_t type, bool map)> allocate;
   std::function<void(const MemoryBlock& block)> free;

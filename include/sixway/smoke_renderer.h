@@ -53,11 +53,11 @@ struct RenderTarget {
   uint32_t width = 0, height = 0;
 };
 
-// One engine image as a record() finds it and is to leave it: mip level 0 and array layer 0 (its view's),
-// in `layout` when the command buffer reaches sixway's composite, moved by sixway to
+// One engine image as a record() finds it and is to leave it: its mip level 0 and array layer 0 (the view
+// must show them), in `layout` when the command buffer reaches sixway's composite, moved by sixway to
 // VK_IMAGE_LAYOUT_GENERAL for it and then to `finalLayout` (docs/embedding.md, "Targets and layouts"). Both
-// GENERAL: no layout change, the engine's barriers stand. Neither may be UNDEFINED or PREINITIALIZED: the
-// smoke is drawn over the colour and tested against the depth.
+// GENERAL: no layout change, the engine's barriers stand. Neither may be UNDEFINED or PREINITIALIZED (the
+// smoke is drawn over the colour and tested against the depth), nor depth-only for a format with stencil.
 struct TargetImage {
   VkImage image = VK_NULL_HANDLE;
   VkImageView view = VK_NULL_HANDLE;
@@ -69,8 +69,8 @@ struct TargetImage {
 // The engine's images of one frame: colour (COLOR_ATTACHMENT usage, the format the renderer was made for)
 // and depth (SAMPLED usage, D16, X8D24, D24S8, D32 or D32S8, a view of its depth aspect), both width ×
 // height, any size from frame to frame; `viewport`: the rectangle the engine's camera renders into (its
-// VkViewport, which the projection of setViewProjection maps onto; a zero extent: the whole image). The
-// smoke is drawn inside the viewport only.
+// VkViewport, which the projection of setViewProjection maps onto; all zero: the whole image). The smoke is
+// drawn inside the viewport only.
 struct FrameTargets {
   TargetImage color, depth;
   uint32_t width = 0, height = 0;
@@ -135,10 +135,15 @@ class SmokeRenderer {
   // Engine target: records the frame into `commands` (primary, recording, outside a render pass), as
   // frame number `frame`, after SmokeSimulation::record of the same frame. Nothing waits.
   void record(VkCommandBuffer commands, uint64_t frame);
-  // The same into this frame's `targets`, with the layout changes they ask for. A target not seen in the
-  // last four frames' records, or of a new size or viewport, costs one recording of the composite on the
-  // host (docs/embedding.md, "Targets and layouts"). std::invalid_argument for targets that do not fit.
+  // The same into this frame's `targets`, with the layout changes they ask for. A target not among the last
+  // framesInFlight + 1 (at least four) recorded, or of a new size or viewport, costs one recording of the
+  // composite on the host (docs/embedding.md, "Targets and layouts"). std::invalid_argument for targets that
+  // do not fit.
   void record(VkCommandBuffer commands, uint64_t frame, const FrameTargets& targets);
+  // Forgets the recordings of the targets passed so far: call it when the engine destroys images it passed
+  // (after the GPU finished the frames that used them, as destroying them requires), before new images that
+  // may reuse their handles are passed.
+  void forgetTargets();
 
   // GPU time per stage of the latest frame whose times are in (a frame or more late with an engine).
   std::vector<StageTime> stageTimes() const;

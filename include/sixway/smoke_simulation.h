@@ -69,6 +69,7 @@ class SmokeSimulation {
   void restart();
 
   SmokeVolume volume() const;
+  // Frames of time.frame_dt simulated (after record with seconds: the whole frames in the simulated time).
   int framesSimulated() const;
   double seconds() const;  // simulated time
   // GPU time of the simulation's steps in the last advance() ("sim/obstacles", "sim/lbm", "sim/smoke",

@@ -28,42 +28,43 @@ Buffer::Buffer(const Context& context, uint64_t bytes, VkBufferUsageFlags usage,
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   SIXWAY_VK(vkCreateBuffer(context.device(), &info, context.allocator(), &buffer_));
 
-  VkMemoryRequirements requirements;
-  vkGetBufferMemoryRequirements(context.device(), buffer_, &requirements);
-  VkMemoryPropertyFlags properties = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
-  if (kind == MemoryKind::HostUpload)
-    properties = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-  if (kind == MemoryKind::HostReadback)
-    properties = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT |
-                 VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
-  uint32_t type = 0;
+  // Past this point the buffer owns what it made: a failure releases it (the destructor does not run).
   try {
-    type = context.findMemoryType(requirements.memoryTypeBits, properties);
-  } catch (const GpuError&) {  // cached host memory is a preference, coherent host memory a must
-    if (kind != MemoryKind::HostReadback) throw;
-    type = context.findMemoryType(requirements.memoryTypeBits,
-                                  VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-  }
-  const bool host = kind == MemoryKind::HostUpload || kind == MemoryKind::HostReadback;
-  try {
+    VkMemoryRequirements requirements;
+    vkGetBufferMemoryRequirements(context.device(), buffer_, &requirements);
+    VkMemoryPropertyFlags properties = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+    if (kind == MemoryKind::HostUpload)
+      properties = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    if (kind == MemoryKind::HostReadback)
+      properties = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT |
+                   VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
+    uint32_t type = 0;
+    try {
+      type = context.findMemoryType(requirements.memoryTypeBits, properties);
+    } catch (const GpuError&) {  // cached host memory is a preference, coherent host memory a must
+      if (kind != MemoryKind::HostReadback) throw;
+      type = context.findMemoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                                                     VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    }
+    const bool host = kind == MemoryKind::HostUpload || kind == MemoryKind::HostReadback;
     memory_ = context.allocateMemory(requirements, type, host, name_);
+    context.countAllocation(int64_t(bytes));
+    SIXWAY_VK(vkBindBufferMemory(context.device(), buffer_, memory_.memory, memory_.offset));
+    // New memory holds whatever was there before (after a free: another run's data, even NaN), so
+    // every buffer starts as zeros.
+    if (kind == MemoryKind::FrameParameters) {
+      hostCopy_.assign(bytes, std::byte{0});
+      mapped_ = hostCopy_.data();
+      submitOnce(context, [&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, buffer_, 0, VK_WHOLE_SIZE, 0); });
+    } else if (host) {
+      mapped_ = memory_.mapped;
+      std::memset(mapped_, 0, bytes);
+    } else if (usage & VK_BUFFER_USAGE_TRANSFER_DST_BIT) {
+      submitOnce(context, [&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, buffer_, 0, VK_WHOLE_SIZE, 0); });
+    }
   } catch (...) {
     release();
     throw;
-  }
-  context.countAllocation(int64_t(bytes));
-  SIXWAY_VK(vkBindBufferMemory(context.device(), buffer_, memory_.memory, memory_.offset));
-  // New memory holds whatever was there before (after a free: another run's data, even NaN), so
-  // every buffer starts as zeros.
-  if (kind == MemoryKind::FrameParameters) {
-    hostCopy_.assign(bytes, std::byte{0});
-    mapped_ = hostCopy_.data();
-    submitOnce(context, [&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, buffer_, 0, VK_WHOLE_SIZE, 0); });
-  } else if (host) {
-    mapped_ = memory_.mapped;
-    std::memset(mapped_, 0, bytes);
-  } else if (usage & VK_BUFFER_USAGE_TRANSFER_DST_BIT) {
-    submitOnce(context, [&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, buffer_, 0, VK_WHOLE_SIZE, 0); });
   }
 }
 

@@ -82,32 +82,33 @@ Image::Image(const Context& context, const ImageDesc& desc) : context_(&context)
   info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   SIXWAY_VK(vkCreateImage(context.device(), &info, context.allocator(), &image_));
 
-  VkMemoryRequirements requirements;
-  vkGetImageMemoryRequirements(context.device(), image_, &requirements);
+  // Past this point the image owns what it made: a failure releases it (the destructor does not run).
   try {
+    VkMemoryRequirements requirements;
+    vkGetImageMemoryRequirements(context.device(), image_, &requirements);
     memory_ = context.allocateMemory(
         requirements,
         context.findMemoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT), false,
         desc.name);
+    context.countAllocation(int64_t(byteSize()));
+    SIXWAY_VK(vkBindImageMemory(context.device(), image_, memory_.memory, memory_.offset));
+
+    const VkImageAspectFlags aspect =
+        isDepthFormat(desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
+    VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    viewInfo.image = image_;
+    viewInfo.viewType = is3d ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
+    viewInfo.format = desc.format;
+    viewInfo.subresourceRange = {aspect, 0, 1, 0, 1};
+    SIXWAY_VK(vkCreateImageView(context.device(), &viewInfo, context.allocator(), &view_));
+
+    submitOnce(context, [&](VkCommandBuffer cmd) {
+      recordLayoutChange(cmd, image_, desc.format, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    });
   } catch (...) {
     release();
     throw;
   }
-  context.countAllocation(int64_t(byteSize()));
-  SIXWAY_VK(vkBindImageMemory(context.device(), image_, memory_.memory, memory_.offset));
-
-  const VkImageAspectFlags aspect =
-      isDepthFormat(desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
-  VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-  viewInfo.image = image_;
-  viewInfo.viewType = is3d ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
-  viewInfo.format = desc.format;
-  viewInfo.subresourceRange = {aspect, 0, 1, 0, 1};
-  SIXWAY_VK(vkCreateImageView(context.device(), &viewInfo, context.allocator(), &view_));
-
-  submitOnce(context, [&](VkCommandBuffer cmd) {
-    recordLayoutChange(cmd, image_, desc.format, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
-  });
 }
 
 void recordLayoutChange(VkCommandBuffer commands, VkImage image, VkFormat format, VkImageLayout from,

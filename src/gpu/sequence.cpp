@@ -408,6 +408,13 @@ void Sequence::recordInto(VkCommandBuffer commands, uint64_t frame, bool withRea
   if (!finished_) finish();
   const Slot& slot = slots_[frame % slots_.size()];
   if (slot.executions++ > 0) collectTimes(slot, false);  // its last frame's: complete by the contract
+  // The host slots of frames in flight, made with the first recorded frame (submit() needs none), before
+  // anything goes into the caller's command buffer: an allocation that fails leaves nothing half-recorded.
+  if (withReadbacks)
+    for (Readback& r : readbacks_)
+      for (uint32_t i = uint32_t(r.slots.size()); i <= context_->framesInFlight(); ++i)
+        r.slots.emplace_back(*context_, r.bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryKind::HostReadback,
+                             r.name + " (readback)");
   recordFullBarrier(commands);  // after the caller's earlier work, and before our last frame's reads end
   if (!frameParameters_.empty()) {
     constexpr uint64_t kMaxUpdate = 65536;  // vkCmdUpdateBuffer's limit per command
@@ -421,10 +428,6 @@ void Sequence::recordInto(VkCommandBuffer commands, uint64_t frame, bool withRea
   recordFullBarrier(commands);
   if (!withReadbacks || readbacks_.empty()) return;
   for (Readback& r : readbacks_) {
-    // The host slots of frames in flight, made with the first recorded frame (submit() needs none).
-    for (uint32_t i = uint32_t(r.slots.size()); i <= context_->framesInFlight(); ++i)
-      r.slots.emplace_back(*context_, r.bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryKind::HostReadback,
-                           r.name + " (readback)");
     VkBufferCopy region{0, 0, r.bytes};
     vkCmdCopyBuffer(commands, r.source, r.slots[frame % r.slots.size()].handle(), 1, &region);
   }

@@ -165,7 +165,8 @@ class Sequence {
   const std::vector<StageTime>& stageTimes() const { return times_; }
   // The stage times of the execution recorded as `frame`, which must have completed, read now (record()
   // reads a frame's times only when its copy of the work is recorded again, which a sequence that is not
-  // recorded every frame may never be); stageTimes() then holds them.
+  // recorded every frame may never be); stageTimes() then holds them, or still the last times read if the
+  // GPU wrote none there.
   const std::vector<StageTime>& timesOfFrame(uint64_t frame);
   uint32_t barrierCount() const { return barriers_; }
 

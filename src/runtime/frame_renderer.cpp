@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "gpu/context.h"
 #include "render/billboard.h"
 #include "render/scene_frame.h"
 
@@ -39,9 +40,14 @@ gpu::Sequence& FrameRenderer::prepare(const FrameInput& input) {
   return sequence;
 }
 
+void FrameRenderer::forgetComposites() {
+  composites_.clear();
+}
+
 gpu::Sequence& FrameRenderer::composite() {
-  // Four: an engine's frames in flight (two or three) and one more.
-  constexpr size_t kKept = 4;
+  // At least one more than the frames in flight: the least recently used one then last ran framesInFlight
+  // or more frames ago and has completed, so it can go; four covers a ring of three targets.
+  const size_t kept = std::max<size_t>(4, context_->framesInFlight() + 1);
   if (compositesOf_ != sequence_.recordings()) {  // the passes it reads may have been made anew
     composites_.clear();
     compositesOf_ = sequence_.recordings();
@@ -53,7 +59,7 @@ gpu::Sequence& FrameRenderer::composite() {
     auto fresh = std::make_unique<gpu::Sequence>(*context_);
     frame_.recordComposite(*fresh);
     fresh->finish();
-    if (composites_.size() == kKept) composites_.pop_back();
+    if (composites_.size() >= kept) composites_.pop_back();
     composites_.insert(composites_.begin(), Composite{key, std::move(fresh)});
   } else {
     std::rotate(composites_.begin(), found, found + 1);

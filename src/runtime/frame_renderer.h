@@ -56,8 +56,11 @@ class FrameRenderer {
   gpu::Sequence& prepare(const FrameInput& input);
   // With an engine target, after prepare(): the shading into the frame's target (RealtimeFrame::
   // setEngineTarget), recorded once per target while the prepared sequence stays; the last few targets'
-  // recordings are kept, so an engine that cycles through its frames' images records each once.
+  // recordings are kept (framesInFlight + 1, at least four), so an engine that cycles through its frames'
+  // images records each once.
   gpu::Sequence& composite();
+  // Drops the kept composites (their targets are gone; the GPU is done with them).
+  void forgetComposites();
 
   // What the last prepare() could not do as asked, for the user (RealtimeFrame::takeNotes).
   const std::vector<std::string>& notes() const { return notes_; }

@@ -64,7 +64,8 @@ void RealtimeFrame::setEngineTarget(EngineTarget target) {
                                 std::to_string(depth.height) + ", the colour target " +
                                 std::to_string(color.width) + "x" + std::to_string(color.height));
   VkRect2D& v = target.viewport;
-  if (v.extent.width == 0 && v.extent.height == 0) v = {{0, 0}, {color.width, color.height}};
+  if (v.offset.x == 0 && v.offset.y == 0 && v.extent.width == 0 && v.extent.height == 0)
+    v = {{0, 0}, {color.width, color.height}};
   if (v.offset.x < 0 || v.offset.y < 0 || v.extent.width == 0 || v.extent.height == 0 ||
       uint64_t(v.offset.x) + v.extent.width > color.width ||
       uint64_t(v.offset.y) + v.extent.height > color.height)

@@ -40,11 +40,23 @@ void requireLayouts(const TargetImage& image, const char* which) {
                                   "read)");
 }
 
+// A depth-only layout says nothing of a stencil aspect, which the layout change moves too.
+void requireStencilLayouts(const TargetImage& depth) {
+  if (!gpu::hasStencil(depth.format)) return;
+  for (VkImageLayout layout : {depth.layout, depth.finalLayout})
+    if (layout == VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL ||
+        layout == VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL)
+      throw std::invalid_argument(
+          "FrameTargets: a depth image with stencil needs a layout of both aspects (e.g. "
+          "DEPTH_STENCIL_ATTACHMENT_OPTIMAL), not a depth-only one");
+}
+
 runtime::EngineTarget borrowedTarget(const gpu::Context& context, const FrameTargets& t) {
   if (!t.color.image || !t.color.view || !t.depth.image || !t.depth.view || t.width == 0 || t.height == 0)
     throw std::invalid_argument("FrameTargets: colour and depth images, views and a size are needed");
   requireLayouts(t.color, "colour");
   requireLayouts(t.depth, "depth");
+  requireStencilLayouts(t.depth);
   return {gpu::Image::borrowed(
               context, t.color.image, t.color.view,
               {t.width, t.height, 1, t.color.format, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, "engine colour"}),
@@ -141,6 +153,7 @@ gpu::Sequence& SmokeRenderer::Impl::prepare() {
 void SmokeRenderer::Impl::record(VkCommandBuffer commands, uint64_t frame, const FrameTargets& targets) {
   if (std::holds_alternative<std::monostate>(camera))
     throw std::invalid_argument("SmokeRenderer::record: set the engine's camera first (setViewProjection)");
+  last = lastComposite = nullptr;  // until both are recorded: either may be replaced on the way
   renderer.frame().setEngineTarget(borrowedTarget(context, targets));
   gpu::Sequence& compute = prepare();
   gpu::Sequence& composite = renderer.composite();
@@ -160,6 +173,7 @@ SmokeRenderer::SmokeRenderer(Device& device, SmokeSimulation& simulation, const 
                              const RenderTarget& target)
     : SmokeRenderer(device, simulation, options, target.colorFormat) {
   impl_->fixedTargets = fixedTargets(target);
+  impl_->renderer.frame().setEngineTarget(borrowedTarget(impl_->context, *impl_->fixedTargets));
 }
 
 SmokeRenderer::SmokeRenderer(Device& device, SmokeSimulation& simulation, const RendererOptions& options,
@@ -206,6 +220,10 @@ void SmokeRenderer::record(VkCommandBuffer commands, uint64_t frame) {
 void SmokeRenderer::record(VkCommandBuffer commands, uint64_t frame, const FrameTargets& targets) {
   if (!impl_->engineTarget) throw std::invalid_argument("SmokeRenderer::record: needs an engine target");
   impl_->record(commands, frame, targets);
+}
+
+void SmokeRenderer::forgetTargets() {
+  impl_->renderer.forgetComposites();
 }
 
 std::vector<StageTime> SmokeRenderer::stageTimes() const {

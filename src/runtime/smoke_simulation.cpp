@@ -70,7 +70,9 @@ uint32_t SmokeSimulation::record(VkCommandBuffer commands, uint64_t frame, doubl
   impl_->carried = available > double(steps) ? 0.0 : std::max(0.0, impl_->carried + seconds - steps * step);
   if (steps == 0) return 0;
   impl_->volumes->recordFrame(commands, frame, steps);
-  ++impl_->frames;
+  // The scene's frames in the simulated time (what its camera and light paths and the guide's jitter follow),
+  // not the engine's records.
+  impl_->frames = int(std::floor(impl_->volumes->simulation().seconds() / impl_->scene.time.frameDt + 1e-4));
   return steps;
 }
 

@@ -243,6 +243,14 @@ TEST_F(EngineTargetsTest, TargetsThatDoNotFitAreRefusedBeforeAnythingIsRecorded)
   FrameTargets colorDepth = generalTargets(targets);
   colorDepth.depth = colorDepth.color;
   EXPECT_THROW(renderer.record(commands, 0, colorDepth), std::invalid_argument) << "a colour image as depth";
+  EngineTargets stencil(engine.context, width, height, VK_FORMAT_D24_UNORM_S8_UINT);
+  FrameTargets depthOnly = generalTargets(stencil);
+  depthOnly.depth.layout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  EXPECT_THROW(renderer.record(commands, 0, depthOnly), std::invalid_argument)
+      << "a depth-only layout for a depth image with stencil";
+  FrameTargets corner = generalTargets(targets, {{4, 4}, {0, 0}});
+  EXPECT_THROW(renderer.record(commands, 0, corner), std::invalid_argument)
+      << "an empty viewport off the corner";
   engine.submitAndWait();  // nothing was recorded into it
   EXPECT_EQ(own.validationMessages(), 0u);
 }

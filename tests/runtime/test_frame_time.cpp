@@ -54,6 +54,9 @@ TEST(FrameTime, TheSmokeMovesAtTheSameSpeedAtAnyFrameRate) {
   EXPECT_EQ(std::count(fastSteps.begin(), fastSteps.end(), 0u), 16) << "frames without a step";
 
   EXPECT_DOUBLE_EQ(fast.seconds(), slow.seconds());
+  // The scene's frames (its camera and light paths) follow the simulated time, not the records.
+  EXPECT_EQ(fast.framesSimulated(), slow.framesSimulated());
+  EXPECT_EQ(fast.framesSimulated(), int(std::floor(fast.seconds() / 0.1 + 1e-4))) << "small_plume's frame_dt";
   const std::vector<float> a = density(slow), b = density(fast);
   ASSERT_EQ(a.size(), b.size());
   EXPECT_GT(*std::max_element(a.begin(), a.end()), 0.0f) << "no smoke yet";
