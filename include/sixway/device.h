@@ -87,8 +87,14 @@ class DeviceRequirements {
 
   const std::vector<const char*>& extensions() const;
   // A VkPhysicalDeviceFeatures2 chain (with the 1.1, 1.2, 1.3 and float-atomic structures) to pass as
-  // VkDeviceCreateInfo::pNext, or to merge into the engine's own; valid while this object lives.
+  // VkDeviceCreateInfo::pNext when the engine has none; valid while this object lives.
   VkPhysicalDeviceFeatures2* features();
+  // Merges what sixway needs into the engine's own `info` before vkCreateDevice: each feature switched on in
+  // the structure of its chain that holds it (its VkPhysicalDeviceFeatures2 or pEnabledFeatures, a 1.1-1.3
+  // aggregate, or the promoted feature's own structure), the rest added as the promoted features' own
+  // structures, no sType twice; the extensions added to `extensions`, which `info` then names. The engine's
+  // structures must be writable; the added ones live as long as this object (one merge per object).
+  void mergeInto(VkDeviceCreateInfo& info, std::vector<const char*>& extensions);
 
  private:
   struct Impl;

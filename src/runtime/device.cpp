@@ -4,6 +4,7 @@
 
 #include "gpu/cooperative_matrix.h"
 #include "gpu/device_features.h"
+#include "gpu/feature_merge.h"
 #include "runtime/device_impl.h"
 #include "runtime/internal.h"
 
@@ -23,6 +24,7 @@ struct DeviceRequirements::Impl {
   gpu::DeviceFeatures features;
   VkPhysicalDeviceCooperativeMatrixFeaturesNV matrix{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_COOPERATIVE_MATRIX_FEATURES_NV};
+  std::unique_ptr<gpu::FeatureMerge> merge;
 };
 
 DeviceRequirements::DeviceRequirements(VkPhysicalDevice physicalDevice) : impl_(std::make_unique<Impl>()) {
@@ -44,6 +46,12 @@ const std::vector<const char*>& DeviceRequirements::extensions() const {
 
 VkPhysicalDeviceFeatures2* DeviceRequirements::features() {
   return impl_->features.chain();
+}
+
+void DeviceRequirements::mergeInto(VkDeviceCreateInfo& info, std::vector<const char*>& extensions) {
+  if (impl_->merge) throw std::invalid_argument("DeviceRequirements::mergeInto: one merge per object");
+  impl_->merge = std::make_unique<gpu::FeatureMerge>(impl_->features, bool(impl_->matrix.cooperativeMatrix),
+                                                     impl_->extensions, info, extensions);
 }
 
 Device::Device(const DeviceOptions& options)
