@@ -2,17 +2,16 @@
 // colour and a depth image, and composites sixway's smoke over it through the public API, headless. What an
 // engine does that sixway must follow: its camera is reversed-Z with an infinite far plane and a TAA jitter
 // each frame, handed over as view and projection matrices; three frames in flight, each with its own colour
-// and depth images in optimal layouts (sixway moves them to what it needs and back); a frame time that
-// varies (30 and 144 fps, hitches) and the smoke's speed does not; its own host allocator and pipeline cache;
-// sixway's one-time work submitted by the engine itself; mid-run the window grows (the targets are made anew
-// at the new size), the emitter is switched off and on, and an obstacle is moved by the engine's own logic.
-// Writes the last frame as a PNG and prints what sixway submitted and waited for after the first frame; fails
-// on any validation message.
-//   embed_vulkan --scene S.json --weights W.safetensors [--frames N] --out frame.png
+// and depth images in optimal layouts; a frame time that varies (30 and 144 fps, hitches) and the smoke's
+// speed does not; its own host allocator and pipeline cache; sixway's one-time work submitted by the engine
+// itself. Two smoke instances placed in its world share one network and are drawn back to front: one with
+// FrameTargets (sixway moves the images to what it needs and back), one inside the engine's own transparent
+// pass (its dynamic rendering, depth read-only). Mid-run the window grows (the targets are made anew at the
+// new size), the engine's emitter circles and is switched off and on, and an obstacle is moved by the
+// engine's own logic. Writes the last frame as a PNG and prints what sixway submitted and waited for after
+// the first frame; fails on any validation message.
+//   embed_vulkan --scene S.json --weights W.safetensors [--frames N] [--c-api] --out frame.png
 #include <sixway/device.h>
-#include <sixway/errors.h>
-#include <sixway/smoke_renderer.h>
-#include <sixway/smoke_simulation.h>
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image_write.h>
 #include <vulkan/vulkan.h>
@@ -34,6 +33,8 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "smoke_instances.h"
 
 namespace {
 
@@ -65,12 +66,19 @@ std::vector<uint32_t> readSpirv(const std::string& path) {
 struct Options {
   std::string scene, weights, out;
   int frames = 6;
+  bool cApi = false;  // sixway through its C API
 };
 
 Options parse(int argc, char** argv) {
   Options o;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string key = argv[i], value = argv[i + 1];
+  for (int i = 1; i < argc; ++i) {
+    const std::string key = argv[i];
+    if (key == "--c-api") {
+      o.cApi = true;
+      continue;
+    }
+    if (i + 1 == argc) throw std::runtime_error(key + ": needs a value");
+    const std::string value = argv[++i];
     if (key == "--scene")
       o.scene = value;
     else if (key == "--weights")
@@ -84,7 +92,7 @@ Options parse(int argc, char** argv) {
   }
   if (o.scene.empty() || o.weights.empty() || o.out.empty() || o.frames < 1)
     throw std::runtime_error(
-        "usage: embed_vulkan --scene S.json --weights W.safetensors [--frames N] --out F.png");
+        "usage: embed_vulkan --scene S.json --weights W.safetensors [--frames N] [--c-api] --out F.png");
   return o;
 }
 
@@ -219,6 +227,18 @@ struct Image {
   }
 };
 
+// Begins the engine's dynamic rendering of one colour and one depth attachment over the whole image.
+void beginRendering(VkCommandBuffer cmd, const VkRenderingAttachmentInfo& color,
+                    const VkRenderingAttachmentInfo& depth, uint32_t width, uint32_t height) {
+  VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  info.renderArea = {{0, 0}, {width, height}};
+  info.layerCount = 1;
+  info.colorAttachmentCount = 1;
+  info.pColorAttachments = &color;
+  info.pDepthAttachment = &depth;
+  vkCmdBeginRendering(cmd, &info);
+}
+
 // The engine's scene pass: the floor and the box, depth tested, into the colour and depth images.
 struct ScenePass {
   const Engine& engine;
@@ -309,13 +329,7 @@ struct ScenePass {
     depthAttachment.imageView = depth.view;
     depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
     depthAttachment.clearValue.depthStencil = {0.0f, 0};  // reversed-Z: 0 is infinitely far
-    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    info.renderArea = {{0, 0}, {width, height}};
-    info.layerCount = 1;
-    info.colorAttachmentCount = 1;
-    info.pColorAttachments = &colorAttachment;
-    info.pDepthAttachment = &depthAttachment;
-    vkCmdBeginRendering(cmd, &info);
+    beginRendering(cmd, colorAttachment, depthAttachment, width, height);
     VkViewport viewport{0, 0, float(width), float(height), 0, 1};
     VkRect2D scissor{{0, 0}, {width, height}};
     vkCmdSetViewport(cmd, 0, 1, &viewport);
@@ -336,6 +350,21 @@ void fullBarrier(VkCommandBuffer cmd) {
   dependency.memoryBarrierCount = 1;
   dependency.pMemoryBarriers = &barrier;
   vkCmdPipelineBarrier2(cmd, &dependency);
+}
+
+// The engine's transparent pass: colour and depth loaded, the depth read-only (sampled by the smoke too).
+void beginTransparentPass(VkCommandBuffer cmd, VkImageView color, VkImageView depth, uint32_t width,
+                          uint32_t height) {
+  VkRenderingAttachmentInfo colorAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  colorAttachment.imageView = color;
+  colorAttachment.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  colorAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+  colorAttachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  VkRenderingAttachmentInfo depthAttachment = colorAttachment;
+  depthAttachment.imageView = depth;
+  depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+  depthAttachment.storeOp = VK_ATTACHMENT_STORE_OP_NONE;
+  beginRendering(cmd, colorAttachment, depthAttachment, width, height);
 }
 
 // The engine's layout changes: `from` UNDEFINED discards the contents (each frame clears them anyway).
@@ -553,27 +582,24 @@ int run(const Options& options) {
   VK(vkCreatePipelineCache(engine.device, &cacheInfo, nullptr, &pipelineCache));
 
   // sixway on the engine's device: its allocator, pipeline cache, log and one-time submissions.
-  sixway::EngineDevice description{
-      engine.instance,   engine.physicalDevice,           engine.device,  engine.queue, engine.queueFamily,
-      engine.extensions, engine.requirements->features(), kFramesInFlight};
-  description.submitAndWait = [&](const std::function<void(VkCommandBuffer)>& record) {
-    loop.oneTime(record);
-  };
-  description.allocator = &allocator.callbacks;
-  description.pipelineCache = pipelineCache;
-  description.log = [](const std::string& line) { std::printf("sixway note: %s\n", line.c_str()); };
+  SmokeSetup setup{engine.instance, engine.physicalDevice, engine.device, engine.queue, engine.queueFamily,
+                   engine.extensions, engine.requirements->features(), kFramesInFlight,
+                   [&](const std::function<void(VkCommandBuffer)>& record) { loop.oneTime(record); },
+                   &allocator.callbacks, pipelineCache, options.scene, options.weights, kColorFormat,
+                   kDepthFormat,
+                   // B behind A to the left, turned.
+                   glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(-0.9f, 0.0f, -1.0f)),
+                               glm::radians(40.0f), glm::vec3(0.0f, 1.0f, 0.0f))};
   const glm::mat4 view =
       glm::lookAtRH(glm::vec3(0.9f, 0.8f, 2.2f), glm::vec3(0.0f, 0.55f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+  const glm::vec3 eye = glm::vec3(glm::inverse(view)[3]);
   const glm::vec4 box(0.35f, 0.15f, 0.45f, 0.15f);  // centre, half size
   uint64_t jobsAfterFirstFrame = 0, waitsAfterFirstFrame = 0, waitsAtEnd = 0;
-  std::vector<sixway::StageTime> times;
+  std::vector<std::pair<std::string, double>> times;
   bool written = false;
   {
-    sixway::Device smokeDevice(description);
-    sixway::SmokeSimulation simulation(smokeDevice, options.scene);
-    sixway::SmokeRenderer smoke(smokeDevice, simulation, {.weights = options.weights}, kColorFormat);
-    const glm::vec3 obstacleStart =
-        simulation.obstacleCount() > 0 ? simulation.obstaclePosition(0) : glm::vec3(0.0f);
+    const std::unique_ptr<SmokeInstances> smoke = options.cApi ? cApiInstances(setup) : cppInstances(setup);
+    const glm::vec3 obstacleStart = smoke->hasObstacle() ? smoke->obstaclePosition() : glm::vec3(0.0f);
 
     // Each frame in flight draws into its own images; halfway through, the window grows.
     std::vector<std::unique_ptr<FrameImages>> images;
@@ -588,60 +614,74 @@ int run(const Options& options) {
       if (frame == frames / 2) {  // a resize: the engine waits for its frames and makes its targets anew
         loop.waitAll();
         makeImages(200, 150);
-        smoke.forgetTargets();  // the old images are gone; the new ones may reuse their handles
+        smoke->forgetTargets();  // the old images are gone; the new ones may reuse their handles
       }
       const size_t slot = frame % kFramesInFlight;
       FrameImages& target = *images[slot];
+      const FrameImagesView frameImages{target.color.image, target.color.view, target.depth.image,
+                                        target.depth.view,  target.width,      target.height};
       VkCommandBuffer cmd = loop.begin(slot);
       changeLayout(cmd, target.color.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                    VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
       changeLayout(cmd, target.depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                    VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
       const glm::mat4 projection = jitteredProjection(frame, target.width, target.height);
-      smoke.setViewProjection(view, projection);
+      smoke->setCamera(view, projection);
       scenePass.record(cmd, target.color, target.depth, target.width, target.height,
                        {projection * view, box});
 
-      // The engine's world: the emitter off through the middle third, the obstacle on a circle.
-      if (frame == frames / 3) simulation.setInletStrength(0.0f);
-      if (frame == 2 * frames / 3) simulation.setInletStrength(1.0f);
-      if (simulation.obstacleCount() > 0) {
-        const float angle = 0.6f * float(frame);
-        simulation.steerObstacle(
-            0, obstacleStart + 0.15f * glm::vec3(std::cos(angle) - 1.0f, 0.0f, std::sin(angle)));
+      // The engine's world: its emitter circles and is off through the middle third, the obstacle circles.
+      const float angle = 0.6f * float(frame);
+      const EngineEmitter emitter{glm::vec3(0.1f * std::cos(angle), 0.1f, 0.1f * std::sin(angle)),
+                                  0.15f,
+                                  glm::vec3(0.0f, 1.5f, 0.0f),
+                                  5.0f,
+                                  5.0f,
+                                  frame < frames / 3 || frame >= 2 * frames / 3};
+      const double seconds = frameSeconds(frame);
+      smoke->setWorld(
+          emitter, obstacleStart + 0.15f * glm::vec3(std::cos(angle) - 1.0f, 0.0f, std::sin(angle)), seconds);
+      smoke->recordSimulations(cmd, frame, seconds);
+      // B's lightmaps before the transparent pass, where its depth is read in the read-only layout.
+      smoke->recordLightmapsB(cmd, frame, frameImages);
+      changeLayout(cmd, target.depth.image, VK_IMAGE_ASPECT_DEPTH_BIT,
+                   VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
+      // Far to near, by the distance to the middle of each instance's billboard.
+      const bool bFirst = glm::distance(eye, smoke->middle(1)) > glm::distance(eye, smoke->middle(0));
+      for (int instance : {bFirst ? 1 : 0, bFirst ? 0 : 1}) {
+        if (instance == 1) {
+          beginTransparentPass(cmd, target.color.view, target.depth.view, target.width, target.height);
+          smoke->recordCompositeB(cmd);
+          vkCmdEndRendering(cmd);
+        } else {
+          smoke->recordA(cmd, frame, frameImages);
+        }
       }
-      simulation.record(cmd, frame, frameSeconds(frame));
-      // Over the engine's colour, hidden by its depth; the colour is left ready to copy.
-      smoke.record(cmd, frame,
-                   {{target.color.image, target.color.view, kColorFormat,
-                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL},
-                    {target.depth.image, target.depth.view, kDepthFormat,
-                     VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL},
-                    target.width,
-                    target.height,
-                    {}});
+      changeLayout(cmd, target.color.image, VK_IMAGE_ASPECT_COLOR_BIT,
+                   VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);  // ready to copy
       loop.submit(slot);
       if (frame == 0) {  // the first frame records sixway's passes and uploads what they need
         jobsAfterFirstFrame = loop.oneTimeJobs;
-        waitsAfterFirstFrame = smokeDevice.hostWaits();
+        waitsAfterFirstFrame = smoke->hostWaits();
       }
     }
     loop.waitAll();
-    waitsAtEnd = smokeDevice.hostWaits();
+    waitsAtEnd = smoke->hostWaits();
     written = writePng(engine, loop, *images[(frames - 1) % kFramesInFlight], options.out);
-    times = simulation.stageTimes();
-    const std::vector<sixway::StageTime> shading = smoke.stageTimes();
-    times.insert(times.end(), shading.begin(), shading.end());
+    times = smoke->stageTimes();
   }
   vkDestroyPipelineCache(engine.device, pipelineCache, nullptr);
   if (!written) throw std::runtime_error(options.out + ": cannot write the PNG");
   std::printf(
-      "wrote %s: %d frames, %d validation messages, %llu host waits and %llu submissions by sixway "
+      "wrote %s: %d frames of 2 instances (%s API), %d validation messages, %llu host waits and %llu "
+      "submissions by "
+      "sixway "
       "after the first frame, %zu host allocations left\n",
-      options.out.c_str(), options.frames, validationMessages.load(),
+      options.out.c_str(), options.frames, options.cApi ? "C" : "C++", validationMessages.load(),
       static_cast<unsigned long long>(waitsAtEnd - waitsAfterFirstFrame),
       static_cast<unsigned long long>(loop.oneTimeJobs - jobsAfterFirstFrame), allocator.live.size());
-  for (const sixway::StageTime& t : times) std::printf("  %-20s %8.2f ms\n", t.name.c_str(), t.milliseconds);
+  for (const auto& [name, ms] : times) std::printf("  %-20s %8.2f ms\n", name.c_str(), ms);
   return validationMessages.load() == 0 && allocator.live.empty() ? 0 : 1;
 }
 

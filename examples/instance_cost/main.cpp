@@ -1,6 +1,7 @@
-// What a smoke instance costs: the device memory of the first and of a second instance of a scene, and the
-// time of a frame (simulation and rendering into sixway's own image) with one and with two, wall clock and
-// summed GPU stage times, each over 4 frames after a warm-up frame. docs/embedding.md, "Measured".
+// What a smoke instance costs: the device memory of the first and of a second instance of a scene (sharing
+// the first's network, and with a network of its own), and the time of a frame (simulation and rendering into
+// sixway's own image) with one and with two, wall clock and summed GPU stage times, each over 4 frames after
+// a warm-up frame. docs/embedding.md, "Measured".
 //   instance_cost SCENE.json WEIGHTS.safetensors
 #include <sixway/device.h>
 #include <sixway/smoke_renderer.h>
@@ -58,18 +59,25 @@ int measure(int argc, char** argv) {
   };
   const auto single = time(false, nullptr, nullptr);
   auto simB = std::make_unique<sixway::SmokeSimulation>(device, scene);
-  auto renB =
-      std::make_unique<sixway::SmokeRenderer>(device, *simB, sixway::RendererOptions{.weights = weights});
+  auto renB = std::make_unique<sixway::SmokeRenderer>(device, *simB,
+                                                      sixway::RendererOptions{.shareNetwork = renA.get()});
   simB->advance();
   renB->render();
   const auto two = device.memoryUse();
   const auto pair = time(true, simB.get(), renB.get());
-  std::printf(
-      "%s: first instance %.1f MiB in %llu allocations; second +%.1f MiB in %llu; per frame one %.0f ms wall "
-      "(%.0f GPU), two %.0f ms wall (%.0f GPU)\n",
-      scene.c_str(), (one.bytes - before.bytes) / 1048576.0,
-      (unsigned long long)(one.allocations - before.allocations), (two.bytes - one.bytes) / 1048576.0,
-      (unsigned long long)(two.allocations - one.allocations), single.first, single.second, pair.first,
-      pair.second);
+  {
+    sixway::SmokeSimulation simC(device, scene);
+    sixway::SmokeRenderer renC(device, simC, {.weights = weights});
+    simC.advance();
+    renC.render();
+    const auto three = device.memoryUse();
+    std::printf(
+        "%s: first instance %.1f MiB in %llu allocations; second +%.1f MiB in %llu sharing the network, "
+        "+%.1f MiB with its own; per frame one %.0f ms wall (%.0f GPU), two %.0f ms wall (%.0f GPU)\n",
+        scene.c_str(), (one.bytes - before.bytes) / 1048576.0,
+        (unsigned long long)(one.allocations - before.allocations), (two.bytes - one.bytes) / 1048576.0,
+        (unsigned long long)(two.allocations - one.allocations), (three.bytes - two.bytes) / 1048576.0,
+        single.first, single.second, pair.first, pair.second);
+  }
   return 0;
 }

@@ -16,6 +16,8 @@ class LightmapNetwork {
   // For size × size guiding maps (a multiple of 16). Throws Error naming the file when it is missing or
   // malformed.
   LightmapNetwork(Device& device, const std::filesystem::path& weights, uint32_t size, bool fp16 = false);
+  // The same from the file's bytes in memory (read during construction).
+  LightmapNetwork(Device& device, std::span<const std::byte> weights, uint32_t size, bool fp16 = false);
   ~LightmapNetwork();
   LightmapNetwork(const LightmapNetwork&) = delete;
   LightmapNetwork& operator=(const LightmapNetwork&) = delete;

@@ -72,10 +72,16 @@ typedef struct SixwayEngineDevice {
   void* memoryUser;
 } SixwayEngineDevice;
 SixwayResult sixwayCreateEngineDevice(const SixwayEngineDevice* engine, SixwayDevice* device);
+/* Device::hostWaits: how often sixway waited on the GPU itself. */
+SixwayResult sixwayDeviceHostWaits(SixwayDevice device, uint64_t* waits);
 void sixwayDestroyDevice(SixwayDevice device);
 
 /* sixway::SmokeSimulation of a scene file. */
 SixwayResult sixwayCreateSimulation(SixwayDevice device, const char* scenePath, SixwaySimulation* simulation);
+/* SmokeSimulation(device, SceneText): the scene's JSON text, `length` bytes; meshes relative to `directory`
+ * (NULL: the working directory). */
+SixwayResult sixwayCreateSimulationFromText(SixwayDevice device, const char* json, size_t length,
+                                            const char* directory, SixwaySimulation* simulation);
 SixwayResult sixwaySimulationAdvance(SixwaySimulation simulation);
 SixwayResult sixwaySimulationRecord(SixwaySimulation simulation, VkCommandBuffer commands, uint64_t frame);
 /* SmokeSimulation::record for `seconds` of frame time; `steps` (may be NULL) receives the lattice steps
@@ -84,6 +90,23 @@ SixwayResult sixwaySimulationRecordSeconds(SixwaySimulation simulation, VkComman
                                            uint64_t frame, double seconds, uint32_t* steps);
 /* SmokeSimulation::setPlacement; column-major, 16 floats. */
 SixwayResult sixwaySimulationSetPlacement(SixwaySimulation simulation, const float worldFromScene[16]);
+/* SmokeSimulation::obstacleCount and obstaclePosition (3 floats, world). */
+SixwayResult sixwaySimulationObstacleCount(SixwaySimulation simulation, uint32_t* count);
+SixwayResult sixwaySimulationObstaclePosition(SixwaySimulation simulation, uint32_t obstacle,
+                                              float position[3]);
+/* SmokeSimulation::steerObstacle(obstacle, target, seconds); `target`: 3 floats, world. */
+SixwayResult sixwaySimulationSteerObstacle(SixwaySimulation simulation, uint32_t obstacle,
+                                           const float target[3], double seconds);
+/* SmokeSimulation::setEmitters: `count` emitters (0: none; `emitters` may then be NULL). */
+typedef struct SixwayEmitter {
+  float position[3]; /* world, m */
+  float radius;      /* m */
+  float velocity[3]; /* world, m/s */
+  float densityRate, temperatureRate;
+  int on;
+} SixwayEmitter;
+SixwayResult sixwaySimulationSetEmitters(SixwaySimulation simulation, const SixwayEmitter* emitters,
+                                         uint32_t count);
 void sixwayDestroySimulation(SixwaySimulation simulation);
 
 /* sixway::SmokeRenderer with the network of `weightsPath`, into its own image (target NULL) or an engine's.
@@ -120,6 +143,35 @@ typedef struct SixwayFrameTargets {
 SixwayResult sixwayCreateRendererForFormat(SixwayDevice device, SixwaySimulation simulation,
                                            const char* weightsPath, VkFormat colorFormat,
                                            SixwayRenderer* renderer);
+/* A renderer for the engine's images or rendering (RendererOptions' network fields and the constructors): the
+ * network from `weightsPath`, or the weights file's `weightsSize` (> 0) bytes at `weightsData`, or
+ * `shareNetwork`'s; into the engine's images of `colorFormat`
+ * (sixwayRendererRecordTargets), or, with `renderingColorCount` > 0, inside the engine's rendering of these
+ * formats (sixwayRendererRecordLightmaps, then sixwayRendererRecordComposite). */
+typedef struct SixwayRendererInfo {
+  const char* weightsPath;
+  const void* weightsData;
+  size_t weightsSize;
+  SixwayRenderer shareNetwork;
+  VkFormat colorFormat;
+  const VkFormat* renderingColors;
+  uint32_t renderingColorCount;
+  VkFormat renderingDepth, renderingStencil;
+} SixwayRendererInfo;
+SixwayResult sixwayCreateRendererFromInfo(SixwayDevice device, SixwaySimulation simulation,
+                                          const SixwayRendererInfo* info, SixwayRenderer* renderer);
+/* SmokeRenderer::recordLightmaps and recordComposite (CompositeTargets). */
+typedef struct SixwayCompositeTargets {
+  VkImage depth;
+  VkImageView depthView;
+  VkFormat depthFormat;
+  VkImageLayout depthLayout;
+  uint32_t width, height;
+  VkRect2D viewport;
+} SixwayCompositeTargets;
+SixwayResult sixwayRendererRecordLightmaps(SixwayRenderer renderer, VkCommandBuffer commands, uint64_t frame,
+                                           const SixwayCompositeTargets* targets);
+SixwayResult sixwayRendererRecordComposite(SixwayRenderer renderer, VkCommandBuffer commands);
 SixwayResult sixwayRendererRecordTargets(SixwayRenderer renderer, VkCommandBuffer commands, uint64_t frame,
                                          const SixwayFrameTargets* targets);
 /* Own image: renders and waits; then copies its width × height RGBA floats (linear, premultiplied, row 0 at
@@ -127,6 +179,17 @@ SixwayResult sixwayRendererRecordTargets(SixwayRenderer renderer, VkCommandBuffe
 SixwayResult sixwayRendererRender(SixwayRenderer renderer);
 SixwayResult sixwayRendererSize(SixwayRenderer renderer, uint32_t* width, uint32_t* height);
 SixwayResult sixwayRendererImage(SixwayRenderer renderer, float* pixels, size_t count);
+/* SmokeRenderer::lightmaps (LightmapTextures): corners bottom-left, bottom-right, top-right, top-left. */
+typedef struct SixwayLightmapTextures {
+  VkImage a, b;
+  VkImageView viewA, viewB;
+  VkFormat format;
+  uint32_t width, height;
+  float corners[4][3];
+} SixwayLightmapTextures;
+SixwayResult sixwayRendererLightmaps(SixwayRenderer renderer, SixwayLightmapTextures* lightmaps);
+/* SmokeRenderer::forgetTargets. */
+SixwayResult sixwayRendererForgetTargets(SixwayRenderer renderer);
 void sixwayDestroyRenderer(SixwayRenderer renderer);
 
 #ifdef __cplusplus

@@ -12,6 +12,7 @@
 #include <glm/vec3.hpp>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,7 @@ struct Access;
 }  // namespace runtime
 
 class Device;
+class SmokeRenderer;
 class SmokeSimulation;
 
 // A look-at perspective camera over the whole target. An engine target's depth buffer must then hold the
@@ -77,6 +79,29 @@ struct FrameTargets {
   VkRect2D viewport{};
 };
 
+// The engine's dynamic rendering that recordComposite draws in: its attachments' formats, as in its
+// VkRenderingInfo (or a secondary command buffer's VkCommandBufferInheritanceRenderingInfo), one sample, no
+// multiview. The smoke goes "over" colour attachment 0; no other attachment, depth or stencil is written
+// (more than one colour attachment needs the device's independentBlend, an Error otherwise).
+struct RenderingFormats {
+  std::vector<VkFormat> colors;
+  VkFormat depth = VK_FORMAT_UNDEFINED;  // UNDEFINED: no depth attachment
+  VkFormat stencil = VK_FORMAT_UNDEFINED;
+};
+
+// What a composite inside the engine's rendering reads: the engine's depth buffer (SAMPLED usage, a view of
+// its depth aspect; D16, X8D24, D24S8, D32 or D32S8) in `depthLayout`, the layout it is in there (when it is
+// that rendering's depth attachment too: a read-only depth layout or GENERAL, with the engine's depth writes
+// off); the rendering's width × height and the camera's viewport in it (all zero: the whole).
+struct CompositeTargets {
+  VkImage depth = VK_NULL_HANDLE;
+  VkImageView depthView = VK_NULL_HANDLE;
+  VkFormat depthFormat = VK_FORMAT_UNDEFINED;
+  VkImageLayout depthLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+  uint32_t width = 0, height = 0;
+  VkRect2D viewport{};
+};
+
 // The last frame's six-way lightmaps and where they go (docs/embedding.md, "A frame", lightmaps only): two
 // images in Unity's packing, A = (right, top, back, alpha), B = (left, bottom, front,
 // emissive) (docs/conventions.md, "Channels and packing"), sampled, in VK_IMAGE_LAYOUT_GENERAL, written by
@@ -93,8 +118,15 @@ struct LightmapTextures {
 
 struct RendererOptions {
   std::filesystem::path weights;  // the network (weights/*.safetensors); an Error names a missing one
-  bool fp16 = false;              // fp16 feature maps where the device has 16-bit storage
-  bool shadows = true;            // obstacles shadow the smoke
+  // The weights file's bytes, read during construction instead of `weights` (which then only names them in
+  // errors): for engines that pack their files.
+  std::span<const std::byte> weightsData;
+  // Runs that renderer's network instead (no weights read, nothing allocated for it: docs/embedding.md,
+  // "Several instances"): the scenes' lightmap sizes and emission must agree, fp16 is that network's, and
+  // the renderers sharing it record into one queue from one thread. The network lives as long as any of them.
+  const SmokeRenderer* shareNetwork = nullptr;
+  bool fp16 = false;    // fp16 feature maps where the device has 16-bit storage
+  bool shadows = true;  // obstacles shadow the smoke
   // Shadow-atlas tiles: the most lights that cast shadows at once (a note names a light beyond them).
   // Unset: one per shadow-casting light of the scene; set it when setLights() may add more.
   std::optional<uint32_t> shadowedLights;
@@ -111,6 +143,10 @@ class SmokeRenderer {
   // `colorFormat` (the shading's pipeline is made for it).
   SmokeRenderer(Device& device, SmokeSimulation& simulation, const RendererOptions& options,
                 VkFormat colorFormat);
+  // Draws inside the engine's own dynamic rendering of these formats: each frame recordLightmaps, then
+  // recordComposite (docs/embedding.md, "Inside the engine's rendering").
+  SmokeRenderer(Device& device, SmokeSimulation& simulation, const RendererOptions& options,
+                const RenderingFormats& rendering);
   ~SmokeRenderer();
   SmokeRenderer(const SmokeRenderer&) = delete;
   SmokeRenderer& operator=(const SmokeRenderer&) = delete;
@@ -140,6 +176,16 @@ class SmokeRenderer {
   // composite on the host (docs/embedding.md, "Targets and layouts"). std::invalid_argument for targets that
   // do not fit.
   void record(VkCommandBuffer commands, uint64_t frame, const FrameTargets& targets);
+  // The RenderingFormats renderer's frame in two parts. First, into a primary command buffer outside any
+  // render pass, after SmokeSimulation::record: shadow maps, guide, network and the composite's values for
+  // this frame's `targets`, between full barriers. Then recordComposite, into the command buffer (primary,
+  // or secondary with RENDER_PASS_CONTINUE) that is inside the engine's rendering at that point of the
+  // queue: one draw (pipeline, push descriptors, push constants, viewport, scissor: the engine rebinds its
+  // own after it), no barrier, no query. The engine's barrier into the depth layout must make its depth
+  // writes visible to fragment-shader reads. std::invalid_argument for targets that do not fit, or
+  // recordComposite before any recordLightmaps.
+  void recordLightmaps(VkCommandBuffer commands, uint64_t frame, const CompositeTargets& targets);
+  void recordComposite(VkCommandBuffer commands) const;
   // Forgets the recordings of the targets passed so far: call it when the engine destroys images it passed
   // (after the GPU finished the frames that used them, as destroying them requires), before new images that
   // may reuse their handles are passed.

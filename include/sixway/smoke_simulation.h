@@ -9,6 +9,8 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <memory>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "sixway/stage_time.h"
@@ -34,10 +36,32 @@ struct SmokeVolume {
   float cellSize = 0.0f;  // metres
 };
 
+// An engine's source of smoke (docs/embedding.md, "Emitters"): the lattice cells whose centres lie within
+// `radius` of `position` gain density and temperature at these rates while `on`, and their flow is set to
+// `velocity` (a jet) unless it is zero (then the fluid there moves freely: buoyancy lifts the smoke).
+struct Emitter {
+  glm::vec3 position{0.0f};      // world, m
+  float radius = 0.1f;           // m
+  glm::vec3 velocity{0.0f};      // world, m/s; at most maxEmitterSpeed()
+  float densityRate = 1.0f;      // density per second, in the units of SmokeVolume
+  float temperatureRate = 0.0f;  // per second (drives the scene's fluid.buoyancy.temperature)
+  bool on = true;
+};
+
+// A scene file's text held by the engine (docs/scene-format.md): no file is read but the meshes it names,
+// relative to `directory`. `name` stands for the file in errors.
+struct SceneText {
+  std::string_view json;
+  std::filesystem::path directory = ".";
+  std::string name = "scene in memory";
+};
+
 class SmokeSimulation {
  public:
   // Loads the scene file; throws Error naming it (missing, malformed, beyond the device's limits).
   SmokeSimulation(Device& device, const std::filesystem::path& scene);
+  // The same from the scene's text (read during construction).
+  SmokeSimulation(Device& device, const SceneText& scene);
   ~SmokeSimulation();
   SmokeSimulation(const SmokeSimulation&) = delete;
   SmokeSimulation& operator=(const SmokeSimulation&) = delete;
@@ -87,12 +111,28 @@ class SmokeSimulation {
 
   size_t obstacleCount() const;
   glm::vec3 obstaclePosition(size_t obstacle) const;  // world (m), now
-  // Drags an obstacle toward `target` (world, m) at a speed the lattice can follow.
+  // Drags an obstacle toward `target` (world, m) in a straight line at a speed the lattice can follow
+  // (at most maxObstacleSpeed()), arriving one scene frame from now or later; then it rests there.
   void steerObstacle(size_t obstacle, glm::vec3 target);
-  // Scales the inlets' velocity, in [0, maxInletStrength()]; std::invalid_argument outside.
+  // The same arriving `seconds` of simulated time from now (an engine's object: its position at the end of
+  // the frame time passed to the next record), or later where that is faster than maxObstacleSpeed(): the
+  // obstacle then lags behind and catches up. Moves within the cells covered so far record nothing again.
+  // std::invalid_argument for an obstacle that does not exist, a target or time that is not finite, a
+  // negative time.
+  void steerObstacle(size_t obstacle, glm::vec3 target, double seconds);
+  float maxObstacleSpeed()
+      const;  // m/s: half fluid.max_lattice_velocity (the wall's speed adds to the flow's)
+  // Scales the scene's inlets' velocity, in [0, maxInletStrength()]; std::invalid_argument outside.
   void setInletStrength(float strength);
   float inletStrength() const;
   float maxInletStrength() const;
+  // From the next recorded step on, these emitters are the smoke's sources in place of the scene's inlets
+  // (an empty list: none). Call it each frame to move them, switch them or change their rates; moves within
+  // the cells covered so far record nothing again. std::invalid_argument for more than maxEmitters(), a
+  // speed beyond maxEmitterSpeed(), a position that is not finite, a negative or non-finite radius or rate.
+  void setEmitters(const std::vector<Emitter>& emitters);
+  size_t maxEmitters() const;
+  float maxEmitterSpeed() const;  // m/s: fluid.max_lattice_velocity in the scene's lattice units
 
  private:
   friend runtime::Access;  // sixway's own tools (src/runtime/internal.h, not installed)

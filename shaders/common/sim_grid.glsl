@@ -54,11 +54,17 @@ struct Obstacle {
 };
 
 struct Inlet {
-  vec4 centre;    // disk: centre; box: minimum corner; w: shape (0 disk, 1 box)
-  vec4 normal;    // disk: unit normal, w: radius; box: maximum corner
+  vec4 centre;    // disk and ball: centre; box: minimum corner; w: shape (INLET_*)
+  vec4 normal;    // disk: unit normal, w: radius; ball: w: radius; box: maximum corner
   vec4 velocity;  // cells per step; w: noise amplitude (fraction of the speed)
-  vec4 smoke;     // x: density, y: temperature, z: 1 when active this step, else 0
+  vec4 smoke;     // x: density, y: temperature (or per step: INLET_ADDS), z: 1 when active this step, w: INLET_*
 };
+
+const float INLET_DISK = 0.0, INLET_BOX = 1.0, INLET_BALL = 2.0;
+// Inlet.smoke.w bits: the cells gain smoke.xy each step (else they hold it); the flow there is set to the
+// inlet's velocity (else left to the fluid).
+const uint INLET_ADDS = 1u, INLET_SETS_FLOW = 2u;
+bool inletSetsFlow(Inlet inlet) { return (uint(inlet.smoke.w) & INLET_SETS_FLOW) != 0u; }
 
 // Everything that changes from step to step, written by the host before each submission.
 struct StepParams {
@@ -74,7 +80,11 @@ bool nearSolid(StepParams p, ivec3 cell) {
 }
 
 bool insideInlet(Inlet inlet, vec3 p) {
-  if (inlet.centre.w == 0.0) {  // disk: one cell thick on the side its normal points to
+  if (inlet.centre.w == INLET_BALL) {
+    vec3 d = p - inlet.centre.xyz;
+    return dot(d, d) <= inlet.normal.w * inlet.normal.w;
+  }
+  if (inlet.centre.w == INLET_DISK) {  // disk: one cell thick on the side its normal points to
     vec3 d = p - inlet.centre.xyz;
     float along = dot(d, inlet.normal.xyz);
     float across = length(d - along * inlet.normal.xyz);

@@ -290,12 +290,14 @@ void main() {
   // kinds of cell: llvmpipe runs both sides of a branch, and a second loop of 19 masked stores costs more
   // than the inlet's equilibria computed beside every cell's collision.
   uint inlet = inletOf(flag);
+  bool setsFlow = false;
   vec3 inflow = vec3(0.0);
   if (inlet != 0u) {
     Inlet in_ = params[push.step].inlets[inlet - 1u];
+    setsFlow = inletSetsFlow(in_);
     inflow = in_.velocity.xyz + in_.velocity.w * length(in_.velocity.xyz) * noise3(p, params[push.step].counts.z);
   }
   [[unroll]] for (int i = 0; i < Q; ++i)
-    storeCollided(i, p, stored, inlet != 0u ? equilibrium(i, m.rho, inflow) : collide(i, m, tau, force));
-  macro[cell] = vec4(inlet != 0u ? inflow : m.u, m.rho);
+    storeCollided(i, p, stored, setsFlow ? equilibrium(i, m.rho, inflow) : collide(i, m, tau, force));
+  macro[cell] = vec4(setsFlow ? inflow : m.u, m.rho);
 }

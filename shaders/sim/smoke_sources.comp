@@ -1,6 +1,6 @@
 #version 460
 // Smoke sources and dissipation, once per lattice step: cells inside an active inlet take the
-// inlet's density and temperature; elsewhere both decay by the dissipation factor. The sparse transport
+// inlet's density and temperature (or gain them: an emitter's rates); elsewhere both decay by the dissipation factor. The sparse transport
 // (sim_bricks.glsl) decays its active bricks in smoke_decay.comp, the only ones holding smoke, and runs this over
 // the box of the inlets' cells (the push constants) only to set them.
 #extension GL_GOOGLE_include_directive : require
@@ -35,6 +35,9 @@ void main() {
   ivec3 s = SPARSE ? push.boxMin.xyz + cellOf(index, push.boxSize.xyz) : cellOf(index, SMOKE);
   uint cell = cellIndex(s, SMOKE);
   uint inlet = inletOf(flags[cellIndex(latticeCellOf(s), LATTICE)]);
-  if (inlet != 0u) smoke[cell] = params[push.step].inlets[inlet - 1u].smoke.xy;
+  if (inlet != 0u) {
+    vec4 source = params[push.step].inlets[inlet - 1u].smoke;
+    smoke[cell] = (uint(source.w) & INLET_ADDS) != 0u ? smoke[cell] + source.xy : source.xy;
+  }
   else if (!SPARSE && DECAY != 1.0) smoke[cell] *= DECAY;
 }

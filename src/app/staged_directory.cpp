@@ -1,7 +1,5 @@
 #include "app/staged_directory.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <regex>
 #include <set>
@@ -10,6 +8,7 @@
 #include "io/error.h"
 #include "io/file_access.h"
 #include "io/report.h"
+#include "platform/platform.h"
 
 namespace sixway::app {
 namespace {
@@ -50,7 +49,7 @@ bool holdsOnlyKilledRuns(const fs::path& directory) {
     const std::string name = entry.path().filename();
     if (!std::regex_match(name, match, stagingName()) ||
         entry.symlink_status(error).type() != fs::file_type::directory ||
-        !io::processEnded(std::stol(match[1])))
+        !platform::processEnded(std::stol(match[1])))
       return false;
     any = true;
   }
@@ -65,7 +64,7 @@ StagedDirectory::StagedDirectory(fs::path directory, const std::string& command,
       command_(command),
       outputNames_(std::move(outputNames)),
       folders_(std::move(folders)) {
-  staging_ = directory_ / ("." + command_ + "." + std::to_string(getpid()) + ".partial");
+  staging_ = directory_ / ("." + command_ + "." + std::to_string(platform::processId()) + ".partial");
   madeDirectory_ = io::claimOutputDirectory(directory_, force);
   std::error_code error;
   fs::remove_all(staging_, error);  // left by a killed run of a process with this id
@@ -101,7 +100,7 @@ void StagedDirectory::requireWritable(const fs::path& directory, bool force, con
   std::error_code error;
   if (fs::symlink_status(directory, error).type() == fs::file_type::directory &&
       holdsOnlyKilledRuns(directory)) {
-    io::removeNumberedEntries(directory, stagingName(), fs::file_type::directory, io::processEnded);
+    io::removeNumberedEntries(directory, stagingName(), fs::file_type::directory, platform::processEnded);
     fs::remove(directory, error);  // only if empty: another run may have claimed it meanwhile
   }
   io::requireWritableDirectory(directory, force);
@@ -167,7 +166,7 @@ void StagedDirectory::removeEarlierOutputsNotReplaced(const std::set<std::string
 // removes it once its process has ended.
 void StagedDirectory::removeStagingOfKilledRuns() const {
   const std::regex name("\\." + command_ + "\\.([0-9]{1,9})\\.partial");
-  io::removeNumberedEntries(directory_, name, fs::file_type::directory, io::processEnded);
+  io::removeNumberedEntries(directory_, name, fs::file_type::directory, platform::processEnded);
 }
 
 }  // namespace sixway::app

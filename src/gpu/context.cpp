@@ -254,6 +254,7 @@ Context::Context(const ExternalDevice& external)
                    " is not enabled (see sixway::DeviceRequirements)");
   capabilities_.shaderFloat16 = enabled.vulkan12().shaderFloat16;
   capabilities_.storage16Bit = enabled.vulkan11().storageBuffer16BitAccess;
+  capabilities_.independentBlend = enabled.core().independentBlend;
   if (chainEnablesCooperativeMatrix(external.enabledExtensions, external.enabledFeatures))
     capabilities_.cooperativeMatrix =
         offeredMatrixShape(instance_, physicalDevice_,
@@ -382,6 +383,7 @@ void Context::createDevice(const ContextOptions& options) {
   DeviceFeatures enable = DeviceFeatures::toEnable(supported);
   capabilities_.shaderFloat16 = enable.vulkan12().shaderFloat16;
   capabilities_.storage16Bit = enable.vulkan11().storageBuffer16BitAccess;
+  capabilities_.independentBlend = enable.core().independentBlend;
 
   std::vector<const char*> extensions = requiredDeviceExtensions();
   if (options.presentation) extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);

@@ -52,9 +52,10 @@ struct ExternalDevice {
 
 // What the stages need to know about the device to size their work.
 struct DeviceCapabilities {
-  bool shaderFloat16 = false;  // fp16 arithmetic in shaders
-  bool storage16Bit = false;   // 16-bit values in storage buffers
-  bool timestamps = false;     // timestamps on the compute/graphics queue
+  bool shaderFloat16 = false;     // fp16 arithmetic in shaders
+  bool storage16Bit = false;      // 16-bit values in storage buffers
+  bool timestamps = false;        // timestamps on the compute/graphics queue
+  bool independentBlend = false;  // blend states that differ per colour attachment
   double timestampPeriodNs = 1.0;
   uint32_t timestampValidBits = 64;
   uint32_t subgroupSize = 1;

@@ -140,6 +140,8 @@ DeviceFeatures DeviceFeatures::toEnable(const DeviceFeatures& supported) {
   enable.v13_.subgroupSizeControl = supported.v13_.subgroupSizeControl;
   enable.v13_.maintenance4 = VK_TRUE;  // workgroup sizes as specialization constants (LocalSizeId)
   enable.features_.features.shaderInt64 = supported.features_.features.shaderInt64;
+  // An engine's rendering with several colour attachments: the smoke blends into one, the others are masked.
+  enable.features_.features.independentBlend = supported.features_.features.independentBlend;
   enable.features_.features.fragmentStoresAndAtomics = supported.features_.features.fragmentStoresAndAtomics;
   enable.features_.features.shaderStorageImageWriteWithoutFormat =
       supported.features_.features.shaderStorageImageWriteWithoutFormat;

@@ -1,11 +1,7 @@
 #include "gpu/pipeline.h"
 
-#include <fcntl.h>
 #include <sixway/shader_registry.h>
-#include <sys/stat.h>
-#include <unistd.h>
 #include <bit>
-#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -18,6 +14,7 @@
 #include "gpu/check.h"
 #include "gpu/context.h"
 #include "gpu/spirv_reflect.h"
+#include "platform/platform.h"
 
 namespace sixway::gpu {
 namespace {
@@ -92,57 +89,20 @@ void checkSpecConstants(const SpecConstants& spec, std::initializer_list<std::st
 }
 
 // The largest pipeline cache read: a driver's cache of every sixway pipeline is a few MiB.
-constexpr off_t kMaxPipelineCacheBytes = off_t(256) << 20;
+constexpr uint64_t kMaxPipelineCacheBytes = uint64_t(256) << 20;
 
 void notePipelineCache(const Context& context, const std::filesystem::path& file,
                        const std::string& problem) {
   context.note("pipeline cache " + file.string() + " " + problem + "; starting without it");
 }
 
-// What is wrong with reading the open file `fd` as a cache ("" when nothing is).
-std::string unreadableCache(int fd, off_t& size) {
-  struct stat info {};
-  if (::fstat(fd, &info) != 0) return std::string("cannot be examined: ") + std::strerror(errno);
-  if (!S_ISREG(info.st_mode))
-    return S_ISDIR(info.st_mode) ? "is a directory" : "is not a regular file (a FIFO, socket or device)";
-  if (info.st_size > kMaxPipelineCacheBytes)
-    return "holds " + std::to_string(info.st_size >> 20) + " MiB, more than " +
-           std::to_string(kMaxPipelineCacheBytes >> 20) + " MiB";
-  size = info.st_size;
-  return "";
-}
-
-// Reads up to `size` bytes of `fd`; fewer when the file shrank meanwhile.
-std::vector<char> readUpTo(int fd, off_t size) {
-  std::vector<char> data(static_cast<std::size_t>(size));
-  std::size_t done = 0;
-  while (done < data.size()) {
-    const ssize_t got = ::read(fd, data.data() + done, data.size() - done);
-    if (got < 0 && errno == EINTR) continue;
-    if (got <= 0) break;
-    done += std::size_t(got);
-  }
-  data.resize(done);
-  return data;
-}
-
 // The cache file's bytes; empty when there is none. Anything but a regular file of at most
 // kMaxPipelineCacheBytes (a FIFO, which would block, a directory, a device that never ends) is left unread
 // with one note: a bad cache costs the compile time it would have saved, never the command.
 std::vector<char> readCacheFile(const Context& context, const std::filesystem::path& file) {
-  // O_NONBLOCK: opening a FIFO does not wait for a writer; fstat then tells what was opened.
-  const int fd = ::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-  if (fd < 0) {
-    if (errno != ENOENT)
-      notePipelineCache(context, file, std::string("cannot be opened: ") + std::strerror(errno));
-    return {};
-  }
-  off_t size = 0;
-  const std::string problem = unreadableCache(fd, size);
-  std::vector<char> data = problem.empty() ? readUpTo(fd, size) : std::vector<char>{};
-  ::close(fd);
-  if (!problem.empty()) notePipelineCache(context, file, problem);
-  return data;
+  platform::FileRead read = platform::readRegularFile(file, kMaxPipelineCacheBytes);
+  if (!read.problem.empty()) notePipelineCache(context, file, read.problem);
+  return std::move(read.bytes);
 }
 
 // Whether saving may put a file at `file`: nothing there yet, or a regular file (through links).
@@ -236,7 +196,7 @@ void PipelineCache::save() const {
   std::filesystem::create_directories(file_.parent_path());
   // Written under a temporary name, then renamed: a concurrent reader never sees half a file.
   std::filesystem::path temporary = file_;
-  temporary += ".tmp" + std::to_string(::getpid());
+  temporary += ".tmp" + std::to_string(platform::processId());
   {
     std::ofstream out(temporary, std::ios::binary);
     out.write(data.data(), static_cast<std::streamsize>(size));
@@ -372,6 +332,7 @@ Pipeline::Pipeline(const Context& context, const PipelineCache& cache, const Gra
     blend.colorBlendOp = blend.alphaBlendOp = VK_BLEND_OP_ADD;
   }
   std::vector<VkPipelineColorBlendAttachmentState> blends(desc.colorFormats.size(), blend);
+  for (size_t i = desc.colorsWritten; i < blends.size(); ++i) blends[i] = {};  // no blending, nothing written
   VkPipelineColorBlendStateCreateInfo colorBlend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
   colorBlend.attachmentCount = static_cast<uint32_t>(blends.size());
   colorBlend.pAttachments = blends.data();
@@ -385,6 +346,7 @@ Pipeline::Pipeline(const Context& context, const PipelineCache& cache, const Gra
   rendering.colorAttachmentCount = static_cast<uint32_t>(desc.colorFormats.size());
   rendering.pColorAttachmentFormats = desc.colorFormats.data();
   rendering.depthAttachmentFormat = desc.depthFormat;
+  rendering.stencilAttachmentFormat = desc.stencilFormat;
 
   VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};
   info.stageCount = 2;

@@ -85,7 +85,9 @@ struct GraphicsPipelineDesc {
   uint32_t vertexStride = 0;          // 0: no vertex buffer (positions made in the shader)
   std::vector<VertexAttribute> attributes;
   std::vector<VkFormat> colorFormats;
+  uint32_t colorsWritten = UINT32_MAX;  // the first this many colour attachments are written, the rest masked
   VkFormat depthFormat = VK_FORMAT_UNDEFINED;
+  VkFormat stencilFormat = VK_FORMAT_UNDEFINED;  // an engine's rendering with a stencil attachment
   bool depthTest = false, depthWrite = false;
   Blend blend = Blend::None;
   VkCullModeFlags cull = VK_CULL_MODE_NONE;

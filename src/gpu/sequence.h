@@ -35,6 +35,9 @@ struct ImageBinding {
   const Image* image;
   Access access;
   const Sampler* sampler = nullptr;  // set for BindingType::SampledImage
+  // The layout the image is in where it is bound: sixway's images stay in GENERAL; an engine's depth buffer
+  // read inside its own rendering is in a read-only depth layout.
+  VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL;
 };
 // A buffer read or written as texels (BindingType::StorageTexelBuffer); barriers follow the underlying
 // buffer.
@@ -65,8 +68,8 @@ inline Binding readsWrites(const Image& i) {
 inline Binding reads(const BufferView& v) {
   return TexelBufferBinding{&v, Access::Read};
 }
-inline Binding samples(const Image& i, const Sampler& s) {
-  return ImageBinding{&i, Access::Read, &s};
+inline Binding samples(const Image& i, const Sampler& s, VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL) {
+  return ImageBinding{&i, Access::Read, &s, layout};
 }
 
 struct Draw {
@@ -177,7 +180,6 @@ class Sequence {
   };
   void addTouch(Touch& touch, const Binding& binding) const;
   void barrierIfHazard(const Touch& touch);
-  void pushBindings(VkCommandBuffer commands, const Pipeline& pipeline, const std::vector<Binding>& bindings);
   void requireRecording(const char* what) const;
   void writeTimestamp(uint32_t query);
   struct Slot {

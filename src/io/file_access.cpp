@@ -1,18 +1,13 @@
 #include "io/file_access.h"
 
-#include <fcntl.h>
-#include <signal.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
-#include <climits>
 #include <cstring>
 #include <fstream>
 #include <string>
 #include <system_error>
 
 #include "io/error.h"
+#include "platform/platform.h"
 
 namespace sixway::io {
 
@@ -45,11 +40,13 @@ std::string lookupProblem(const fs::path& path, const std::error_code& error) {
     return std::string(what) + " is longer than the system allows (" + std::to_string(length) +
            " characters, at most " + std::to_string(limit) + ")";
   };
+  const std::optional<platform::PathLimits> limits = platform::pathLimits();
+  if (!limits) return error.message();
   const std::size_t length = path.native().size();
-  if (length >= PATH_MAX) return tooLong("path", length, PATH_MAX - 1);
+  if (length >= limits->path) return tooLong("path", length, long(limits->path) - 1);
   std::size_t longest = 0;
   for (const fs::path& name : path) longest = std::max(longest, name.native().size());
-  if (longest > NAME_MAX) return tooLong("a name in the path", longest, NAME_MAX);
+  if (longest > limits->name) return tooLong("a name in the path", longest, long(limits->name));
   return error.message();
 }
 
@@ -80,16 +77,6 @@ std::vector<uint8_t> readFileBytes(const fs::path& path) {
   return bytes;
 }
 
-bool processEnded(long pid) {
-  if (pid <= 0) return false;
-  if (::kill(pid_t(pid), 0) != 0) return errno == ESRCH;
-  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
-  std::string line;
-  std::getline(stat, line);
-  const size_t command = line.rfind(')');  // the state follows the command name, which may hold spaces
-  return command != std::string::npos && line.compare(command, 3, ") Z") == 0;
-}
-
 void removeNumberedEntries(const fs::path& directory, const std::regex& pattern, fs::file_type type,
                            const std::function<bool(long)>& stale) {
   std::error_code error;
@@ -109,7 +96,7 @@ void removePartialsOfEndedRuns(const fs::path& target) {
   const std::string name = std::regex_replace(target.filename().string(), special, R"(\$&)");
   const fs::path directory = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   removeNumberedEntries(directory, std::regex("\\." + name + "\\.([0-9]{1,9})\\.partial"),
-                        fs::file_type::regular, processEnded);
+                        fs::file_type::regular, platform::processEnded);
 }
 
 void appendBytes(void* context, void* data, int size) {
@@ -137,7 +124,7 @@ AtomicFile::AtomicFile(fs::path target) : target_(std::move(target)) {
   std::string name = ".";
   name += target_.filename().string();
   name += '.';
-  name += std::to_string(getpid());
+  name += std::to_string(platform::processId());
   name += ".partial";
   temporary_ = directory / name;
 }
@@ -149,23 +136,8 @@ AtomicFile::~AtomicFile() {
 }
 
 void AtomicFile::writeAll(std::span<const uint8_t> bytes) const {
-  const auto fail = [this](int error) {
-    throw InputError(target_.string(), std::string("cannot write the file: ") + std::strerror(error));
-  };
-  const int fd = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) fail(errno);
-  std::size_t written = 0;
-  while (written < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const int error = n < 0 ? errno : ENOSPC;  // a write of 0 bytes makes no progress: the disk is full
-      ::close(fd);
-      fail(error);
-    }
-    written += static_cast<std::size_t>(n);
-  }
-  if (::close(fd) != 0) fail(errno);  // a deferred write error (NFS, quotas) surfaces here
+  if (const std::string problem = platform::writeFile(temporary_, bytes); !problem.empty())
+    throw InputError(target_.string(), "cannot write the file: " + problem);
 }
 
 void AtomicFile::commit() {

@@ -38,11 +38,6 @@ void requireRegularFile(const std::filesystem::path& path, std::string_view miss
 // The whole file; throws InputError naming `path` when it cannot be read.
 std::vector<uint8_t> readFileBytes(const std::filesystem::path& path);
 
-// Whether process `pid` has ended: it no longer exists (kill(pid, 0) fails with ESRCH), or it is a zombie (it
-// has exited and only its exit status waits for a parent that may never collect it). A live process, or one
-// that cannot be looked at, has not.
-bool processEnded(long pid);
-
 // Clean-up of numbered outputs: removes (recursively) each entry of `directory` of the given type whose name
 // matches `pattern`, a regex whose first group is 1 to 9 digits, and whose number `stale` accepts. Errors are
 // ignored.

@@ -289,8 +289,11 @@ const Tensor& SafetensorsFile::at(std::string_view name) const {
 }
 
 SafetensorsFile readSafetensors(const std::filesystem::path& path) {
+  return parseSafetensors(readFileBytes(path), path);
+}
+
+SafetensorsFile parseSafetensors(std::span<const uint8_t> file, const std::filesystem::path& path) {
   const std::string source = path.string();
-  const std::vector<uint8_t> file = readFileBytes(path);
   if (file.size() < 8) {
     throw InputError(
         source, "file is " + std::to_string(file.size()) + " bytes, too short for the 8-byte header length");

@@ -46,6 +46,8 @@ struct SafetensorsFile {
 
 // Throws InputError naming the file and the problem for any malformed input.
 SafetensorsFile readSafetensors(const std::filesystem::path& path);
+// The same for a file's bytes held in memory; `path` names them in errors and in the result.
+SafetensorsFile parseSafetensors(std::span<const uint8_t> bytes, const std::filesystem::path& path);
 
 // Tensors are laid out in the given order; the header is padded with spaces so that the data starts 8-byte
 // aligned. Throws InputError naming the file when it cannot be written or a tensor is inconsistent.

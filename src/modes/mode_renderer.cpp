@@ -8,6 +8,7 @@
 #include "modes/guide_lit_lightmaps.h"
 #include "render/shadow_maps.h"
 #include "runtime/network_lightmaps.h"
+#include "runtime/network_weights.h"
 
 namespace sixway::modes {
 namespace {
@@ -34,7 +35,8 @@ std::unique_ptr<runtime::LightmapSource> modeSource(const gpu::Context& context,
   const reference::MultipleScattering& multiple = o.multipleScattering;
   switch (o.mode) {
     case RenderMode::Neural:
-      return std::make_unique<runtime::NetworkLightmaps>(context, cache, scene, o.weights, o.fp16);
+      return std::make_unique<runtime::NetworkLightmaps>(context, cache, scene,
+                                                         runtime::readWeights(o.weights), o.fp16);
     case RenderMode::Reference:
       return std::make_unique<BakedLightmaps>(context, cache, scene, reference::Scattering::Single, multiple);
     case RenderMode::ReferenceMs:

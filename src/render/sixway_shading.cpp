@@ -6,7 +6,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "gpu/check.h"
 #include "gpu/context.h"
+#include "gpu/draw_commands.h"
 #include "gpu/pipeline.h"
 #include "gpu/sequence.h"
 #include "io/error.h"
@@ -144,6 +146,10 @@ std::optional<float> emissiveStraightScale(const scene::Smoke& smoke) {
 
 SixWayShading::SixWayShading(const gpu::Context& context, const gpu::PipelineCache& cache,
                              VkFormat colorFormat, uint32_t maxLights)
+    : SixWayShading(context, cache, ShadingTargetFormats{{colorFormat}}, maxLights) {}
+
+SixWayShading::SixWayShading(const gpu::Context& context, const gpu::PipelineCache& cache,
+                             const ShadingTargetFormats& formats, uint32_t maxLights)
     : context_(&context),
       maxLights_(maxLights),
       linear_(std::make_unique<gpu::Sampler>(context, VK_FILTER_LINEAR)),
@@ -154,6 +160,12 @@ SixWayShading::SixWayShading(const gpu::Context& context, const gpu::PipelineCac
               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryKind::FrameParameters, "six-way shading lights"),
       noGuide_(context, {1, 1, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT, "no guide"}),
       noDepth_(context, {1, 1, 1, VK_FORMAT_D32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT, "no depth"}) {
+  if (formats.colors.empty())
+    throw std::invalid_argument("six-way shading: no colour attachment to draw into");
+  if (formats.colors.size() > 1 && !context.capabilities().independentBlend)
+    throw gpu::GpuError("six-way shading: a rendering with " + std::to_string(formats.colors.size()) +
+                        " colour attachments needs the device's independentBlend feature (the smoke blends "
+                        "into the first, the others are masked)");
   using gpu::BindingType;
   gpu::GraphicsPipelineDesc desc;
   desc.vertexShader = "render/billboard.vert";
@@ -162,7 +174,10 @@ SixWayShading::SixWayShading(const gpu::Context& context, const gpu::PipelineCac
                    BindingType::SampledImage,  BindingType::SampledImage,  BindingType::SampledImage,
                    BindingType::SampledImage,  BindingType::SampledImage};
   desc.pushConstantBytes = sizeof(ShadePush);
-  desc.colorFormats = {colorFormat};
+  desc.colorFormats = formats.colors;
+  desc.colorsWritten = 1;
+  desc.depthFormat = formats.depth;
+  desc.stencilFormat = formats.stencil;
   desc.blend = gpu::Blend::PremultipliedOver;
   pipeline_ = std::make_unique<gpu::Pipeline>(context, cache, desc);
 
@@ -224,15 +239,15 @@ void SixWayShading::update(const Camera& camera, const ImagePlane& frame, const 
   if (!packed.empty()) lights_.upload(std::as_bytes(std::span(packed)));
 }
 
-void SixWayShading::record(gpu::Sequence& sequence, const gpu::Image& lightmapA, const gpu::Image& lightmapB,
-                           const gpu::Image* guide, const gpu::Image* opacityDepths,
-                           const gpu::Image* obstacleDepth, const ShadowAtlas& shadows,
-                           const gpu::Image& colorTarget, const std::optional<VkRect2D>& viewport) const {
+gpu::Draw SixWayShading::quad(const gpu::Image& lightmapA, const gpu::Image& lightmapB,
+                              const gpu::Image* guide, const gpu::Image* opacityDepths,
+                              const gpu::Image* obstacleDepth, VkImageLayout obstacleDepthLayout,
+                              const ShadowAtlas& shadows, VkExtent2D target,
+                              const std::optional<VkRect2D>& viewport) const {
   requireSampledFloat(lightmapA, "lightmap A");
   requireSampledFloat(lightmapB, "lightmap B");
   if (guide) requireSampledFloat(*guide, "the guide");
   if (opacityDepths) requireSampledFloat(*opacityDepths, "the opacity depths");
-  const auto& target = colorTarget.desc();
   if (obstacleDepth &&
       (!gpu::isDepthFormat(obstacleDepth->desc().format) || obstacleDepth->desc().width != target.width ||
        obstacleDepth->desc().height != target.height))
@@ -251,7 +266,7 @@ void SixWayShading::record(gpu::Sequence& sequence, const gpu::Image& lightmapA,
     tiles = atlas.height / shadows.tileSize;
   }
 
-  const VkRect2D area = viewport.value_or(VkRect2D{{0, 0}, {target.width, target.height}});
+  const VkRect2D area = viewport.value_or(VkRect2D{{0, 0}, target});
   if (area.offset.x < 0 || area.offset.y < 0 || area.extent.width == 0 || area.extent.height == 0 ||
       area.offset.x + area.extent.width > target.width || area.offset.y + area.extent.height > target.height)
     throw std::invalid_argument(
@@ -260,21 +275,47 @@ void SixWayShading::record(gpu::Sequence& sequence, const gpu::Image& lightmapA,
                        glm::ivec4(shadows.depth ? shadows.tileSize : 0, tiles, 0, 0),
                        glm::vec4(shadows.pcfRadiusTexels, shadows.depthBias, 0.0f, 0.0f),
                        glm::ivec4(area.offset.x, area.offset.y, area.extent.width, area.extent.height)};
-  const gpu::Draw quad{pipeline_.get(),
-                       {gpu::reads(params_), gpu::reads(lights_), gpu::samples(lightmapA, *linear_),
-                        gpu::samples(lightmapB, *linear_), gpu::samples(guide ? *guide : noGuide_, *nearest_),
-                        gpu::samples(obstacleDepth ? *obstacleDepth : noDepth_, *nearest_),
-                        gpu::samples(shadows.depth ? *shadows.depth : noDepth_, *nearest_),
-                        gpu::samples(opacityDepths ? *opacityDepths : noGuide_, *nearest_)},
-                       gpu::pushBytes(push),
-                       nullptr,
-                       nullptr,
-                       6,
-                       1,
-                       area};
+  return gpu::Draw{pipeline_.get(),
+                   {gpu::reads(params_), gpu::reads(lights_), gpu::samples(lightmapA, *linear_),
+                    gpu::samples(lightmapB, *linear_), gpu::samples(guide ? *guide : noGuide_, *nearest_),
+                    obstacleDepth ? gpu::samples(*obstacleDepth, *nearest_, obstacleDepthLayout)
+                                  : gpu::samples(noDepth_, *nearest_),
+                    gpu::samples(shadows.depth ? *shadows.depth : noDepth_, *nearest_),
+                    gpu::samples(opacityDepths ? *opacityDepths : noGuide_, *nearest_)},
+                   gpu::pushBytes(push),
+                   nullptr,
+                   nullptr,
+                   6,
+                   1,
+                   area};
+}
+
+void SixWayShading::record(gpu::Sequence& sequence, const gpu::Image& lightmapA, const gpu::Image& lightmapB,
+                           const gpu::Image* guide, const gpu::Image* opacityDepths,
+                           const gpu::Image* obstacleDepth, const ShadowAtlas& shadows,
+                           const gpu::Image& colorTarget, const std::optional<VkRect2D>& viewport) const {
+  const gpu::Draw draw =
+      quad(lightmapA, lightmapB, guide, opacityDepths, obstacleDepth, VK_IMAGE_LAYOUT_GENERAL, shadows,
+           {colorTarget.desc().width, colorTarget.desc().height}, viewport);
   sequence.beginStage("shade");
-  sequence.render({{&colorTarget}, nullptr, std::nullopt, std::nullopt}, std::span(&quad, 1));
+  sequence.render({{&colorTarget}, nullptr, std::nullopt, std::nullopt}, std::span(&draw, 1));
   sequence.endStage();
+}
+
+void SixWayShading::recordParameters(VkCommandBuffer commands) const {
+  const gpu::Buffer* buffers[] = {&params_, &lights_};
+  gpu::recordParameterUpdates(commands, buffers);
+}
+
+void SixWayShading::recordInside(VkCommandBuffer commands, const gpu::Image& lightmapA,
+                                 const gpu::Image& lightmapB, const gpu::Image* guide,
+                                 const gpu::Image* opacityDepths, const gpu::Image& obstacleDepth,
+                                 VkImageLayout obstacleDepthLayout, const ShadowAtlas& shadows,
+                                 VkExtent2D target, const std::optional<VkRect2D>& viewport) const {
+  gpu::recordDraw(*context_, commands,
+                  quad(lightmapA, lightmapB, guide, opacityDepths, &obstacleDepth, obstacleDepthLayout,
+                       shadows, target, viewport),
+                  target);
 }
 
 }  // namespace sixway::render

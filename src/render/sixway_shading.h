@@ -18,6 +18,7 @@
 
 #include "gpu/buffer.h"
 #include "gpu/image.h"
+#include "gpu/sequence.h"
 #include "render/camera.h"
 #include "render/projection.h"
 #include "scene/scene.h"
@@ -26,7 +27,6 @@ namespace sixway::gpu {
 class Context;
 class Pipeline;
 class PipelineCache;
-class Sequence;
 }  // namespace sixway::gpu
 
 namespace sixway::render {
@@ -100,11 +100,21 @@ struct ShadowAtlas {
   float depthBias = 0.002f;      // subtracted from the point's depth (depth-buffer units) before comparing
 };
 
+// The attachments of the rendering the shading draws in: the smoke goes "over" colour attachment 0, the
+// others are not written; depth and stencil: the rendering's (UNDEFINED: none), never written.
+struct ShadingTargetFormats {
+  std::vector<VkFormat> colors;
+  VkFormat depth = VK_FORMAT_UNDEFINED, stencil = VK_FORMAT_UNDEFINED;
+};
+
 class SixWayShading {
  public:
   // `colorFormat`: the format of the colour targets it will draw into.
   SixWayShading(const gpu::Context& context, const gpu::PipelineCache& cache, VkFormat colorFormat,
                 uint32_t maxLights = 16);
+  // For drawing inside a rendering of these formats (recordInside). std::invalid_argument without a colour.
+  SixWayShading(const gpu::Context& context, const gpu::PipelineCache& cache,
+                const ShadingTargetFormats& formats, uint32_t maxLights = 16);
   ~SixWayShading();
 
   // The frame's values; call before each submission of the recorded sequence. `frame`: the image-plane
@@ -128,9 +138,27 @@ class SixWayShading {
               const ShadowAtlas& shadows, const gpu::Image& colorTarget,
               const std::optional<VkRect2D>& viewport = std::nullopt) const;
 
+  // Inside a rendering the caller began (primary or secondary command buffer) with the formats this shading
+  // was made for, `target` in size: the same draw without a stage, its own rendering or barriers. The
+  // frame's values must be in place: recordParameters, outside the rendering, before it in queue order.
+  // `obstacleDepth` (SAMPLED, a depth view) is in `obstacleDepthLayout` there: a read-only depth layout or
+  // GENERAL when it is also the rendering's depth attachment.
+  void recordInside(VkCommandBuffer commands, const gpu::Image& lightmapA, const gpu::Image& lightmapB,
+                    const gpu::Image* guide, const gpu::Image* opacityDepths, const gpu::Image& obstacleDepth,
+                    VkImageLayout obstacleDepthLayout, const ShadowAtlas& shadows, VkExtent2D target,
+                    const std::optional<VkRect2D>& viewport) const;
+  // The values of the last update() into `commands` (outside a render pass); the caller orders them before
+  // the draw that reads them (e.g. a full barrier).
+  void recordParameters(VkCommandBuffer commands) const;
+
   uint32_t maxLights() const { return maxLights_; }
 
  private:
+  gpu::Draw quad(const gpu::Image& lightmapA, const gpu::Image& lightmapB, const gpu::Image* guide,
+                 const gpu::Image* opacityDepths, const gpu::Image* obstacleDepth,
+                 VkImageLayout obstacleDepthLayout, const ShadowAtlas& shadows, VkExtent2D target,
+                 const std::optional<VkRect2D>& viewport) const;
+
   const gpu::Context* context_;
   uint32_t maxLights_;
   std::unique_ptr<gpu::Pipeline> pipeline_;

@@ -149,6 +149,12 @@ SixwayResult sixwayCreateEngineDevice(const SixwayEngineDevice* engine, SixwayDe
   });
 }
 
+SixwayResult sixwayDeviceHostWaits(SixwayDevice device, uint64_t* waits) {
+  if (!device || !waits) return nullArgument("sixwayDeviceHostWaits", !device ? "device" : "waits");
+  *waits = device->device.hostWaits();
+  return SIXWAY_SUCCESS;
+}
+
 void sixwayDestroyDevice(SixwayDevice device) {
   delete device;
 }
@@ -162,6 +168,18 @@ SixwayResult sixwayCreateSimulation(SixwayDevice device, const char* scenePath,
   *simulation = nullptr;
   return guarded(
       [&] { *simulation = new SixwaySimulation_T{sixway::SmokeSimulation(device->device, scenePath)}; });
+}
+
+SixwayResult sixwayCreateSimulationFromText(SixwayDevice device, const char* json, size_t length,
+                                            const char* directory, SixwaySimulation* simulation) {
+  if (!device || !json || !simulation)
+    return nullArgument("sixwayCreateSimulationFromText", !device ? "device" : !json ? "json" : "simulation");
+  *simulation = nullptr;
+  return guarded([&] {
+    const sixway::SceneText text{.json = std::string_view(json, length),
+                                 .directory = directory ? directory : "."};
+    *simulation = new SixwaySimulation_T{sixway::SmokeSimulation(device->device, text)};
+  });
 }
 
 SixwayResult sixwaySimulationAdvance(SixwaySimulation simulation) {
@@ -187,6 +205,45 @@ SixwayResult sixwaySimulationSetPlacement(SixwaySimulation simulation, const flo
   if (!simulation || !worldFromScene)
     return nullArgument("sixwaySimulationSetPlacement", !simulation ? "simulation" : "worldFromScene");
   return guarded([&] { simulation->simulation.setPlacement(glm::make_mat4(worldFromScene)); });
+}
+
+SixwayResult sixwaySimulationObstacleCount(SixwaySimulation simulation, uint32_t* count) {
+  if (!simulation || !count)
+    return nullArgument("sixwaySimulationObstacleCount", !simulation ? "simulation" : "count");
+  *count = uint32_t(simulation->simulation.obstacleCount());
+  return SIXWAY_SUCCESS;
+}
+
+SixwayResult sixwaySimulationObstaclePosition(SixwaySimulation simulation, uint32_t obstacle,
+                                              float position[3]) {
+  if (!simulation || !position)
+    return nullArgument("sixwaySimulationObstaclePosition", !simulation ? "simulation" : "position");
+  return guarded([&] {
+    const glm::vec3 p = simulation->simulation.obstaclePosition(obstacle);
+    std::copy(&p.x, &p.x + 3, position);
+  });
+}
+
+SixwayResult sixwaySimulationSteerObstacle(SixwaySimulation simulation, uint32_t obstacle,
+                                           const float target[3], double seconds) {
+  if (!simulation || !target)
+    return nullArgument("sixwaySimulationSteerObstacle", !simulation ? "simulation" : "target");
+  return guarded([&] { simulation->simulation.steerObstacle(obstacle, glm::make_vec3(target), seconds); });
+}
+
+SixwayResult sixwaySimulationSetEmitters(SixwaySimulation simulation, const SixwayEmitter* emitters,
+                                         uint32_t count) {
+  if (!simulation || (count > 0 && !emitters))
+    return nullArgument("sixwaySimulationSetEmitters", !simulation ? "simulation" : "emitters");
+  return guarded([&] {
+    std::vector<sixway::Emitter> list;
+    for (uint32_t i = 0; i < count; ++i) {
+      const SixwayEmitter& e = emitters[i];
+      list.push_back({glm::make_vec3(e.position), e.radius, glm::make_vec3(e.velocity), e.densityRate,
+                      e.temperatureRate, e.on != 0});
+    }
+    simulation->simulation.setEmitters(list);
+  });
 }
 
 void sixwayDestroySimulation(SixwaySimulation simulation) {
@@ -246,6 +303,59 @@ SixwayResult sixwayCreateRendererForFormat(SixwayDevice device, SixwaySimulation
   });
 }
 
+SixwayResult sixwayCreateRendererFromInfo(SixwayDevice device, SixwaySimulation simulation,
+                                          const SixwayRendererInfo* info, SixwayRenderer* renderer) {
+  if (!device || !simulation || !info || !renderer)
+    return nullArgument("sixwayCreateRendererFromInfo", !device       ? "device"
+                                                        : !simulation ? "simulation"
+                                                        : !info       ? "info"
+                                                                      : "renderer");
+  *renderer = nullptr;
+  if (!info->weightsPath && !info->weightsData && !info->shareNetwork)
+    return fail(SIXWAY_ERROR_INVALID_ARGUMENT, "sixwayCreateRendererFromInfo", ": ",
+                "info has no network (weightsPath, weightsData and shareNetwork are null)");
+  if (info->renderingColorCount > 0 && !info->renderingColors)
+    return nullArgument("sixwayCreateRendererFromInfo", "info->renderingColors");
+  if (info->weightsData && info->weightsSize == 0)
+    return fail(SIXWAY_ERROR_INVALID_ARGUMENT, "sixwayCreateRendererFromInfo", ": ",
+                "info->weightsSize is 0");
+  return guarded([&] {
+    sixway::RendererOptions options;
+    if (info->weightsPath) options.weights = info->weightsPath;
+    if (info->weightsData)
+      options.weightsData = std::span(static_cast<const std::byte*>(info->weightsData), info->weightsSize);
+    if (info->shareNetwork) options.shareNetwork = &info->shareNetwork->renderer;
+    if (info->renderingColorCount > 0) {
+      const sixway::RenderingFormats formats{
+          {info->renderingColors, info->renderingColors + info->renderingColorCount},
+          info->renderingDepth,
+          info->renderingStencil};
+      *renderer = new SixwayRenderer_T{
+          sixway::SmokeRenderer(device->device, simulation->simulation, options, formats)};
+    } else {
+      *renderer = new SixwayRenderer_T{
+          sixway::SmokeRenderer(device->device, simulation->simulation, options, info->colorFormat)};
+    }
+  });
+}
+
+SixwayResult sixwayRendererRecordLightmaps(SixwayRenderer renderer, VkCommandBuffer commands, uint64_t frame,
+                                           const SixwayCompositeTargets* targets) {
+  if (!renderer || !targets)
+    return nullArgument("sixwayRendererRecordLightmaps", !renderer ? "renderer" : "targets");
+  return guarded([&] {
+    renderer->renderer.recordLightmaps(
+        commands, frame,
+        {targets->depth, targets->depthView, targets->depthFormat, targets->depthLayout, targets->width,
+         targets->height, targets->viewport});
+  });
+}
+
+SixwayResult sixwayRendererRecordComposite(SixwayRenderer renderer, VkCommandBuffer commands) {
+  if (!renderer) return nullArgument("sixwayRendererRecordComposite", "renderer");
+  return guarded([&] { renderer->renderer.recordComposite(commands); });
+}
+
 SixwayResult sixwayRendererRecordTargets(SixwayRenderer renderer, VkCommandBuffer commands, uint64_t frame,
                                          const SixwayFrameTargets* targets) {
   if (!renderer || !targets)
@@ -283,6 +393,22 @@ SixwayResult sixwayRendererImage(SixwayRenderer renderer, float* pixels, size_t 
     const std::vector<float> image = renderer->renderer.image();
     std::copy(image.begin(), image.end(), pixels);
   });
+}
+
+SixwayResult sixwayRendererLightmaps(SixwayRenderer renderer, SixwayLightmapTextures* lightmaps) {
+  if (!renderer || !lightmaps)
+    return nullArgument("sixwayRendererLightmaps", !renderer ? "renderer" : "lightmaps");
+  return guarded([&] {
+    const sixway::LightmapTextures t = renderer->renderer.lightmaps();
+    *lightmaps = {t.a, t.b, t.viewA, t.viewB, t.format, t.width, t.height, {}};
+    for (int c = 0; c < 4; ++c) std::copy(&t.corners[c].x, &t.corners[c].x + 3, lightmaps->corners[c]);
+  });
+}
+
+SixwayResult sixwayRendererForgetTargets(SixwayRenderer renderer) {
+  if (!renderer) return nullArgument("sixwayRendererForgetTargets", "renderer");
+  renderer->renderer.forgetTargets();
+  return SIXWAY_SUCCESS;
 }
 
 void sixwayDestroyRenderer(SixwayRenderer renderer) {

@@ -16,7 +16,7 @@
 namespace sixway {
 
 struct LightmapNetwork::Impl {
-  Impl(const gpu::Context& context, const gpu::PipelineCache& cache, const std::filesystem::path& weights,
+  Impl(const gpu::Context& context, const gpu::PipelineCache& cache, const io::SafetensorsFile& weights,
        uint32_t size, bool fp16)
       : size(size),
         guide(context, {size, size, 1, VK_FORMAT_R16G16B16A16_SFLOAT,
@@ -42,12 +42,27 @@ struct LightmapNetwork::Impl {
   std::unique_ptr<nn::Network> network;
 };
 
-LightmapNetwork::LightmapNetwork(Device& device, const std::filesystem::path& weights, uint32_t size,
-                                 bool fp16) {
+namespace {
+
+void requireSize(uint32_t size) {
   if (size == 0 || size % 16 != 0)
     throw std::invalid_argument("LightmapNetwork: size must be a multiple of 16");
+}
+
+}  // namespace
+
+LightmapNetwork::LightmapNetwork(Device& device, const std::filesystem::path& weights, uint32_t size,
+                                 bool fp16) {
+  requireSize(size);
   impl_ = std::make_unique<Impl>(runtime::Access::context(device), runtime::Access::pipelineCache(device),
-                                 weights, size, fp16);
+                                 runtime::readWeights(weights), size, fp16);
+}
+
+LightmapNetwork::LightmapNetwork(Device& device, std::span<const std::byte> weights, uint32_t size,
+                                 bool fp16) {
+  requireSize(size);
+  impl_ = std::make_unique<Impl>(runtime::Access::context(device), runtime::Access::pipelineCache(device),
+                                 runtime::readWeights(weights, {}), size, fp16);
 }
 
 LightmapNetwork::~LightmapNetwork() = default;

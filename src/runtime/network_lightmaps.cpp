@@ -1,5 +1,8 @@
 #include "runtime/network_lightmaps.h"
 
+#include <stdexcept>
+#include <string>
+
 #include "runtime/network_weights.h"
 
 namespace sixway::runtime {
@@ -17,9 +20,31 @@ nn::NetworkOptions sceneNetworkOptions(const scene::Scene& scene, bool fp16) {
 }  // namespace
 
 NetworkLightmaps::NetworkLightmaps(const gpu::Context& context, const gpu::PipelineCache& cache,
-                                   const scene::Scene& scene, const std::filesystem::path& weights, bool fp16)
+                                   const scene::Scene& scene, const io::SafetensorsFile& weights, bool fp16)
     : network_(loadNetwork(context, cache, weights, uint32_t(scene.render.lightmapSize),
-                           sceneNetworkOptions(scene, fp16))) {}
+                           sceneNetworkOptions(scene, fp16))),
+      albedo_(scene.smoke.albedo),
+      size_(uint32_t(scene.render.lightmapSize)),
+      emission_(sceneNetworkOptions(scene, fp16).emission) {}
+
+NetworkLightmaps::NetworkLightmaps(const scene::Scene& scene, const NetworkLightmaps& other)
+    : network_(other.network_),
+      albedo_(scene.smoke.albedo),
+      size_(uint32_t(scene.render.lightmapSize)),
+      emission_(sceneNetworkOptions(scene, false).emission) {
+  if (size_ != other.size_)
+    throw std::invalid_argument(
+        "the network is shared between lightmaps of one size: " + std::to_string(size_) + " here, " +
+        std::to_string(other.size_) + " in the renderer it comes from");
+  if (emission_ != other.emission_)
+    throw std::invalid_argument(
+        "the network is shared between scenes that both emit or both do not (smoke.emission.intensity)");
+}
+
+render::ImagePlane NetworkLightmaps::update(RealtimeFrame&, const SourceFrame& current) {
+  network_->setAlbedo(albedo_);
+  return current.billboard;
+}
 
 render::GuideSettings NetworkLightmaps::guide(const scene::Scene& scene) const {
   render::GuideSettings guide = LightmapSource::guide(scene);

@@ -9,10 +9,15 @@ io::SafetensorsFile readWeights(const std::filesystem::path& weights) {
   return io::readSafetensors(weights);
 }
 
+io::SafetensorsFile readWeights(std::span<const std::byte> bytes, const std::filesystem::path& name) {
+  return io::parseSafetensors(std::span(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()),
+                              name.empty() ? std::filesystem::path("weights in memory") : name);
+}
+
 std::unique_ptr<nn::Network> loadNetwork(const gpu::Context& context, const gpu::PipelineCache& cache,
-                                         const std::filesystem::path& weights, uint32_t size,
+                                         const io::SafetensorsFile& weights, uint32_t size,
                                          const nn::NetworkOptions& options) {
-  return std::make_unique<nn::Network>(context, cache, readWeights(weights), size, size, options);
+  return std::make_unique<nn::Network>(context, cache, weights, size, size, options);
 }
 
 }  // namespace sixway::runtime

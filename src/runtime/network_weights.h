@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <span>
 
 #include "io/safetensors.h"
 #include "nn/network.h"
@@ -16,10 +17,12 @@ class PipelineCache;
 namespace sixway::runtime {
 
 io::SafetensorsFile readWeights(const std::filesystem::path& weights);
+// A weights file's bytes held by the engine; `name` names them in errors ("weights in memory" when empty).
+io::SafetensorsFile readWeights(std::span<const std::byte> bytes, const std::filesystem::path& name);
 
 // The network of `weights` for size × size guides.
 std::unique_ptr<nn::Network> loadNetwork(const gpu::Context& context, const gpu::PipelineCache& cache,
-                                         const std::filesystem::path& weights, uint32_t size,
+                                         const io::SafetensorsFile& weights, uint32_t size,
                                          const nn::NetworkOptions& options);
 
 }  // namespace sixway::runtime

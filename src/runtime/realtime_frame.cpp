@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "gpu/one_shot.h"
 #include "render/billboard.h"
 #include "render/recorded_sequence.h"
 #include "render/scene_frame.h"
@@ -17,6 +18,40 @@ gpu::Image ownImage(const gpu::Context& context, uint32_t width, uint32_t height
   return gpu::Image(context, {width, height, 1, format, usage, name});
 }
 
+render::ShadingTargetFormats shadingFormats(const FrameTarget& target) {
+  if (const auto* formats = std::get_if<render::ShadingTargetFormats>(&target)) return *formats;
+  if (const auto* format = std::get_if<VkFormat>(&target)) return {{*format}};
+  return {{kColorFormat}};
+}
+
+// A rectangle inside `size` ({0, 0, 0, 0}: all of it); std::invalid_argument otherwise.
+VkRect2D viewportIn(VkRect2D v, VkExtent2D size) {
+  if (v.offset.x == 0 && v.offset.y == 0 && v.extent.width == 0 && v.extent.height == 0)
+    return {{0, 0}, size};
+  if (v.offset.x < 0 || v.offset.y < 0 || v.extent.width == 0 || v.extent.height == 0 ||
+      uint64_t(v.offset.x) + v.extent.width > size.width ||
+      uint64_t(v.offset.y) + v.extent.height > size.height)
+    throw std::invalid_argument("the viewport (" + std::to_string(v.offset.x) + ", " +
+                                std::to_string(v.offset.y) + ") " + std::to_string(v.extent.width) + "x" +
+                                std::to_string(v.extent.height) + " is not a rectangle inside the " +
+                                std::to_string(size.width) + "x" + std::to_string(size.height) + " target");
+  return v;
+}
+
+bool sampledDepthLayout(VkImageLayout layout) {
+  switch (layout) {
+    case VK_IMAGE_LAYOUT_GENERAL:
+    case VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL:
+    case VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL:
+    case VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_STENCIL_ATTACHMENT_OPTIMAL:
+    case VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL:
+    case VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL:
+      return true;
+    default:
+      return false;
+  }
+}
+
 }  // namespace
 
 RealtimeFrame::RealtimeFrame(const gpu::Context& context, const gpu::PipelineCache& cache,
@@ -26,13 +61,14 @@ RealtimeFrame::RealtimeFrame(const gpu::Context& context, const gpu::PipelineCac
       lightmapSize_(uint32_t(scene.render.lightmapSize)),
       engineFormat_(std::holds_alternative<VkFormat>(target) ? std::optional(std::get<VkFormat>(target))
                                                              : std::nullopt),
+      insideRendering_(std::holds_alternative<render::ShadingTargetFormats>(target)),
       guide_(ownImage(context, lightmapSize_, lightmapSize_, kColorFormat,
                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "guiding map")),
       lightmaps_(context, lightmapSize_, lightmapSize_),
       meshes_(context, scene.obstacles),
       shadowMaps_(context, cache, render::kDefaultShadowTileSize, shadowTiles),
       guiding_(context, cache, guide),
-      shading_(context, cache, engineFormat_.value_or(kColorFormat)) {
+      shading_(context, cache, shadingFormats(target)) {
   if (const OwnTarget* own = std::get_if<OwnTarget>(&target)) {
     width_ = own->width;
     height_ = own->height;
@@ -63,19 +99,43 @@ void RealtimeFrame::setEngineTarget(EngineTarget target) {
     throw std::invalid_argument("the depth target is " + std::to_string(depth.width) + "x" +
                                 std::to_string(depth.height) + ", the colour target " +
                                 std::to_string(color.width) + "x" + std::to_string(color.height));
-  VkRect2D& v = target.viewport;
-  if (v.offset.x == 0 && v.offset.y == 0 && v.extent.width == 0 && v.extent.height == 0)
-    v = {{0, 0}, {color.width, color.height}};
-  if (v.offset.x < 0 || v.offset.y < 0 || v.extent.width == 0 || v.extent.height == 0 ||
-      uint64_t(v.offset.x) + v.extent.width > color.width ||
-      uint64_t(v.offset.y) + v.extent.height > color.height)
-    throw std::invalid_argument("the viewport (" + std::to_string(v.offset.x) + ", " +
-                                std::to_string(v.offset.y) + ") " + std::to_string(v.extent.width) + "x" +
-                                std::to_string(v.extent.height) + " is not a rectangle inside the " +
-                                std::to_string(color.width) + "x" + std::to_string(color.height) + " target");
-  width_ = v.extent.width;
-  height_ = v.extent.height;
+  target.viewport = viewportIn(target.viewport, {color.width, color.height});
+  width_ = target.viewport.extent.width;
+  height_ = target.viewport.extent.height;
   engine_ = std::move(target);
+}
+
+void RealtimeFrame::setInsideTarget(InsideTarget target) {
+  if (!insideRendering_) throw std::invalid_argument("RealtimeFrame: not drawn inside an engine's rendering");
+  const gpu::ImageDesc& depth = target.depth.desc();
+  if (!gpu::isDepthFormat(depth.format))
+    throw std::invalid_argument("the depth image's format " + std::to_string(depth.format) +
+                                " is not D16, D24 or D32 (with or without stencil)");
+  if (depth.width != target.size.width || depth.height != target.size.height)
+    throw std::invalid_argument("the depth image is " + std::to_string(depth.width) + "x" +
+                                std::to_string(depth.height) + ", the rendering " +
+                                std::to_string(target.size.width) + "x" + std::to_string(target.size.height));
+  if (!sampledDepthLayout(target.depthLayout))
+    throw std::invalid_argument(
+        "the depth image's layout " + std::to_string(target.depthLayout) +
+        " cannot be sampled inside the rendering: a read-only depth layout or GENERAL");
+  target.viewport = viewportIn(target.viewport, target.size);
+  width_ = target.viewport.extent.width;
+  height_ = target.viewport.extent.height;
+  inside_ = std::move(target);
+}
+
+void RealtimeFrame::recordShadingParameters(VkCommandBuffer commands) const {
+  shading_.recordParameters(commands);
+  gpu::recordFullBarrier(commands);
+}
+
+void RealtimeFrame::recordCompositeInside(VkCommandBuffer commands) const {
+  if (!inside_) throw std::invalid_argument("RealtimeFrame: no target set for the composite");
+  shading_.recordInside(commands, lightmaps_.a, lightmaps_.b, &guide_, &guiding_.opacityDepths(),
+                        inside_->depth, inside_->depthLayout,
+                        render::ShadowAtlas{&shadowMaps_.atlas(), shadowMaps_.tileSize()}, inside_->size,
+                        inside_->viewport);
 }
 
 std::vector<uint64_t> RealtimeFrame::engineTargetKey() const {
@@ -101,7 +161,7 @@ void RealtimeFrame::record(gpu::Sequence& s, const render::Volume& volume, Frame
   if (stages != FrameStages::AllButGuide) guiding_.record(s, volume, guide_, guideEmission());
   if (stages == FrameStages::UpToGuide) return;
   if (lightmapStage) lightmapStage(s);
-  if (!engineFormat_) recordShading(s, std::nullopt);
+  if (!drawsIntoEngineTarget()) recordShading(s, std::nullopt);
 }
 
 void RealtimeFrame::recordComposite(gpu::Sequence& s) {

@@ -40,9 +40,18 @@ struct EngineTarget {
   gpu::Image color, depth;
   VkRect2D viewport{};
 };
-// Where the frame is drawn: its own images, or an engine's of this colour format, set per frame
-// (RealtimeFrame::setEngineTarget).
-using FrameTarget = std::variant<OwnTarget, VkFormat>;
+// An engine's depth buffer for a composite drawn inside the engine's own rendering (its layout there) and
+// the rendering's size and the camera's viewport in it.
+struct InsideTarget {
+  gpu::Image depth;
+  VkImageLayout depthLayout = VK_IMAGE_LAYOUT_GENERAL;
+  VkExtent2D size{};
+  VkRect2D viewport{};
+};
+// Where the frame is drawn: its own images; an engine's of this colour format, set per frame
+// (RealtimeFrame::setEngineTarget); or inside an engine's rendering of these formats
+// (setInsideTarget, recordCompositeInside).
+using FrameTarget = std::variant<OwnTarget, VkFormat, render::ShadingTargetFormats>;
 
 // Which passes a recorded frame has: all of them; up to the guiding map; only the obstacles; or all but the
 // guiding map (a flipbook's shell depth is uploaded into guide() instead).
@@ -66,7 +75,14 @@ class RealtimeFrame {
   // than the one the frame was made for, a depth image that is not a depth format of the colour's size, or
   // a viewport outside the images.
   void setEngineTarget(EngineTarget target);
-  bool drawsIntoEngineTarget() const { return engineFormat_.has_value(); }
+  bool drawsIntoEngineTarget() const { return engineFormat_.has_value() || insideRendering_; }
+  // Inside an engine's rendering: this frame's depth buffer and size. std::invalid_argument for a depth image
+  // that is not a depth format of that size, a layout it cannot be sampled in, or a viewport outside.
+  void setInsideTarget(InsideTarget target);
+  // The shading's values of this frame into `commands` (outside a render pass, followed by a full barrier),
+  // then, inside the engine's rendering, its draw.
+  void recordShadingParameters(VkCommandBuffer commands) const;
+  void recordCompositeInside(VkCommandBuffer commands) const;
   // What a composite recording depends on: the target's images, size and viewport.
   std::vector<uint64_t> engineTargetKey() const;
 
@@ -112,6 +128,8 @@ class RealtimeFrame {
   uint32_t width_ = 0, height_ = 0, lightmapSize_;
   std::optional<VkFormat> engineFormat_;
   std::optional<EngineTarget> engine_;
+  bool insideRendering_;
+  std::optional<InsideTarget> inside_;
   gpu::Image color_, depth_, guide_;
   std::optional<gpu::Image> guideEmission_;
   render::LightmapImages lightmaps_;

@@ -9,6 +9,7 @@
 #include "render/shadow_maps.h"
 #include "runtime/internal.h"
 #include "runtime/network_lightmaps.h"
+#include "runtime/network_weights.h"
 #include "runtime/placement.h"
 #include "runtime/scene_lights.h"
 #include "runtime/smoke_renderer_impl.h"
@@ -82,22 +83,41 @@ uint32_t shadowTiles(const scene::Scene& scene, const RendererOptions& options) 
                                 : render::shadowTileCount(scene.lights, scene.obstacles);
 }
 
+io::SafetensorsFile weightsOf(const RendererOptions& options) {
+  if (options.weightsData.empty()) return runtime::readWeights(options.weights);
+  return runtime::readWeights(options.weightsData, options.weights);
+}
+
 }  // namespace
 
 SmokeRenderer::Impl::Impl(const gpu::Context& context, const gpu::PipelineCache& cache,
                           const SmokeSimulation& simulation, const RendererOptions& options,
-                          std::optional<VkFormat> engineFormat)
+                          std::optional<runtime::FrameTarget> engine)
     : context(context),
       simulation(simulation),
       scene(runtime::Access::scene(simulation)),
-      engineTarget(engineFormat.has_value()),
+      engineTarget(engine.has_value()),
+      insideRendering(engine && std::holds_alternative<render::ShadingTargetFormats>(*engine)),
       renderer(
           context, cache, scene,
-          engineFormat ? runtime::FrameTarget(*engineFormat)
-                       : runtime::FrameTarget(
-                             runtime::OwnTarget{uint32_t(scene.render.width), uint32_t(scene.render.height)}),
-          shadowTiles(scene, options),
-          std::make_unique<runtime::NetworkLightmaps>(context, cache, scene, options.weights, options.fp16)) {
+          engine.value_or(runtime::OwnTarget{uint32_t(scene.render.width), uint32_t(scene.render.height)}),
+          shadowTiles(scene, options), networkSource(context, cache, scene, options)) {}
+
+std::unique_ptr<runtime::NetworkLightmaps> SmokeRenderer::Impl::networkSource(
+    const gpu::Context& context, const gpu::PipelineCache& cache, const scene::Scene& scene,
+    const RendererOptions& options) {
+  if (!options.shareNetwork)
+    return std::make_unique<runtime::NetworkLightmaps>(context, cache, scene, weightsOf(options),
+                                                       options.fp16);
+  const auto& other =
+      static_cast<const runtime::NetworkLightmaps&>(options.shareNetwork->impl_->renderer.source());
+  if (&options.shareNetwork->impl_->context != &context)
+    throw std::invalid_argument("RendererOptions::shareNetwork: a renderer of another device");
+  try {
+    return std::make_unique<runtime::NetworkLightmaps>(scene, other);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("RendererOptions::shareNetwork: ") + e.what());
+  }
 }
 
 std::optional<render::EngineView> SmokeRenderer::Impl::sceneView() const {
@@ -179,7 +199,14 @@ SmokeRenderer::SmokeRenderer(Device& device, SmokeSimulation& simulation, const 
 SmokeRenderer::SmokeRenderer(Device& device, SmokeSimulation& simulation, const RendererOptions& options,
                              VkFormat colorFormat)
     : impl_(std::make_unique<Impl>(runtime::Access::context(device), runtime::Access::pipelineCache(device),
-                                   simulation, options, colorFormat)) {}
+                                   simulation, options, runtime::FrameTarget(colorFormat))) {}
+
+SmokeRenderer::SmokeRenderer(Device& device, SmokeSimulation& simulation, const RendererOptions& options,
+                             const RenderingFormats& rendering)
+    : impl_(std::make_unique<Impl>(runtime::Access::context(device), runtime::Access::pipelineCache(device),
+                                   simulation, options,
+                                   runtime::FrameTarget(render::ShadingTargetFormats{
+                                       rendering.colors, rendering.depth, rendering.stencil}))) {}
 
 SmokeRenderer::~SmokeRenderer() = default;
 
@@ -210,6 +237,9 @@ void SmokeRenderer::render() {
 }
 
 void SmokeRenderer::record(VkCommandBuffer commands, uint64_t frame) {
+  if (impl_->insideRendering)
+    throw std::invalid_argument(
+        "SmokeRenderer::record: drawn inside the engine's rendering: recordLightmaps and recordComposite");
   if (!impl_->fixedTargets)
     throw std::invalid_argument(impl_->engineTarget
                                     ? "SmokeRenderer::record: pass this frame's targets (FrameTargets)"
@@ -218,8 +248,46 @@ void SmokeRenderer::record(VkCommandBuffer commands, uint64_t frame) {
 }
 
 void SmokeRenderer::record(VkCommandBuffer commands, uint64_t frame, const FrameTargets& targets) {
-  if (!impl_->engineTarget) throw std::invalid_argument("SmokeRenderer::record: needs an engine target");
+  if (!impl_->engineTarget || impl_->insideRendering)
+    throw std::invalid_argument(
+        impl_->insideRendering
+            ? "SmokeRenderer::record: drawn inside the engine's rendering: recordLightmaps "
+              "and recordComposite"
+            : "SmokeRenderer::record: needs an engine target");
   impl_->record(commands, frame, targets);
+}
+
+void SmokeRenderer::recordLightmaps(VkCommandBuffer commands, uint64_t frame,
+                                    const CompositeTargets& targets) {
+  if (!impl_->insideRendering)
+    throw std::invalid_argument(
+        "SmokeRenderer::recordLightmaps: the renderer was not made for the engine's rendering "
+        "(RenderingFormats)");
+  if (std::holds_alternative<std::monostate>(impl_->camera))
+    throw std::invalid_argument(
+        "SmokeRenderer::recordLightmaps: set the engine's camera first (setViewProjection)");
+  if (!targets.depth || !targets.depthView || targets.width == 0 || targets.height == 0)
+    throw std::invalid_argument("CompositeTargets: a depth image, its view and a size are needed");
+  const gpu::ImageDesc depth{
+      targets.width, targets.height, 1, targets.depthFormat, VK_IMAGE_USAGE_SAMPLED_BIT, "engine depth"};
+  impl_->last = impl_->lastComposite = nullptr;
+  impl_->renderer.frame().setInsideTarget(
+      {gpu::Image::borrowed(impl_->context, targets.depth, targets.depthView, depth),
+       targets.depthLayout,
+       {targets.width, targets.height},
+       targets.viewport});
+  gpu::Sequence& compute = impl_->prepare();
+  compute.record(commands, frame);
+  impl_->renderer.frame().recordShadingParameters(commands);
+  impl_->last = &compute;
+}
+
+void SmokeRenderer::recordComposite(VkCommandBuffer commands) const {
+  if (!impl_->insideRendering || !impl_->last)
+    throw std::invalid_argument(
+        "SmokeRenderer::recordComposite: after recordLightmaps of the frame, on a renderer "
+        "made for the engine's rendering");
+  impl_->renderer.frame().recordCompositeInside(commands);
 }
 
 void SmokeRenderer::forgetTargets() {

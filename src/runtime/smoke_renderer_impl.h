@@ -11,14 +11,15 @@
 
 #include "render/engine_view.h"
 #include "runtime/frame_renderer.h"
+#include "runtime/network_lightmaps.h"
 #include "scene/scene.h"
 
 namespace sixway {
 
 struct SmokeRenderer::Impl {
-  // `engineFormat`: the colour format of the engine's targets; none: sixway's own image.
+  // `engine`: the engine's targets' colour format or rendering's formats; none: sixway's own image.
   Impl(const gpu::Context& context, const gpu::PipelineCache& cache, const SmokeSimulation& simulation,
-       const RendererOptions& options, std::optional<VkFormat> engineFormat);
+       const RendererOptions& options, std::optional<runtime::FrameTarget> engine);
 
   // This frame of the simulation's volume: the sequence to submit or record (with an engine target, all but
   // the composite).
@@ -26,10 +27,17 @@ struct SmokeRenderer::Impl {
   // Records the frame into the engine's `targets` with the layout changes they ask for.
   void record(VkCommandBuffer commands, uint64_t frame, const FrameTargets& targets);
 
+  // The network's lightmaps: its own network, or RendererOptions::shareNetwork's.
+  static std::unique_ptr<runtime::NetworkLightmaps> networkSource(const gpu::Context& context,
+                                                                  const gpu::PipelineCache& cache,
+                                                                  const scene::Scene& scene,
+                                                                  const RendererOptions& options);
+
   const gpu::Context& context;
   const SmokeSimulation& simulation;
   const scene::Scene& scene;  // the simulation's
-  bool engineTarget;
+  bool engineTarget;          // the engine's images or rendering
+  bool insideRendering;       // the engine's rendering (recordLightmaps, recordComposite)
   runtime::FrameRenderer renderer;
   // The camera and lights in the scene this frame (the engine's, through the simulation's placement).
   std::optional<render::EngineView> sceneView() const;

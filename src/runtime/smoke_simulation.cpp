@@ -33,9 +33,8 @@ void SmokeSimulation::Impl::start() {
 namespace {
 
 // The runtime simulates; a scene that plays VDB files back is refused naming its file.
-scene::Scene simulatedScene(const std::filesystem::path& file) {
-  scene::Scene scene = scene::loadScene(file);
-  scene::requireSimulated(scene, file.string());
+scene::Scene simulated(scene::Scene scene, const std::string& source) {
+  scene::requireSimulated(scene, source);
   return scene;
 }
 
@@ -43,7 +42,12 @@ scene::Scene simulatedScene(const std::filesystem::path& file) {
 
 SmokeSimulation::SmokeSimulation(Device& device, const std::filesystem::path& scene)
     : impl_(std::make_unique<Impl>(runtime::Access::context(device), runtime::Access::pipelineCache(device),
-                                   simulatedScene(scene))) {}
+                                   simulated(scene::loadScene(scene), scene.string()))) {}
+
+SmokeSimulation::SmokeSimulation(Device& device, const SceneText& scene)
+    : impl_(std::make_unique<Impl>(
+          runtime::Access::context(device), runtime::Access::pipelineCache(device),
+          simulated(scene::parseSceneText(scene.json, scene.name, scene.directory), scene.name))) {}
 
 SmokeSimulation::~SmokeSimulation() = default;
 
@@ -145,7 +149,41 @@ glm::vec3 SmokeSimulation::obstaclePosition(size_t obstacle) const {
 }
 
 void SmokeSimulation::steerObstacle(size_t obstacle, glm::vec3 target) {
+  if (obstacle >= obstacleCount())
+    throw std::invalid_argument("SmokeSimulation::steerObstacle: no obstacle " + std::to_string(obstacle));
   impl_->volumes->simulation().steerObstacle(obstacle, runtime::scenePoint(impl_->placement, target));
+}
+
+void SmokeSimulation::steerObstacle(size_t obstacle, glm::vec3 target, double seconds) {
+  if (obstacle >= obstacleCount())
+    throw std::invalid_argument("SmokeSimulation::steerObstacle: no obstacle " + std::to_string(obstacle));
+  impl_->volumes->simulation().steerObstacle(obstacle, runtime::scenePoint(impl_->placement, target),
+                                             seconds);
+}
+
+float SmokeSimulation::maxObstacleSpeed() const {
+  return float(impl_->volumes->simulation().obstacleSpeedLimit());
+}
+
+void SmokeSimulation::setEmitters(const std::vector<Emitter>& emitters) {
+  std::vector<sim::Emitter> scene;
+  for (const Emitter& e : emitters)
+    scene.push_back({runtime::scenePoint(impl_->placement, e.position), e.radius,
+                     runtime::sceneDirection(impl_->placement, e.velocity), e.densityRate, e.temperatureRate,
+                     e.on});
+  try {
+    impl_->volumes->simulation().setEmitters(scene);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("SmokeSimulation::setEmitters: ") + e.what());
+  }
+}
+
+size_t SmokeSimulation::maxEmitters() const {
+  return sim::kMaxInlets;
+}
+
+float SmokeSimulation::maxEmitterSpeed() const {
+  return float(impl_->volumes->simulation().emitterSpeedLimit());
 }
 
 void SmokeSimulation::setInletStrength(float strength) {

@@ -635,7 +635,11 @@ Scene loadScene(const fs::path& file) {
   const std::vector<uint8_t> bytes = readFileBytes(file);
   const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   const fs::path baseDir = file.has_parent_path() ? file.parent_path() : fs::path(".");
-  return parseScene(parseJsonText(text, file.string()), file.string(), baseDir);
+  return parseSceneText(text, file.string(), baseDir);
+}
+
+Scene parseSceneText(std::string_view text, const std::string& name, const fs::path& baseDir) {
+  return parseScene(parseJsonText(text, name), name, baseDir);
 }
 
 int sceneFrameCount(const Scene& scene) {

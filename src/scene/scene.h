@@ -298,6 +298,9 @@ struct Scene {
 // Throws InputError for anything the format does not allow.
 Scene parseScene(const nlohmann::json& j, std::string_view sourceName, const std::filesystem::path& baseDir);
 Scene loadScene(const std::filesystem::path& file);
+// A scene file's text held in memory, named `name` in errors; relative paths (meshes, VDB files) from
+// `baseDir`.
+Scene parseSceneText(std::string_view text, const std::string& name, const std::filesystem::path& baseDir);
 // Frames a scene can give: unbounded for a simulation, files · frames_per_file for VDB playback.
 int sceneFrameCount(const Scene& scene);
 // Throws InputError naming `source` when the scene plays VDB files back: what simulates refuses it.

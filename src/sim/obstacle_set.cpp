@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <string>
 
 #include "gpu/context.h"
@@ -91,18 +92,18 @@ ObstacleSet::ObstacleSet(const gpu::Context& context, const gpu::PipelineCache& 
     GpuInlet g{};
     std::visit(Overloaded{
                    [&](const scene::InletDisk& d) {
-                     g.centre = glm::vec4(units.toLattice(d.center, origin_), 0.0f);
+                     g.centre = glm::vec4(units.toLattice(d.center, origin_), float(InletShape::Disk));
                      g.normal = glm::vec4(d.normal, d.radius * toCells);
                    },
                    [&](const scene::InletBox& b) {
-                     g.centre = glm::vec4(units.toLattice(b.min, origin_), 1.0f);
+                     g.centre = glm::vec4(units.toLattice(b.min, origin_), float(InletShape::Box));
                      g.normal = glm::vec4(units.toLattice(b.max, origin_), 0.0f);
                    },
                },
                in.shape);
     g.velocity = glm::vec4(units.toLatticeVelocity(in.velocity), in.noise);
-    g.smoke = glm::vec4(in.density, in.temperature, 0.0f, 0.0f);
-    inlets_.push_back({g, in.start, in.stop});
+    g.smoke = glm::vec4(in.density, in.temperature, 0.0f, float(kInletSetsFlow));
+    inlets_.push_back({g, in.start, in.stop, true});
   }
   voxelizeMeshes(context, cache, scene);
 }
@@ -178,6 +179,23 @@ void ObstacleSet::recordFlags(gpu::Sequence& sequence, const gpu::Buffer& params
                             dispatchArgs, slot * kFlagsDispatchStride);
 }
 
+void ObstacleSet::setEmitters(std::span<const Emitter> emitters) {
+  if (emitters.size() > kMaxInlets)
+    throw std::invalid_argument(std::to_string(emitters.size()) + " emitters; at most " +
+                                std::to_string(kMaxInlets));
+  inlets_.clear();
+  for (const Emitter& e : emitters) {
+    GpuInlet g{};
+    g.centre = glm::vec4(units_.toLattice(e.centre, origin_), float(InletShape::Ball));
+    g.normal = glm::vec4(0.0f, 0.0f, 0.0f, e.radius / units_.cellSize);
+    g.velocity = glm::vec4(units_.toLatticeVelocity(e.velocity), 0.0f);
+    const uint32_t mode = kInletAdds | (e.velocity != glm::vec3(0.0f) ? kInletSetsFlow : 0u);
+    const float perStep = float(units_.stepSeconds);
+    g.smoke = glm::vec4(e.densityRate * perStep, e.temperatureRate * perStep, 0.0f, float(mode));
+    inlets_.push_back({g, 0.0f, e.on ? std::numeric_limits<float>::infinity() : 0.0f, false});
+  }
+}
+
 void ObstacleSet::setMotion(size_t obstacle, std::optional<scene::Motion> motion) {
   obstacles_.at(obstacle).motion = std::move(motion);
 }
@@ -221,15 +239,17 @@ std::pair<glm::ivec3, glm::ivec3> ObstacleSet::inletBox() const {
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
   for (const TimedInlet& t : inlets_) {
     const GpuInlet& g = t.inlet;
-    // A disk lies within its radius of the centre and half a cell of its plane; a box between its corners.
-    const glm::vec3 a = g.centre.w == 0 ? glm::vec3(g.centre) - (g.normal.w + 1) : glm::vec3(g.centre);
-    const glm::vec3 b = g.centre.w == 0 ? glm::vec3(g.centre) + (g.normal.w + 1) : glm::vec3(g.normal);
+    // A disk lies within its radius of the centre and half a cell of its plane, a ball within its radius,
+    // a box between its corners.
+    const bool box = g.centre.w == float(InletShape::Box);
+    const glm::vec3 a = box ? glm::vec3(g.centre) : glm::vec3(g.centre) - (g.normal.w + 1);
+    const glm::vec3 b = box ? glm::vec3(g.normal) : glm::vec3(g.centre) + (g.normal.w + 1);
     lo = glm::min(lo, a);
     hi = glm::max(hi, b);
   }
   // Kept within a cell of the lattice, so that a box reaching far past it converts to integers safely.
-  lo = glm::max(lo, glm::vec3(-1.0f));
-  hi = glm::min(hi, glm::vec3(size_) + 1.0f);
+  lo = glm::clamp(lo, glm::vec3(-1.0f), glm::vec3(size_) + 1.0f);
+  hi = glm::clamp(hi, glm::vec3(-1.0f), glm::vec3(size_) + 1.0f);
   // Cell i's centre is at i + 0.5: a centre in [lo, hi] has i in [floor(lo − 0.5), ceil(hi − 0.5)]; one more
   // each way.
   const glm::ivec3 first = glm::max(glm::ivec3(glm::floor(lo - 0.5f)) - 1, glm::ivec3(0));
@@ -263,7 +283,7 @@ void ObstacleSet::fill(StepParams& params, uint64_t step) const {
   }
   for (size_t i = 0; i < inlets_.size(); ++i) {
     params.inlets[i] = inlets_[i].inlet;
-    params.inlets[i].velocity *= glm::vec4(glm::vec3(inletStrength_), 1.0f);
+    if (inlets_[i].scaled) params.inlets[i].velocity *= glm::vec4(glm::vec3(inletStrength_), 1.0f);
     params.inlets[i].smoke.z = (seconds >= inlets_[i].start && seconds < inlets_[i].stop) ? 1.0f : 0.0f;
   }
   params.counts = glm::uvec4(obstacles_.size(), inlets_.size(), uint32_t(step), 0);

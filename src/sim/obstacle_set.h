@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -19,6 +20,17 @@ class Sequence;
 }
 
 namespace sixway::sim {
+
+// A source of smoke set from outside the scene file (an engine's, each frame): a ball of lattice cells (their
+// centres within `radius` of `centre`) that gains density and temperature at these rates while `on`, and
+// whose flow is set to `velocity` unless that is zero (then the fluid there moves freely).
+struct Emitter {
+  glm::vec3 centre{0.0f};                            // scene space, m
+  float radius = 0.0f;                               // m
+  glm::vec3 velocity{0.0f};                          // m/s
+  float densityRate = 0.0f, temperatureRate = 0.0f;  // per second
+  bool on = true;
+};
 
 class ObstacleSet {
  public:
@@ -40,8 +52,11 @@ class ObstacleSet {
   const std::optional<scene::Motion>& motion(size_t obstacle) const { return obstacles_.at(obstacle).motion; }
   // Where the obstacle's centre (a mesh: its translation) is at `seconds`, in world coordinates (m).
   glm::vec3 positionAt(size_t obstacle, double seconds) const;
-  // Scales every inlet's velocity (not its smoke) from the next step on; 1 is the scene's.
+  // Scales the scene's inlets' velocity (not their smoke) from the next step on; 1 is the scene's.
   void setInletStrength(float strength) { inletStrength_ = strength; }
+  // Replaces every inlet (the scene's or earlier emitters) from the next step on; at most kMaxInlets.
+  // inletBox() follows: sequences recorded with the old box must be recorded again unless it holds the new.
+  void setEmitters(std::span<const Emitter> emitters);
   // Marks each lattice cell with the obstacle and the inlet covering it at step params[slot], in as many
   // workgroups as dispatchArgs[slot] says (a VkDispatchIndirectCommand every kFlagsDispatchStride bytes):
   // flagsGroups(), or none where FlagsSchedule skips the step.
@@ -64,6 +79,7 @@ class ObstacleSet {
   struct TimedInlet {
     GpuInlet inlet;
     float start, stop;  // s
+    bool scaled;        // by the inlet strength (the scene's inlets; an emitter's velocity is its own)
   };
   void voxelizeMeshes(const gpu::Context& context, const gpu::PipelineCache& cache,
                       const scene::Scene& scene);

@@ -22,11 +22,16 @@ struct GpuObstacle {
   glm::ivec4 meshGrid;    // mesh: voxels; w: first word in the occupancy buffer
 };
 
+enum class InletShape : uint32_t { Disk = 0, Box = 1, Ball = 2 };
+// GpuInlet::smoke.w bits (INLET_ADDS, INLET_SETS_FLOW): the cells gain smoke.xy each step rather than hold
+// it; the flow there is set to the inlet's velocity.
+inline constexpr uint32_t kInletAdds = 1, kInletSetsFlow = 2;
+
 struct GpuInlet {
-  glm::vec4 centre;    // disk: centre; box: min corner; w: 0 disk, 1 box
-  glm::vec4 normal;    // disk: normal, w radius; box: max corner
+  glm::vec4 centre;    // disk, ball: centre; box: min corner; w: InletShape
+  glm::vec4 normal;    // disk: normal, w radius; ball: w radius; box: max corner
   glm::vec4 velocity;  // w: noise amplitude
-  glm::vec4 smoke;     // density, temperature, active (0/1)
+  glm::vec4 smoke;     // density, temperature, active (0/1), kInlet* bits
 };
 
 struct StepParams {

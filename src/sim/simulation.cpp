@@ -19,6 +19,19 @@ const scene::Scene& simulated(const scene::Scene& scene) {
   return scene;
 }
 
+using Box = std::pair<glm::ivec3, glm::ivec3>;
+
+bool empty(const Box& box) {
+  return glm::any(glm::greaterThanEqual(box.first, box.second));
+}
+
+// The smallest box that holds both (an empty one holds nothing).
+Box cover(const Box& a, const Box& b) {
+  if (empty(a)) return b;
+  if (empty(b)) return a;
+  return {glm::min(a.first, b.first), glm::max(a.second, b.second)};
+}
+
 }  // namespace
 
 Simulation::Simulation(const gpu::Context& context, const gpu::PipelineCache& cache,
@@ -45,6 +58,8 @@ Simulation::Simulation(const gpu::Context& context, const gpu::PipelineCache& ca
   flagsDispatch_ =
       gpu::Buffer(context, uint64_t(capacity_) * ObstacleSet::kFlagsDispatchStride,
                   VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, gpu::MemoryKind::FrameParameters, "flags dispatch");
+  sweptCover_ = obstacles_->sweptBox();
+  inletCover_ = obstacles_->inletBox();
   smoke_->upload(std::vector<glm::vec2>(smoke_->cells(), glm::vec2(0)));
   lbm_->initialize(std::vector<glm::vec4>(lbm_->cells(), glm::vec4(0, 0, 0, 1)), 0);
 }
@@ -60,17 +75,59 @@ void Simulation::setFlow(const std::vector<glm::vec3>& velocity, const std::vect
   lbm_->initialize(macro, int(step_ % 2));
 }
 
-void Simulation::steerObstacle(size_t obstacle, glm::vec3 target) {
-  const double now = seconds();
+double Simulation::obstacleSpeedLimit() const {
+  return 0.5 * scene_.fluid.maxLatticeVelocity / units_.velocityScale;
+}
+
+void Simulation::steerObstacle(size_t obstacle, glm::vec3 target, std::optional<double> seconds) {
+  if (seconds && !(*seconds >= 0.0 && std::isfinite(*seconds)))
+    throw std::invalid_argument("steering time " + std::to_string(*seconds) + " s; needs a finite time >= 0");
+  if (!(std::isfinite(target.x) && std::isfinite(target.y) && std::isfinite(target.z)))
+    throw std::invalid_argument("steering target is not finite");
+  const double now = this->seconds();
   const glm::vec3 from = obstacles_->positionAt(obstacle, now);
-  const double speedLimit = 0.5 * scene_.fluid.maxLatticeVelocity / units_.velocityScale;  // m/s
-  const double frame = units_.stepSeconds * units_.stepsPerFrame;
-  const double duration = std::max(frame, double(glm::length(target - from)) / speedLimit);
+  const double arrival = seconds.value_or(units_.stepSeconds * units_.stepsPerFrame);
+  // At least a step: a wall that jumps has no velocity for bounce-back to follow.
+  const double duration = std::max(
+      {arrival, double(units_.stepSeconds), double(glm::length(target - from)) / obstacleSpeedLimit()});
   scene::Motion motion;
   motion.keyframes = {{float(now), from}, {float(now + duration), target}};
   obstacles_->setMotion(obstacle, motion);
-  // The sequences hold the old motion's swept box (forces, the LBM's boundary dispatch); frames an engine
-  // has in flight may still run them.
+  coverBoxes();
+}
+
+double Simulation::emitterSpeedLimit() const {
+  return scene_.fluid.maxLatticeVelocity / units_.velocityScale;
+}
+
+void Simulation::setEmitters(std::span<const Emitter> emitters) {
+  for (size_t i = 0; i < emitters.size(); ++i) {
+    const Emitter& e = emitters[i];
+    const std::string which = "emitter " + std::to_string(i) + ": ";
+    if (!(e.radius >= 0.0f && std::isfinite(e.radius)))
+      throw std::invalid_argument(which + "radius " + std::to_string(e.radius) +
+                                  " m; needs a finite radius >= 0");
+    if (!(e.densityRate >= 0.0f && e.temperatureRate >= 0.0f && std::isfinite(e.densityRate) &&
+          std::isfinite(e.temperatureRate)))
+      throw std::invalid_argument(which + "rates must be finite and >= 0");
+    if (!(std::isfinite(e.centre.x) && std::isfinite(e.centre.y) && std::isfinite(e.centre.z)))
+      throw std::invalid_argument(which + "position is not finite");
+    if (!(glm::length(e.velocity) <= emitterSpeedLimit()))
+      throw std::invalid_argument(which + "speed " + std::to_string(glm::length(e.velocity)) +
+                                  " m/s; the lattice follows at most " + std::to_string(emitterSpeedLimit()) +
+                                  " m/s (fluid.max_lattice_velocity)");
+  }
+  obstacles_->setEmitters(emitters);
+  coverBoxes();
+}
+
+void Simulation::coverBoxes() {
+  const Box swept = cover(sweptCover_, obstacles_->sweptBox());
+  const Box inlets = cover(inletCover_, obstacles_->inletBox());
+  if (swept == sweptCover_ && inlets == inletCover_) return;
+  sweptCover_ = swept;
+  inletCover_ = inlets;
+  // Frames an engine has in flight may still run the old sequences.
   for (auto& [key, sequence] : sequences_) retired_.emplace_back(lastRecordedFrame_, std::move(sequence));
   sequences_.clear();
 }
@@ -96,6 +153,7 @@ gpu::Sequence& Simulation::sequenceFor(uint32_t steps, int parity) {
   if (slot) return *slot;
   // Stages per step: obstacles, forces, lbm, and the smoke's.
   slot = std::make_unique<gpu::Sequence>(*context_, (3 + smoke_->stagesPerStep()) * steps + 1);
+  ++sequencesRecorded_;
   gpu::Sequence& sequence = *slot;
   const uint32_t obstacleCount = uint32_t(obstacles_->obstacleCount());
   if (obstacleCount > 0) sequence.fill(forces_, 0);
@@ -106,15 +164,13 @@ gpu::Sequence& Simulation::sequenceFor(uint32_t steps, int parity) {
     sequence.endStage();
     if (obstacleCount > 0) {
       sequence.beginStage("forces");
-      lbm_->recordForces(sequence, params_, obstacles_->flags(), s, stepParity, forces_,
-                         obstacles_->sweptBox());
+      lbm_->recordForces(sequence, params_, obstacles_->flags(), s, stepParity, forces_, sweptCover_);
       sequence.endStage();
     }
     sequence.beginStage("lbm");
-    lbm_->recordStep(sequence, params_, obstacles_->flags(), smoke_->smoke(), s, stepParity,
-                     obstacles_->sweptBox());
+    lbm_->recordStep(sequence, params_, obstacles_->flags(), smoke_->smoke(), s, stepParity, sweptCover_);
     sequence.endStage();
-    smoke_->recordSources(sequence, params_, obstacles_->flags(), s, obstacles_->inletBox());
+    smoke_->recordSources(sequence, params_, obstacles_->flags(), s, inletCover_);
     smoke_->recordTransport(sequence, obstacles_->flags(), lbm_->macro());
   }
   sequence.beginStage("watchdog");
@@ -218,6 +274,9 @@ void Simulation::checkRecordedFrame(uint64_t frame) {
 }
 
 void Simulation::advance(uint32_t steps) {
+  // Every earlier submission has completed (advance waits for its own) unless an engine's recorded frames
+  // hold them still.
+  if (recorded_.empty()) retired_.clear();
   while (steps > 0) {
     const uint32_t n = std::min(steps, capacity_);
     fillStepParameters(n);

@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -65,11 +66,23 @@ class Simulation {
   // populations to their equilibrium; for analytic initial conditions.
   void setFlow(const std::vector<glm::vec3>& velocity, const std::vector<float>& density);
 
-  // Drags obstacle `obstacle` toward `target` (world, m) from where it is now: a straight line at no more
-  // than half the lattice's speed limit (fluid.max_lattice_velocity; the moving wall adds its speed to the
-  // flow's), arriving no sooner than one frame from now; then it stays there. Bounce-back follows the
-  // motion's velocity, and the recorded steps are recorded again for the new swept box.
-  void steerObstacle(size_t obstacle, glm::vec3 target);
+  // Drags obstacle `obstacle` toward `target` (world, m) from where it is now: a straight line arriving
+  // `seconds` from now (default: one frame), or later where that is faster than half the lattice's speed
+  // limit (fluid.max_lattice_velocity; the moving wall adds its speed to the flow's); then it stays there.
+  // Bounce-back follows the motion's velocity. std::invalid_argument for a negative or non-finite time or a
+  // target that is not finite.
+  void steerObstacle(size_t obstacle, glm::vec3 target, std::optional<double> seconds = std::nullopt);
+  // The fastest an obstacle moves (m/s): half the lattice's speed limit.
+  double obstacleSpeedLimit() const;
+  // Replaces the inlets by these emitters from the next step on (ObstacleSet::setEmitters).
+  // std::invalid_argument for more than kMaxInlets, a speed beyond fluid.max_lattice_velocity, a position
+  // that is not finite, a negative or non-finite radius or rate.
+  void setEmitters(std::span<const Emitter> emitters);
+  // The fastest an emitter may push the flow (m/s): fluid.max_lattice_velocity.
+  double emitterSpeedLimit() const;
+  // How many step sequences were recorded: a steered obstacle or a moved emitter that leaves the cells the
+  // recorded ones cover records them again (and grows what they cover).
+  uint64_t sequencesRecorded() const { return sequencesRecorded_; }
   // The obstacle's motion as the simulation uses it (the scene's, or the steered one).
   const std::optional<scene::Motion>& obstacleMotion(size_t obstacle) const {
     return obstacles_->motion(obstacle);
@@ -105,6 +118,9 @@ class Simulation {
   void summarize(uint64_t firstStep, uint32_t steps, const std::vector<gpu::StageTime>& times,
                  const glm::vec4* forces, const gpu::Stats& speed, const gpu::Stats& density);
   void checkRecordedFrame(uint64_t frame);
+  // Grows the boxes the sequences are recorded for until they hold the obstacles' swept box and the inlets'
+  // box; sequences recorded for smaller ones are retired.
+  void coverBoxes();
 
   const gpu::Context* context_;
   scene::Scene scene_;
@@ -127,6 +143,9 @@ class Simulation {
   };
   std::vector<RecordedFrame> recorded_;
   std::vector<std::pair<uint64_t, std::unique_ptr<gpu::Sequence>>> retired_;
+  using Box = std::pair<glm::ivec3, glm::ivec3>;  // lattice cells [min, max)
+  Box sweptCover_, inletCover_;                   // what the recorded sequences visit
+  uint64_t sequencesRecorded_ = 0;
   uint64_t lastRecordedFrame_ = 0;
   uint64_t framesReported_ = 0;
   uint64_t step_ = 0;

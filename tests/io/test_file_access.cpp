@@ -3,6 +3,7 @@
 // when its directory is missing; the temporary files that killed processes leave are removed by the next
 // writer of the same file, never a live process's.
 #include "io/file_access.h"
+#include "platform/platform.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -96,11 +97,11 @@ std::string partialName(const std::string& name, long pid) {
 }
 
 TEST(AtomicFileTest, OnlyEndedProcessesHaveEnded) {
-  EXPECT_FALSE(io::processEnded(getpid()));
+  EXPECT_FALSE(platform::processEnded(getpid()));
   const pid_t zombie = killedChild(false);
-  EXPECT_TRUE(io::processEnded(zombie));
+  EXPECT_TRUE(platform::processEnded(zombie));
   waitpid(zombie, nullptr, 0);
-  EXPECT_TRUE(io::processEnded(zombie));
+  EXPECT_TRUE(platform::processEnded(zombie));
 }
 
 TEST(AtomicFileTest, TheTemporaryFilesOfKilledRunsOfTheSameFileGo) {

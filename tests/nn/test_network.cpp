@@ -109,8 +109,9 @@ TEST_P(NetworkParity, MatchesPyTorch) {
   }
   const std::vector<float> actualB = planes(b.download<float>(), pixels);
   expectMatches("lightmap B", actualB, expectedB);
-  if (!c.emission)
+  if (!c.emission) {
     EXPECT_EQ(*std::max_element(actualB.begin() + 3 * std::ptrdiff_t(pixels), actualB.end()), 0.0f);
+  }
   for (const io::Tensor& tensor : vectors.tensors)
     if (tensor.name.starts_with("node.")) {
       const std::string node = tensor.name.substr(5);

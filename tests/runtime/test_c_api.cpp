@@ -71,6 +71,17 @@ TEST(CApi, ErrorsAndMisuseComeBackAsCodesWithTheirMessages) {
   const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
   EXPECT_EQ(sixwaySimulationSetPlacement(simulation, identity), SIXWAY_SUCCESS);
 
+  SixwayEmitter emitter = {{0.0f, 0.2f, 0.0f}, 0.1f, {0.0f, 100.0f, 0.0f}, 1.0f, 0.0f, 1};
+  EXPECT_EQ(sixwaySimulationSetEmitters(simulation, nullptr, 1), SIXWAY_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(sixwaySimulationSetEmitters(simulation, &emitter, 1), SIXWAY_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(sixwayLastError()).find("emitter 0: speed 100"), std::string::npos)
+      << sixwayLastError();
+  emitter.velocity[1] = 0.5f;
+  EXPECT_EQ(sixwaySimulationSetEmitters(simulation, &emitter, 1), SIXWAY_SUCCESS) << sixwayLastError();
+  const float target[3] = {0.1f, 0.7f, 0.1f};
+  EXPECT_EQ(sixwaySimulationSteerObstacle(simulation, 3, target, 0.1), SIXWAY_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(sixwaySimulationSteerObstacle(simulation, 0, target, 0.1), SIXWAY_SUCCESS) << sixwayLastError();
+
   ASSERT_EQ(sixwaySimulationAdvance(simulation), SIXWAY_SUCCESS);
   ASSERT_EQ(sixwayRendererRender(renderer), SIXWAY_SUCCESS);
   uint32_t width = 0, height = 0;

@@ -255,5 +255,148 @@ TEST_F(EngineTargetsTest, TargetsThatDoNotFitAreRefusedBeforeAnythingIsRecorded)
   EXPECT_EQ(own.validationMessages(), 0u);
 }
 
+// The engine's own dynamic rendering: colour attachment 0 its frame, attachment 1 a second target (e.g. its
+// motion vectors) that sixway must leave alone, its depth buffer read-only as the depth attachment and
+// sampled by sixway. The composite is recorded into the primary command buffer, or into a secondary one
+// recorded for that rendering.
+void recordInsideRendering(VkCommandBuffer commands, VkCommandBuffer secondary, const EngineTargets& targets,
+                           const gpu::Image& second, const RenderingFormats& formats,
+                           const SmokeRenderer& renderer) {
+  const VkExtent2D size{targets.color.desc().width, targets.color.desc().height};
+  auto colorAttachment = [](const gpu::Image& image) {
+    VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    a.imageView = image.view();
+    a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    a.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    return a;
+  };
+  const VkRenderingAttachmentInfo colors[2] = {colorAttachment(targets.color), colorAttachment(second)};
+  VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  depth.imageView = targets.depth.view();
+  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+  depth.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+  depth.storeOp = VK_ATTACHMENT_STORE_OP_NONE;
+  VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  rendering.renderArea = {{0, 0}, size};
+  rendering.layerCount = 1;
+  rendering.colorAttachmentCount = 2;
+  rendering.pColorAttachments = colors;
+  rendering.pDepthAttachment = &depth;
+  if (!secondary) {
+    vkCmdBeginRendering(commands, &rendering);
+    renderer.recordComposite(commands);
+    vkCmdEndRendering(commands);
+    return;
+  }
+  VkCommandBufferInheritanceRenderingInfo inheritedRendering{
+      VK_STRUCTURE_TYPE_COMMAND_BUFFER_INHERITANCE_RENDERING_INFO};
+  inheritedRendering.colorAttachmentCount = uint32_t(formats.colors.size());
+  inheritedRendering.pColorAttachmentFormats = formats.colors.data();
+  inheritedRendering.depthAttachmentFormat = formats.depth;
+  inheritedRendering.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  VkCommandBufferInheritanceInfo inheritance{VK_STRUCTURE_TYPE_COMMAND_BUFFER_INHERITANCE_INFO,
+                                             &inheritedRendering};
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  begin.flags = VK_COMMAND_BUFFER_USAGE_RENDER_PASS_CONTINUE_BIT;
+  begin.pInheritanceInfo = &inheritance;
+  SIXWAY_VK(vkResetCommandBuffer(secondary, 0));
+  SIXWAY_VK(vkBeginCommandBuffer(secondary, &begin));
+  renderer.recordComposite(secondary);
+  SIXWAY_VK(vkEndCommandBuffer(secondary));
+  rendering.flags = VK_RENDERING_CONTENTS_SECONDARY_COMMAND_BUFFERS_BIT;
+  vkCmdBeginRendering(commands, &rendering);
+  vkCmdExecuteCommands(commands, 1, &secondary);
+  vkCmdEndRendering(commands);
+}
+
+TEST_F(EngineTargetsTest, InsideTheEnginesOwnRenderingTheSameSmoke) {
+  VkCommandBuffer secondary = VK_NULL_HANDLE;
+  const VkCommandBufferAllocateInfo allocate{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr,
+                                             engine.pool, VK_COMMAND_BUFFER_LEVEL_SECONDARY, 1};
+  SIXWAY_VK(vkAllocateCommandBuffers(engine.context.device(), &allocate, &secondary));
+  const RenderingFormats formats{{VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R8G8B8A8_UNORM},
+                                 VK_FORMAT_D32_SFLOAT};
+  for (bool inSecondary : {false, true}) {
+    EngineTargets targets(engine.context, width, height);
+    gpu::Image second(engine.context, {width, height, 1, VK_FORMAT_R8G8B8A8_UNORM,
+                                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+                                           VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                       "engine motion vectors"});
+    SmokeSimulation simulation(engine.device, scene);
+    SmokeRenderer renderer(engine.device, simulation, {.weights = kWeights}, formats);
+    renderer.setCamera(sceneCamera());
+    const CompositeTargets composite{targets.depth.handle(),
+                                     targets.depth.view(),
+                                     VK_FORMAT_D32_SFLOAT,
+                                     VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL,
+                                     width,
+                                     height};
+    for (uint64_t frame = 0; frame < kFrames; ++frame) {
+      VkCommandBuffer commands = engine.begin();
+      targets.recordClear(commands, kBackground);
+      const VkClearColorValue motion{{0.25f, 0.5f, 0.75f, 1.0f}};
+      const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+      vkCmdClearColorImage(commands, second.handle(), VK_IMAGE_LAYOUT_GENERAL, &motion, 1, &all);
+      const VkImage color = targets.color.handle(), depth = targets.depth.handle();
+      const VkImageLayout colorOptimal = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                          depthReadOnly = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+      gpu::recordLayoutChange(commands, color, formats.colors[0], VK_IMAGE_LAYOUT_GENERAL, colorOptimal);
+      gpu::recordLayoutChange(commands, second.handle(), formats.colors[1], VK_IMAGE_LAYOUT_GENERAL,
+                              colorOptimal);
+      gpu::recordLayoutChange(commands, depth, formats.depth, VK_IMAGE_LAYOUT_GENERAL, depthReadOnly);
+      simulation.record(commands, frame);
+      renderer.recordLightmaps(commands, frame, composite);
+      recordInsideRendering(commands, inSecondary ? secondary : VK_NULL_HANDLE, targets, second, formats,
+                            renderer);
+      gpu::recordLayoutChange(commands, color, formats.colors[0], colorOptimal, VK_IMAGE_LAYOUT_GENERAL);
+      gpu::recordLayoutChange(commands, second.handle(), formats.colors[1], colorOptimal,
+                              VK_IMAGE_LAYOUT_GENERAL);
+      gpu::recordLayoutChange(commands, depth, formats.depth, depthReadOnly, VK_IMAGE_LAYOUT_GENERAL);
+      engine.submitAndWait();
+      EXPECT_EQ(maxDifference(targets.colorPixels(), expected[frame]), 0.0)
+          << "frame " << frame << (inSecondary ? ", secondary" : ", primary");
+    }
+    for (uint32_t texel : second.download<uint32_t>())
+      ASSERT_EQ(texel, 0xffbf8040u) << "sixway wrote into the engine's second attachment";
+  }
+  EXPECT_EQ(own.validationMessages(), 0u);
+}
+
+TEST_F(EngineTargetsTest, InsideTheEnginesRenderingMisuseIsRefused) {
+  EngineTargets targets(engine.context, width, height);
+  SmokeSimulation simulation(engine.device, scene);
+  SmokeRenderer renderer(engine.device, simulation, {.weights = kWeights},
+                         RenderingFormats{{VK_FORMAT_R16G16B16A16_SFLOAT}, VK_FORMAT_D32_SFLOAT});
+  VkCommandBuffer commands = engine.begin();
+  CompositeTargets composite{targets.depth.handle(),
+                             targets.depth.view(),
+                             VK_FORMAT_D32_SFLOAT,
+                             VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL,
+                             width,
+                             height};
+  EXPECT_THROW(renderer.recordLightmaps(commands, 0, composite), std::invalid_argument) << "no camera yet";
+  renderer.setCamera(sceneCamera());
+  EXPECT_THROW(renderer.recordComposite(commands), std::invalid_argument) << "before recordLightmaps";
+  EXPECT_THROW(renderer.record(commands, 0, generalTargets(targets)), std::invalid_argument);
+  CompositeTargets writable = composite;
+  writable.depthLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+  EXPECT_THROW(renderer.recordLightmaps(commands, 0, writable), std::invalid_argument);
+  CompositeTargets empty = composite;
+  empty.width = 0;
+  EXPECT_THROW(renderer.recordLightmaps(commands, 0, empty), std::invalid_argument);
+  CompositeTargets outside = composite;
+  outside.viewport = {{int32_t(width / 2), 0}, {width, height}};
+  EXPECT_THROW(renderer.recordLightmaps(commands, 0, outside), std::invalid_argument);
+  SmokeRenderer images(engine.device, simulation, {.weights = kWeights}, VK_FORMAT_R16G16B16A16_SFLOAT);
+  images.setCamera(sceneCamera());
+  EXPECT_THROW(images.recordLightmaps(commands, 0, composite), std::invalid_argument);
+  EXPECT_THROW(SmokeRenderer(engine.device, simulation, {.weights = kWeights}, RenderingFormats{}),
+               std::invalid_argument)
+      << "no colour attachment";
+  engine.submitAndWait();  // nothing was recorded into it
+  EXPECT_EQ(own.validationMessages(), 0u);
+}
+
 }  // namespace
 }  // namespace sixway::test

@@ -416,7 +416,9 @@ TEST(Runtime, AnEngineRunsSixwaysOneTimeWork) {
     renderer.setCamera(sceneCamera());
     const float background[4] = {0.1f, 0.2f, 0.3f, 1.0f};
     recordFrames(engine, targets, simulation, renderer, background);
-    if (hooked) EXPECT_EQ(engine.device.hostWaits(), 0u) << "sixway waited on the GPU itself";
+    if (hooked) {
+      EXPECT_EQ(engine.device.hostWaits(), 0u) << "sixway waited on the GPU itself";
+    }
     images[hooked] = targets.colorPixels();
   }
   EXPECT_GT(calls, 0);

@@ -1,0 +1,78 @@
+#pragma once
+// The engine's two smoke instances behind the calls its frame loop makes, through sixway's C++ API
+// (smoke_instances_cpp.cpp) or its C API (smoke_instances_c.cpp): the same frame either way. Instance A is
+// drawn with per-frame targets (sixway moves the images to what it needs and back), instance B inside the
+// engine's transparent pass; B runs A's network.
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <functional>
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+// What the engine hands sixway at start.
+struct SmokeSetup {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  VkQueue queue = VK_NULL_HANDLE;
+  uint32_t queueFamily = 0;
+  std::vector<std::string> extensions;
+  const void* features = nullptr;  // the chain given to vkCreateDevice
+  uint32_t framesInFlight = 0;
+  std::function<void(const std::function<void(VkCommandBuffer)>&)> submitAndWait;
+  const VkAllocationCallbacks* allocator = nullptr;
+  VkPipelineCache pipelineCache = VK_NULL_HANDLE;
+  std::string scene, weights;
+  VkFormat colorFormat = VK_FORMAT_UNDEFINED, depthFormat = VK_FORMAT_UNDEFINED;
+  glm::mat4 placementB{1.0f};  // where instance B stands in the world (A: where its scene puts it)
+};
+
+// The engine's emitter in instance A this frame (sixway::Emitter's fields).
+struct EngineEmitter {
+  glm::vec3 position{0.0f};
+  float radius = 0.0f;
+  glm::vec3 velocity{0.0f};
+  float densityRate = 0.0f, temperatureRate = 0.0f;
+  bool on = true;
+};
+
+// One frame's images: the colour in COLOR_ATTACHMENT_OPTIMAL and the depth in
+// DEPTH_STENCIL_READ_ONLY_OPTIMAL while the smoke is drawn (and left so).
+struct FrameImagesView {
+  VkImage color = VK_NULL_HANDLE;
+  VkImageView colorView = VK_NULL_HANDLE;
+  VkImage depth = VK_NULL_HANDLE;
+  VkImageView depthView = VK_NULL_HANDLE;
+  uint32_t width = 0, height = 0;
+};
+
+class SmokeInstances {
+ public:
+  virtual ~SmokeInstances() = default;
+  // Each frame, in this order: the camera of both; A's world (its emitter, its obstacle's target reached
+  // after `seconds`); both simulations; B's lightmaps before the transparent pass; then, far to near, A's
+  // record and B's composite inside the transparent pass.
+  virtual void setCamera(const glm::mat4& view, const glm::mat4& projection) = 0;
+  virtual void setWorld(const EngineEmitter& emitter, glm::vec3 obstacleTarget, double seconds) = 0;
+  virtual void recordSimulations(VkCommandBuffer commands, uint64_t frame, double seconds) = 0;
+  virtual void recordLightmapsB(VkCommandBuffer commands, uint64_t frame, const FrameImagesView& images) = 0;
+  virtual void recordA(VkCommandBuffer commands, uint64_t frame, const FrameImagesView& images) = 0;
+  virtual void recordCompositeB(VkCommandBuffer commands) = 0;
+  // The engine destroyed the images it passed (a resize).
+  virtual void forgetTargets() = 0;
+  // The middle of instance 0's (A's) or 1's (B's) billboard after the last frame (before: its placement).
+  virtual glm::vec3 middle(int instance) const = 0;
+  virtual bool hasObstacle() const = 0;
+  virtual glm::vec3 obstaclePosition() const = 0;  // A's first obstacle, world
+  virtual uint64_t hostWaits() const = 0;
+  // GPU time per stage of A's simulation and both renderers (the C API has none).
+  virtual std::vector<std::pair<std::string, double>> stageTimes() const = 0;
+};
+
+std::unique_ptr<SmokeInstances> cppInstances(const SmokeSetup& setup);
+std::unique_ptr<SmokeInstances> cApiInstances(const SmokeSetup& setup);

@@ -1,0 +1,151 @@
+// The engine's two smoke instances through sixway's C API (include/sixway/sixway.h): handles, result codes
+// and the last error's message, as a C engine or another language's binding would use them.
+#include <sixway/sixway.h>
+
+#include <cstdio>
+#include <glm/gtc/type_ptr.hpp>
+#include <stdexcept>
+
+#include "smoke_instances.h"
+
+namespace {
+
+// A failed call's one-line message as the example's error.
+void check(SixwayResult result) {
+  if (result != SIXWAY_SUCCESS) throw std::runtime_error(sixwayLastError());
+}
+
+class CApiInstances : public SmokeInstances {
+ public:
+  explicit CApiInstances(const SmokeSetup& s)
+      : submitAndWait_(s.submitAndWait), colorFormat_(s.colorFormat), depthFormat_(s.depthFormat) {
+    std::vector<const char*> extensions;
+    for (const std::string& e : s.extensions) extensions.push_back(e.c_str());
+    SixwayEngineDevice engine{};
+    engine.instance = s.instance;
+    engine.physicalDevice = s.physicalDevice;
+    engine.device = s.device;
+    engine.queue = s.queue;
+    engine.queueFamily = s.queueFamily;
+    engine.enabledExtensions = extensions.data();
+    engine.enabledExtensionCount = uint32_t(extensions.size());
+    engine.enabledFeatures = s.features;
+    engine.framesInFlight = s.framesInFlight;
+    engine.submitAndWait = [](void* user, void (*record)(void*, VkCommandBuffer), void* context) {
+      static_cast<CApiInstances*>(user)->submitAndWait_(
+          [&](VkCommandBuffer commands) { record(context, commands); });
+    };
+    engine.submitUser = this;
+    engine.allocator = s.allocator;
+    engine.pipelineCache = s.pipelineCache;
+    engine.log = [](void*, const char* line) { std::printf("sixway note: %s\n", line); };
+    try {
+      check(sixwayCreateEngineDevice(&engine, &device_));
+      check(sixwayCreateSimulation(device_, s.scene.c_str(), &simulations_[0]));
+      check(sixwayCreateSimulation(device_, s.scene.c_str(), &simulations_[1]));
+      check(sixwaySimulationSetPlacement(simulations_[1], glm::value_ptr(s.placementB)));
+      SixwayRendererInfo a{};
+      a.weightsPath = s.weights.c_str();
+      a.colorFormat = s.colorFormat;
+      check(sixwayCreateRendererFromInfo(device_, simulations_[0], &a, &renderers_[0]));
+      SixwayRendererInfo b{};
+      b.shareNetwork = renderers_[0];
+      b.renderingColors = &s.colorFormat;
+      b.renderingColorCount = 1;
+      b.renderingDepth = s.depthFormat;
+      check(sixwayCreateRendererFromInfo(device_, simulations_[1], &b, &renderers_[1]));
+      for (int i = 0; i < 2; ++i) placements_[i] = glm::vec3(i == 0 ? glm::mat4(1.0f)[3] : s.placementB[3]);
+    } catch (...) {
+      release();
+      throw;
+    }
+  }
+  ~CApiInstances() override { release(); }
+
+  void setCamera(const glm::mat4& view, const glm::mat4& projection) override {
+    for (SixwayRenderer r : renderers_)
+      check(sixwayRendererSetViewProjection(r, glm::value_ptr(view), glm::value_ptr(projection)));
+  }
+  void setWorld(const EngineEmitter& e, glm::vec3 obstacleTarget, double seconds) override {
+    const SixwayEmitter emitter{{e.position.x, e.position.y, e.position.z},
+                                e.radius,
+                                {e.velocity.x, e.velocity.y, e.velocity.z},
+                                e.densityRate,
+                                e.temperatureRate,
+                                e.on ? 1 : 0};
+    check(sixwaySimulationSetEmitters(simulations_[0], &emitter, 1));
+    if (hasObstacle())
+      check(sixwaySimulationSteerObstacle(simulations_[0], 0, glm::value_ptr(obstacleTarget), seconds));
+  }
+  void recordSimulations(VkCommandBuffer commands, uint64_t frame, double seconds) override {
+    for (SixwaySimulation s : simulations_)
+      check(sixwaySimulationRecordSeconds(s, commands, frame, seconds, nullptr));
+  }
+  void recordLightmapsB(VkCommandBuffer commands, uint64_t frame, const FrameImagesView& i) override {
+    const SixwayCompositeTargets targets{
+        i.depth,  i.depthView, depthFormat_, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, i.width,
+        i.height, {}};
+    check(sixwayRendererRecordLightmaps(renderers_[1], commands, frame, &targets));
+  }
+  void recordA(VkCommandBuffer commands, uint64_t frame, const FrameImagesView& i) override {
+    const VkImageLayout color = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                        depth = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+    SixwayFrameTargets targets{};
+    targets.color = {i.color, i.colorView, colorFormat_, color, color};
+    targets.depth = {i.depth, i.depthView, depthFormat_, depth, depth};
+    targets.width = i.width;
+    targets.height = i.height;
+    check(sixwayRendererRecordTargets(renderers_[0], commands, frame, &targets));
+    recorded_ = true;
+  }
+  void recordCompositeB(VkCommandBuffer commands) override {
+    check(sixwayRendererRecordComposite(renderers_[1], commands));
+  }
+  void forgetTargets() override { check(sixwayRendererForgetTargets(renderers_[0])); }
+  glm::vec3 middle(int instance) const override {
+    if (!recorded_) return placements_[instance];
+    SixwayLightmapTextures maps;
+    check(sixwayRendererLightmaps(renderers_[instance], &maps));
+    glm::vec3 sum(0.0f);
+    for (const auto& corner : maps.corners) sum += glm::make_vec3(corner);
+    return 0.25f * sum;
+  }
+  bool hasObstacle() const override {
+    uint32_t count = 0;
+    check(sixwaySimulationObstacleCount(simulations_[0], &count));
+    return count > 0;
+  }
+  glm::vec3 obstaclePosition() const override {
+    float position[3];
+    check(sixwaySimulationObstaclePosition(simulations_[0], 0, position));
+    return glm::make_vec3(position);
+  }
+  uint64_t hostWaits() const override {
+    uint64_t waits = 0;
+    check(sixwayDeviceHostWaits(device_, &waits));
+    return waits;
+  }
+  std::vector<std::pair<std::string, double>> stageTimes() const override { return {}; }
+
+ private:
+  void release() {
+    for (SixwayRenderer& r : renderers_) sixwayDestroyRenderer(r), r = nullptr;
+    for (SixwaySimulation& s : simulations_) sixwayDestroySimulation(s), s = nullptr;
+    sixwayDestroyDevice(device_);
+    device_ = nullptr;
+  }
+
+  std::function<void(const std::function<void(VkCommandBuffer)>&)> submitAndWait_;
+  VkFormat colorFormat_, depthFormat_;
+  SixwayDevice device_ = nullptr;
+  SixwaySimulation simulations_[2] = {nullptr, nullptr};
+  SixwayRenderer renderers_[2] = {nullptr, nullptr};
+  glm::vec3 placements_[2];
+  bool recorded_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<SmokeInstances> cApiInstances(const SmokeSetup& setup) {
+  return std::make_unique<CApiInstances>(setup);
+}

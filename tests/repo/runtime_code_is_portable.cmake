@@ -1,0 +1,31 @@
+# The runtime's code includes no operating-system header: what it needs of the system goes through
+# src/platform/platform.h, whose POSIX side (posix.cpp) is the one file allowed them. Scans every source file
+# under DIRS and each file of FILES; fails listing path:line and the header for each match. Usage:
+#   cmake -DDIRS=<dir;...> -DFILES=<file;...> -P runtime_code_is_portable.cmake
+cmake_minimum_required(VERSION 3.25)
+# POSIX and Windows headers (unistd.h, fcntl.h, sys/*.h, windows.h, ...), not the C and C++ standard ones.
+set(pattern "#[ \t]*include[ \t]*[<\"](unistd|fcntl|signal|pthread|dlfcn|dirent|poll|termios|spawn|sched|pwd|grp|syslog|malloc|[Ww]indows|io|direct|(sys|netinet|arpa|linux)/[a-z_0-9]+)\\.h[>\"]")
+set(files ${FILES})
+foreach(dir IN LISTS DIRS)
+  file(GLOB_RECURSE found "${dir}/*.h" "${dir}/*.hpp" "${dir}/*.inl" "${dir}/*.cpp" "${dir}/*.c")
+  list(APPEND files ${found})
+endforeach()
+if(NOT files)
+  message(FATAL_ERROR "runtime_code_is_portable: nothing to scan")
+endif()
+set(failures "")
+foreach(file IN LISTS files)
+  file(STRINGS "${file}" lines)
+  set(number 0)
+  foreach(line IN LISTS lines)
+    math(EXPR number "${number} + 1")
+    if(line MATCHES "${pattern}")
+      string(APPEND failures "${file}:${number}: ${CMAKE_MATCH_0}\n")
+    endif()
+  endforeach()
+endforeach()
+list(LENGTH files count)
+if(failures)
+  message(FATAL_ERROR "system headers in the runtime's code (use src/platform/platform.h):\n${failures}")
+endif()
+message(STATUS "${count} files of the runtime include no system header")
