@@ -157,6 +157,7 @@ typedef struct SixwayRendererInfo {
   const VkFormat* renderingColors;
   uint32_t renderingColorCount;
   VkFormat renderingDepth, renderingStencil;
+  int lightmapPacking; /* LightmapPacking of sixwayRendererLightmaps: 0 Unity, 1 RLT/BBF, 2 O3DE */
 } SixwayRendererInfo;
 SixwayResult sixwayCreateRendererFromInfo(SixwayDevice device, SixwaySimulation simulation,
                                           const SixwayRendererInfo* info, SixwayRenderer* renderer);

@@ -102,9 +102,15 @@ struct CompositeTargets {
   VkRect2D viewport{};
 };
 
+// How lightmaps() packs the eight channels into its two textures (docs/formats.md, "Packing presets"):
+// Unity's A = (right, top, back, alpha), B = (left, bottom, front, emissive), the network's own; RLT =
+// (right, left, top, alpha), BBF = (bottom, back, front, emissive); O3DE's TLRB = (top, left, right,
+// bottom), FB = (front, back, emissive, alpha). Other than Unity's costs a pass ("repack") per frame.
+enum class LightmapPacking { Unity, RltBbf, O3de };
+
 // The last frame's six-way lightmaps and where they go (docs/embedding.md, "A frame", lightmaps only): two
-// images in Unity's packing, A = (right, top, back, alpha), B = (left, bottom, front,
-// emissive) (docs/conventions.md, "Channels and packing"), sampled, in VK_IMAGE_LAYOUT_GENERAL, written by
+// images in the renderer's LightmapPacking (`a` the first texture, `b` the second;
+// docs/conventions.md, "Channels and packing"), sampled, in VK_IMAGE_LAYOUT_GENERAL, written by
 // the frame's recorded work (a full barrier after it); and the camera-facing quad they cover, in the world,
 // at the middle of the smoke's depth: texel row 0 along its top edge. The images and views live as long as
 // the renderer; the corners change with the camera and the smoke.
@@ -125,8 +131,9 @@ struct RendererOptions {
   // "Several instances"): the scenes' lightmap sizes and emission must agree, fp16 is that network's, and
   // the renderers sharing it record into one queue from one thread. The network lives as long as any of them.
   const SmokeRenderer* shareNetwork = nullptr;
-  bool fp16 = false;    // fp16 feature maps where the device has 16-bit storage
-  bool shadows = true;  // obstacles shadow the smoke
+  bool fp16 = false;                                 // fp16 feature maps where the device has 16-bit storage
+  bool shadows = true;                               // obstacles shadow the smoke
+  LightmapPacking packing = LightmapPacking::Unity;  // of lightmaps()
   // Shadow-atlas tiles: the most lights that cast shadows at once (a note names a light beyond them).
   // Unset: one per shadow-casting light of the scene; set it when setLights() may add more.
   std::optional<uint32_t> shadowedLights;

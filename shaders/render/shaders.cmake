@@ -13,5 +13,6 @@ list(APPEND SIXWAY_SHADERS
   render/guide_march.comp
   render/motion_field.comp
   render/guide_lightmaps.comp
+  render/repack_lightmaps.comp
   render/obstacle_ray_probe.comp
 )

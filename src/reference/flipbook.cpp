@@ -112,24 +112,6 @@ void requireFlipbookFits(const FlipbookLayout& layout, const std::string& source
                     " per side; reduce the frames or the tile size");
 }
 
-namespace {
-
-// Two RGBA textures named `first` and `second`, holding the eight channels in the order given.
-ChannelPacking twoTextures(const std::string& first,
-                           const std::array<render::SixWayChannel, 4>& firstChannels,
-                           const std::string& second,
-                           const std::array<render::SixWayChannel, 4>& secondChannels) {
-  ChannelPacking p;
-  p.textures = {first, second};
-  for (int c = 0; c < 4; ++c) {
-    p.slots[firstChannels[c]] = {0, c};
-    p.slots[secondChannels[c]] = {1, c};
-  }
-  return p;
-}
-
-}  // namespace
-
 std::optional<EmissiveMask> unityEmissiveMask(const scene::Smoke& smoke) {
   const std::optional<float> straight = render::emissiveStraightScale(smoke);
   const std::vector<render::GradientKey> keys = render::emissiveGradientFromRamp(smoke.emission);
@@ -147,27 +129,6 @@ std::optional<EmissiveMask> unityEmissiveMask(const scene::Smoke& smoke) {
   mask.gradient.push_back({0.0f, glm::vec3(0.0f)});
   for (const render::GradientKey& k : keys) mask.gradient.push_back({k.position / top, k.color / brightest});
   return mask;
-}
-
-ChannelPacking unityPacking() {
-  return twoTextures("A", {render::Right, render::Top, render::Back, render::Alpha}, "B",
-                     {render::Left, render::Bottom, render::Front, render::Emissive});
-}
-
-const std::vector<std::string>& packingPresetNames() {
-  static const std::vector<std::string> names = {"unity", "rlt-bbf", "o3de"};
-  return names;
-}
-
-ChannelPacking packingPreset(const std::string& name) {
-  if (name == "unity") return unityPacking();
-  if (name == "rlt-bbf")
-    return twoTextures("RLT", {render::Right, render::Left, render::Top, render::Alpha}, "BBF",
-                       {render::Bottom, render::Back, render::Front, render::Emissive});
-  if (name == "o3de")
-    return twoTextures("TLRB", {render::Top, render::Left, render::Right, render::Bottom}, "FB",
-                       {render::Front, render::Back, render::Emissive, render::Alpha});
-  throw std::invalid_argument("packingPreset: unknown packing " + name);
 }
 
 std::vector<io::Image> packFlipbook(const std::vector<io::Image>& frames, const FlipbookLayout& layout,

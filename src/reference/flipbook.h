@@ -14,6 +14,7 @@
 
 #include "io/image.h"
 #include "reference/scattering.h"
+#include "render/lightmap_packing.h"
 #include "render/sixway.h"
 #include "render/sixway_shading.h"
 #include "scene/scene.h"
@@ -36,25 +37,11 @@ inline constexpr int kMaxFlipbookSide = 16384;
 // kMaxFlipbookSide, with what to reduce.
 void requireFlipbookFits(const FlipbookLayout& layout, const std::string& source);
 
-// Where each six-way channel lives: a texture (by index into `textures`) and a component 0..3 (R, G, B, A).
-// A channel without a texture reads as 0 (only emissive may be absent).
-struct ChannelPacking {
-  struct Slot {
-    int texture = -1;
-    int component = 0;
-  };
-  std::vector<std::string> textures;
-  std::array<Slot, render::kSixWayChannels> slots;
-};
-
-// Unity VFX Graph's six-way packing: A = (Right, Top, Back, alpha), B = (Left, Bottom, Front, emissive).
-ChannelPacking unityPacking();
-// The packings `sixway bake --packing` offers (docs/formats.md, "Packing presets"): "unity" (the above),
-// "rlt-bbf" (RLT = (Right, Left, Top, alpha), BBF = (Bottom, Back, Front, emissive): O3DE's RtLftTp_BtBckFr
-// mode, the layout of EmberGen-style exports) and "o3de" (O3DE's default TpLftRtBt_FrBck mode: TLRB = (Top,
-// Left, Right, Bottom), FB = (Front, Back, emissive, alpha), alpha where O3DE's packed opacity reads it).
-ChannelPacking packingPreset(const std::string& name);
-const std::vector<std::string>& packingPresetNames();
+// The packings (render/lightmap_packing.h) the flipbooks are written and read in.
+using render::ChannelPacking;
+using render::packingPreset;
+using render::packingPresetNames;
+using render::unityPacking;
 
 // The textures (RGBA, one per packing texture) holding `frames` (eight-channel tiles in sixWayChannelNames()
 // order, of the layout's tile size); unused tiles are 0.

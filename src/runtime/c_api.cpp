@@ -325,6 +325,10 @@ SixwayResult sixwayCreateRendererFromInfo(SixwayDevice device, SixwaySimulation 
     if (info->weightsData)
       options.weightsData = std::span(static_cast<const std::byte*>(info->weightsData), info->weightsSize);
     if (info->shareNetwork) options.shareNetwork = &info->shareNetwork->renderer;
+    if (info->lightmapPacking < 0 || info->lightmapPacking > 2)
+      throw std::invalid_argument("sixwayCreateRendererFromInfo: lightmapPacking " +
+                                  std::to_string(info->lightmapPacking) + " is not 0, 1 or 2");
+    options.packing = sixway::LightmapPacking(info->lightmapPacking);
     if (info->renderingColorCount > 0) {
       const sixway::RenderingFormats formats{
           {info->renderingColors, info->renderingColors + info->renderingColorCount},

@@ -66,6 +66,7 @@ class FrameRenderer {
   const std::vector<std::string>& notes() const { return notes_; }
   RealtimeFrame& frame() { return frame_; }
   const RealtimeFrame& frame() const { return frame_; }
+  LightmapSource& source() { return *source_; }
   const LightmapSource& source() const { return *source_; }
 
  private:

@@ -58,6 +58,15 @@ void NetworkLightmaps::record(gpu::Sequence& s, RealtimeFrame& frame) {
   s.beginStage("network");
   network_->record(s, {frame.guide(), frame.guideEmission()}, frame.lightmaps().a, frame.lightmaps().b);
   s.endStage();
+  if (packed_) packed_->record(s, frame.lightmaps());
+}
+
+void NetworkLightmaps::packLightmaps(const gpu::Context& context, const gpu::PipelineCache& cache,
+                                     const render::ChannelPacking& packing) {
+  if (packing.textures == render::unityPacking().textures)
+    packed_.reset();
+  else
+    packed_ = std::make_unique<render::LightmapRepack>(context, cache, size_, packing);
 }
 
 }  // namespace sixway::runtime

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "nn/network.h"
+#include "render/lightmap_repack.h"
 #include "runtime/lightmap_source.h"
 
 namespace sixway::runtime {
@@ -27,9 +28,16 @@ class NetworkLightmaps : public LightmapSource {
   void record(gpu::Sequence& sequence, RealtimeFrame& frame) override;
   // Sets this scene's albedo, which the next recording of the frame writes into its command buffer.
   render::ImagePlane update(RealtimeFrame& frame, const SourceFrame& current) override;
+  // From now on the lightmaps are also written in `packing` after the network (stage "repack"); Unity's
+  // needs no pass (the frame's own A and B). Before the frame is recorded.
+  void packLightmaps(const gpu::Context& context, const gpu::PipelineCache& cache,
+                     const render::ChannelPacking& packing);
+  // The lightmaps in that packing, or nullptr for Unity's.
+  const render::LightmapRepack* packed() const { return packed_.get(); }
 
  private:
   std::shared_ptr<nn::Network> network_;
+  std::unique_ptr<render::LightmapRepack> packed_;
   float albedo_;
   uint32_t size_;
   bool emission_;

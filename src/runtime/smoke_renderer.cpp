@@ -101,7 +101,10 @@ SmokeRenderer::Impl::Impl(const gpu::Context& context, const gpu::PipelineCache&
       renderer(
           context, cache, scene,
           engine.value_or(runtime::OwnTarget{uint32_t(scene.render.width), uint32_t(scene.render.height)}),
-          shadowTiles(scene, options), networkSource(context, cache, scene, options)) {}
+          shadowTiles(scene, options), networkSource(context, cache, scene, options)) {
+  static const char* const kPresets[] = {"unity", "rlt-bbf", "o3de"};
+  network().packLightmaps(context, cache, render::packingPreset(kPresets[int(options.packing)]));
+}
 
 std::unique_ptr<runtime::NetworkLightmaps> SmokeRenderer::Impl::networkSource(
     const gpu::Context& context, const gpu::PipelineCache& cache, const scene::Scene& scene,
@@ -109,8 +112,7 @@ std::unique_ptr<runtime::NetworkLightmaps> SmokeRenderer::Impl::networkSource(
   if (!options.shareNetwork)
     return std::make_unique<runtime::NetworkLightmaps>(context, cache, scene, weightsOf(options),
                                                        options.fp16);
-  const auto& other =
-      static_cast<const runtime::NetworkLightmaps&>(options.shareNetwork->impl_->renderer.source());
+  const auto& other = options.shareNetwork->impl_->network();
   if (&options.shareNetwork->impl_->context != &context)
     throw std::invalid_argument("RendererOptions::shareNetwork: a renderer of another device");
   try {
@@ -328,13 +330,13 @@ uint32_t SmokeRenderer::height() const {
 
 LightmapTextures SmokeRenderer::lightmaps() const {
   const runtime::RealtimeFrame& frame = impl_->renderer.frame();
-  const gpu::Image& a = frame.lightmaps().a;
+  const render::LightmapRepack* packed = impl_->network().packed();
+  const gpu::Image& a = packed ? packed->texture(0) : frame.lightmaps().a;
+  const gpu::Image& b = packed ? packed->texture(1) : frame.lightmaps().b;
   std::array<glm::vec3, 4> corners = frame.billboardCorners();
   for (glm::vec3& c : corners) c = runtime::worldPoint(impl_->simulation.placement(), c);
-  return {a.handle(),      frame.lightmaps().b.handle(),
-          a.view(),        frame.lightmaps().b.view(),
-          a.desc().format, a.desc().width,
-          a.desc().height, corners};
+  return {a.handle(),      b.handle(),     a.view(),        b.view(),
+          a.desc().format, a.desc().width, a.desc().height, corners};
 }
 
 }  // namespace sixway

@@ -33,6 +33,12 @@ struct SmokeRenderer::Impl {
                                                                   const scene::Scene& scene,
                                                                   const RendererOptions& options);
 
+  // The renderer's lightmap source: always the network's.
+  runtime::NetworkLightmaps& network() { return static_cast<runtime::NetworkLightmaps&>(renderer.source()); }
+  const runtime::NetworkLightmaps& network() const {
+    return static_cast<const runtime::NetworkLightmaps&>(renderer.source());
+  }
+
   const gpu::Context& context;
   const SmokeSimulation& simulation;
   const scene::Scene& scene;  // the simulation's
