@@ -6,13 +6,18 @@
 // speed does not; its own host allocator and pipeline cache; sixway's one-time work submitted by the engine
 // itself. Two smoke instances placed in its world share one network and are drawn back to front: one with
 // FrameTargets (sixway moves the images to what it needs and back), one inside the engine's own transparent
-// pass (its dynamic rendering, depth read-only). Mid-run the window grows (the targets are made anew at the
-// new size), the engine's emitter circles and is switched off and on, and an obstacle is moved by the
-// engine's own logic. Writes the last frame as a PNG and prints what sixway submitted and waited for after
-// the first frame; fails on any validation message.
-//   embed_vulkan --scene S.json --weights W.safetensors [--frames N] [--c-api] --out frame.png
+// pass (its dynamic rendering, depth read-only), both lit by the engine's sun. Mid-run the window grows (the
+// targets are made anew at the new size), the engine's emitter circles and is switched off and on, and an
+// obstacle is moved by the engine's own logic. Writes the last frame as a PNG and prints what sixway
+// submitted and waited for after the first frame; fails on any validation message. With --own-material,
+// instance A is shaded by the engine's own material (material.frag: Unity's six-way formula over sixway's
+// lightmaps in the RLT/BBF packing) instead of sixway's composite; --psnr-against compares the PNG with
+// another run's.
+//   embed_vulkan --scene S.json --weights W.safetensors [--frames N] [--c-api] [--own-material]
+//                [--psnr-against IMAGE --min-psnr DB] --out frame.png
 #include <sixway/device.h>
 #define STB_IMAGE_WRITE_IMPLEMENTATION
+#include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
 #include <vulkan/vulkan.h>
 
@@ -30,6 +35,8 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -66,15 +73,18 @@ std::vector<uint32_t> readSpirv(const std::string& path) {
 struct Options {
   std::string scene, weights, out;
   int frames = 6;
-  bool cApi = false;  // sixway through its C API
+  bool cApi = false;         // sixway through its C API
+  bool ownMaterial = false;  // instance A shaded by the engine's material (material.frag)
+  std::string psnrAgainst;   // an image to compare the PNG with
+  double minPsnr = 0.0;      // dB: below it the run fails
 };
 
 Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string key = argv[i];
-    if (key == "--c-api") {
-      o.cApi = true;
+    if (key == "--c-api" || key == "--own-material") {
+      (key == "--c-api" ? o.cApi : o.ownMaterial) = true;
       continue;
     }
     if (i + 1 == argc) throw std::runtime_error(key + ": needs a value");
@@ -87,12 +97,17 @@ Options parse(int argc, char** argv) {
       o.out = value;
     else if (key == "--frames")
       o.frames = std::stoi(value);
+    else if (key == "--psnr-against")
+      o.psnrAgainst = value;
+    else if (key == "--min-psnr")
+      o.minPsnr = std::stod(value);
     else
       throw std::runtime_error("unknown option " + key);
   }
   if (o.scene.empty() || o.weights.empty() || o.out.empty() || o.frames < 1)
     throw std::runtime_error(
-        "usage: embed_vulkan --scene S.json --weights W.safetensors [--frames N] [--c-api] --out F.png");
+        "usage: embed_vulkan --scene S.json --weights W.safetensors [--frames N] [--c-api] [--own-material] "
+        "[--psnr-against IMAGE --min-psnr DB] --out F.png");
   return o;
 }
 
@@ -239,6 +254,64 @@ void beginRendering(VkCommandBuffer cmd, const VkRenderingAttachmentInfo& color,
   vkCmdBeginRendering(cmd, &info);
 }
 
+// One of the engine's graphics pipelines: the two SPIR-V stages, no vertex input (positions made in the
+// shader), dynamic viewport and scissor, one colour and one depth attachment.
+VkPipeline enginePipeline(const Engine& e, const char* vertexFile, const char* fragmentFile,
+                          VkPipelineLayout layout, const VkPipelineDepthStencilStateCreateInfo& depth,
+                          const VkPipelineColorBlendAttachmentState& blend, VkFormat colorFormat,
+                          VkFormat depthFormat) {
+  VkShaderModule modules[2];
+  const char* files[2] = {vertexFile, fragmentFile};
+  for (int i = 0; i < 2; ++i) {
+    const std::vector<uint32_t> words = readSpirv(files[i]);
+    VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO, nullptr, 0, words.size() * 4,
+                                  words.data()};
+    VK(vkCreateShaderModule(e.device, &info, nullptr, &modules[i]));
+  }
+  VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr,
+                                                0, VK_SHADER_STAGE_VERTEX_BIT, modules[0], "main"},
+                                               {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr,
+                                                0, VK_SHADER_STAGE_FRAGMENT_BIT, modules[1], "main"}};
+  VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  VkPipelineInputAssemblyStateCreateInfo assembly{
+      VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+  assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+  viewport.viewportCount = viewport.scissorCount = 1;
+  VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+  raster.cullMode = VK_CULL_MODE_NONE;
+  raster.lineWidth = 1.0f;
+  VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+  multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  VkPipelineColorBlendStateCreateInfo blendState{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  blendState.attachmentCount = 1;
+  blendState.pAttachments = &blend;
+  VkDynamicState dynamics[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+  VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO, nullptr, 0,
+                                           2, dynamics};
+  VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+  rendering.colorAttachmentCount = 1;
+  rendering.pColorAttachmentFormats = &colorFormat;
+  rendering.depthAttachmentFormat = depthFormat;
+  VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};
+  info.stageCount = 2;
+  info.pStages = stages;
+  info.pVertexInputState = &vertexInput;
+  info.pInputAssemblyState = &assembly;
+  info.pViewportState = &viewport;
+  info.pRasterizationState = &raster;
+  info.pMultisampleState = &multisample;
+  info.pDepthStencilState = &depth;
+  info.pColorBlendState = &blendState;
+  info.pDynamicState = &dynamic;
+  info.layout = layout;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  const VkResult result = vkCreateGraphicsPipelines(e.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
+  for (VkShaderModule m : modules) vkDestroyShaderModule(e.device, m, nullptr);
+  VK(result);
+  return pipeline;
+}
+
 // The engine's scene pass: the floor and the box, depth tested, into the colour and depth images.
 struct ScenePass {
   const Engine& engine;
@@ -250,67 +323,18 @@ struct ScenePass {
   };
 
   ScenePass(const Engine& e, VkFormat colorFormat, VkFormat depthFormat) : engine(e) {
-    VkShaderModule modules[2];
-    const char* files[2] = {EMBED_SHADER_DIR "/scene.vert.spv", EMBED_SHADER_DIR "/scene.frag.spv"};
-    for (int i = 0; i < 2; ++i) {
-      const std::vector<uint32_t> words = readSpirv(files[i]);
-      VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO, nullptr, 0, words.size() * 4,
-                                    words.data()};
-      VK(vkCreateShaderModule(e.device, &info, nullptr, &modules[i]));
-    }
     VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(Push)};
     VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     layoutInfo.pushConstantRangeCount = 1;
     layoutInfo.pPushConstantRanges = &range;
     VK(vkCreatePipelineLayout(e.device, &layoutInfo, nullptr, &layout));
-
-    VkPipelineShaderStageCreateInfo stages[2] = {
-        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT,
-         modules[0], "main"},
-        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT,
-         modules[1], "main"}};
-    VkPipelineVertexInputStateCreateInfo vertexInput{
-        VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-    VkPipelineInputAssemblyStateCreateInfo assembly{
-        VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-    VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-    viewport.viewportCount = viewport.scissorCount = 1;
-    VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-    raster.cullMode = VK_CULL_MODE_NONE;
-    raster.lineWidth = 1.0f;
-    VkPipelineMultisampleStateCreateInfo multisample{
-        VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-    multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
     VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
     depth.depthTestEnable = depth.depthWriteEnable = VK_TRUE;
     depth.depthCompareOp = VK_COMPARE_OP_GREATER;  // reversed-Z: nearer is larger
     VkPipelineColorBlendAttachmentState blend{};
     blend.colorWriteMask = 0xf;
-    VkPipelineColorBlendStateCreateInfo blendState{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-    blendState.attachmentCount = 1;
-    blendState.pAttachments = &blend;
-    VkDynamicState dynamics[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-    VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO, nullptr, 0,
-                                             2, dynamics};
-    VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
-    rendering.colorAttachmentCount = 1;
-    rendering.pColorAttachmentFormats = &colorFormat;
-    rendering.depthAttachmentFormat = depthFormat;
-    VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};
-    info.stageCount = 2;
-    info.pStages = stages;
-    info.pVertexInputState = &vertexInput;
-    info.pInputAssemblyState = &assembly;
-    info.pViewportState = &viewport;
-    info.pRasterizationState = &raster;
-    info.pMultisampleState = &multisample;
-    info.pDepthStencilState = &depth;
-    info.pColorBlendState = &blendState;
-    info.pDynamicState = &dynamic;
-    info.layout = layout;
-    VK(vkCreateGraphicsPipelines(e.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
-    for (VkShaderModule m : modules) vkDestroyShaderModule(e.device, m, nullptr);
+    pipeline = enginePipeline(e, EMBED_SHADER_DIR "/scene.vert.spv", EMBED_SHADER_DIR "/scene.frag.spv",
+                              layout, depth, blend, colorFormat, depthFormat);
   }
   ~ScenePass() {
     vkDestroyPipeline(engine.device, pipeline, nullptr);
@@ -338,6 +362,114 @@ struct ScenePass {
     vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(Push), &push);
     vkCmdDraw(cmd, 6 + 36, 1, 0, 0);
     vkCmdEndRendering(cmd);
+  }
+};
+
+// The engine's own smoke material (material.vert, material.frag) inside its transparent pass: the quad of
+// instance A's lightmaps, depth tested against the engine's depth (read-only, reversed-Z), blended "over".
+struct MaterialPass {
+  const Engine& engine;
+  VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  VkSampler sampler = VK_NULL_HANDLE;
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  VkDescriptorSet set = VK_NULL_HANDLE;
+  VkImageView written[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};  // the views the set holds
+  struct Push {
+    glm::vec4 clipCorners[4];
+    glm::vec4 toLight, irradiance, ambient;
+  };
+
+  MaterialPass(const Engine& e, VkFormat colorFormat, VkFormat depthFormat) : engine(e) {
+    VkDescriptorSetLayoutBinding bindings[2];
+    for (uint32_t b = 0; b < 2; ++b)
+      bindings[b] = {b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+    VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    setInfo.bindingCount = 2;
+    setInfo.pBindings = bindings;
+    VK(vkCreateDescriptorSetLayout(e.device, &setInfo, nullptr, &setLayout));
+    VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(Push)};
+    VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    layoutInfo.setLayoutCount = 1;
+    layoutInfo.pSetLayouts = &setLayout;
+    layoutInfo.pushConstantRangeCount = 1;
+    layoutInfo.pPushConstantRanges = &range;
+    VK(vkCreatePipelineLayout(e.device, &layoutInfo, nullptr, &layout));
+    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2};
+    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    poolInfo.maxSets = 1;
+    poolInfo.poolSizeCount = 1;
+    poolInfo.pPoolSizes = &size;
+    VK(vkCreateDescriptorPool(e.device, &poolInfo, nullptr, &pool));
+    VkDescriptorSetAllocateInfo allocate{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO, nullptr, pool, 1,
+                                         &setLayout};
+    VK(vkAllocateDescriptorSets(e.device, &allocate, &set));
+    VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    samplerInfo.magFilter = samplerInfo.minFilter = VK_FILTER_LINEAR;
+    samplerInfo.addressModeU = samplerInfo.addressModeV = samplerInfo.addressModeW =
+        VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    VK(vkCreateSampler(e.device, &samplerInfo, nullptr, &sampler));
+
+    VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    depth.depthTestEnable = VK_TRUE;  // tested, not written: the depth is read-only in the transparent pass
+    depth.depthCompareOp = VK_COMPARE_OP_GREATER_OR_EQUAL;  // reversed-Z
+    VkPipelineColorBlendAttachmentState blend{};
+    blend.blendEnable = VK_TRUE;  // premultiplied "over"
+    blend.srcColorBlendFactor = blend.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+    blend.dstColorBlendFactor = blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+    blend.colorBlendOp = blend.alphaBlendOp = VK_BLEND_OP_ADD;
+    blend.colorWriteMask = 0xf;
+    pipeline = enginePipeline(e, EMBED_SHADER_DIR "/material.vert.spv", EMBED_SHADER_DIR "/material.frag.spv",
+                              layout, depth, blend, colorFormat, depthFormat);
+  }
+  ~MaterialPass() {
+    vkDestroyPipeline(engine.device, pipeline, nullptr);
+    vkDestroyPipelineLayout(engine.device, layout, nullptr);
+    vkDestroyDescriptorPool(engine.device, pool, nullptr);
+    vkDestroyDescriptorSetLayout(engine.device, setLayout, nullptr);
+    vkDestroySampler(engine.device, sampler, nullptr);
+  }
+
+  // Inside the transparent pass: the quad of `maps` seen through `viewProjection`, lit by the sun (toward
+  // it, in the world; colour · intensity) in the six-way frame of `view` (x right, y up, z away from the
+  // camera), and the ambient radiance.
+  void draw(VkCommandBuffer cmd, const PackedLightmaps& maps, const glm::mat4& view,
+            const glm::mat4& viewProjection, glm::vec3 sun, glm::vec3 irradiance, glm::vec3 ambient,
+            uint32_t width, uint32_t height) {
+    if (maps.rlt != written[0] || maps.bbf != written[1]) {  // the renderer's views: the same for its life
+      VkDescriptorImageInfo images[2] = {{sampler, maps.rlt, VK_IMAGE_LAYOUT_GENERAL},
+                                         {sampler, maps.bbf, VK_IMAGE_LAYOUT_GENERAL}};
+      VkWriteDescriptorSet writes[2];
+      for (uint32_t b = 0; b < 2; ++b) {
+        writes[b] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        writes[b].dstSet = set;
+        writes[b].dstBinding = b;
+        writes[b].descriptorCount = 1;
+        writes[b].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        writes[b].pImageInfo = &images[b];
+      }
+      vkUpdateDescriptorSets(engine.device, 2, writes, 0, nullptr);
+      written[0] = maps.rlt;
+      written[1] = maps.bbf;
+    }
+    Push push{};
+    for (int c = 0; c < 4; ++c) push.clipCorners[c] = viewProjection * glm::vec4(maps.corners[c], 1.0f);
+    const glm::vec3 right(view[0][0], view[1][0], view[2][0]), up(view[0][1], view[1][1], view[2][1]),
+        away(-view[0][2], -view[1][2], -view[2][2]);
+    const glm::vec3 d = glm::normalize(sun);
+    push.toLight = glm::vec4(glm::dot(d, right), glm::dot(d, up), glm::dot(d, away), 0.0f);
+    push.irradiance = glm::vec4(irradiance, 0.0f);
+    push.ambient = glm::vec4(ambient, 0.0f);
+    VkViewport viewport{0, 0, float(width), float(height), 0, 1};
+    VkRect2D scissor{{0, 0}, {width, height}};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
+    vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                       sizeof(Push), &push);
+    vkCmdDraw(cmd, 6, 1, 0, 0);
   }
 };
 
@@ -570,6 +702,32 @@ bool writePng(const Engine& engine, FrameLoop& loop, const FrameImages& images, 
                         int(images.width) * 4) != 0;
 }
 
+// The scene file's constant ambient radiance (its ambient.color; none: black): the engine's material adds
+// what sixway's shading adds for the scene.
+glm::vec3 sceneAmbient(const std::string& scene) {
+  std::ifstream in(scene);
+  const nlohmann::json json = nlohmann::json::parse(in);
+  if (!json.contains("ambient") || !json["ambient"].contains("color")) return glm::vec3(0.0f);
+  const auto& c = json["ambient"]["color"];
+  return glm::vec3(c[0].get<float>(), c[1].get<float>(), c[2].get<float>());
+}
+
+// PSNR (dB) of two 8-bit PNGs of one size over their RGB values.
+double psnr(const std::string& a, const std::string& b) {
+  int width[2], height[2], channels;
+  unsigned char* pixels[2] = {stbi_load(a.c_str(), &width[0], &height[0], &channels, 4),
+                              stbi_load(b.c_str(), &width[1], &height[1], &channels, 4)};
+  const bool same = pixels[0] && pixels[1] && width[0] == width[1] && height[0] == height[1];
+  double sum = 0.0;
+  for (size_t i = 0; same && i < size_t(width[0]) * height[0] * 4; ++i)
+    if (i % 4 != 3) sum += std::pow(double(pixels[0][i]) - pixels[1][i], 2.0);
+  stbi_image_free(pixels[0]);
+  stbi_image_free(pixels[1]);
+  if (!same) throw std::runtime_error(b + ": cannot be read, or its size is not " + a + "'s");
+  const double mse = sum / (3.0 * width[0] * height[0]);
+  return mse == 0.0 ? INFINITY : 10.0 * std::log10(255.0 * 255.0 / mse);
+}
+
 int run(const Options& options) {
   constexpr uint32_t kFramesInFlight = FrameLoop::kFramesInFlight;
   constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT, kDepthFormat = VK_FORMAT_D32_SFLOAT;
@@ -589,7 +747,13 @@ int run(const Options& options) {
                    kDepthFormat,
                    // B behind A to the left, turned.
                    glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(-0.9f, 0.0f, -1.0f)),
-                               glm::radians(40.0f), glm::vec3(0.0f, 1.0f, 0.0f))};
+                               glm::radians(40.0f), glm::vec3(0.0f, 1.0f, 0.0f)),
+                   options.ownMaterial,
+                   // The engine's sun: the smoke and its own material are lit by it.
+                   glm::normalize(glm::vec3(0.3f, 1.0f, 0.4f)), glm::vec3(3.0f)};
+  std::optional<MaterialPass> material;
+  if (options.ownMaterial) material.emplace(engine, kColorFormat, kDepthFormat);
+  const glm::vec3 ambient = sceneAmbient(options.scene);
   const glm::mat4 view =
       glm::lookAtRH(glm::vec3(0.9f, 0.8f, 2.2f), glm::vec3(0.0f, 0.55f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
   const glm::vec3 eye = glm::vec3(glm::inverse(view)[3]);
@@ -644,6 +808,7 @@ int run(const Options& options) {
       smoke->recordSimulations(cmd, frame, seconds);
       // B's lightmaps before the transparent pass, where its depth is read in the read-only layout.
       smoke->recordLightmapsB(cmd, frame, frameImages);
+      if (material) smoke->recordLightmapsA(cmd, frame, frameImages);
       changeLayout(cmd, target.depth.image, VK_IMAGE_ASPECT_DEPTH_BIT,
                    VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
       // Far to near, by the distance to the middle of each instance's billboard.
@@ -654,7 +819,14 @@ int run(const Options& options) {
           smoke->recordCompositeB(cmd);
           vkCmdEndRendering(cmd);
         } else {
-          smoke->recordA(cmd, frame, frameImages);
+          if (material) {
+            beginTransparentPass(cmd, target.color.view, target.depth.view, target.width, target.height);
+            material->draw(cmd, smoke->lightmapsA(), view, projection * view, setup.sunDirection,
+                           setup.sunIrradiance, ambient, target.width, target.height);
+            vkCmdEndRendering(cmd);
+          } else {
+            smoke->recordA(cmd, frame, frameImages);
+          }
         }
       }
       changeLayout(cmd, target.color.image, VK_IMAGE_ASPECT_COLOR_BIT,
@@ -682,7 +854,14 @@ int run(const Options& options) {
       static_cast<unsigned long long>(waitsAtEnd - waitsAfterFirstFrame),
       static_cast<unsigned long long>(loop.oneTimeJobs - jobsAfterFirstFrame), allocator.live.size());
   for (const auto& [name, ms] : times) std::printf("  %-20s %8.2f ms\n", name.c_str(), ms);
-  return validationMessages.load() == 0 && allocator.live.empty() ? 0 : 1;
+  bool similar = true;
+  if (!options.psnrAgainst.empty()) {
+    const double decibels = psnr(options.out, options.psnrAgainst);
+    similar = decibels >= options.minPsnr;
+    std::printf("PSNR %.1f dB against %s (at least %.1f asked): %s\n", decibels, options.psnrAgainst.c_str(),
+                options.minPsnr, similar ? "similar" : "too different");
+  }
+  return validationMessages.load() == 0 && allocator.live.empty() && similar ? 0 : 1;
 }
 
 }  // namespace

@@ -1,8 +1,9 @@
 #pragma once
 // The engine's two smoke instances behind the calls its frame loop makes, through sixway's C++ API
 // (smoke_instances_cpp.cpp) or its C API (smoke_instances_c.cpp): the same frame either way. Instance A is
-// drawn with per-frame targets (sixway moves the images to what it needs and back), instance B inside the
-// engine's transparent pass; B runs A's network.
+// drawn with per-frame targets (sixway moves the images to what it needs and back), or by the engine's own
+// material from A's lightmaps in the RLT/BBF packing; instance B inside the engine's transparent pass; B runs
+// A's network. Both are lit by the engine's sun.
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
@@ -30,6 +31,15 @@ struct SmokeSetup {
   std::string scene, weights;
   VkFormat colorFormat = VK_FORMAT_UNDEFINED, depthFormat = VK_FORMAT_UNDEFINED;
   glm::mat4 placementB{1.0f};  // where instance B stands in the world (A: where its scene puts it)
+  bool ownMaterialA = false;   // A's lightmaps for the engine's material, not sixway's composite
+  glm::vec3 sunDirection{0.0f, 1.0f, 0.0f}, sunIrradiance{3.14159265f};  // toward the sun; colour · intensity
+};
+
+// A's lightmaps this frame for the engine's material: RLT and BBF (sampled, GENERAL) and the world corners of
+// their quad (bottom-left, bottom-right, top-right, top-left).
+struct PackedLightmaps {
+  VkImageView rlt = VK_NULL_HANDLE, bbf = VK_NULL_HANDLE;
+  glm::vec3 corners[4];
 };
 
 // The engine's emitter in instance A this frame (sixway::Emitter's fields).
@@ -62,6 +72,9 @@ class SmokeInstances {
   virtual void recordSimulations(VkCommandBuffer commands, uint64_t frame, double seconds) = 0;
   virtual void recordLightmapsB(VkCommandBuffer commands, uint64_t frame, const FrameImagesView& images) = 0;
   virtual void recordA(VkCommandBuffer commands, uint64_t frame, const FrameImagesView& images) = 0;
+  // With the engine's own material: A's lightmaps (before the transparent pass), then where they are.
+  virtual void recordLightmapsA(VkCommandBuffer commands, uint64_t frame, const FrameImagesView& images) = 0;
+  virtual PackedLightmaps lightmapsA() const = 0;
   virtual void recordCompositeB(VkCommandBuffer commands) = 0;
   // The engine destroyed the images it passed (a resize).
   virtual void forgetTargets() = 0;

@@ -47,6 +47,12 @@ class CApiInstances : public SmokeInstances {
       SixwayRendererInfo a{};
       a.weightsPath = s.weights.c_str();
       a.colorFormat = s.colorFormat;
+      if (s.ownMaterialA) {  // for the engine's material: inside its rendering, lightmaps in RLT/BBF
+        a.renderingColors = &s.colorFormat;
+        a.renderingColorCount = 1;
+        a.renderingDepth = s.depthFormat;
+        a.lightmapPacking = 1;
+      }
       check(sixwayCreateRendererFromInfo(device_, simulations_[0], &a, &renderers_[0]));
       SixwayRendererInfo b{};
       b.shareNetwork = renderers_[0];
@@ -54,6 +60,13 @@ class CApiInstances : public SmokeInstances {
       b.renderingColorCount = 1;
       b.renderingDepth = s.depthFormat;
       check(sixwayCreateRendererFromInfo(device_, simulations_[1], &b, &renderers_[1]));
+      const SixwayLight sun{0,
+                            {s.sunDirection.x, s.sunDirection.y, s.sunDirection.z},
+                            {0.0f, 0.0f, 0.0f},
+                            {s.sunIrradiance.r, s.sunIrradiance.g, s.sunIrradiance.b},
+                            1.0f,
+                            1};
+      for (SixwayRenderer r : renderers_) check(sixwayRendererSetLights(r, &sun, 1));
       for (int i = 0; i < 2; ++i) placements_[i] = glm::vec3(i == 0 ? glm::mat4(1.0f)[3] : s.placementB[3]);
     } catch (...) {
       release();
@@ -97,6 +110,20 @@ class CApiInstances : public SmokeInstances {
     targets.height = i.height;
     check(sixwayRendererRecordTargets(renderers_[0], commands, frame, &targets));
     recorded_ = true;
+  }
+  void recordLightmapsA(VkCommandBuffer commands, uint64_t frame, const FrameImagesView& i) override {
+    const SixwayCompositeTargets targets{
+        i.depth,  i.depthView, depthFormat_, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, i.width,
+        i.height, {}};
+    check(sixwayRendererRecordLightmaps(renderers_[0], commands, frame, &targets));
+    recorded_ = true;
+  }
+  PackedLightmaps lightmapsA() const override {
+    SixwayLightmapTextures maps;
+    check(sixwayRendererLightmaps(renderers_[0], &maps));
+    PackedLightmaps packed{maps.viewA, maps.viewB, {}};
+    for (int c = 0; c < 4; ++c) packed.corners[c] = glm::make_vec3(maps.corners[c]);
+    return packed;
   }
   void recordCompositeB(VkCommandBuffer commands) override {
     check(sixwayRendererRecordComposite(renderers_[1], commands));

@@ -4,6 +4,7 @@
 #include <sixway/smoke_simulation.h>
 
 #include <cstdio>
+#include <memory>
 
 #include "smoke_instances.h"
 
@@ -15,16 +16,19 @@ class CppInstances : public SmokeInstances {
       : device_(engineDevice(s)),
         simulationA_(device_, s.scene),
         simulationB_(device_, s.scene),
-        rendererA_(device_, simulationA_, {.weights = s.weights}, s.colorFormat),
-        rendererB_(device_, simulationB_, {.shareNetwork = &rendererA_},
+        rendererA_(rendererA(device_, simulationA_, s)),
+        rendererB_(device_, simulationB_, {.shareNetwork = rendererA_.get()},
                    sixway::RenderingFormats{{s.colorFormat}, s.depthFormat}),
         depthFormat_(s.depthFormat),
         colorFormat_(s.colorFormat) {
     simulationB_.setPlacement(s.placementB);
+    const sixway::Light sun{.direction = s.sunDirection, .color = s.sunIrradiance, .intensity = 1.0f};
+    rendererA_->setLights({sun});
+    rendererB_.setLights({sun});
   }
 
   void setCamera(const glm::mat4& view, const glm::mat4& projection) override {
-    rendererA_.setViewProjection(view, projection);
+    rendererA_->setViewProjection(view, projection);
     rendererB_.setViewProjection(view, projection);
   }
   void setWorld(const EngineEmitter& e, glm::vec3 obstacleTarget, double seconds) override {
@@ -41,21 +45,31 @@ class CppInstances : public SmokeInstances {
                                 VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, i.width, i.height});
   }
   void recordA(VkCommandBuffer commands, uint64_t frame, const FrameImagesView& i) override {
-    rendererA_.record(commands, frame,
-                      {{i.color, i.colorView, colorFormat_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                        VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
-                       {i.depth, i.depthView, depthFormat_, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL,
-                        VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL},
-                       i.width,
-                       i.height,
-                       {}});
+    rendererA_->record(commands, frame,
+                       {{i.color, i.colorView, colorFormat_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
+                        {i.depth, i.depthView, depthFormat_, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL,
+                         VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL},
+                        i.width,
+                        i.height,
+                        {}});
     recorded_ = true;
   }
+  void recordLightmapsA(VkCommandBuffer commands, uint64_t frame, const FrameImagesView& i) override {
+    rendererA_->recordLightmaps(commands, frame,
+                                {i.depth, i.depthView, depthFormat_,
+                                 VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, i.width, i.height});
+    recorded_ = true;
+  }
+  PackedLightmaps lightmapsA() const override {
+    const sixway::LightmapTextures maps = rendererA_->lightmaps();
+    return {maps.viewA, maps.viewB, {maps.corners[0], maps.corners[1], maps.corners[2], maps.corners[3]}};
+  }
   void recordCompositeB(VkCommandBuffer commands) override { rendererB_.recordComposite(commands); }
-  void forgetTargets() override { rendererA_.forgetTargets(); }
+  void forgetTargets() override { rendererA_->forgetTargets(); }
   glm::vec3 middle(int instance) const override {
     if (!recorded_) return glm::vec3((instance == 0 ? simulationA_ : simulationB_).placement()[3]);
-    const sixway::LightmapTextures maps = (instance == 0 ? rendererA_ : rendererB_).lightmaps();
+    const sixway::LightmapTextures maps = (instance == 0 ? *rendererA_ : rendererB_).lightmaps();
     return 0.25f * (maps.corners[0] + maps.corners[1] + maps.corners[2] + maps.corners[3]);
   }
   bool hasObstacle() const override { return simulationA_.obstacleCount() > 0; }
@@ -64,12 +78,25 @@ class CppInstances : public SmokeInstances {
   std::vector<std::pair<std::string, double>> stageTimes() const override {
     std::vector<std::pair<std::string, double>> times;
     for (const auto& t : simulationA_.stageTimes()) times.emplace_back(t.name, t.milliseconds);
-    for (const sixway::SmokeRenderer* r : {&rendererA_, &rendererB_})
+    for (const sixway::SmokeRenderer* r :
+         {static_cast<const sixway::SmokeRenderer*>(rendererA_.get()), &rendererB_})
       for (const auto& t : r->stageTimes()) times.emplace_back(t.name, t.milliseconds);
     return times;
   }
 
  private:
+  // A into the engine's images, or for its own material: inside its rendering, lightmaps in RLT/BBF.
+  static std::unique_ptr<sixway::SmokeRenderer> rendererA(sixway::Device& device,
+                                                          sixway::SmokeSimulation& simulation,
+                                                          const SmokeSetup& s) {
+    if (!s.ownMaterialA)
+      return std::make_unique<sixway::SmokeRenderer>(
+          device, simulation, sixway::RendererOptions{.weights = s.weights}, s.colorFormat);
+    return std::make_unique<sixway::SmokeRenderer>(
+        device, simulation,
+        sixway::RendererOptions{.weights = s.weights, .packing = sixway::LightmapPacking::RltBbf},
+        sixway::RenderingFormats{{s.colorFormat}, s.depthFormat});
+  }
   static sixway::Device engineDevice(const SmokeSetup& s) {
     sixway::EngineDevice description{s.instance, s.physicalDevice, s.device,
                                      s.queue,    s.queueFamily,    s.extensions,
@@ -82,7 +109,8 @@ class CppInstances : public SmokeInstances {
 
   sixway::Device device_;
   sixway::SmokeSimulation simulationA_, simulationB_;
-  sixway::SmokeRenderer rendererA_, rendererB_;
+  std::unique_ptr<sixway::SmokeRenderer> rendererA_;
+  sixway::SmokeRenderer rendererB_;
   VkFormat depthFormat_, colorFormat_;
   bool recorded_ = false;
 };

@@ -125,6 +125,16 @@ SixwayResult sixwayCreateRenderer(SixwayDevice device, SixwaySimulation simulati
 /* SmokeRenderer::setViewProjection; both matrices column-major, 16 floats (glm's and GLSL's layout). */
 SixwayResult sixwayRendererSetViewProjection(SixwayRenderer renderer, const float view[16],
                                              const float projection[16]);
+/* SmokeRenderer::setLights (sixway::Light; `kind` 0 directional, 1 point). */
+typedef struct SixwayLight {
+  int kind;
+  float direction[3];
+  float position[3];
+  float color[3];
+  float intensity;
+  int shadows;
+} SixwayLight;
+SixwayResult sixwayRendererSetLights(SixwayRenderer renderer, const SixwayLight* lights, uint32_t count);
 SixwayResult sixwayRendererRecord(SixwayRenderer renderer, VkCommandBuffer commands, uint64_t frame);
 /* A renderer whose targets come with each record (SmokeRenderer's VkFormat constructor and
  * record(commands, frame, FrameTargets)): the images, the layouts they are in and are to be left in, their

@@ -283,6 +283,24 @@ SixwayResult sixwayRendererSetViewProjection(SixwayRenderer renderer, const floa
       [&] { renderer->renderer.setViewProjection(glm::make_mat4(view), glm::make_mat4(projection)); });
 }
 
+SixwayResult sixwayRendererSetLights(SixwayRenderer renderer, const SixwayLight* lights, uint32_t count) {
+  if (!renderer || (count > 0 && !lights))
+    return nullArgument("sixwayRendererSetLights", !renderer ? "renderer" : "lights");
+  return guarded([&] {
+    std::vector<sixway::Light> list;
+    for (uint32_t i = 0; i < count; ++i) {
+      const SixwayLight& l = lights[i];
+      if (l.kind != 0 && l.kind != 1)
+        throw std::invalid_argument("sixwayRendererSetLights: lights[" + std::to_string(i) + "].kind " +
+                                    std::to_string(l.kind) + " is not 0 or 1");
+      list.push_back({l.kind == 0 ? sixway::Light::Kind::Directional : sixway::Light::Kind::Point,
+                      glm::make_vec3(l.direction), glm::make_vec3(l.position), glm::make_vec3(l.color),
+                      l.intensity, l.shadows != 0});
+    }
+    renderer->renderer.setLights(list);
+  });
+}
+
 SixwayResult sixwayRendererRecord(SixwayRenderer renderer, VkCommandBuffer commands, uint64_t frame) {
   if (!renderer) return nullArgument("sixwayRendererRecord", "renderer");
   return guarded([&] { renderer->renderer.record(commands, frame); });

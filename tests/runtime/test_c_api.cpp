@@ -78,6 +78,12 @@ TEST(CApi, ErrorsAndMisuseComeBackAsCodesWithTheirMessages) {
       << sixwayLastError();
   emitter.velocity[1] = 0.5f;
   EXPECT_EQ(sixwaySimulationSetEmitters(simulation, &emitter, 1), SIXWAY_SUCCESS) << sixwayLastError();
+  SixwayLight light = {5, {0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 0.0f}, {1.0f, 1.0f, 1.0f}, 3.0f, 1};
+  EXPECT_EQ(sixwayRendererSetLights(renderer, &light, 1), SIXWAY_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(sixwayLastError()).find("kind 5"), std::string::npos) << sixwayLastError();
+  light.kind = 0;
+  EXPECT_EQ(sixwayRendererSetLights(renderer, &light, 1), SIXWAY_SUCCESS) << sixwayLastError();
+  EXPECT_EQ(sixwayRendererSetLights(renderer, nullptr, 1), SIXWAY_ERROR_INVALID_ARGUMENT);
   const float target[3] = {0.1f, 0.7f, 0.1f};
   EXPECT_EQ(sixwaySimulationSteerObstacle(simulation, 3, target, 0.1), SIXWAY_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(sixwaySimulationSteerObstacle(simulation, 0, target, 0.1), SIXWAY_SUCCESS) << sixwayLastError();
