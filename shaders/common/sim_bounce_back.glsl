@@ -57,6 +57,15 @@ float wallFraction(Obstacle o, vec3 from, vec3 link) {
   } else if (shape == SHAPE_BOX) {
     t = intersect(intersect(slabInterval(m.x, link.x, o.size.x), slabInterval(m.y, link.y, o.size.y)),
                   slabInterval(m.z, link.z, o.size.z));
+  } else if (shape == SHAPE_CAPSULE) {  // convex: the hull of the cylinder's and the two caps' intervals
+    vec3 axis = o.axis.xyz;
+    vec2 parts[3] = vec2[](intersect(discInterval(m - dot(m, axis) * axis, link - dot(link, axis) * axis, o.size.x),
+                                     slabInterval(dot(m, axis), dot(link, axis), o.axis.w)),
+                           discInterval(m - o.axis.w * axis, link, o.size.x),
+                           discInterval(m + o.axis.w * axis, link, o.size.x));
+    t = NOWHERE;
+    for (int k = 0; k < 3; ++k)
+      if (parts[k].x <= parts[k].y) t = t.x <= t.y ? vec2(min(t.x, parts[k].x), max(t.y, parts[k].y)) : parts[k];
   } else {
     return 0.5;
   }

@@ -41,13 +41,14 @@ const uint SHAPE_SPHERE = 0u;
 const uint SHAPE_CYLINDER = 1u;
 const uint SHAPE_BOX = 2u;
 const uint SHAPE_MESH = 3u;
+const uint SHAPE_CAPSULE = 4u;
 
 // An obstacle at one step, in lattice coordinates (cell centres at integer + 0.5).
 struct Obstacle {
   vec4 centre;       // xyz: centre (mesh: translation); w: shape
   vec4 velocity;     // xyz: cells per step (rigid translation)
-  vec4 axis;         // cylinder: xyz axis, w: half height; sphere/cylinder radius in size.x
-  vec4 size;         // box: half sizes; sphere/cylinder: x = radius
+  vec4 axis;         // cylinder, capsule: xyz axis, w: half height (capsule: of its segment)
+  vec4 size;         // box: half sizes; sphere/cylinder/capsule: x = radius
   vec4 rotation[3];  // mesh: rows of the world→object rotation divided by the scale
   vec4 meshOrigin;   // mesh: object-space corner of its occupancy grid; w: its cell size
   ivec4 meshGrid;    // mesh: occupancy grid size xyz, w: first word in the occupancy buffer

@@ -15,6 +15,10 @@ bool insideObstacle(Obstacle o, vec3 p) {
     return abs(along) <= o.axis.w && dot(across, across) <= o.size.x * o.size.x;
   }
   if (shape == SHAPE_BOX) return all(lessThanEqual(abs(d), o.size.xyz));
+  if (shape == SHAPE_CAPSULE) {  // within the radius of the segment along the axis
+    vec3 across = d - clamp(dot(d, o.axis.xyz), -o.axis.w, o.axis.w) * o.axis.xyz;
+    return dot(across, across) <= o.size.x * o.size.x;
+  }
   // Mesh: into object space, then the occupancy voxel that holds the point.
   vec3 object = vec3(dot(o.rotation[0].xyz, d), dot(o.rotation[1].xyz, d), dot(o.rotation[2].xyz, d));
   ivec3 voxel = ivec3(floor((object - o.meshOrigin.xyz) / o.meshOrigin.w));

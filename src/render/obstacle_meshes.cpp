@@ -103,6 +103,33 @@ ObstacleTriangles cylinder(const scene::CylinderObstacle& c, uint32_t index) {
   return b.take();
 }
 
+// The sphere's latitude rings in the capsule's frame (the axis as the sphere's +y), the upper half moved up
+// the segment and the lower half down; the equator ring, once on each end, bounds the side.
+ObstacleTriangles capsule(const scene::CapsuleObstacle& c, uint32_t index) {
+  constexpr int around = kRoundSegments, rings = kRoundSegments / 2, rows = rings + 2;
+  glm::vec3 u, v;
+  perpendiculars(c.axis, u, v);
+  const glm::vec3 half = (0.5f * c.height - c.radius) * c.axis;
+  Builder b(index);
+  for (int row = 0; row < rows; ++row) {
+    const bool upper = row <= rings / 2;
+    const float theta = kPi * float(upper ? row : row - 1) / rings;  // from +axis
+    for (int i = 0; i <= around; ++i) {
+      const float phi = 2.0f * kPi * float(i) / around;
+      const glm::vec3 n = std::sin(theta) * std::cos(phi) * u + std::cos(theta) * c.axis +
+                          std::sin(theta) * std::sin(phi) * v;
+      b.vertex(c.radius * n + (upper ? half : -half), n);
+    }
+  }
+  const auto at = [](int row, int i) { return uint32_t(row * (around + 1) + i); };
+  for (int row = 0; row + 1 < rows; ++row)
+    for (int i = 0; i < around; ++i) {
+      if (row > 0) b.triangle(at(row, i), at(row + 1, i), at(row, i + 1));
+      if (row < rows - 2) b.triangle(at(row, i + 1), at(row + 1, i), at(row + 1, i + 1));
+    }
+  return b.take();
+}
+
 ObstacleTriangles box(const scene::BoxObstacle& box, uint32_t index) {
   const glm::vec3 h = 0.5f * box.size;
   Builder b(index);
@@ -168,7 +195,8 @@ ObstacleTriangles triangulate(const scene::Obstacle& obstacle, uint32_t index) {
   return std::visit(Overloaded{[&](const scene::SphereObstacle& s) { return sphere(s, index); },
                                [&](const scene::CylinderObstacle& c) { return cylinder(c, index); },
                                [&](const scene::BoxObstacle& x) { return box(x, index); },
-                               [&](const scene::MeshObstacle& m) { return mesh(m, index); }},
+                               [&](const scene::MeshObstacle& m) { return mesh(m, index); },
+                               [&](const scene::CapsuleObstacle& c) { return capsule(c, index); }},
                     obstacle.shape);
 }
 
@@ -177,7 +205,8 @@ glm::vec3 placementAt(const scene::Obstacle& obstacle, double seconds) {
   return std::visit(Overloaded{[](const scene::SphereObstacle& s) { return s.center; },
                                [](const scene::CylinderObstacle& c) { return c.center; },
                                [](const scene::BoxObstacle& x) { return x.center; },
-                               [](const scene::MeshObstacle& m) { return m.translate; }},
+                               [](const scene::MeshObstacle& m) { return m.translate; },
+                               [](const scene::CapsuleObstacle& c) { return c.center; }},
                     obstacle.shape);
 }
 

@@ -70,9 +70,10 @@ constexpr std::array<std::string_view, 6> kFaceNames = {"x-", "x+", "y-", "y+", 
 enum class InletShape { Disk, Box };
 const Choices<InletShape> kInletShapes = {{"disk", InletShape::Disk}, {"box", InletShape::Box}};
 
-enum class ObstacleType { Sphere, Cylinder, Box, Mesh };
+enum class ObstacleType { Sphere, Cylinder, Capsule, Box, Mesh };
 const Choices<ObstacleType> kObstacleTypes = {{"sphere", ObstacleType::Sphere},
                                               {"cylinder", ObstacleType::Cylinder},
+                                              {"capsule", ObstacleType::Capsule},
                                               {"box", ObstacleType::Box},
                                               {"mesh", ObstacleType::Mesh}};
 
@@ -286,6 +287,18 @@ Obstacle parseObstacle(JsonReader& r, const fs::path& baseDir) {
       cylinder.height = r.required<float>("height", positive());
       cylinder.axis = direction(r, "axis", cylinder.axis);
       o.shape = cylinder;
+      break;
+    }
+    case ObstacleType::Capsule: {
+      CapsuleObstacle capsule;
+      capsule.center = position("center", std::nullopt);
+      capsule.radius = r.required<float>("radius", positive());
+      capsule.height = r.required<float>("height", positive());
+      if (capsule.height < 2 * capsule.radius)
+        r.fail("height", "a capsule's full height holds both caps: at least 2 · radius = " +
+                             show(2 * capsule.radius) + " (got " + show(capsule.height) + ")");
+      capsule.axis = direction(r, "axis", capsule.axis);
+      o.shape = capsule;
       break;
     }
     case ObstacleType::Box: {

@@ -125,6 +125,15 @@ struct CylinderObstacle {
   glm::vec3 axis{0, 1, 0};
 };
 
+// A cylinder with hemispherical caps (a character's collider): the points within `radius` of the segment of
+// length height − 2·radius along `axis` through `center`.
+struct CapsuleObstacle {
+  glm::vec3 center{0};
+  float radius = 0;
+  float height = 0;  // full length along the axis, caps included; at least 2·radius
+  glm::vec3 axis{0, 1, 0};
+};
+
 struct BoxObstacle {
   glm::vec3 center{0};
   glm::vec3 size{0};  // full edge lengths
@@ -152,7 +161,7 @@ struct Motion {
 };
 
 struct Obstacle {
-  std::variant<SphereObstacle, CylinderObstacle, BoxObstacle, MeshObstacle> shape;
+  std::variant<SphereObstacle, CylinderObstacle, BoxObstacle, MeshObstacle, CapsuleObstacle> shape;
   std::optional<Motion> motion;
   bool shadows = true;  // casts shadows on the smoke
 };

@@ -72,6 +72,12 @@ ObstacleSet::ObstacleSet(const gpu::Context& context, const gpu::PipelineCache& 
               g.size.x = c.radius * toCells;
               extent = g.axis.w * glm::abs(c.axis) + g.size.x * glm::sqrt(1.0f - c.axis * c.axis);
             },
+            [&](const scene::CapsuleObstacle& c) {
+              g.centre = glm::vec4(units.toLattice(c.center, origin_), float(ShapeCode::Capsule));
+              g.axis = glm::vec4(c.axis, (0.5f * c.height - c.radius) * toCells);
+              g.size.x = c.radius * toCells;
+              extent = g.axis.w * glm::abs(c.axis) + g.size.x;
+            },
             [&](const scene::BoxObstacle& b) {
               g.centre = glm::vec4(units.toLattice(b.center, origin_), float(ShapeCode::Box));
               g.size = glm::vec4(0.5f * b.size * toCells, 0.0f);

@@ -10,12 +10,12 @@ namespace sixway::sim {
 inline constexpr uint32_t kMaxObstacles = 16;
 inline constexpr uint32_t kMaxInlets = 8;
 
-enum class ShapeCode : uint32_t { Sphere = 0, Cylinder = 1, Box = 2, Mesh = 3 };
+enum class ShapeCode : uint32_t { Sphere = 0, Cylinder = 1, Box = 2, Mesh = 3, Capsule = 4 };
 
 struct GpuObstacle {
   glm::vec4 centre;  // w: ShapeCode
   glm::vec4 velocity;
-  glm::vec4 axis;         // cylinder: unit axis, w: half height
+  glm::vec4 axis;         // cylinder: unit axis, w: half height; capsule: w: half the segment's length
   glm::vec4 size;         // sphere/cylinder: x radius; box: half sizes
   glm::vec4 rotation[3];  // mesh: rows of lattice→object (rotationᵀ · cell size / scale)
   glm::vec4 meshOrigin;   // mesh: object-space grid corner; w: voxel size (object units)

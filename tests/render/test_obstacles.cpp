@@ -98,7 +98,10 @@ TEST_F(ObstaclesTest, TriangulationLiesOnTheShapesAndFacesOutward) {
       scene::CylinderObstacle{glm::vec3(0.0f), 0.3f, 0.8f, glm::normalize(glm::vec3(1, 2, 0.5f))};
   scene::Obstacle box;
   box.shape = scene::BoxObstacle{glm::vec3(0.0f), glm::vec3(0.4f, 0.6f, 0.2f)};
-  for (const scene::Obstacle& o : {sphereAt(glm::vec3(0.0f), 0.5f), cylinder, box}) {
+  scene::Obstacle capsule;
+  capsule.shape =
+      scene::CapsuleObstacle{glm::vec3(0.0f), 0.25f, 0.9f, glm::normalize(glm::vec3(-0.4f, 1, 0.3f))};
+  for (const scene::Obstacle& o : {sphereAt(glm::vec3(0.0f), 0.5f), cylinder, box, capsule}) {
     const render::ObstacleTriangles t = render::triangulate(o, 3);
     ASSERT_GT(t.indices.size(), 0u);
     for (const render::ObstacleVertex& v : t.vertices) {
@@ -113,6 +116,10 @@ TEST_F(ObstaclesTest, TriangulationLiesOnTheShapesAndFacesOutward) {
                     std::abs(std::abs(along) - 0.5f * c->height) < 1e-5f);
         EXPECT_LE(across, c->radius + 1e-5f);
         EXPECT_LE(std::abs(along), 0.5f * c->height + 1e-5f);
+      } else if (const auto* k = std::get_if<scene::CapsuleObstacle>(&o.shape)) {
+        const float half = 0.5f * k->height - k->radius;
+        EXPECT_NEAR(glm::length(p - std::clamp(glm::dot(p, k->axis), -half, half) * k->axis), k->radius,
+                    1e-5f);
       } else {
         const glm::vec3 h = 0.5f * std::get<scene::BoxObstacle>(o.shape).size;
         const glm::vec3 q = glm::abs(p) / h;

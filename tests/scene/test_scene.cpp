@@ -474,7 +474,7 @@ TEST(SceneParse, MissingRequiredKey) {
 
 TEST(SceneParse, UnknownChoice) {
   EXPECT_TRUE(rejected(minimalWith(R"({"obstacles": [{"type": "cone"}]})"_json), "obstacles[0].type",
-                       "must be one of \"sphere\", \"cylinder\", \"box\", \"mesh\" (got \"cone\")"));
+                       "must be one of \"sphere\", \"cylinder\", \"capsule\", \"box\", \"mesh\" (got \"cone\")"));
 }
 
 TEST(SceneParse, UnknownObstacleBoundary) {

@@ -22,6 +22,12 @@ ShapeTest cylinderTest(glm::dvec3 p, glm::dvec3 centre, glm::dvec3 axis, double 
           std::min(std::abs(std::abs(along) - halfHeight), std::abs(across - radius))};
 }
 
+ShapeTest capsuleTest(glm::dvec3 p, glm::dvec3 centre, glm::dvec3 axis, double radius, double halfSegment) {
+  const glm::dvec3 d = p - centre;
+  const double distance = glm::length(d - std::clamp(glm::dot(d, axis), -halfSegment, halfSegment) * axis);
+  return {distance <= radius, std::abs(distance - radius)};
+}
+
 ShapeTest boxTest(glm::dvec3 p, glm::dvec3 centre, glm::dvec3 halfSize) {
   const glm::dvec3 slack = halfSize - glm::abs(p - centre);
   return {glm::all(glm::greaterThanEqual(slack, glm::dvec3(0))),

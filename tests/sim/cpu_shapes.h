@@ -18,6 +18,8 @@ struct ShapeTest {
 ShapeTest sphereTest(glm::dvec3 p, glm::dvec3 centre, double radius);
 // `axis` unit, `halfHeight` half the length along it.
 ShapeTest cylinderTest(glm::dvec3 p, glm::dvec3 centre, glm::dvec3 axis, double radius, double halfHeight);
+// Within `radius` of the segment of half length `halfSegment` along the unit `axis` through `centre`.
+ShapeTest capsuleTest(glm::dvec3 p, glm::dvec3 centre, glm::dvec3 axis, double radius, double halfSegment);
 ShapeTest boxTest(glm::dvec3 p, glm::dvec3 centre, glm::dvec3 halfSize);
 
 // Rz(z)·Ry(y)·Rx(x), angles in degrees: rotates about x first.

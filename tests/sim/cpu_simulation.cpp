@@ -38,6 +38,8 @@ ShapeTest shapeTest(const scene::Obstacle& obstacle, glm::dvec3 centre, glm::dve
   if (const auto* s = std::get_if<scene::SphereObstacle>(&shape)) return sphereTest(p, centre, s->radius);
   if (const auto* c = std::get_if<scene::CylinderObstacle>(&shape))
     return cylinderTest(p, centre, glm::dvec3(c->axis), c->radius, 0.5 * c->height);
+  if (const auto* c = std::get_if<scene::CapsuleObstacle>(&shape))
+    return capsuleTest(p, centre, glm::dvec3(c->axis), c->radius, 0.5 * c->height - c->radius);
   if (const auto* b = std::get_if<scene::BoxObstacle>(&shape))
     return boxTest(p, centre, 0.5 * glm::dvec3(b->size));
   throw std::invalid_argument("CpuSimulation: mesh obstacles are not modelled");

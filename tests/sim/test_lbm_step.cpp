@@ -246,6 +246,18 @@ TEST_F(LbmStepTest, InterpolatedBounceBackOnATiltedCylinderAndABox) {
   expectMatchesCpu(interpolated(halfWay), 5, halfWay);
 }
 
+TEST_F(LbmStepTest, InterpolatedBounceBackOnATiltedCapsule) {
+  // Links cross its side and both caps (kSize is 16 × 12 × 10 cells).
+  const json capsule = {{"obstacles",
+                         {{{"type", "capsule"},
+                           {"center", {8.13, 6.2, 5.3}},
+                           {"radius", 2.3},
+                           {"height", 8.6},
+                           {"axis", {1.0, 0.4, 0.2}}}}}};
+  const json halfWay = latticeScene(kSize, kViscosity, capsule);
+  expectMatchesCpu(interpolated(halfWay), 5, halfWay);
+}
+
 TEST_F(LbmStepTest, InterpolatedBounceBackAcrossAPeriodicFace) {
   // Links from x = 15 to solid cells at x = 0 measure the wall from the fluid cell's periodic image.
   const json sphere = {{"obstacles", {{{"type", "sphere"}, {"center", {0.7, 6.3, 5.15}}, {"radius", 2.6}}}}};

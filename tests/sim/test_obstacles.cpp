@@ -106,6 +106,15 @@ TEST_F(ObstacleFlagsTest, TiltedCylinder) {
   expectFlagsMatch(sceneWith({{"obstacles", {cylinder}}}), {0});
 }
 
+TEST_F(ObstacleFlagsTest, TiltedCapsule) {
+  const json capsule = {{"type", "capsule"},
+                        {"center", {12.2, 8.1, 6.3}},
+                        {"radius", 2.6},
+                        {"height", 10.7},
+                        {"axis", {1.0, 2.0, 0.5}}};
+  expectFlagsMatch(sceneWith({{"obstacles", {capsule}}}), {0});
+}
+
 TEST_F(ObstacleFlagsTest, Box) {
   const json box = {{"type", "box"}, {"center", {11.1, 7.35, 6.05}}, {"size", {9.3, 5.9, 6.7}}};
   expectFlagsMatch(sceneWith({{"obstacles", {box}}}), {0});
