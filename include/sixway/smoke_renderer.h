@@ -188,9 +188,9 @@ class SmokeRenderer {
   // this frame's `targets`, between full barriers. Then recordComposite, into the command buffer (primary,
   // or secondary with RENDER_PASS_CONTINUE) that is inside the engine's rendering at that point of the
   // queue: one draw (pipeline, push descriptors, push constants, viewport, scissor: the engine rebinds its
-  // own after it), no barrier, no query. The engine's barrier into the depth layout must make its depth
-  // writes visible to fragment-shader reads. std::invalid_argument for targets that do not fit, or
-  // recordComposite before any recordLightmaps.
+  // own after it) between two timestamps (the "shade" stage time), no barrier. The engine's barrier into the
+  // depth layout must make its depth writes visible to fragment-shader reads. std::invalid_argument for
+  // targets that do not fit, or recordComposite before any recordLightmaps.
   void recordLightmaps(VkCommandBuffer commands, uint64_t frame, const CompositeTargets& targets);
   void recordComposite(VkCommandBuffer commands) const;
   // Forgets the recordings of the targets passed so far: call it when the engine destroys images it passed

@@ -281,6 +281,8 @@ void SmokeRenderer::recordLightmaps(VkCommandBuffer commands, uint64_t frame,
   gpu::Sequence& compute = impl_->prepare();
   compute.record(commands, frame);
   impl_->renderer.frame().recordShadingParameters(commands);
+  if (!impl_->compositeTimes) impl_->compositeTimes.emplace(impl_->context);
+  impl_->compositeTimes->recordReset(commands, frame);
   impl_->last = &compute;
 }
 
@@ -289,7 +291,9 @@ void SmokeRenderer::recordComposite(VkCommandBuffer commands) const {
     throw std::invalid_argument(
         "SmokeRenderer::recordComposite: after recordLightmaps of the frame, on a renderer "
         "made for the engine's rendering");
+  impl_->compositeTimes->recordBegin(commands);
   impl_->renderer.frame().recordCompositeInside(commands);
+  impl_->compositeTimes->recordEnd(commands);
 }
 
 void SmokeRenderer::forgetTargets() {
@@ -301,6 +305,8 @@ std::vector<StageTime> SmokeRenderer::stageTimes() const {
   for (const gpu::Sequence* s : {impl_->last, impl_->lastComposite})
     if (s)
       for (const gpu::StageTime& t : s->stageTimes()) times.push_back({t.name, t.milliseconds});
+  if (impl_->compositeTimes && impl_->compositeTimes->milliseconds())
+    times.push_back({"shade", *impl_->compositeTimes->milliseconds()});
   return times;
 }
 

@@ -9,6 +9,7 @@
 #include <variant>
 #include <vector>
 
+#include "gpu/frame_timestamps.h"
 #include "render/engine_view.h"
 #include "runtime/frame_renderer.h"
 #include "runtime/network_lightmaps.h"
@@ -56,6 +57,7 @@ struct SmokeRenderer::Impl {
   std::variant<std::monostate, Camera, Matrices> camera;  // setCamera's or setViewProjection's, in the world
   std::optional<std::vector<Light>> lights;               // setLights', in the world
   gpu::Sequence* last = nullptr;
+  std::optional<gpu::FrameTimestamps> compositeTimes;  // inside the engine's rendering: "shade"
   gpu::Sequence* lastComposite = nullptr;
 };
 

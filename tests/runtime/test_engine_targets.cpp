@@ -9,6 +9,7 @@
 #include <sixway/smoke_renderer.h>
 #include <sixway/smoke_simulation.h>
 
+#include <algorithm>
 #include <glm/gtc/matrix_transform.hpp>
 #include <stdexcept>
 #include <string>
@@ -359,6 +360,12 @@ TEST_F(EngineTargetsTest, InsideTheEnginesOwnRenderingTheSameSmoke) {
     }
     for (uint32_t texel : second.download<uint32_t>())
       ASSERT_EQ(texel, 0xffbf8040u) << "sixway wrote into the engine's second attachment";
+    // The composite's GPU time, measured inside the engine's rendering, arrives with the frame's others.
+    const std::vector<StageTime> times = renderer.stageTimes();
+    const auto shade =
+        std::find_if(times.begin(), times.end(), [](const StageTime& t) { return t.name == "shade"; });
+    ASSERT_NE(shade, times.end());
+    EXPECT_GT(shade->milliseconds, 0.0);
   }
   EXPECT_EQ(own.validationMessages(), 0u);
 }
