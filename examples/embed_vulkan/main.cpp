@@ -14,7 +14,7 @@
 // lightmaps in the RLT/BBF packing) instead of sixway's composite; --psnr-against compares the PNG with
 // another run's.
 //   embed_vulkan --scene S.json --weights W.safetensors [--frames N] [--c-api] [--own-material]
-//                [--psnr-against IMAGE --min-psnr DB] --out frame.png
+//                [--no-validation] [--psnr-against IMAGE --min-psnr DB] --out frame.png
 #include <sixway/device.h>
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image.h>
@@ -27,6 +27,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <fstream>
 #include <functional>
 #include <glm/gtc/matrix_transform.hpp>
@@ -75,6 +76,7 @@ struct Options {
   int frames = 6;
   bool cApi = false;         // sixway through its C API
   bool ownMaterial = false;  // instance A shaded by the engine's material (material.frag)
+  bool validate = true;      // off for timing: the layer checks every command sixway records
   std::string psnrAgainst;   // an image to compare the PNG with
   double minPsnr = 0.0;      // dB: below it the run fails
 };
@@ -83,8 +85,11 @@ Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string key = argv[i];
-    if (key == "--c-api" || key == "--own-material") {
-      (key == "--c-api" ? o.cApi : o.ownMaterial) = true;
+    if (key == "--c-api" || key == "--own-material" || key == "--no-validation") {
+      if (key == "--no-validation")
+        o.validate = false;
+      else
+        (key == "--c-api" ? o.cApi : o.ownMaterial) = true;
       continue;
     }
     if (i + 1 == argc) throw std::runtime_error(key + ": needs a value");
@@ -107,11 +112,11 @@ Options parse(int argc, char** argv) {
   if (o.scene.empty() || o.weights.empty() || o.out.empty() || o.frames < 1)
     throw std::runtime_error(
         "usage: embed_vulkan --scene S.json --weights W.safetensors [--frames N] [--c-api] [--own-material] "
-        "[--psnr-against IMAGE --min-psnr DB] --out F.png");
+        "[--no-validation] [--psnr-against IMAGE --min-psnr DB] --out F.png");
   return o;
 }
 
-// The engine's Vulkan objects: instance with validation, one device, one queue.
+// The engine's Vulkan objects: instance (with validation unless it is timed), one device, one queue.
 struct Engine {
   VkInstance instance = VK_NULL_HANDLE;
   VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
@@ -122,7 +127,7 @@ struct Engine {
   std::vector<std::string> extensions;
   std::unique_ptr<sixway::DeviceRequirements> requirements;  // its feature chain was given to vkCreateDevice
 
-  Engine() {
+  explicit Engine(bool validate) {
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
     app.pApplicationName = "embed_vulkan";
     app.apiVersion = VK_API_VERSION_1_3;
@@ -137,7 +142,7 @@ struct Engine {
     messengerInfo.pfnUserCallback = onMessage;
     VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO, &messengerInfo};
     info.pApplicationInfo = &app;
-    info.enabledLayerCount = 1;
+    info.enabledLayerCount = validate ? 1 : 0;
     info.ppEnabledLayerNames = &layer;
     info.enabledExtensionCount = 1;
     info.ppEnabledExtensionNames = &debugUtils;
@@ -728,10 +733,44 @@ double psnr(const std::string& a, const std::string& b) {
   return mse == 0.0 ? INFINITY : 10.0 * std::log10(255.0 * 255.0 / mse);
 }
 
+// Host time of sixway's calls, per call: on the first frame (which records sixway's passes and makes their
+// uploads), on the frame after the resize (new targets), and the mean over the other frames.
+struct HostTimes {
+  struct Call {
+    double first = 0.0, resized = 0.0, steadySum = 0.0, steadyMax = 0.0;
+  };
+  std::map<std::string, Call> calls;
+  uint64_t steadyFrames = 0;
+
+  template <class Work>
+  void time(const std::string& call, uint64_t frame, uint64_t resizeFrame, Work&& work) {
+    // The calling thread's CPU time: on lavapipe the "GPU" runs on the same cores, so wall time would count
+    // the earlier frames' GPU work too.
+    timespec before, after;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &before);
+    work();
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &after);
+    const double ms =
+        1e3 * double(after.tv_sec - before.tv_sec) + 1e-6 * double(after.tv_nsec - before.tv_nsec);
+    Call& c = calls[call];
+    (frame == 0 ? c.first : frame == resizeFrame ? c.resized : c.steadySum) += ms;
+    if (frame != 0 && frame != resizeFrame) c.steadyMax = std::max(c.steadyMax, ms);
+  }
+  void print() const {
+    std::printf(
+        "sixway's host CPU time per frame, ms (first frame / after the resize / mean and most of the %llu "
+        "others):\n",
+        static_cast<unsigned long long>(steadyFrames));
+    for (const auto& [call, c] : calls)
+      std::printf("  %-26s %8.2f %8.2f %8.3f %8.2f\n", call.c_str(), c.first, c.resized,
+                  c.steadySum / double(std::max<uint64_t>(steadyFrames, 1)), c.steadyMax);
+  }
+};
+
 int run(const Options& options) {
   constexpr uint32_t kFramesInFlight = FrameLoop::kFramesInFlight;
   constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT, kDepthFormat = VK_FORMAT_D32_SFLOAT;
-  Engine engine;
+  Engine engine(options.validate);
   ScenePass scenePass(engine, kColorFormat, kDepthFormat);
   FrameLoop loop(engine);
   HostAllocator allocator;
@@ -739,12 +778,12 @@ int run(const Options& options) {
   VkPipelineCacheCreateInfo cacheInfo{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
   VK(vkCreatePipelineCache(engine.device, &cacheInfo, nullptr, &pipelineCache));
 
-  // sixway on the engine's device: its allocator, pipeline cache, log and one-time submissions.
+  // sixway on the engine's device: its allocator, pipeline cache, Vulkan functions and one-time submissions.
   SmokeSetup setup{engine.instance, engine.physicalDevice, engine.device, engine.queue, engine.queueFamily,
                    engine.extensions, engine.requirements->features(), kFramesInFlight,
                    [&](const std::function<void(VkCommandBuffer)>& record) { loop.oneTime(record); },
-                   &allocator.callbacks, pipelineCache, options.scene, options.weights, kColorFormat,
-                   kDepthFormat,
+                   &allocator.callbacks, pipelineCache, vkGetInstanceProcAddr, options.scene, options.weights,
+                   kColorFormat, kDepthFormat,
                    // B behind A to the left, turned.
                    glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(-0.9f, 0.0f, -1.0f)),
                                glm::radians(40.0f), glm::vec3(0.0f, 1.0f, 0.0f)),
@@ -759,6 +798,7 @@ int run(const Options& options) {
   const glm::vec3 eye = glm::vec3(glm::inverse(view)[3]);
   const glm::vec4 box(0.35f, 0.15f, 0.45f, 0.15f);  // centre, half size
   uint64_t jobsAfterFirstFrame = 0, waitsAfterFirstFrame = 0, waitsAtEnd = 0;
+  HostTimes hostTimes;
   std::vector<std::pair<std::string, double>> times;
   bool written = false;
   {
@@ -773,9 +813,9 @@ int run(const Options& options) {
         images.push_back(std::make_unique<FrameImages>(engine, width, height, kColorFormat, kDepthFormat));
     };
     makeImages(160, 120);
-    const uint64_t frames = uint64_t(options.frames);
+    const uint64_t frames = uint64_t(options.frames), resizeFrame = frames / 2;
     for (uint64_t frame = 0; frame < frames; ++frame) {
-      if (frame == frames / 2) {  // a resize: the engine waits for its frames and makes its targets anew
+      if (frame == resizeFrame) {  // a resize: the engine waits for its frames and makes its targets anew
         loop.waitAll();
         makeImages(200, 150);
         smoke->forgetTargets();  // the old images are gone; the new ones may reuse their handles
@@ -790,7 +830,7 @@ int run(const Options& options) {
       changeLayout(cmd, target.depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                    VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
       const glm::mat4 projection = jitteredProjection(frame, target.width, target.height);
-      smoke->setCamera(view, projection);
+      hostTimes.time("setCamera", frame, resizeFrame, [&] { smoke->setCamera(view, projection); });
       scenePass.record(cmd, target.color, target.depth, target.width, target.height,
                        {projection * view, box});
 
@@ -803,12 +843,19 @@ int run(const Options& options) {
                                   5.0f,
                                   frame < frames / 3 || frame >= 2 * frames / 3};
       const double seconds = frameSeconds(frame);
-      smoke->setWorld(
-          emitter, obstacleStart + 0.15f * glm::vec3(std::cos(angle) - 1.0f, 0.0f, std::sin(angle)), seconds);
-      smoke->recordSimulations(cmd, frame, seconds);
+      hostTimes.time("setEmitters+steerObstacle", frame, resizeFrame, [&] {
+        smoke->setWorld(emitter,
+                        obstacleStart + 0.15f * glm::vec3(std::cos(angle) - 1.0f, 0.0f, std::sin(angle)),
+                        seconds);
+      });
+      hostTimes.time("simulations' record", frame, resizeFrame,
+                     [&] { smoke->recordSimulations(cmd, frame, seconds); });
       // B's lightmaps before the transparent pass, where its depth is read in the read-only layout.
-      smoke->recordLightmapsB(cmd, frame, frameImages);
-      if (material) smoke->recordLightmapsA(cmd, frame, frameImages);
+      hostTimes.time("B recordLightmaps", frame, resizeFrame,
+                     [&] { smoke->recordLightmapsB(cmd, frame, frameImages); });
+      if (material)
+        hostTimes.time("A lightmaps", frame, resizeFrame,
+                       [&] { smoke->recordLightmapsA(cmd, frame, frameImages); });
       changeLayout(cmd, target.depth.image, VK_IMAGE_ASPECT_DEPTH_BIT,
                    VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
       // Far to near, by the distance to the middle of each instance's billboard.
@@ -816,7 +863,7 @@ int run(const Options& options) {
       for (int instance : {bFirst ? 1 : 0, bFirst ? 0 : 1}) {
         if (instance == 1) {
           beginTransparentPass(cmd, target.color.view, target.depth.view, target.width, target.height);
-          smoke->recordCompositeB(cmd);
+          hostTimes.time("B recordComposite", frame, resizeFrame, [&] { smoke->recordCompositeB(cmd); });
           vkCmdEndRendering(cmd);
         } else {
           if (material) {
@@ -825,7 +872,7 @@ int run(const Options& options) {
                            setup.sunIrradiance, ambient, target.width, target.height);
             vkCmdEndRendering(cmd);
           } else {
-            smoke->recordA(cmd, frame, frameImages);
+            hostTimes.time("A record", frame, resizeFrame, [&] { smoke->recordA(cmd, frame, frameImages); });
           }
         }
       }
@@ -833,6 +880,7 @@ int run(const Options& options) {
                    VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);  // ready to copy
       loop.submit(slot);
+      if (frame != 0 && frame != resizeFrame) ++hostTimes.steadyFrames;
       if (frame == 0) {  // the first frame records sixway's passes and uploads what they need
         jobsAfterFirstFrame = loop.oneTimeJobs;
         waitsAfterFirstFrame = smoke->hostWaits();
@@ -854,6 +902,7 @@ int run(const Options& options) {
       static_cast<unsigned long long>(waitsAtEnd - waitsAfterFirstFrame),
       static_cast<unsigned long long>(loop.oneTimeJobs - jobsAfterFirstFrame), allocator.live.size());
   for (const auto& [name, ms] : times) std::printf("  %-20s %8.2f ms\n", name.c_str(), ms);
+  hostTimes.print();
   bool similar = true;
   if (!options.psnrAgainst.empty()) {
     const double decibels = psnr(options.out, options.psnrAgainst);

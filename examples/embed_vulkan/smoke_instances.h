@@ -28,6 +28,7 @@ struct SmokeSetup {
   std::function<void(const std::function<void(VkCommandBuffer)>&)> submitAndWait;
   const VkAllocationCallbacks* allocator = nullptr;
   VkPipelineCache pipelineCache = VK_NULL_HANDLE;
+  PFN_vkGetInstanceProcAddr getInstanceProcAddr = nullptr;  // the engine's loader (volk's, for one)
   std::string scene, weights;
   VkFormat colorFormat = VK_FORMAT_UNDEFINED, depthFormat = VK_FORMAT_UNDEFINED;
   glm::mat4 placementB{1.0f};  // where instance B stands in the world (A: where its scene puts it)

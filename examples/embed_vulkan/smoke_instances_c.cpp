@@ -38,6 +38,7 @@ class CApiInstances : public SmokeInstances {
     engine.submitUser = this;
     engine.allocator = s.allocator;
     engine.pipelineCache = s.pipelineCache;
+    engine.getInstanceProcAddr = s.getInstanceProcAddr;
     engine.log = [](void*, const char* line) { std::printf("sixway note: %s\n", line); };
     try {
       check(sixwayCreateEngineDevice(&engine, &device_));

@@ -103,6 +103,7 @@ class CppInstances : public SmokeInstances {
                                      s.features, s.framesInFlight, s.submitAndWait};
     description.allocator = s.allocator;
     description.pipelineCache = s.pipelineCache;
+    description.getInstanceProcAddr = s.getInstanceProcAddr;
     description.log = [](const std::string& line) { std::printf("sixway note: %s\n", line.c_str()); };
     return sixway::Device(description);
   }

@@ -72,6 +72,10 @@ struct EngineDevice {
   std::function<void(const std::string& line)> log;
   // Where buffers and images get their memory; unset: one vkAllocateMemory each.
   DeviceMemoryAllocator memory;
+  // The engine's vkGetInstanceProcAddr (its loader, or a layer of its own in front of it): while this device
+  // lives, every Vulkan function sixway calls comes from it for `instance`, process-wide (docs/embedding.md,
+  // "Vulkan functions"). Null: the Vulkan loader sixway links. An Error names a function it does not give.
+  PFN_vkGetInstanceProcAddr getInstanceProcAddr = nullptr;
 };
 
 // What an engine enables on its device for sixway: Vulkan 1.3 with synchronization2, dynamicRendering and

@@ -70,6 +70,8 @@ typedef struct SixwayEngineDevice {
                                       int map);
   void (*freeMemory)(void* user, const SixwayMemoryBlock* block);
   void* memoryUser;
+  /* Optional (EngineDevice's): the engine's vkGetInstanceProcAddr, for every Vulkan function sixway calls. */
+  PFN_vkGetInstanceProcAddr getInstanceProcAddr;
 } SixwayEngineDevice;
 SixwayResult sixwayCreateEngineDevice(const SixwayEngineDevice* engine, SixwayDevice* device);
 /* Device::hostWaits: how often sixway waited on the GPU itself. */

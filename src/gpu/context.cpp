@@ -11,6 +11,7 @@
 #include "gpu/address_space.h"
 #include "gpu/check.h"
 #include "gpu/device_features.h"
+#include "gpu/vulkan_functions.h"
 
 namespace sixway::gpu {
 namespace {
@@ -224,6 +225,8 @@ Context::Context(const ExternalDevice& external)
       externalPipelineCache_(external.pipelineCache),
       log_(external.log),
       memoryAllocator_(external.memory) {
+  if (external.getInstanceProcAddr)
+    engineFunctions_ = std::make_unique<EngineVulkanFunctions>(external.getInstanceProcAddr, instance_);
   if (bool(memoryAllocator_.allocate) != bool(memoryAllocator_.free))
     throw GpuError("external device: a memory allocator needs both its allocate and its free function");
   if (!instance_ || !physicalDevice_ || !device_ || !queue_)

@@ -14,6 +14,7 @@
 
 #include "gpu/cooperative_matrix.h"
 #include "gpu/memory_block.h"
+#include "gpu/vulkan_functions.h"
 
 namespace sixway::gpu {
 
@@ -48,6 +49,9 @@ struct ExternalDevice {
   std::function<void(const std::string&)> log;
   // Where buffers and images get their memory; unset: one vkAllocateMemory each.
   MemoryAllocator memory;
+  // Where sixway's Vulkan functions come from (gpu/vulkan_functions.h) while this device is in use; null: the
+  // linked loader.
+  PFN_vkGetInstanceProcAddr getInstanceProcAddr = nullptr;
 };
 
 // What the stages need to know about the device to size their work.
@@ -173,6 +177,7 @@ class Context {
   VkPipelineCache externalPipelineCache_ = VK_NULL_HANDLE;
   std::function<void(const std::string&)> log_;
   MemoryAllocator memoryAllocator_;
+  std::unique_ptr<EngineVulkanFunctions> engineFunctions_;
 };
 
 // Throws the Context's GpuError for a requested device index (--device, SIXWAY_DEVICE) that no device has,

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "gpu/device_features.h"
+#include "gpu/vulkan_functions.h"
 
 namespace sixway::gpu {
 namespace {

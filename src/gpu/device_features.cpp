@@ -1,4 +1,5 @@
 #include "gpu/device_features.h"
+#include "gpu/vulkan_functions.h"
 
 #include <algorithm>
 #include <cstring>

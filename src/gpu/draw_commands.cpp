@@ -8,6 +8,7 @@
 #include "gpu/context.h"
 #include "gpu/image.h"
 #include "gpu/pipeline.h"
+#include "gpu/vulkan_functions.h"
 
 namespace sixway::gpu {
 

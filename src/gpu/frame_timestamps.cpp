@@ -4,6 +4,7 @@
 
 #include "gpu/check.h"
 #include "gpu/context.h"
+#include "gpu/vulkan_functions.h"
 
 namespace sixway::gpu {
 

@@ -7,6 +7,7 @@
 #include "gpu/check.h"
 #include "gpu/context.h"
 #include "gpu/one_shot.h"
+#include "gpu/vulkan_functions.h"
 
 namespace sixway::gpu {
 

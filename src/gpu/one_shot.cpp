@@ -2,6 +2,7 @@
 
 #include "gpu/check.h"
 #include "gpu/context.h"
+#include "gpu/vulkan_functions.h"
 
 namespace sixway::gpu {
 

@@ -15,6 +15,7 @@
 #include "gpu/context.h"
 #include "gpu/spirv_reflect.h"
 #include "platform/platform.h"
+#include "gpu/vulkan_functions.h"
 
 namespace sixway::gpu {
 namespace {

@@ -9,6 +9,7 @@
 #include "gpu/image.h"
 #include "gpu/one_shot.h"
 #include "gpu/pipeline.h"
+#include "gpu/vulkan_functions.h"
 
 namespace sixway::gpu {
 namespace {

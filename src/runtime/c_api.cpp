@@ -115,6 +115,7 @@ SixwayResult sixwayCreateEngineDevice(const SixwayEngineDevice* engine, SixwayDe
                            engine->enabledFeatures, engine->framesInFlight};
     e.allocator = engine->allocator;
     e.pipelineCache = engine->pipelineCache;
+    e.getInstanceProcAddr = engine->getInstanceProcAddr;
     if (bool(engine->allocateMemory) != bool(engine->freeMemory))
       throw std::invalid_argument("sixwayCreateEngineDevice: allocateMemory and freeMemory go together");
     if (engine->allocateMemory) {

@@ -62,6 +62,7 @@ Device::Device(const EngineDevice& engine) {
                                engine.queue,           engine.queueFamily,    engine.enabledExtensions,
                                engine.enabledFeatures, engine.framesInFlight, engine.submitAndWait,
                                engine.allocator,       engine.pipelineCache,  engine.log};
+  external.getInstanceProcAddr = engine.getInstanceProcAddr;
   if (engine.memory.allocate && engine.memory.free) {
     external.memory.allocate = [allocate = engine.memory.allocate](const VkMemoryRequirements& requirements,
                                                                    uint32_t type, bool map) {
