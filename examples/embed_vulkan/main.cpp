@@ -7,8 +7,9 @@
 // itself. Two smoke instances placed in its world share one network and are drawn back to front: one with
 // FrameTargets (sixway moves the images to what it needs and back), one inside the engine's own transparent
 // pass (its dynamic rendering, depth read-only), both lit by the engine's sun. Mid-run the window grows (the
-// targets are made anew at the new size), the engine's emitter circles and is switched off and on, and an
-// obstacle is moved by the engine's own logic. Writes the last frame as a PNG and prints what sixway
+// targets are made anew at the new size), the engine's emitter circles and is switched off and on, its
+// character (a capsule obstacle) circles through the smoke and a crate (a box) comes and goes, all given by
+// the engine each frame. Writes the last frame as a PNG and prints what sixway
 // submitted and waited for after the first frame; fails on any validation message. With --own-material,
 // instance A is shaded by the engine's own material (material.frag: Unity's six-way formula over sixway's
 // lightmaps in the RLT/BBF packing) instead of sixway's composite; --psnr-against compares the PNG with
@@ -803,7 +804,6 @@ int run(const Options& options) {
   bool written = false;
   {
     const std::unique_ptr<SmokeInstances> smoke = options.cApi ? cApiInstances(setup) : cppInstances(setup);
-    const glm::vec3 obstacleStart = smoke->hasObstacle() ? smoke->obstaclePosition() : glm::vec3(0.0f);
 
     // Each frame in flight draws into its own images; halfway through, the window grows.
     std::vector<std::unique_ptr<FrameImages>> images;
@@ -834,7 +834,8 @@ int run(const Options& options) {
       scenePass.record(cmd, target.color, target.depth, target.width, target.height,
                        {projection * view, box});
 
-      // The engine's world: its emitter circles and is off through the middle third, the obstacle circles.
+      // The engine's world: its emitter circles and is off through the middle third; a character (a capsule)
+      // circles through the smoke, and a crate (a box) stands in it through the middle half.
       const float angle = 0.6f * float(frame);
       const EngineEmitter emitter{glm::vec3(0.1f * std::cos(angle), 0.1f, 0.1f * std::sin(angle)),
                                   0.15f,
@@ -843,11 +844,18 @@ int run(const Options& options) {
                                   5.0f,
                                   frame < frames / 3 || frame >= 2 * frames / 3};
       const double seconds = frameSeconds(frame);
-      hostTimes.time("setEmitters+steerObstacle", frame, resizeFrame, [&] {
-        smoke->setWorld(emitter,
-                        obstacleStart + 0.15f * glm::vec3(std::cos(angle) - 1.0f, 0.0f, std::sin(angle)),
-                        seconds);
-      });
+      std::vector<EngineObstacle> obstacles = {
+          {.shape = EngineObstacle::Shape::Capsule,
+           .position = glm::vec3(0.12f, 0.62f, 0.1f) +
+                       0.15f * glm::vec3(std::cos(angle) - 1.0f, 0.0f, std::sin(angle)),
+           .radius = 0.07f,
+           .height = 0.36f}};
+      if (frame >= frames / 4 && frame < 3 * frames / 4)
+        obstacles.push_back({.shape = EngineObstacle::Shape::Box,
+                             .position = glm::vec3(-0.15f, 0.35f, -0.1f),
+                             .size = glm::vec3(0.16f)});
+      hostTimes.time("setEmitters+setObstacles", frame, resizeFrame,
+                     [&] { smoke->setWorld(emitter, obstacles, seconds); });
       hostTimes.time("simulations' record", frame, resizeFrame,
                      [&] { smoke->recordSimulations(cmd, frame, seconds); });
       // B's lightmaps before the transparent pass, where its depth is read in the read-only layout.

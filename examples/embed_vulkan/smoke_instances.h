@@ -52,6 +52,16 @@ struct EngineEmitter {
   bool on = true;
 };
 
+// An obstacle of the engine's world in instance A this frame (sixway::Obstacle's fields).
+struct EngineObstacle {
+  enum class Shape { Sphere, Box, Capsule } shape = Shape::Sphere;
+  glm::vec3 position{0.0f};
+  float radius = 0.0f;
+  glm::vec3 size{0.0f};
+  float height = 0.0f;
+  glm::vec3 axis{0.0f, 1.0f, 0.0f};
+};
+
 // One frame's images: the colour in COLOR_ATTACHMENT_OPTIMAL and the depth in
 // DEPTH_STENCIL_READ_ONLY_OPTIMAL while the smoke is drawn (and left so).
 struct FrameImagesView {
@@ -65,11 +75,12 @@ struct FrameImagesView {
 class SmokeInstances {
  public:
   virtual ~SmokeInstances() = default;
-  // Each frame, in this order: the camera of both; A's world (its emitter, its obstacle's target reached
+  // Each frame, in this order: the camera of both; A's world (its emitter, its obstacles where they are
   // after `seconds`); both simulations; B's lightmaps before the transparent pass; then, far to near, A's
   // record and B's composite inside the transparent pass.
   virtual void setCamera(const glm::mat4& view, const glm::mat4& projection) = 0;
-  virtual void setWorld(const EngineEmitter& emitter, glm::vec3 obstacleTarget, double seconds) = 0;
+  virtual void setWorld(const EngineEmitter& emitter, const std::vector<EngineObstacle>& obstacles,
+                        double seconds) = 0;
   virtual void recordSimulations(VkCommandBuffer commands, uint64_t frame, double seconds) = 0;
   virtual void recordLightmapsB(VkCommandBuffer commands, uint64_t frame, const FrameImagesView& images) = 0;
   virtual void recordA(VkCommandBuffer commands, uint64_t frame, const FrameImagesView& images) = 0;
@@ -81,8 +92,6 @@ class SmokeInstances {
   virtual void forgetTargets() = 0;
   // The middle of instance 0's (A's) or 1's (B's) billboard after the last frame (before: its placement).
   virtual glm::vec3 middle(int instance) const = 0;
-  virtual bool hasObstacle() const = 0;
-  virtual glm::vec3 obstaclePosition() const = 0;  // A's first obstacle, world
   virtual uint64_t hostWaits() const = 0;
   // GPU time per stage of A's simulation and both renderers (the C API has none).
   virtual std::vector<std::pair<std::string, double>> stageTimes() const = 0;

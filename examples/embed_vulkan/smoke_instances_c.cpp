@@ -80,7 +80,8 @@ class CApiInstances : public SmokeInstances {
     for (SixwayRenderer r : renderers_)
       check(sixwayRendererSetViewProjection(r, glm::value_ptr(view), glm::value_ptr(projection)));
   }
-  void setWorld(const EngineEmitter& e, glm::vec3 obstacleTarget, double seconds) override {
+  void setWorld(const EngineEmitter& e, const std::vector<EngineObstacle>& obstacles,
+                double seconds) override {
     const SixwayEmitter emitter{{e.position.x, e.position.y, e.position.z},
                                 e.radius,
                                 {e.velocity.x, e.velocity.y, e.velocity.z},
@@ -88,8 +89,16 @@ class CApiInstances : public SmokeInstances {
                                 e.temperatureRate,
                                 e.on ? 1 : 0};
     check(sixwaySimulationSetEmitters(simulations_[0], &emitter, 1));
-    if (hasObstacle())
-      check(sixwaySimulationSteerObstacle(simulations_[0], 0, glm::value_ptr(obstacleTarget), seconds));
+    std::vector<SixwayObstacle> list;
+    for (const EngineObstacle& o : obstacles)
+      list.push_back({SixwayObstacleShape(o.shape),
+                      {o.position.x, o.position.y, o.position.z},
+                      o.radius,
+                      {o.size.x, o.size.y, o.size.z},
+                      o.height,
+                      {o.axis.x, o.axis.y, o.axis.z},
+                      1});
+    check(sixwaySimulationSetObstacles(simulations_[0], list.data(), uint32_t(list.size()), seconds));
   }
   void recordSimulations(VkCommandBuffer commands, uint64_t frame, double seconds) override {
     for (SixwaySimulation s : simulations_)
@@ -137,16 +146,6 @@ class CApiInstances : public SmokeInstances {
     glm::vec3 sum(0.0f);
     for (const auto& corner : maps.corners) sum += glm::make_vec3(corner);
     return 0.25f * sum;
-  }
-  bool hasObstacle() const override {
-    uint32_t count = 0;
-    check(sixwaySimulationObstacleCount(simulations_[0], &count));
-    return count > 0;
-  }
-  glm::vec3 obstaclePosition() const override {
-    float position[3];
-    check(sixwaySimulationObstaclePosition(simulations_[0], 0, position));
-    return glm::make_vec3(position);
   }
   uint64_t hostWaits() const override {
     uint64_t waits = 0;

@@ -31,9 +31,13 @@ class CppInstances : public SmokeInstances {
     rendererA_->setViewProjection(view, projection);
     rendererB_.setViewProjection(view, projection);
   }
-  void setWorld(const EngineEmitter& e, glm::vec3 obstacleTarget, double seconds) override {
+  void setWorld(const EngineEmitter& e, const std::vector<EngineObstacle>& obstacles,
+                double seconds) override {
     simulationA_.setEmitters({{e.position, e.radius, e.velocity, e.densityRate, e.temperatureRate, e.on}});
-    if (hasObstacle()) simulationA_.steerObstacle(0, obstacleTarget, seconds);
+    std::vector<sixway::Obstacle> list;
+    for (const EngineObstacle& o : obstacles)
+      list.push_back({sixway::Obstacle::Shape(o.shape), o.position, o.radius, o.size, o.height, o.axis});
+    simulationA_.setObstacles(list, seconds);
   }
   void recordSimulations(VkCommandBuffer commands, uint64_t frame, double seconds) override {
     simulationA_.record(commands, frame, seconds);
@@ -72,8 +76,6 @@ class CppInstances : public SmokeInstances {
     const sixway::LightmapTextures maps = (instance == 0 ? *rendererA_ : rendererB_).lightmaps();
     return 0.25f * (maps.corners[0] + maps.corners[1] + maps.corners[2] + maps.corners[3]);
   }
-  bool hasObstacle() const override { return simulationA_.obstacleCount() > 0; }
-  glm::vec3 obstaclePosition() const override { return simulationA_.obstaclePosition(0); }
   uint64_t hostWaits() const override { return device_.hostWaits(); }
   std::vector<std::pair<std::string, double>> stageTimes() const override {
     std::vector<std::pair<std::string, double>> times;

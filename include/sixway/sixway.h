@@ -109,6 +109,32 @@ typedef struct SixwayEmitter {
 } SixwayEmitter;
 SixwayResult sixwaySimulationSetEmitters(SixwaySimulation simulation, const SixwayEmitter* emitters,
                                          uint32_t count);
+/* SmokeSimulation::setObstacles: `count` obstacles (0: none; `obstacles` may then be NULL). */
+typedef enum SixwayObstacleShape {
+  SIXWAY_OBSTACLE_SPHERE = 0,
+  SIXWAY_OBSTACLE_BOX = 1,
+  SIXWAY_OBSTACLE_CAPSULE = 2,
+  SIXWAY_OBSTACLE_MESH = 3
+} SixwayObstacleShape;
+typedef struct SixwayObstacle {
+  SixwayObstacleShape shape;
+  float position[3]; /* world, m: the centre */
+  float radius;      /* sphere, capsule */
+  float size[3];     /* box: full edge lengths along the smoke's axes */
+  float height;      /* capsule: end to end */
+  float axis[3];     /* capsule: world direction */
+  int shadows;
+  /* mesh: `vertexCount` xyz triples, `indexCount` indices (three per triangle), turned by `rotation`
+   * (column-major 3x3, world; all zeros: none) and scaled by `scale`; read during the call. */
+  const float* vertices;
+  uint32_t vertexCount;
+  const uint32_t* indices;
+  uint32_t indexCount;
+  float rotation[9];
+  float scale;
+} SixwayObstacle;
+SixwayResult sixwaySimulationSetObstacles(SixwaySimulation simulation, const SixwayObstacle* obstacles,
+                                          uint32_t count, double seconds);
 void sixwayDestroySimulation(SixwaySimulation simulation);
 
 /* sixway::SmokeRenderer with the network of `weightsPath`, into its own image (target NULL) or an engine's.

@@ -6,9 +6,11 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -46,6 +48,26 @@ struct Emitter {
   float densityRate = 1.0f;      // density per second, in the units of SmokeVolume
   float temperatureRate = 0.0f;  // per second (drives the scene's fluid.buoyancy.temperature)
   bool on = true;
+};
+
+// An engine's obstacle (docs/embedding.md, "Obstacles"): a sphere, a box along the smoke's axes (those of
+// the placement), a capsule or a closed triangle mesh (a collision mesh), centred on `position`. The flow
+// bounces off it, the smoke stays out of it and, with `shadows`, it shadows the smoke.
+struct Obstacle {
+  enum class Shape { Sphere, Box, Capsule, Mesh };
+  Shape shape = Shape::Sphere;
+  glm::vec3 position{0.0f};          // world, m: the centre (a mesh: its origin)
+  float radius = 0.1f;               // sphere, capsule: m
+  glm::vec3 size{0.2f};              // box: full edge lengths, m
+  float height = 0.5f;               // capsule: end to end, caps included, at least 2 · radius (m)
+  glm::vec3 axis{0.0f, 1.0f, 0.0f};  // capsule: world direction (any length but 0)
+  // mesh: triangles as three indices each into `vertices` (its own space, counter-clockwise seen from
+  // outside), turned by `rotation` (world) and scaled by `scale` about its origin; read during the call.
+  std::span<const glm::vec3> vertices;
+  std::span<const uint32_t> indices;
+  glm::mat3 rotation{1.0f};
+  float scale = 1.0f;
+  bool shadows = true;
 };
 
 // A scene file's text held by the engine (docs/scene-format.md): no file is read but the meshes it names,
@@ -122,6 +144,18 @@ class SmokeSimulation {
   void steerObstacle(size_t obstacle, glm::vec3 target, double seconds);
   float maxObstacleSpeed()
       const;  // m/s: half fluid.max_lattice_velocity (the wall's speed adds to the flow's)
+  // From the next recorded step on, these obstacles are the smoke's in place of the scene's (an empty list:
+  // none). Call it each frame with the positions at the end of the frame time passed to the next record:
+  // obstacle i with the same shape as in the last call moves there as steerObstacle(i, position, seconds)
+  // does; any other (a new index, another shape, size, rotation or mesh) appears there at rest. A call that
+  // changes shapes makes renderers build their obstacle meshes again at their next frame, and the next record
+  // voxelizes new meshes (host work, no submission); moves within the cells covered so far record nothing
+  // again. restart() returns to the scene's obstacles.
+  // std::invalid_argument for more than maxObstacles(), a value that is not finite, a size or radius <= 0,
+  // a capsule shorter than its diameter or without an axis, a mesh without triangles, with an index out of
+  // range or a rotation that is not one, a negative time; an Error for a mesh too fine for the lattice.
+  void setObstacles(const std::vector<Obstacle>& obstacles, double seconds);
+  size_t maxObstacles() const;
   // Scales the scene's inlets' velocity, in [0, maxInletStrength()]; std::invalid_argument outside.
   void setInletStrength(float strength);
   float inletStrength() const;

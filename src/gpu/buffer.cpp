@@ -11,7 +11,7 @@
 namespace sixway::gpu {
 
 Buffer::Buffer(const Context& context, uint64_t bytes, VkBufferUsageFlags usage, MemoryKind kind,
-               std::string name)
+               std::string name, bool zeroed)
     : context_(&context), size_(bytes), kind_(kind), name_(std::move(name)) {
   if (bytes == 0) throw GpuError(name_ + ": a buffer cannot be empty");
   if (kind == MemoryKind::FrameParameters) {
@@ -52,15 +52,15 @@ Buffer::Buffer(const Context& context, uint64_t bytes, VkBufferUsageFlags usage,
     context.countAllocation(int64_t(bytes));
     SIXWAY_VK(vkBindBufferMemory(context.device(), buffer_, memory_.memory, memory_.offset));
     // New memory holds whatever was there before (after a free: another run's data, even NaN), so
-    // every buffer starts as zeros.
+    // every buffer starts as zeros. Frame parameters need no fill: each recorded frame writes the whole
+    // buffer before its work reads it (Sequence::recordInto, recordParameterUpdates).
     if (kind == MemoryKind::FrameParameters) {
       hostCopy_.assign(bytes, std::byte{0});
       mapped_ = hostCopy_.data();
-      submitOnce(context, [&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, buffer_, 0, VK_WHOLE_SIZE, 0); });
     } else if (host) {
       mapped_ = memory_.mapped;
       std::memset(mapped_, 0, bytes);
-    } else if (usage & VK_BUFFER_USAGE_TRANSFER_DST_BIT) {
+    } else if (zeroed && (usage & VK_BUFFER_USAGE_TRANSFER_DST_BIT)) {
       submitOnce(context, [&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, buffer_, 0, VK_WHOLE_SIZE, 0); });
     }
   } catch (...) {
@@ -69,11 +69,11 @@ Buffer::Buffer(const Context& context, uint64_t bytes, VkBufferUsageFlags usage,
   }
 }
 
-Buffer Buffer::storage(const Context& context, uint64_t bytes, std::string name) {
+Buffer Buffer::storage(const Context& context, uint64_t bytes, std::string name, bool zeroed) {
   return Buffer(context, bytes,
                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                     VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                MemoryKind::Device, std::move(name));
+                MemoryKind::Device, std::move(name), zeroed);
 }
 
 Buffer::~Buffer() {

@@ -23,10 +23,12 @@ enum class MemoryKind { Device, HostUpload, HostReadback, FrameParameters };
 class Buffer {
  public:
   Buffer() = default;
-  // `name` appears in errors (e.g. when the size exceeds what the device can bind).
-  Buffer(const Context& context, uint64_t bytes, VkBufferUsageFlags usage, MemoryKind kind, std::string name);
+  // `name` appears in errors (e.g. when the size exceeds what the device can bind). Its bytes start as zeros
+  // unless `zeroed` is false (for a buffer whose first use writes every byte: no submission to clear it).
+  Buffer(const Context& context, uint64_t bytes, VkBufferUsageFlags usage, MemoryKind kind, std::string name,
+         bool zeroed = true);
   // A device-local storage buffer that can also be copied to and from.
-  static Buffer storage(const Context& context, uint64_t bytes, std::string name);
+  static Buffer storage(const Context& context, uint64_t bytes, std::string name, bool zeroed = true);
   ~Buffer();
   Buffer(Buffer&& other) noexcept;
   Buffer& operator=(Buffer&& other) noexcept;

@@ -198,13 +198,19 @@ void GuidingMap::record(gpu::Sequence& sequence, const Volume& volume, const gpu
                context_->capabilities().deviceLocalHeapBytes / 8;
   });
   gridNodes_ = nodesFor(spacing_);
-  depths_.clear();
+  // Kept when a recording for a lattice of the same size finds them (every frame writes them before reading):
+  // frames an engine has in flight may still run an earlier recording that reads them.
   const uint64_t depthBytes = gridLights_.empty() ? sizeof(float) : bytesFor(gridNodes_);
-  for (size_t i = 0; i < std::max<size_t>(1, gridLights_.size()); ++i)
-    depths_.push_back(gpu::Buffer::storage(*context_, depthBytes, "guide light grid " + std::to_string(i)));
+  const size_t depthGrids = std::max<size_t>(1, gridLights_.size());
+  if (depths_.size() != depthGrids || depths_.front().size() != depthBytes) {
+    depths_.clear();
+    for (size_t i = 0; i < depthGrids; ++i)
+      depths_.push_back(gpu::Buffer::storage(*context_, depthBytes, "guide light grid " + std::to_string(i)));
+  }
   const glm::ivec3 bricks = (grid_.size + kBrickCells - 1) / kBrickCells;
-  bricks_ = gpu::Buffer::storage(*context_, uint64_t(bricks.x) * bricks.y * bricks.z * sizeof(float),
-                                 "guide empty-space bricks");
+  const uint64_t brickBytes = uint64_t(bricks.x) * bricks.y * bricks.z * sizeof(float);
+  if (bricks_.size() != brickBytes)
+    bricks_ = gpu::Buffer::storage(*context_, brickBytes, "guide empty-space bricks");
 
   const gpu::Buffer& density = *volume.density;
   sequence.beginStage("guide");

@@ -152,7 +152,7 @@ ObstacleTriangles box(const scene::BoxObstacle& box, uint32_t index) {
 // around its vertex that turn from its own face by less than the crease angle; corners of a vertex with equal
 // normals share one output vertex.
 ObstacleTriangles mesh(const scene::MeshObstacle& m, uint32_t index) {
-  const io::Mesh obj = io::readObj(m.file);
+  const io::Mesh obj = scene::meshTriangles(m);
   const glm::mat3 turn = scene::meshRotation(m) * m.scale;
   std::vector<glm::vec3> positions(obj.positions.size());
   std::transform(obj.positions.begin(), obj.positions.end(), positions.begin(),
@@ -210,7 +210,8 @@ glm::vec3 placementAt(const scene::Obstacle& obstacle, double seconds) {
                     obstacle.shape);
 }
 
-ObstacleMeshes::ObstacleMeshes(const gpu::Context& context, const std::vector<scene::Obstacle>& obstacles)
+ObstacleMeshes::ObstacleMeshes(const gpu::Context& context, const std::vector<scene::Obstacle>& obstacles,
+                               gpu::MemoryKind memory)
     : obstacles_(obstacles), placed_(obstacles.size()) {
   std::vector<ObstacleVertex> vertices;
   std::vector<uint32_t> indices;
@@ -233,12 +234,12 @@ ObstacleMeshes::ObstacleMeshes(const gpu::Context& context, const std::vector<sc
   indexCount_ = uint32_t(indices.size());
   if (obstacles.empty()) return;
   vertices_ = gpu::Buffer(context, vertices.size() * sizeof(ObstacleVertex),
-                          VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                          gpu::MemoryKind::Device, "obstacle vertices");
+                          VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, memory,
+                          "obstacle vertices");
   vertices_.upload(vertices);
   indices_ = gpu::Buffer(context, indices.size() * sizeof(uint32_t),
-                         VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                         gpu::MemoryKind::Device, "obstacle indices");
+                         VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, memory,
+                         "obstacle indices");
   indices_.upload(indices);
   placements_ = gpu::Buffer(context, obstacles.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                             gpu::MemoryKind::FrameParameters, "obstacle placements");

@@ -52,8 +52,10 @@ glm::vec3 placementAt(const scene::Obstacle& obstacle, double seconds);
 class ObstacleMeshes {
  public:
   // Triangulates all obstacles once and places them at time 0. Obstacles with shadows = true come first in
-  // the index buffer, so that the shadow pass draws just the first casterIndexCount() indices.
-  ObstacleMeshes(const gpu::Context& context, const std::vector<scene::Obstacle>& obstacles);
+  // the index buffer, so that the shadow pass draws just the first casterIndexCount() indices. `memory`:
+  // where the vertices and indices live (host-visible memory takes them without a submission).
+  ObstacleMeshes(const gpu::Context& context, const std::vector<scene::Obstacle>& obstacles,
+                 gpu::MemoryKind memory = gpu::MemoryKind::Device);
 
   // Places the obstacles at time `seconds` (frame · frame_dt), for every pass recorded with these meshes.
   void update(double seconds);

@@ -27,6 +27,12 @@ class RecordedSequence {
     }
     return *sequence_;
   }
+  // The sequence recorded last, handed over (to keep while frames in flight run it); the next get() records
+  // a fresh one.
+  std::unique_ptr<gpu::Sequence> release() {
+    key_.clear();
+    return std::move(sequence_);
+  }
   // How many times a sequence was recorded: what was recorded with an earlier one may be gone.
   uint64_t recordings() const { return recordings_; }
 

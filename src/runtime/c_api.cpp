@@ -247,6 +247,43 @@ SixwayResult sixwaySimulationSetEmitters(SixwaySimulation simulation, const Sixw
   });
 }
 
+SixwayResult sixwaySimulationSetObstacles(SixwaySimulation simulation, const SixwayObstacle* obstacles,
+                                          uint32_t count, double seconds) {
+  if (!simulation || (count > 0 && !obstacles))
+    return nullArgument("sixwaySimulationSetObstacles", !simulation ? "simulation" : "obstacles");
+  return guarded([&] {
+    std::vector<sixway::Obstacle> list;
+    for (uint32_t i = 0; i < count; ++i) {
+      const SixwayObstacle& o = obstacles[i];
+      if (o.shape != SIXWAY_OBSTACLE_SPHERE && o.shape != SIXWAY_OBSTACLE_BOX &&
+          o.shape != SIXWAY_OBSTACLE_CAPSULE && o.shape != SIXWAY_OBSTACLE_MESH)
+        throw std::invalid_argument("sixwaySimulationSetObstacles: obstacle " + std::to_string(i) +
+                                    " has no shape " + std::to_string(int(o.shape)));
+      if (o.shape == SIXWAY_OBSTACLE_MESH &&
+          ((o.vertexCount > 0 && !o.vertices) || (o.indexCount > 0 && !o.indices)))
+        throw std::invalid_argument("sixwaySimulationSetObstacles: obstacle " + std::to_string(i) +
+                                    ": vertices or indices are null");
+      static_assert(sizeof(glm::vec3) == 3 * sizeof(float));  // the vertices viewed in place
+      sixway::Obstacle obstacle{sixway::Obstacle::Shape(o.shape),
+                                glm::make_vec3(o.position),
+                                o.radius,
+                                glm::make_vec3(o.size),
+                                o.height,
+                                glm::make_vec3(o.axis)};
+      obstacle.shadows = o.shadows != 0;
+      if (o.shape == SIXWAY_OBSTACLE_MESH) {
+        obstacle.vertices = {reinterpret_cast<const glm::vec3*>(o.vertices), o.vertexCount};
+        obstacle.indices = {o.indices, o.indexCount};
+        const glm::mat3 rotation = glm::make_mat3(o.rotation);
+        obstacle.rotation = rotation == glm::mat3(0.0f) ? glm::mat3(1.0f) : rotation;
+        obstacle.scale = o.scale;
+      }
+      list.push_back(obstacle);
+    }
+    simulation->simulation.setObstacles(list, seconds);
+  });
+}
+
 void sixwayDestroySimulation(SixwaySimulation simulation) {
   delete simulation;
 }

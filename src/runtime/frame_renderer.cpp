@@ -20,7 +20,19 @@ FrameRenderer::FrameRenderer(const gpu::Context& context, const gpu::PipelineCac
       sequence_(context),
       context_(&context) {}
 
+void FrameRenderer::replaceObstacles(const std::vector<scene::Obstacle>& obstacles,
+                                     std::optional<uint64_t> frame) {
+  Retired old{frame.value_or(0) + context_->framesInFlight(), sequence_.release(), std::move(composites_),
+              frame_.replaceObstacles(obstacles)};
+  composites_.clear();
+  if (frame) retired_.push_back(std::move(old));
+}
+
 gpu::Sequence& FrameRenderer::prepare(const FrameInput& input) {
+  if (input.frame)
+    std::erase_if(retired_, [&](const Retired& r) { return r.until <= *input.frame; });
+  else
+    retired_.clear();
   const render::Volume& volume = input.volume;
   const FrameStages stages = source_->stages();
   // Recording allocates what the passes need for this volume, so it comes before their per-frame values.

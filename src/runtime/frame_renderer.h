@@ -43,6 +43,9 @@ struct FrameInput {
   // the camera's full frame) and what its depth buffer holds (unset on sixway's own target).
   std::optional<render::ImagePlane> plane;
   std::optional<render::DepthMapping> targetDepth;
+  // The engine's frame number being recorded (EngineDevice::framesInFlight's promise frees what earlier
+  // frames ran); unset on sixway's own device, which waits for each frame.
+  std::optional<uint64_t> frame;
 };
 
 class FrameRenderer {
@@ -61,6 +64,10 @@ class FrameRenderer {
   gpu::Sequence& composite();
   // Drops the kept composites (their targets are gone; the GPU is done with them).
   void forgetComposites();
+  // Another set of obstacles to draw and shadow from the next prepare() on (RealtimeFrame::replaceObstacles),
+  // which records the passes again. What the frames in flight may still run is kept until frame `frame` +
+  // framesInFlight is prepared (unset: on sixway's own device, dropped now).
+  void replaceObstacles(const std::vector<scene::Obstacle>& obstacles, std::optional<uint64_t> frame);
 
   // What the last prepare() could not do as asked, for the user (RealtimeFrame::takeNotes).
   const std::vector<std::string>& notes() const { return notes_; }
@@ -79,6 +86,14 @@ class FrameRenderer {
   };
   std::vector<Composite> composites_;  // most recently used first
   uint64_t compositesOf_ = 0;          // the prepared sequence's recording they were made with
+  // Replaced by replaceObstacles while frames in flight may run them: until the frame number.
+  struct Retired {
+    uint64_t until;
+    std::unique_ptr<gpu::Sequence> sequence;
+    std::vector<Composite> composites;
+    std::unique_ptr<render::ObstacleMeshes> meshes;
+  };
+  std::vector<Retired> retired_;
   const gpu::Context* context_;
   std::vector<std::string> notes_;
 };

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "gpu/one_shot.h"
 #include "render/billboard.h"
@@ -65,7 +66,8 @@ RealtimeFrame::RealtimeFrame(const gpu::Context& context, const gpu::PipelineCac
       guide_(ownImage(context, lightmapSize_, lightmapSize_, kColorFormat,
                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "guiding map")),
       lightmaps_(context, lightmapSize_, lightmapSize_),
-      meshes_(context, scene.obstacles),
+      context_(&context),
+      meshes_(std::make_unique<render::ObstacleMeshes>(context, scene.obstacles)),
       shadowMaps_(context, cache, render::kDefaultShadowTileSize, shadowTiles),
       guiding_(context, cache, guide),
       shading_(context, cache, shadingFormats(target)) {
@@ -82,6 +84,12 @@ RealtimeFrame::RealtimeFrame(const gpu::Context& context, const gpu::PipelineCac
   if (guide.emission) guideEmission_.emplace(context, guiding_.emissionDesc());
   controls_.emissiveGradient = render::emissiveGradientFromRamp(scene.smoke.emission);
   controls_.emissiveStraightScale = render::emissiveStraightScale(scene.smoke);
+}
+
+std::unique_ptr<render::ObstacleMeshes> RealtimeFrame::replaceObstacles(
+    const std::vector<scene::Obstacle>& obstacles) {
+  return std::exchange(
+      meshes_, std::make_unique<render::ObstacleMeshes>(*context_, obstacles, gpu::MemoryKind::HostUpload));
 }
 
 void RealtimeFrame::setEngineTarget(EngineTarget target) {
@@ -155,8 +163,8 @@ std::vector<uint64_t> RealtimeFrame::engineTargetKey() const {
 
 void RealtimeFrame::record(gpu::Sequence& s, const render::Volume& volume, FrameStages stages,
                            const std::function<void(gpu::Sequence&)>& lightmapStage) {
-  shadowMaps_.record(s, meshes_);
-  if (obstacles_) obstacles_->record(s, meshes_, shadowMaps_, color(), depth(), &volume, scene_->smoke);
+  shadowMaps_.record(s, *meshes_);
+  if (obstacles_) obstacles_->record(s, *meshes_, shadowMaps_, color(), depth(), &volume, scene_->smoke);
   if (stages == FrameStages::ObstaclesOnly) return;
   if (stages != FrameStages::AllButGuide) guiding_.record(s, volume, guide_, guideEmission());
   if (stages == FrameStages::UpToGuide) return;
@@ -177,12 +185,12 @@ void RealtimeFrame::recordShading(gpu::Sequence& s, const std::optional<VkRect2D
 void RealtimeFrame::updateScene(const render::Camera& camera, const std::vector<scene::Light>& lights,
                                 double seconds, const std::optional<render::ImagePlane>& plane,
                                 std::optional<render::DepthMapping> targetDepth) {
-  meshes_.update(seconds);
-  const render::Box bounds = render::sceneBounds(render::domainBox(scene_->grid), meshes_);
+  meshes_->update(seconds);
+  const render::Box bounds = render::sceneBounds(render::domainBox(scene_->grid), *meshes_);
   frame_ = plane.value_or(render::fullFrame(camera, int(width_), int(height_)));
   const render::DepthRange obstacleRange = render::boxDepthRange(camera, bounds);
   targetDepth_ = targetDepth.value_or(render::depthMapping(obstacleRange));
-  shadowMaps_.update(lights, bounds, meshes_);
+  shadowMaps_.update(lights, bounds, *meshes_);
   if (obstacles_) obstacles_->update(camera, frame_, obstacleRange, lights, scene_->ambient, shadowMaps_);
 }
 

@@ -101,7 +101,8 @@ SmokeRenderer::Impl::Impl(const gpu::Context& context, const gpu::PipelineCache&
       renderer(
           context, cache, scene,
           engine.value_or(runtime::OwnTarget{uint32_t(scene.render.width), uint32_t(scene.render.height)}),
-          shadowTiles(scene, options), networkSource(context, cache, scene, options)) {
+          shadowTiles(scene, options), networkSource(context, cache, scene, options)),
+      obstaclesOf{runtime::Access::starts(simulation), 0} {
   static const char* const kPresets[] = {"unity", "rlt-bbf", "o3de"};
   network().packLightmaps(context, cache, render::packingPreset(kPresets[int(options.packing)]));
 }
@@ -149,10 +150,16 @@ std::optional<std::vector<scene::Light>> SmokeRenderer::Impl::sceneLights() cons
   return converted;
 }
 
-gpu::Sequence& SmokeRenderer::Impl::prepare() {
+gpu::Sequence& SmokeRenderer::Impl::prepare(std::optional<uint64_t> frame) {
   const runtime::SimulatedVolumes& volumes = runtime::Access::volumes(simulation);
   const sim::Simulation& sim = volumes.simulation();
-  for (size_t o = 0; o < scene.obstacles.size(); ++o)
+  // The engine's obstacles (SmokeSimulation::setObstacles), or the scene's again after a restart.
+  const std::pair<uint64_t, uint64_t> obstacles{runtime::Access::starts(simulation), sim.obstacleSetsMade()};
+  if (obstacles != obstaclesOf) {
+    renderer.replaceObstacles(sim.scene().obstacles, frame);
+    obstaclesOf = obstacles;
+  }
+  for (size_t o = 0; o < sim.scene().obstacles.size(); ++o)
     renderer.frame().meshes().setMotion(o, sim.obstacleMotion(o));
   // The smoke after `frames` frames is frame frames − 1.
   const int index = std::max(0, simulation.framesSimulated() - 1);
@@ -169,6 +176,7 @@ gpu::Sequence& SmokeRenderer::Impl::prepare() {
   // the target's (or viewport's) full frame.
   if (std::holds_alternative<Matrices>(camera)) input.plane = view->plane;
   if (engineTarget) input.targetDepth = view->depth;
+  input.frame = frame;
   return renderer.prepare(input);
 }
 
@@ -177,7 +185,7 @@ void SmokeRenderer::Impl::record(VkCommandBuffer commands, uint64_t frame, const
     throw std::invalid_argument("SmokeRenderer::record: set the engine's camera first (setViewProjection)");
   last = lastComposite = nullptr;  // until both are recorded: either may be replaced on the way
   renderer.frame().setEngineTarget(borrowedTarget(context, targets));
-  gpu::Sequence& compute = prepare();
+  gpu::Sequence& compute = prepare(frame);
   gpu::Sequence& composite = renderer.composite();
   compute.record(commands, frame);
   changeLayouts(commands, targets, true);
@@ -234,7 +242,7 @@ void SmokeRenderer::setLights(const std::vector<Light>& lights) {
 
 void SmokeRenderer::render() {
   if (impl_->engineTarget) throw std::invalid_argument("SmokeRenderer::render: an engine target is recorded");
-  impl_->last = &impl_->prepare();
+  impl_->last = &impl_->prepare(std::nullopt);
   impl_->last->submit();
 }
 
@@ -278,7 +286,7 @@ void SmokeRenderer::recordLightmaps(VkCommandBuffer commands, uint64_t frame,
        targets.depthLayout,
        {targets.width, targets.height},
        targets.viewport});
-  gpu::Sequence& compute = impl_->prepare();
+  gpu::Sequence& compute = impl_->prepare(frame);
   compute.record(commands, frame);
   impl_->renderer.frame().recordShadingParameters(commands);
   if (!impl_->compositeTimes) impl_->compositeTimes.emplace(impl_->context);

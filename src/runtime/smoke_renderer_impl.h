@@ -23,8 +23,8 @@ struct SmokeRenderer::Impl {
        const RendererOptions& options, std::optional<runtime::FrameTarget> engine);
 
   // This frame of the simulation's volume: the sequence to submit or record (with an engine target, all but
-  // the composite).
-  gpu::Sequence& prepare();
+  // the composite); `frame`: the engine's frame number (none on sixway's own device).
+  gpu::Sequence& prepare(std::optional<uint64_t> frame);
   // Records the frame into the engine's `targets` with the layout changes they ask for.
   void record(VkCommandBuffer commands, uint64_t frame, const FrameTargets& targets);
 
@@ -46,6 +46,9 @@ struct SmokeRenderer::Impl {
   bool engineTarget;          // the engine's images or rendering
   bool insideRendering;       // the engine's rendering (recordLightmaps, recordComposite)
   runtime::FrameRenderer renderer;
+  // The simulation's obstacles the meshes were made for: its start and obstacle set (sim::Simulation::
+  // obstacleSetsMade).
+  std::pair<uint64_t, uint64_t> obstaclesOf;
   // The camera and lights in the scene this frame (the engine's, through the simulation's placement).
   std::optional<render::EngineView> sceneView() const;
   std::optional<std::vector<scene::Light>> sceneLights() const;

@@ -10,6 +10,7 @@
 #include "runtime/placement.h"
 #include "runtime/smoke_simulation_impl.h"
 #include "scene/fluid_physics.h"
+#include "sim/sim_params.h"
 
 namespace sixway {
 
@@ -27,6 +28,7 @@ void SmokeSimulation::Impl::start() {
   frames = 0;
   advanced = false;
   carried = 0.0;
+  engineObstacles.clear();
   ++starts;
 }
 
@@ -129,7 +131,164 @@ std::vector<StageTime> SmokeSimulation::stageTimes() const {
 }
 
 size_t SmokeSimulation::obstacleCount() const {
-  return impl_->scene.obstacles.size();
+  return impl_->volumes->simulation().scene().obstacles.size();
+}
+
+size_t SmokeSimulation::maxObstacles() const {
+  return sim::kMaxObstacles;
+}
+
+namespace {
+
+bool finite(glm::vec3 v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// An engine's mesh as sixway keeps it; std::invalid_argument (naming `which`) for one without triangles, with
+// an index out of range or a vertex that is not finite.
+std::shared_ptr<const io::Mesh> meshOf(const Obstacle& o, const std::string& which) {
+  if (o.indices.empty() || o.indices.size() % 3 != 0)
+    throw std::invalid_argument(which + "a mesh needs triangles: three indices each, got " +
+                                std::to_string(o.indices.size()));
+  auto mesh = std::make_shared<io::Mesh>();
+  mesh->positions.assign(o.vertices.begin(), o.vertices.end());
+  mesh->boundsMin = glm::vec3(std::numeric_limits<float>::max());
+  mesh->boundsMax = glm::vec3(std::numeric_limits<float>::lowest());
+  for (const glm::vec3& v : mesh->positions) {
+    if (!finite(v)) throw std::invalid_argument(which + "a mesh vertex is not finite");
+    mesh->boundsMin = glm::min(mesh->boundsMin, v);
+    mesh->boundsMax = glm::max(mesh->boundsMax, v);
+  }
+  for (size_t t = 0; t < o.indices.size(); t += 3) {
+    const glm::uvec3 triangle(o.indices[t], o.indices[t + 1], o.indices[t + 2]);
+    if (glm::any(glm::greaterThanEqual(triangle, glm::uvec3(uint32_t(o.vertices.size())))))
+      throw std::invalid_argument(which + "a mesh index is out of range (" +
+                                  std::to_string(o.vertices.size()) + " vertices)");
+    mesh->triangles.push_back(triangle);
+  }
+  return mesh;
+}
+
+// The engine's obstacle in the scene, at rest at its position (a mesh's triangles in `mesh`);
+// std::invalid_argument naming what is wrong.
+scene::Obstacle sceneObstacle(const Obstacle& o, const std::shared_ptr<const io::Mesh>& mesh,
+                              const glm::mat4& placement, size_t index) {
+  const std::string which = "obstacle " + std::to_string(index) + ": ";
+  if (!finite(o.position)) throw std::invalid_argument(which + "position is not finite");
+  const glm::vec3 centre = runtime::scenePoint(placement, o.position);
+  scene::Obstacle result;
+  result.shadows = o.shadows;
+  const auto positive = [&](float value, const char* name) {
+    if (!(value > 0.0f && std::isfinite(value)))
+      throw std::invalid_argument(which + name + " " + std::to_string(value) + "; needs a finite value > 0");
+  };
+  switch (o.shape) {
+    case Obstacle::Shape::Sphere:
+      positive(o.radius, "radius");
+      result.shape = scene::SphereObstacle{centre, o.radius};
+      break;
+    case Obstacle::Shape::Box:
+      for (int a = 0; a < 3; ++a) positive(o.size[a], "size");
+      result.shape = scene::BoxObstacle{centre, o.size};
+      break;
+    case Obstacle::Shape::Capsule: {
+      positive(o.radius, "radius");
+      positive(o.height, "height");
+      if (o.height < 2.0f * o.radius)
+        throw std::invalid_argument(which + "a capsule's height " + std::to_string(o.height) +
+                                    " is less than its diameter " + std::to_string(2.0f * o.radius));
+      if (!finite(o.axis) || glm::length(o.axis) == 0.0f)
+        throw std::invalid_argument(which + "a capsule needs a finite axis that is not 0");
+      result.shape = scene::CapsuleObstacle{centre, o.radius, o.height,
+                                            glm::normalize(runtime::sceneDirection(placement, o.axis))};
+      break;
+    }
+    case Obstacle::Shape::Mesh: {
+      positive(o.scale, "scale");
+      // A rotation: orthonormal with determinant 1, to float rounding.
+      const glm::mat3 error = glm::transpose(o.rotation) * o.rotation - glm::mat3(1.0f);
+      float worst = std::abs(glm::determinant(o.rotation) - 1.0f);
+      for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) worst = std::max(worst, std::abs(error[c][r]));
+      if (!(worst < 1e-4f)) throw std::invalid_argument(which + "a mesh's rotation is not a rotation");
+      scene::MeshObstacle m;
+      m.scale = o.scale;
+      m.translate = centre;
+      m.data = mesh;
+      m.rotation = glm::mat3(glm::inverse(placement)) * o.rotation;
+      result.shape = std::move(m);
+      break;
+    }
+    default:
+      throw std::invalid_argument(which + "unknown shape");
+  }
+  return result;
+}
+
+// Whether `o` is `last` but for its position (a mesh: the same triangles, compared by value).
+bool sameShape(const Obstacle& o, const Obstacle& l, const io::Mesh* lastMesh) {
+  if (o.shape != l.shape || o.shadows != l.shadows) return false;
+  switch (o.shape) {
+    case Obstacle::Shape::Sphere:
+      return o.radius == l.radius;
+    case Obstacle::Shape::Box:
+      return o.size == l.size;
+    case Obstacle::Shape::Capsule:
+      return o.radius == l.radius && o.height == l.height && o.axis == l.axis;
+    case Obstacle::Shape::Mesh: {
+      if (o.rotation != l.rotation || o.scale != l.scale || !lastMesh ||
+          o.vertices.size() != lastMesh->positions.size() ||
+          o.indices.size() != 3 * lastMesh->triangles.size())
+        return false;
+      if (!std::equal(o.vertices.begin(), o.vertices.end(), lastMesh->positions.begin())) return false;
+      for (size_t t = 0; t < lastMesh->triangles.size(); ++t)
+        for (int k = 0; k < 3; ++k)
+          if (o.indices[3 * t + k] != lastMesh->triangles[t][k]) return false;
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+void SmokeSimulation::setObstacles(const std::vector<Obstacle>& obstacles, double seconds) {
+  if (obstacles.size() > maxObstacles())
+    throw std::invalid_argument("SmokeSimulation::setObstacles: " + std::to_string(obstacles.size()) +
+                                " obstacles; at most " + std::to_string(maxObstacles()));
+  if (!(seconds >= 0.0) || !std::isfinite(seconds))
+    throw std::invalid_argument("SmokeSimulation::setObstacles: time " + std::to_string(seconds) +
+                                " s; needs a finite time >= 0");
+  sim::Simulation& simulation = impl_->volumes->simulation();
+  const auto& last = impl_->engineObstacles;
+  std::vector<Impl::EngineObstacle> kept;
+  std::vector<scene::Obstacle> shapes;
+  std::vector<bool> steered;
+  for (size_t i = 0; i < obstacles.size(); ++i) {
+    const Obstacle& o = obstacles[i];
+    if (!finite(o.position))
+      throw std::invalid_argument("obstacle " + std::to_string(i) + ": position is not finite");
+    steered.push_back(i < last.size() && sameShape(o, last[i].obstacle, last[i].mesh.get()));
+    Impl::EngineObstacle record{o, steered.back() ? last[i].mesh : nullptr};
+    record.obstacle.vertices = {};
+    record.obstacle.indices = {};
+    if (steered.back()) {  // where it is, on its way: steered below
+      shapes.push_back(simulation.scene().obstacles[i]);
+      shapes.back().motion = simulation.obstacleMotion(i);
+    } else {
+      const std::string which = "obstacle " + std::to_string(i) + ": ";
+      if (o.shape == Obstacle::Shape::Mesh) record.mesh = meshOf(o, which);
+      shapes.push_back(sceneObstacle(o, record.mesh, impl_->placement, i));
+    }
+    kept.push_back(std::move(record));
+  }
+  const bool changed = last.size() != obstacles.size() || simulation.obstacleSetsMade() == 0 ||
+                       std::find(steered.begin(), steered.end(), false) != steered.end();
+  if (changed) simulation.setObstacles(shapes);
+  for (size_t i = 0; i < obstacles.size(); ++i)
+    if (steered[i])
+      simulation.steerObstacle(i, runtime::scenePoint(impl_->placement, obstacles[i].position), seconds);
+  impl_->engineObstacles = std::move(kept);
 }
 
 void SmokeSimulation::setPlacement(const glm::mat4& worldFromScene) {

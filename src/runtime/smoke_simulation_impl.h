@@ -4,9 +4,11 @@
 
 #include <glm/mat4x4.hpp>
 #include <memory>
+#include <vector>
 
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
+#include "io/obj.h"
 #include "runtime/scene_volumes.h"
 #include "scene/scene.h"
 
@@ -27,6 +29,12 @@ struct SmokeSimulation::Impl {
   double carried = 0.0;   // frame time not yet simulated (s), less than a step
   uint32_t maxStepsPerRecord = 0;
   glm::mat4 placement{1.0f};  // world from scene
+  // The last setObstacles (a mesh's triangles in `mesh`, its spans empty), until a restart.
+  struct EngineObstacle {
+    Obstacle obstacle;
+    std::shared_ptr<const io::Mesh> mesh;
+  };
+  std::vector<EngineObstacle> engineObstacles;
 };
 
 }  // namespace sixway

@@ -23,11 +23,16 @@ MotionState evaluateMotion(const Motion& motion, double seconds) {
 }
 
 glm::mat3 meshRotation(const MeshObstacle& mesh) {
+  if (mesh.rotation) return *mesh.rotation;
   glm::mat4 r(1.0f);
   r = glm::rotate(r, glm::radians(mesh.rotateDeg.z), glm::vec3(0, 0, 1));
   r = glm::rotate(r, glm::radians(mesh.rotateDeg.y), glm::vec3(0, 1, 0));
   r = glm::rotate(r, glm::radians(mesh.rotateDeg.x), glm::vec3(1, 0, 0));
   return glm::mat3(r);
+}
+
+io::Mesh meshTriangles(const MeshObstacle& mesh) {
+  return mesh.data ? *mesh.data : io::readObj(mesh.file);
 }
 
 }  // namespace sixway::scene

@@ -4,6 +4,7 @@
 // it from here.
 #include <glm/glm.hpp>
 
+#include "io/obj.h"
 #include "scene/scene.h"
 
 namespace sixway::scene {
@@ -16,8 +17,10 @@ struct MotionState {
 };
 MotionState evaluateMotion(const Motion& motion, double seconds);
 
-// The rotation of a mesh obstacle, R = Rz·Ry·Rx of rotate_deg (x applied first): world = translate +
-// R·(scale·p).
+// The rotation of a mesh obstacle, R = Rz·Ry·Rx of rotate_deg (x applied first), or the one it holds:
+// world = translate + R·(scale·p).
 glm::mat3 meshRotation(const MeshObstacle& mesh);
+// A mesh obstacle's triangles: those it holds, or its file's (io::readObj, whose InputError names it).
+io::Mesh meshTriangles(const MeshObstacle& mesh);
 
 }  // namespace sixway::scene

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -14,8 +15,13 @@
 #include <variant>
 #include <vector>
 
+#include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 #include <nlohmann/json_fwd.hpp>
+
+namespace sixway::io {
+struct Mesh;
+}  // namespace sixway::io
 
 namespace sixway::scene {
 
@@ -145,6 +151,10 @@ struct MeshObstacle {
   float scale = 1;
   glm::vec3 translate{0};
   glm::vec3 rotateDeg{0};
+  // An engine's mesh held in memory: its triangles in place of `file`'s, and its rotation in place of
+  // rotateDeg's.
+  std::shared_ptr<const io::Mesh> data;
+  std::optional<glm::mat3> rotation;
 };
 
 struct Keyframe {

@@ -37,7 +37,7 @@ struct VoxelizePush {
 
 ObstacleSet::ObstacleSet(const gpu::Context& context, const gpu::PipelineCache& cache,
                          const scene::Scene& scene, const LatticeUnits& units)
-    : units_(units), origin_(scene.grid.origin), size_(scene.grid.size) {
+    : context_(&context), cache_(&cache), units_(units), origin_(scene.grid.origin), size_(scene.grid.size) {
   const uint64_t cells = uint64_t(scene.grid.size.x) * scene.grid.size.y * scene.grid.size.z;
   cells_ = cells;
   flags_ = gpu::Buffer::storage(context, cells * sizeof(uint32_t), "cell flags");
@@ -55,51 +55,13 @@ ObstacleSet::ObstacleSet(const gpu::Context& context, const gpu::PipelineCache& 
   if (scene.inlets.size() > kMaxInlets)
     throw io::InputError(scene.name, "inlets: at most " + std::to_string(kMaxInlets) +
                                          " are supported, got " + std::to_string(scene.inlets.size()));
-  const float toCells = 1.0f / units.cellSize;
-  for (const scene::Obstacle& o : scene.obstacles) {
-    GpuObstacle g{};
-    glm::vec3 extent(0);
-    std::visit(
-        Overloaded{
-            [&](const scene::SphereObstacle& s) {
-              g.centre = glm::vec4(units.toLattice(s.center, origin_), float(ShapeCode::Sphere));
-              g.size.x = s.radius * toCells;
-              extent = glm::vec3(g.size.x);
-            },
-            [&](const scene::CylinderObstacle& c) {
-              g.centre = glm::vec4(units.toLattice(c.center, origin_), float(ShapeCode::Cylinder));
-              g.axis = glm::vec4(c.axis, 0.5f * c.height * toCells);
-              g.size.x = c.radius * toCells;
-              extent = g.axis.w * glm::abs(c.axis) + g.size.x * glm::sqrt(1.0f - c.axis * c.axis);
-            },
-            [&](const scene::CapsuleObstacle& c) {
-              g.centre = glm::vec4(units.toLattice(c.center, origin_), float(ShapeCode::Capsule));
-              g.axis = glm::vec4(c.axis, (0.5f * c.height - c.radius) * toCells);
-              g.size.x = c.radius * toCells;
-              extent = g.axis.w * glm::abs(c.axis) + g.size.x;
-            },
-            [&](const scene::BoxObstacle& b) {
-              g.centre = glm::vec4(units.toLattice(b.center, origin_), float(ShapeCode::Box));
-              g.size = glm::vec4(0.5f * b.size * toCells, 0.0f);
-              extent = glm::vec3(g.size);
-            },
-            [&](const scene::MeshObstacle& m) {
-              g.centre = glm::vec4(units.toLattice(m.translate, origin_), float(ShapeCode::Mesh));
-              // lattice offset d → object: Rᵀ · d · cellSize / scale
-              const glm::mat3 toObject = glm::transpose(scene::meshRotation(m)) * (units.cellSize / m.scale);
-              for (int row = 0; row < 3; ++row)
-                g.rotation[row] = glm::vec4(toObject[0][row], toObject[1][row], toObject[2][row], 0.0f);
-            },
-        },
-        o.shape);
-    obstacles_.push_back({g, o.motion, extent});
-  }
+  for (const scene::Obstacle& o : scene.obstacles) obstacles_.push_back(placed(o));
   for (const scene::Inlet& in : scene.inlets) {
     GpuInlet g{};
     std::visit(Overloaded{
                    [&](const scene::InletDisk& d) {
                      g.centre = glm::vec4(units.toLattice(d.center, origin_), float(InletShape::Disk));
-                     g.normal = glm::vec4(d.normal, d.radius * toCells);
+                     g.normal = glm::vec4(d.normal, d.radius * (1.0f / units.cellSize));
                    },
                    [&](const scene::InletBox& b) {
                      g.centre = glm::vec4(units.toLattice(b.min, origin_), float(InletShape::Box));
@@ -111,30 +73,93 @@ ObstacleSet::ObstacleSet(const gpu::Context& context, const gpu::PipelineCache& 
     g.smoke = glm::vec4(in.density, in.temperature, 0.0f, float(kInletSetsFlow));
     inlets_.push_back({g, in.start, in.stop, true});
   }
-  voxelizeMeshes(context, cache, scene);
+  if (Voxelization v = voxelize(scene.obstacles); v.sequence) v.sequence->submit();
 }
 
-void ObstacleSet::voxelizeMeshes(const gpu::Context& context, const gpu::PipelineCache& cache,
-                                 const scene::Scene& scene) {
+ObstacleSet::Placed ObstacleSet::placed(const scene::Obstacle& o) const {
+  const float toCells = 1.0f / units_.cellSize;
+  GpuObstacle g{};
+  glm::vec3 extent(0);
+  std::visit(Overloaded{
+                 [&](const scene::SphereObstacle& s) {
+                   g.centre = glm::vec4(units_.toLattice(s.center, origin_), float(ShapeCode::Sphere));
+                   g.size.x = s.radius * toCells;
+                   extent = glm::vec3(g.size.x);
+                 },
+                 [&](const scene::CylinderObstacle& c) {
+                   g.centre = glm::vec4(units_.toLattice(c.center, origin_), float(ShapeCode::Cylinder));
+                   g.axis = glm::vec4(c.axis, 0.5f * c.height * toCells);
+                   g.size.x = c.radius * toCells;
+                   extent = g.axis.w * glm::abs(c.axis) + g.size.x * glm::sqrt(1.0f - c.axis * c.axis);
+                 },
+                 [&](const scene::CapsuleObstacle& c) {
+                   g.centre = glm::vec4(units_.toLattice(c.center, origin_), float(ShapeCode::Capsule));
+                   g.axis = glm::vec4(c.axis, (0.5f * c.height - c.radius) * toCells);
+                   g.size.x = c.radius * toCells;
+                   extent = g.axis.w * glm::abs(c.axis) + g.size.x;
+                 },
+                 [&](const scene::BoxObstacle& b) {
+                   g.centre = glm::vec4(units_.toLattice(b.center, origin_), float(ShapeCode::Box));
+                   g.size = glm::vec4(0.5f * b.size * toCells, 0.0f);
+                   extent = glm::vec3(g.size);
+                 },
+                 [&](const scene::MeshObstacle& m) {
+                   g.centre = glm::vec4(units_.toLattice(m.translate, origin_), float(ShapeCode::Mesh));
+                   // lattice offset d → object: Rᵀ · d · cellSize / scale
+                   const glm::mat3 toObject =
+                       glm::transpose(scene::meshRotation(m)) * (units_.cellSize / m.scale);
+                   for (int row = 0; row < 3; ++row)
+                     g.rotation[row] = glm::vec4(toObject[0][row], toObject[1][row], toObject[2][row], 0.0f);
+                 },
+             },
+             o.shape);
+  return {g, o.motion, extent};
+}
+
+std::optional<gpu::Buffer> ObstacleSet::setObstacles(std::span<const scene::Obstacle> obstacles) {
+  if (obstacles.size() > kMaxObstacles)
+    throw std::invalid_argument(std::to_string(obstacles.size()) + " obstacles; at most " +
+                                std::to_string(kMaxObstacles));
+  std::vector<Placed> replaced;
+  for (const scene::Obstacle& o : obstacles) replaced.push_back(placed(o));
+  std::swap(obstacles_, replaced);
+  if (std::none_of(obstacles.begin(), obstacles.end(), [](const scene::Obstacle& o) {
+        return std::holds_alternative<scene::MeshObstacle>(o.shape);
+      }))
+    return std::nullopt;
+  gpu::Buffer old = std::move(occupancy_);
+  try {
+    pending_ = voxelize(obstacles);
+  } catch (...) {
+    obstacles_ = std::move(replaced);
+    occupancy_ = std::move(old);
+    throw;
+  }
+  return old;
+}
+
+ObstacleSet::Voxelization ObstacleSet::voxelize(std::span<const scene::Obstacle> obstacles) {
   struct Job {
     io::Mesh mesh;
     GpuObstacle* target;
   };
   std::vector<Job> jobs;
   uint32_t words = 0;
-  for (size_t i = 0; i < scene.obstacles.size(); ++i) {
-    const auto* m = std::get_if<scene::MeshObstacle>(&scene.obstacles[i].shape);
+  for (size_t i = 0; i < obstacles.size(); ++i) {
+    const auto* m = std::get_if<scene::MeshObstacle>(&obstacles[i].shape);
     if (!m) continue;
     GpuObstacle& g = obstacles_[i].shape;
-    Job job{io::readObj(m->file), &g};
+    Job job{scene::meshTriangles(*m), &g};
     // Object-space voxels of half a lattice cell, over the mesh bounds plus a voxel of margin.
     const float voxel = 0.5f * units_.cellSize / m->scale;
     const glm::vec3 lo = job.mesh.boundsMin - voxel, hi = job.mesh.boundsMax + voxel;
     const glm::ivec3 cells = glm::ivec3(glm::ceil((hi - lo) / voxel));
     const uint64_t count = uint64_t(cells.x) * cells.y * cells.z;
     if (count > (64u << 20))
-      throw io::InputError(m->file.string(), "the mesh needs " + std::to_string(count) +
-                                                 " occupancy voxels at this cell size; reduce its scale");
+      throw io::InputError(
+          m->data ? "obstacle " + std::to_string(i) + " (a mesh in memory)" : m->file.string(),
+          "the mesh needs " + std::to_string(count) +
+              " occupancy voxels at this cell size; reduce its scale");
     g.meshOrigin = glm::vec4(lo, voxel);
     // A sphere around the translation that holds every corner of the grid, whatever the rotation.
     float reach = 0;
@@ -146,36 +171,45 @@ void ObstacleSet::voxelizeMeshes(const gpu::Context& context, const gpu::Pipelin
     words += uint32_t(count);
     jobs.push_back(std::move(job));
   }
-  occupancy_ =
-      gpu::Buffer::storage(context, std::max<uint64_t>(words, 1) * sizeof(uint32_t), "mesh occupancy");
-  if (jobs.empty()) return;
+  // Zeroed here only when no voxelization clears it first.
+  occupancy_ = gpu::Buffer::storage(*context_, std::max<uint64_t>(words, 1) * sizeof(uint32_t),
+                                    "mesh occupancy", jobs.empty());
+  Voxelization v;
+  if (jobs.empty()) return v;
 
-  gpu::ComputePipelineDesc desc;
-  desc.shader = "sim/voxelize_mesh.comp";
-  desc.bindings = {gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer,
-                   gpu::BindingType::StorageBuffer};
-  desc.pushConstantBytes = sizeof(VoxelizePush);
-  gpu::Pipeline pipeline(context, cache, desc);
-  std::vector<gpu::Buffer> inputs;
-  gpu::Sequence sequence(context);
-  sequence.fill(occupancy_, 0);
+  if (!voxelizePipeline_) {
+    gpu::ComputePipelineDesc desc;
+    desc.shader = "sim/voxelize_mesh.comp";
+    desc.bindings = {gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer,
+                     gpu::BindingType::StorageBuffer};
+    desc.pushConstantBytes = sizeof(VoxelizePush);
+    voxelizePipeline_ = std::make_unique<gpu::Pipeline>(*context_, *cache_, desc);
+  }
+  v.sequence = std::make_unique<gpu::Sequence>(*context_);
+  v.sequence->fill(occupancy_, 0);
+  // Host-visible inputs: written without a submission, read once.
+  const auto input = [&](const auto& values, const char* name) {
+    gpu::Buffer b(*context_, values.size() * sizeof(values[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                  gpu::MemoryKind::HostUpload, name);
+    b.upload(values);
+    return b;
+  };
   for (const Job& job : jobs) {
     std::vector<float> positions;
     for (const glm::vec3& p : job.mesh.positions) positions.insert(positions.end(), {p.x, p.y, p.z});
     std::vector<uint32_t> triangles;
     for (const glm::uvec3& t : job.mesh.triangles) triangles.insert(triangles.end(), {t.x, t.y, t.z});
-    inputs.push_back(gpu::Buffer::storage(context, positions.size() * 4, "mesh positions"));
-    inputs.back().upload(positions);
-    inputs.push_back(gpu::Buffer::storage(context, triangles.size() * 4, "mesh triangles"));
-    inputs.back().upload(triangles);
+    v.inputs.push_back(input(positions, "mesh positions"));
+    v.inputs.push_back(input(triangles, "mesh triangles"));
     const VoxelizePush push{job.target->meshOrigin, job.target->meshGrid,
                             uint32_t(job.mesh.triangles.size())};
-    sequence.dispatch(
-        pipeline,
-        {gpu::reads(inputs[inputs.size() - 2]), gpu::reads(inputs.back()), gpu::readsWrites(occupancy_)},
-        push, (3 * push.triangleCount + 63) / 64);
+    v.sequence->dispatch(*voxelizePipeline_,
+                         {gpu::reads(v.inputs[v.inputs.size() - 2]), gpu::reads(v.inputs.back()),
+                          gpu::readsWrites(occupancy_)},
+                         push, (3 * push.triangleCount + 63) / 64);
   }
-  sequence.submit();
+  v.sequence->finish();
+  return v;
 }
 
 void ObstacleSet::recordFlags(gpu::Sequence& sequence, const gpu::Buffer& params,

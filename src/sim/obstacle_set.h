@@ -11,13 +11,10 @@
 
 #include "gpu/buffer.h"
 #include "gpu/pipeline.h"
+#include "gpu/sequence.h"
 #include "scene/scene.h"
 #include "sim/lattice_units.h"
 #include "sim/sim_params.h"
-
-namespace sixway::gpu {
-class Sequence;
-}
 
 namespace sixway::sim {
 
@@ -52,6 +49,19 @@ class ObstacleSet {
   const std::optional<scene::Motion>& motion(size_t obstacle) const { return obstacles_.at(obstacle).motion; }
   // Where the obstacle's centre (a mesh: its translation) is at `seconds`, in world coordinates (m).
   glm::vec3 positionAt(size_t obstacle, double seconds) const;
+  // Replaces every obstacle from the next step on (at most kMaxObstacles, std::invalid_argument beyond).
+  // sweptBox() follows: sequences recorded with the old box must be recorded again unless it holds the new.
+  // With meshes in the new set: returns the occupancy buffer it replaced (sequences recorded with it must be
+  // recorded again, and it kept while frames in flight may read it), and the new one is filled by the work
+  // takeVoxelization() hands over. Nothing changes when a mesh needs too many voxels (io::InputError).
+  std::optional<gpu::Buffer> setObstacles(std::span<const scene::Obstacle> obstacles);
+  // The voxelization of the last set's meshes, once: recorded or submitted before the next step, and kept
+  // (with the buffers it reads) while frames in flight may run it.
+  struct Voxelization {
+    std::vector<gpu::Buffer> inputs;
+    std::unique_ptr<gpu::Sequence> sequence;
+  };
+  std::optional<Voxelization> takeVoxelization() { return std::exchange(pending_, std::nullopt); }
   // Scales the scene's inlets' velocity (not their smoke) from the next step on; 1 is the scene's.
   void setInletStrength(float strength) { inletStrength_ = strength; }
   // Replaces every inlet (the scene's or earlier emitters) from the next step on; at most kMaxInlets.
@@ -81,10 +91,15 @@ class ObstacleSet {
     float start, stop;  // s
     bool scaled;        // by the inlet strength (the scene's inlets; an emitter's velocity is its own)
   };
-  void voxelizeMeshes(const gpu::Context& context, const gpu::PipelineCache& cache,
-                      const scene::Scene& scene);
+  // A shape (not a mesh's voxels) in lattice coordinates.
+  Placed placed(const scene::Obstacle& obstacle) const;
+  // Plans the occupancy grids of the meshes among `obstacles` (obstacles_[i] is obstacles[i]) into a fresh
+  // occupancy_ and records their voxelization (no sequence without meshes).
+  Voxelization voxelize(std::span<const scene::Obstacle> obstacles);
   glm::vec3 centreAt(size_t obstacle, uint64_t step) const;  // lattice coordinates
 
+  const gpu::Context* context_;
+  const gpu::PipelineCache* cache_;
   LatticeUnits units_;
   glm::vec3 origin_;
   glm::ivec3 size_;
@@ -96,6 +111,8 @@ class ObstacleSet {
   std::vector<TimedInlet> inlets_;
   float inletStrength_ = 1.0f;
   gpu::Buffer occupancy_;
+  std::unique_ptr<gpu::Pipeline> voxelizePipeline_;
+  std::optional<Voxelization> pending_;
 };
 
 }  // namespace sixway::sim

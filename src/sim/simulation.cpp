@@ -96,6 +96,17 @@ void Simulation::steerObstacle(size_t obstacle, glm::vec3 target, std::optional<
   coverBoxes();
 }
 
+void Simulation::setObstacles(std::vector<scene::Obstacle> obstacles) {
+  if (std::optional<gpu::Buffer> old = obstacles_->setObstacles(obstacles)) {
+    // The recorded steps read the old occupancy, which frames in flight may still do.
+    retiredBuffers_.emplace_back(lastRecordedFrame_, std::move(*old));
+    retireSequences();
+  }
+  scene_.obstacles = std::move(obstacles);
+  ++obstacleSetsMade_;
+  coverBoxes();
+}
+
 double Simulation::emitterSpeedLimit() const {
   return scene_.fluid.maxLatticeVelocity / units_.velocityScale;
 }
@@ -127,6 +138,10 @@ void Simulation::coverBoxes() {
   if (swept == sweptCover_ && inlets == inletCover_) return;
   sweptCover_ = swept;
   inletCover_ = inlets;
+  retireSequences();
+}
+
+void Simulation::retireSequences() {
   // Frames an engine has in flight may still run the old sequences.
   for (auto& [key, sequence] : sequences_) retired_.emplace_back(lastRecordedFrame_, std::move(sequence));
   sequences_.clear();
@@ -149,7 +164,7 @@ void Simulation::setInletStrength(float strength) {
 }
 
 gpu::Sequence& Simulation::sequenceFor(uint32_t steps, int parity) {
-  auto& slot = sequences_[{steps, parity}];
+  auto& slot = sequences_[{steps, parity, obstacles_->obstacleCount() > 0}];
   if (slot) return *slot;
   // Stages per step: obstacles, forces, lbm, and the smoke's.
   slot = std::make_unique<gpu::Sequence>(*context_, (3 + smoke_->stagesPerStep()) * steps + 1);
@@ -197,7 +212,8 @@ void Simulation::fillStepParameters(uint32_t steps) {
 }
 
 void Simulation::summarize(uint64_t firstStep, uint32_t steps, const std::vector<gpu::StageTime>& times,
-                           const glm::vec4* forces, const gpu::Stats& speed, const gpu::Stats& density) {
+                           const glm::vec4* forces, size_t obstacleCount, const gpu::Stats& speed,
+                           const gpu::Stats& density) {
   AdvanceReport report;
   report.firstStep = firstStep;
   SmokePassTimes& smoke = report.times.smokePasses;
@@ -214,7 +230,6 @@ void Simulation::summarize(uint64_t firstStep, uint32_t steps, const std::vector
     *total += t.milliseconds;
   }
   report.times.smoke = smoke.sources + smoke.activity + smoke.fluxes + smoke.limiter + smoke.update;
-  const size_t obstacleCount = obstacles_->obstacleCount();
   if (forces)
     for (uint32_t s = 0; s < steps; ++s) {
       report.forces.emplace_back();
@@ -245,8 +260,13 @@ void Simulation::record(VkCommandBuffer commands, uint64_t frame, uint32_t steps
   checkRecordedFrame(frame);
   fillStepParameters(steps);
   gpu::Sequence& sequence = sequenceFor(steps, int(step_ % 2));
+  if (std::optional<ObstacleSet::Voxelization> meshes = obstacles_->takeVoxelization()) {
+    meshes->sequence->record(commands, frame);
+    retired_.emplace_back(frame, std::move(meshes->sequence));
+    for (gpu::Buffer& b : meshes->inputs) retiredBuffers_.emplace_back(frame, std::move(b));
+  }
   sequence.record(commands, frame);
-  recorded_.push_back({frame, step_, steps, &sequence});
+  recorded_.push_back({frame, step_, steps, &sequence, obstacles_->obstacleCount()});
   lastRecordedFrame_ = frame;
   step_ += steps;
 }
@@ -262,21 +282,27 @@ void Simulation::checkRecordedFrame(uint64_t frame) {
       return value;
     };
     const glm::vec4* forces =
-        obstacles_->obstacleCount() > 0
+        done.obstacles > 0
             ? reinterpret_cast<const glm::vec4*>(done.sequence->readback(forces_, done.frame).data())
             : nullptr;
-    summarize(done.firstStep, done.steps, done.sequence->timesOfFrame(done.frame), forces,
+    summarize(done.firstStep, done.steps, done.sequence->timesOfFrame(done.frame), forces, done.obstacles,
               stats(*speedStats_), stats(*densityStats_));
     ++framesReported_;
   }
   // Replaced sequences that no frame in flight runs and no unread frame holds.
   std::erase_if(retired_, [&](const auto& r) { return r.first + inFlight < frame; });
+  std::erase_if(retiredBuffers_, [&](const auto& r) { return r.first + inFlight < frame; });
 }
 
 void Simulation::advance(uint32_t steps) {
   // Every earlier submission has completed (advance waits for its own) unless an engine's recorded frames
   // hold them still.
-  if (recorded_.empty()) retired_.clear();
+  if (recorded_.empty()) {
+    retired_.clear();
+    retiredBuffers_.clear();
+  }
+  if (std::optional<ObstacleSet::Voxelization> meshes = obstacles_->takeVoxelization())
+    meshes->sequence->submit();
   while (steps > 0) {
     const uint32_t n = std::min(steps, capacity_);
     fillStepParameters(n);
@@ -287,7 +313,7 @@ void Simulation::advance(uint32_t steps) {
     std::vector<glm::vec4> forces;
     if (obstacles_->obstacleCount() > 0) forces = forces_.download<glm::vec4>();
     summarize(firstStep, n, sequence.stageTimes(), forces.empty() ? nullptr : forces.data(),
-              speedStats_->result(), densityStats_->result());
+              obstacles_->obstacleCount(), speedStats_->result(), densityStats_->result());
     steps -= n;
   }
 }

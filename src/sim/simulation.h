@@ -9,6 +9,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "gpu/buffer.h"
@@ -74,6 +75,14 @@ class Simulation {
   void steerObstacle(size_t obstacle, glm::vec3 target, std::optional<double> seconds = std::nullopt);
   // The fastest an obstacle moves (m/s): half the lattice's speed limit.
   double obstacleSpeedLimit() const;
+  // Replaces every obstacle (the scene's, or an earlier set) from the next step on: spheres, cylinders, boxes
+  // and capsules in world coordinates, each at rest where its shape says or on its motion (an engine's
+  // obstacles, which it then steers). scene().obstacles follows and obstacleSetsMade() counts up.
+  // std::invalid_argument for more than kMaxObstacles or a mesh.
+  void setObstacles(std::vector<scene::Obstacle> obstacles);
+  // How many times setObstacles has replaced the obstacles: what was made for the earlier ones (a renderer's
+  // meshes) is out of date.
+  uint64_t obstacleSetsMade() const { return obstacleSetsMade_; }
   // Replaces the inlets by these emitters from the next step on (ObstacleSet::setEmitters).
   // std::invalid_argument for more than kMaxInlets, a speed beyond fluid.max_lattice_velocity, a position
   // that is not finite, a negative or non-finite radius or rate.
@@ -116,11 +125,14 @@ class Simulation {
   void fillStepParameters(uint32_t steps);
   // report_ from the measurements of `steps` steps from `firstStep`; throws WatchdogError when they trip it.
   void summarize(uint64_t firstStep, uint32_t steps, const std::vector<gpu::StageTime>& times,
-                 const glm::vec4* forces, const gpu::Stats& speed, const gpu::Stats& density);
+                 const glm::vec4* forces, size_t obstacleCount, const gpu::Stats& speed,
+                 const gpu::Stats& density);
   void checkRecordedFrame(uint64_t frame);
   // Grows the boxes the sequences are recorded for until they hold the obstacles' swept box and the inlets'
   // box; sequences recorded for smaller ones are retired.
   void coverBoxes();
+  // Moves every recorded sequence to retired_ (frames in flight may run them): the next steps record anew.
+  void retireSequences();
 
   const gpu::Context* context_;
   scene::Scene scene_;
@@ -133,19 +145,23 @@ class Simulation {
   gpu::Buffer params_, forces_;
   gpu::Buffer flagsDispatch_;  // per step slot: the flags pass's workgroups (ObstacleSet::recordFlags)
   FlagsSchedule flagsSchedule_;
-  std::map<std::pair<uint32_t, int>, std::unique_ptr<gpu::Sequence>> sequences_;
+  // By steps and parity; with and without obstacles (their forces stage and readback).
+  std::map<std::tuple<uint32_t, int, bool>, std::unique_ptr<gpu::Sequence>> sequences_;
   // record(): what each recent frame ran (its results come back framesInFlight frames later), and the
   // sequences a steered obstacle replaced, kept until no frame in flight can use them.
   struct RecordedFrame {
     uint64_t frame, firstStep;
     uint32_t steps;
     gpu::Sequence* sequence;
+    size_t obstacles;  // as the frame was recorded: its sequence reads back forces when there are any
   };
   std::vector<RecordedFrame> recorded_;
   std::vector<std::pair<uint64_t, std::unique_ptr<gpu::Sequence>>> retired_;
-  using Box = std::pair<glm::ivec3, glm::ivec3>;  // lattice cells [min, max)
-  Box sweptCover_, inletCover_;                   // what the recorded sequences visit
+  std::vector<std::pair<uint64_t, gpu::Buffer>> retiredBuffers_;  // a replaced occupancy, meshes' inputs
+  using Box = std::pair<glm::ivec3, glm::ivec3>;                  // lattice cells [min, max)
+  Box sweptCover_, inletCover_;                                   // what the recorded sequences visit
   uint64_t sequencesRecorded_ = 0;
+  uint64_t obstacleSetsMade_ = 0;
   uint64_t lastRecordedFrame_ = 0;
   uint64_t framesReported_ = 0;
   uint64_t step_ = 0;

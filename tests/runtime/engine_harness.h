@@ -108,6 +108,49 @@ struct EngineTargets {
   gpu::Image color, depth;
 };
 
+// The engine's path for sixway's one-time work (EngineDevice::submitAndWait): its own pool, command buffer
+// and fence; counts the calls.
+struct EngineUploads {
+  explicit EngineUploads(const gpu::Context& context) : context(context) {
+    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    poolInfo.queueFamilyIndex = context.queueFamily();
+    SIXWAY_VK(vkCreateCommandPool(context.device(), &poolInfo, nullptr, &pool));
+    VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, pool,
+                                          VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
+    SIXWAY_VK(vkAllocateCommandBuffers(context.device(), &allocInfo, &commands));
+    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    SIXWAY_VK(vkCreateFence(context.device(), &fenceInfo, nullptr, &fence));
+  }
+  ~EngineUploads() {
+    vkDestroyFence(context.device(), fence, nullptr);
+    vkDestroyCommandPool(context.device(), pool, nullptr);
+  }
+  // As EngineDevice::submitAndWait.
+  std::function<void(const std::function<void(VkCommandBuffer)>&)> submit() {
+    return [this](const std::function<void(VkCommandBuffer)>& record) {
+      ++calls;
+      SIXWAY_VK(vkResetCommandBuffer(commands, 0));
+      VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+      SIXWAY_VK(vkBeginCommandBuffer(commands, &begin));
+      record(commands);
+      SIXWAY_VK(vkEndCommandBuffer(commands));
+      VkSubmitInfo info{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+      info.commandBufferCount = 1;
+      info.pCommandBuffers = &commands;
+      SIXWAY_VK(vkResetFences(context.device(), 1, &fence));
+      SIXWAY_VK(vkQueueSubmit(context.queue(), 1, &info, fence));
+      SIXWAY_VK(vkWaitForFences(context.device(), 1, &fence, VK_TRUE, UINT64_MAX));
+    };
+  }
+
+  const gpu::Context& context;
+  VkCommandPool pool = VK_NULL_HANDLE;
+  VkCommandBuffer commands = VK_NULL_HANDLE;
+  VkFence fence = VK_NULL_HANDLE;
+  int calls = 0;
+};
+
 // An "engine" on sixway's own device: the device borrowed through the public API, a command buffer and a
 // fence, one frame at a time.
 struct BorrowingEngine {

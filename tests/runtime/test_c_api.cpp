@@ -87,6 +87,20 @@ TEST(CApi, ErrorsAndMisuseComeBackAsCodesWithTheirMessages) {
   const float target[3] = {0.1f, 0.7f, 0.1f};
   EXPECT_EQ(sixwaySimulationSteerObstacle(simulation, 3, target, 0.1), SIXWAY_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(sixwaySimulationSteerObstacle(simulation, 0, target, 0.1), SIXWAY_SUCCESS) << sixwayLastError();
+  SixwayObstacle obstacles[2] = {{SIXWAY_OBSTACLE_CAPSULE, {0.1f, 0.7f, 0.1f}, 0.1f, {}, 0.1f, {0, 1, 0}, 1},
+                                 {SixwayObstacleShape(7), {0.0f, 0.5f, 0.0f}, 0.1f, {}, 0.0f, {}, 1}};
+  EXPECT_EQ(sixwaySimulationSetObstacles(simulation, nullptr, 1, 0.1), SIXWAY_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(sixwaySimulationSetObstacles(simulation, obstacles, 1, 0.1), SIXWAY_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(sixwayLastError()).find("obstacle 0: a capsule's height 0.1"), std::string::npos)
+      << sixwayLastError();
+  obstacles[0].height = 0.4f;
+  EXPECT_EQ(sixwaySimulationSetObstacles(simulation, obstacles, 2, 0.1), SIXWAY_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(sixwayLastError()).find("obstacle 1 has no shape 7"), std::string::npos)
+      << sixwayLastError();
+  EXPECT_EQ(sixwaySimulationSetObstacles(simulation, obstacles, 1, 0.1), SIXWAY_SUCCESS) << sixwayLastError();
+  uint32_t obstacleCount = 0;
+  EXPECT_EQ(sixwaySimulationObstacleCount(simulation, &obstacleCount), SIXWAY_SUCCESS);
+  EXPECT_EQ(obstacleCount, 1u);
 
   ASSERT_EQ(sixwaySimulationAdvance(simulation), SIXWAY_SUCCESS);
   ASSERT_EQ(sixwayRendererRender(renderer), SIXWAY_SUCCESS);

@@ -375,40 +375,10 @@ TEST(Runtime, AnEngineRunsSixwaysOneTimeWork) {
   TempDir dir;
   const std::filesystem::path scene = sceneWithoutObstacles(dir.path());
   Device own({.validate = true});
-  const gpu::Context& context = runtime::Access::context(own);
-  // The engine's upload path: its own pool, command buffer and fence.
-  VkCommandPool pool = VK_NULL_HANDLE;
-  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-  poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-  poolInfo.queueFamilyIndex = context.queueFamily();
-  SIXWAY_VK(vkCreateCommandPool(context.device(), &poolInfo, nullptr, &pool));
-  VkCommandBuffer upload = VK_NULL_HANDLE;
-  VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, pool,
-                                        VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
-  SIXWAY_VK(vkAllocateCommandBuffers(context.device(), &allocInfo, &upload));
-  VkFence fence = VK_NULL_HANDLE;
-  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  SIXWAY_VK(vkCreateFence(context.device(), &fenceInfo, nullptr, &fence));
-  int calls = 0;
-  auto submit = [&](const std::function<void(VkCommandBuffer)>& record) {
-    ++calls;
-    SIXWAY_VK(vkResetCommandBuffer(upload, 0));
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    SIXWAY_VK(vkBeginCommandBuffer(upload, &begin));
-    record(upload);
-    SIXWAY_VK(vkEndCommandBuffer(upload));
-    VkSubmitInfo info{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    info.commandBufferCount = 1;
-    info.pCommandBuffers = &upload;
-    SIXWAY_VK(vkResetFences(context.device(), 1, &fence));
-    SIXWAY_VK(vkQueueSubmit(context.queue(), 1, &info, fence));
-    SIXWAY_VK(vkWaitForFences(context.device(), 1, &fence, VK_TRUE, UINT64_MAX));
-  };
-
+  EngineUploads uploads(runtime::Access::context(own));
   std::vector<float> images[2];
   for (int hooked = 0; hooked < 2; ++hooked) {
-    BorrowingEngine engine(
-        own, hooked ? std::function<void(const std::function<void(VkCommandBuffer)>&)>(submit) : nullptr);
+    BorrowingEngine engine(own, hooked ? uploads.submit() : nullptr);
     const scene::Scene parsed = scene::loadScene(scene);
     EngineTargets targets(engine.context, uint32_t(parsed.render.width), uint32_t(parsed.render.height));
     SmokeSimulation simulation(engine.device, scene);
@@ -421,10 +391,8 @@ TEST(Runtime, AnEngineRunsSixwaysOneTimeWork) {
     }
     images[hooked] = targets.colorPixels();
   }
-  EXPECT_GT(calls, 0);
+  EXPECT_GT(uploads.calls, 0);
   EXPECT_EQ(maxDifference(images[0], images[1]), 0.0);
-  vkDestroyFence(context.device(), fence, nullptr);
-  vkDestroyCommandPool(context.device(), pool, nullptr);
   EXPECT_EQ(own.validationMessages(), 0u);
 }
 
