@@ -73,8 +73,9 @@ struct EngineDevice {
   // Where buffers and images get their memory; unset: one vkAllocateMemory each.
   DeviceMemoryAllocator memory;
   // The engine's vkGetInstanceProcAddr (its loader, or a layer of its own in front of it): while this device
-  // lives, every Vulkan function sixway calls comes from it for `instance`, process-wide (docs/embedding.md,
-  // "Vulkan functions"). Null: the Vulkan loader sixway links. An Error names a function it does not give.
+  // lives, every Vulkan function sixway calls comes from it, process-wide, taken for `instance` (of the first
+  // such device, when several with the same one live) (docs/embedding.md, "The device"). Null: the Vulkan
+  // loader sixway links. An Error names a function it does not give.
   PFN_vkGetInstanceProcAddr getInstanceProcAddr = nullptr;
 };
 

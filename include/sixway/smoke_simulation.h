@@ -147,10 +147,12 @@ class SmokeSimulation {
   // From the next recorded step on, these obstacles are the smoke's in place of the scene's (an empty list:
   // none). Call it each frame with the positions at the end of the frame time passed to the next record:
   // obstacle i with the same shape as in the last call moves there as steerObstacle(i, position, seconds)
-  // does; any other (a new index, another shape, size, rotation or mesh) appears there at rest. A call that
-  // changes shapes makes renderers build their obstacle meshes again at their next frame, and the next record
-  // voxelizes new meshes (host work, no submission); moves within the cells covered so far record nothing
-  // again. restart() returns to the scene's obstacles.
+  // does (given where it was given last, it goes on as it was: resting obstacles cost the lattice nothing);
+  // any other (a new index, another shape, size, rotation or mesh, or a new placement) appears there at rest.
+  // A call that changes shapes makes renderers build their obstacle meshes at their next frame; a new mesh is
+  // copied and prepared during the call and voxelized by GPU work in the next record (host work, no
+  // submission); moves within the cells covered so far record nothing again. restart() returns to the scene's
+  // obstacles.
   // std::invalid_argument for more than maxObstacles(), a value that is not finite, a size or radius <= 0,
   // a capsule shorter than its diameter or without an axis, a mesh without triangles, with an index out of
   // range or a rotation that is not one, a negative time; an Error for a mesh too fine for the lattice.

@@ -1,9 +1,9 @@
 #pragma once
-// A VkBuffer with its own memory, zero-filled on creation. Device buffers are filled and read through
-// staging copies; host buffers stay mapped. Frame-parameter buffers are device buffers with a host copy
-// that mapped() exposes: a gpu::Sequence writes that copy into the command buffer when it records a frame
-// (vkCmdUpdateBuffer), so the values a frame sees are the ones set before it was recorded, however many
-// frames are in flight.
+// A VkBuffer with its own memory, zero-filled on creation (unless asked not to). Device buffers are filled
+// and read through staging copies; host buffers stay mapped. Frame-parameter buffers are device buffers with
+// a host copy that mapped() exposes: a gpu::Sequence writes that whole copy into the command buffer when it
+// records a frame (vkCmdUpdateBuffer), so the values a frame sees are the ones set before it was recorded,
+// however many frames are in flight (and the device memory needs no clearing).
 #include <vulkan/vulkan.h>
 
 #include <cstddef>

@@ -22,8 +22,11 @@ FrameRenderer::FrameRenderer(const gpu::Context& context, const gpu::PipelineCac
 
 void FrameRenderer::replaceObstacles(const std::vector<scene::Obstacle>& obstacles,
                                      std::optional<uint64_t> frame) {
+  // Whatever may throw comes first: nothing that frames in flight run is let go on the way.
+  auto meshes = std::make_unique<render::ObstacleMeshes>(*context_, obstacles, gpu::MemoryKind::HostUpload);
+  retired_.reserve(retired_.size() + 1);
   Retired old{frame.value_or(0) + context_->framesInFlight(), sequence_.release(), std::move(composites_),
-              frame_.replaceObstacles(obstacles)};
+              frame_.replaceObstacles(std::move(meshes))};
   composites_.clear();
   if (frame) retired_.push_back(std::move(old));
 }

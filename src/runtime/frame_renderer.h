@@ -64,9 +64,10 @@ class FrameRenderer {
   gpu::Sequence& composite();
   // Drops the kept composites (their targets are gone; the GPU is done with them).
   void forgetComposites();
-  // Another set of obstacles to draw and shadow from the next prepare() on (RealtimeFrame::replaceObstacles),
-  // which records the passes again. What the frames in flight may still run is kept until frame `frame` +
-  // framesInFlight is prepared (unset: on sixway's own device, dropped now).
+  // Another set of obstacles to draw and shadow from the next prepare() on, its meshes in host-visible
+  // memory (made without a submission), which records the passes again. What the frames in flight may still
+  // run is kept until frame `frame` + framesInFlight is prepared (unset: on sixway's own device, dropped
+  // now).
   void replaceObstacles(const std::vector<scene::Obstacle>& obstacles, std::optional<uint64_t> frame);
 
   // What the last prepare() could not do as asked, for the user (RealtimeFrame::takeNotes).

@@ -66,7 +66,6 @@ RealtimeFrame::RealtimeFrame(const gpu::Context& context, const gpu::PipelineCac
       guide_(ownImage(context, lightmapSize_, lightmapSize_, kColorFormat,
                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "guiding map")),
       lightmaps_(context, lightmapSize_, lightmapSize_),
-      context_(&context),
       meshes_(std::make_unique<render::ObstacleMeshes>(context, scene.obstacles)),
       shadowMaps_(context, cache, render::kDefaultShadowTileSize, shadowTiles),
       guiding_(context, cache, guide),
@@ -87,9 +86,8 @@ RealtimeFrame::RealtimeFrame(const gpu::Context& context, const gpu::PipelineCac
 }
 
 std::unique_ptr<render::ObstacleMeshes> RealtimeFrame::replaceObstacles(
-    const std::vector<scene::Obstacle>& obstacles) {
-  return std::exchange(
-      meshes_, std::make_unique<render::ObstacleMeshes>(*context_, obstacles, gpu::MemoryKind::HostUpload));
+    std::unique_ptr<render::ObstacleMeshes> meshes) {
+  return std::exchange(meshes_, std::move(meshes));
 }
 
 void RealtimeFrame::setEngineTarget(EngineTarget target) {

@@ -110,10 +110,9 @@ class RealtimeFrame {
   const render::LightmapImages& lightmaps() const { return lightmaps_; }
   render::ObstacleMeshes& meshes() { return *meshes_; }
   const render::ObstacleMeshes& meshes() const { return *meshes_; }
-  // Another set of obstacles (an engine's, sim::Simulation::setObstacles) for the passes recorded from now
-  // on, its meshes in host-visible memory (made without a submission); returns the old meshes, which frames
-  // in flight may still draw.
-  std::unique_ptr<render::ObstacleMeshes> replaceObstacles(const std::vector<scene::Obstacle>& obstacles);
+  // The meshes of another set of obstacles (an engine's, sim::Simulation::setObstacles) for the passes
+  // recorded from now on; returns the old ones, which frames in flight may still draw.
+  std::unique_ptr<render::ObstacleMeshes> replaceObstacles(std::unique_ptr<render::ObstacleMeshes> meshes);
   const render::GuidingMap& guiding() const { return guiding_; }
   render::GuidingMap& guiding() { return guiding_; }
   // The camera's image in pixels: the own target, or the engine target's viewport.
@@ -138,7 +137,6 @@ class RealtimeFrame {
   gpu::Image color_, depth_, guide_;
   std::optional<gpu::Image> guideEmission_;
   render::LightmapImages lightmaps_;
-  const gpu::Context* context_;
   std::unique_ptr<render::ObstacleMeshes> meshes_;
   render::ShadowMaps shadowMaps_;
   std::unique_ptr<render::ObstaclePass> obstacles_;  // sixway's own target only

@@ -268,7 +268,8 @@ void SmokeSimulation::setObstacles(const std::vector<Obstacle>& obstacles, doubl
     const Obstacle& o = obstacles[i];
     if (!finite(o.position))
       throw std::invalid_argument("obstacle " + std::to_string(i) + ": position is not finite");
-    steered.push_back(i < last.size() && sameShape(o, last[i].obstacle, last[i].mesh.get()));
+    steered.push_back(i < last.size() && impl_->obstaclesPlacement == impl_->placement &&
+                      sameShape(o, last[i].obstacle, last[i].mesh.get()));
     Impl::EngineObstacle record{o, steered.back() ? last[i].mesh : nullptr};
     record.obstacle.vertices = {};
     record.obstacle.indices = {};
@@ -285,10 +286,13 @@ void SmokeSimulation::setObstacles(const std::vector<Obstacle>& obstacles, doubl
   const bool changed = last.size() != obstacles.size() || simulation.obstacleSetsMade() == 0 ||
                        std::find(steered.begin(), steered.end(), false) != steered.end();
   if (changed) simulation.setObstacles(shapes);
+  // One given where it was last time is on its way there already (or rests there: steering it again would
+  // move it by rounding and make the lattice mark its cells again each step).
   for (size_t i = 0; i < obstacles.size(); ++i)
-    if (steered[i])
+    if (steered[i] && obstacles[i].position != last[i].obstacle.position)
       simulation.steerObstacle(i, runtime::scenePoint(impl_->placement, obstacles[i].position), seconds);
   impl_->engineObstacles = std::move(kept);
+  impl_->obstaclesPlacement = impl_->placement;
 }
 
 void SmokeSimulation::setPlacement(const glm::mat4& worldFromScene) {

@@ -35,6 +35,7 @@ struct SmokeSimulation::Impl {
     std::shared_ptr<const io::Mesh> mesh;
   };
   std::vector<EngineObstacle> engineObstacles;
+  glm::mat4 obstaclesPlacement{1.0f};  // the placement they were given in (another turns them: new shapes)
 };
 
 }  // namespace sixway

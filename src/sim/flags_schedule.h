@@ -16,6 +16,8 @@ class FlagsSchedule {
   // Steps in the order they run (the order their parameters are filled): whether step `params` needs the
   // pass.
   bool needsPass(const StepParams& params);
+  // The geometry changed where StepParams cannot show it (a mesh's voxels): the next two steps run the pass.
+  void invalidate() { last_.reset(), beforeLast_.reset(); }
   uint64_t passes() const { return passes_; }  // steps that ran the pass
   uint64_t steps() const { return steps_; }
 

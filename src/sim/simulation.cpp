@@ -104,6 +104,7 @@ void Simulation::setObstacles(std::vector<scene::Obstacle> obstacles) {
   }
   scene_.obstacles = std::move(obstacles);
   ++obstacleSetsMade_;
+  flagsSchedule_.invalidate();  // another mesh may have the same StepParams
   coverBoxes();
 }
 

@@ -75,10 +75,11 @@ class Simulation {
   void steerObstacle(size_t obstacle, glm::vec3 target, std::optional<double> seconds = std::nullopt);
   // The fastest an obstacle moves (m/s): half the lattice's speed limit.
   double obstacleSpeedLimit() const;
-  // Replaces every obstacle (the scene's, or an earlier set) from the next step on: spheres, cylinders, boxes
-  // and capsules in world coordinates, each at rest where its shape says or on its motion (an engine's
-  // obstacles, which it then steers). scene().obstacles follows and obstacleSetsMade() counts up.
-  // std::invalid_argument for more than kMaxObstacles or a mesh.
+  // Replaces every obstacle (the scene's, or an earlier set) from the next step on: any shapes in scene
+  // coordinates, each at rest where its shape says or on its motion (an engine's obstacles, which it then
+  // steers); meshes are voxelized by GPU work that the next record or advance runs first. scene().obstacles
+  // follows and obstacleSetsMade() counts up. std::invalid_argument for more than kMaxObstacles;
+  // io::InputError for a mesh too fine for the lattice (nothing changed then).
   void setObstacles(std::vector<scene::Obstacle> obstacles);
   // How many times setObstacles has replaced the obstacles: what was made for the earlier ones (a renderer's
   // meshes) is out of date.

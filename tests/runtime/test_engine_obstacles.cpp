@@ -42,13 +42,11 @@ struct Shape {
   Obstacle engine;       // the same from the engine, in the scene's own coordinates
 };
 
-// An octahedron's OBJ in `dir`, and its triangles as io::readObj reads them (which the engine's spans view).
-struct Octahedron {
-  explicit Octahedron(const std::filesystem::path& dir) : file(dir / "octahedron.obj") {
-    std::ofstream obj(file);
-    obj << "v 1 0 0\nv -1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nv 0 0 -1\n"
-           "f 1 3 5\nf 3 2 5\nf 2 4 5\nf 4 1 5\nf 3 1 6\nf 2 3 6\nf 4 2 6\nf 1 4 6\n";
-    obj.close();
+// A closed mesh's OBJ in `dir`, and its triangles as io::readObj reads them (which the engine's spans view).
+struct ObjMesh {
+  ObjMesh(const std::filesystem::path& dir, const std::string& name, const std::string& text)
+      : file(dir / (name + ".obj")) {
+    std::ofstream(file) << text;
     mesh = io::readObj(file);
     for (const glm::uvec3& t : mesh.triangles) indices.insert(indices.end(), {t.x, t.y, t.z});
   }
@@ -57,7 +55,20 @@ struct Octahedron {
   std::vector<uint32_t> indices;
 };
 
-std::vector<Shape> shapes(const Octahedron& octahedron) {
+// |x| + |y| + |z| < 1, and a cube with the same bounds (|x|, |y|, |z| < 1).
+ObjMesh octahedron(const std::filesystem::path& dir) {
+  return ObjMesh(dir, "octahedron",
+                 "v 1 0 0\nv -1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nv 0 0 -1\n"
+                 "f 1 3 5\nf 3 2 5\nf 2 4 5\nf 4 1 5\nf 3 1 6\nf 2 3 6\nf 4 2 6\nf 1 4 6\n");
+}
+ObjMesh cube(const std::filesystem::path& dir) {
+  return ObjMesh(dir, "cube",
+                 "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+                 "f 1 4 3\nf 1 3 2\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 4 8 7\nf 4 7 3\n"
+                 "f 1 5 8\nf 1 8 4\nf 2 3 7\nf 2 7 6\n");
+}
+
+std::vector<Shape> shapes(const ObjMesh& octahedron) {
   // The scene file's rotate_deg [10, 30, 0] as a matrix (scene::meshRotation's order: z, y, then x).
   glm::mat4 turn = glm::rotate(glm::mat4(1.0f), glm::radians(30.0f), glm::vec3(0, 1, 0));
   turn = glm::rotate(turn, glm::radians(10.0f), glm::vec3(1, 0, 0));
@@ -132,8 +143,8 @@ TEST(EngineObstacles, AreTheScenesObstaclesWhenGivenTheSame) {
   const glm::mat4 placement = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(3.0f, 0.0f, -2.0f)),
                                           glm::radians(30.0f), glm::vec3(0.0f, 1.0f, 0.0f));
   const Frames without = fourFrames(engine, bare, glm::mat4(1.0f), nullptr);
-  const Octahedron octahedron(dir.path());
-  for (const Shape& shape : shapes(octahedron)) {
+  const ObjMesh mesh = octahedron(dir.path());
+  for (const Shape& shape : shapes(mesh)) {
     SCOPED_TRACE(shape.name);
     const std::filesystem::path file = sceneWith(dir.path(), shape.scene);
     const std::vector<Obstacle> engineObstacles{shape.engine};
@@ -164,7 +175,7 @@ std::vector<int> solidCells(const SmokeSimulation& simulation) {
 
 // The cells whose centres lie inside each obstacle (scene = world here), first obstacle first; −1 where a
 // mesh's surface passes within 0.3 cells (its voxels are half a cell: the lattice may go either way). Meshes
-// are octahedra (|x| + |y| + |z| < 1 in their own space).
+// are octahedra (6 vertices) or cubes (8).
 std::vector<int> expectedCells(const std::vector<Obstacle>& obstacles) {
   std::ifstream in(kScene);
   const nlohmann::json scene = nlohmann::json::parse(in);
@@ -189,13 +200,16 @@ std::vector<int> expectedCells(const std::vector<Obstacle>& obstacles) {
             inside = glm::length(d - t * axis) < b.radius;
           }
           if (b.shape == Obstacle::Shape::Mesh) {
-            const glm::vec3 q = glm::transpose(b.rotation) * d / b.scale;
-            const float sum = std::abs(q.x) + std::abs(q.y) + std::abs(q.z);
-            if (std::abs(1.0f - sum) * b.scale / std::sqrt(3.0f) < 0.3f * h) {
+            const glm::vec3 q = glm::abs(glm::transpose(b.rotation) * d / b.scale);
+            const bool cube = b.vertices.size() == 8;
+            // 1 on the surface, and the distance to it in the mesh's units per unit of this measure.
+            const float measure = cube ? std::max({q.x, q.y, q.z}) : q.x + q.y + q.z;
+            const float perUnit = cube ? 1.0f : 1.0f / std::sqrt(3.0f);
+            if (std::abs(1.0f - measure) * perUnit * b.scale < 0.3f * h) {
               cells[(size_t(z) * n.y + y) * n.x + x] = -1;
               break;
             }
-            inside = sum < 1.0f;
+            inside = measure < 1.0f;
           }
           if (inside) {
             cells[(size_t(z) * n.y + y) * n.x + x] = int(o) + 1;
@@ -225,16 +239,31 @@ TEST(EngineObstacles, ChangeMidRunWithoutSubmissionsOrWaits) {
                          targets.target());
   renderer.setCamera(sceneCamera());
   const float background[4] = {0.0f, 0.0f, 0.0f, 1.0f};
-  const Octahedron octahedron(dir.path());
-  const std::vector<Shape> all = shapes(octahedron);
+  const ObjMesh octahedronMesh = octahedron(dir.path()), cubeMesh = cube(dir.path());
+  const std::vector<Shape> all = shapes(octahedronMesh);
   const Obstacle mesh = all[0].engine, sphere = all[1].engine, box = all[2].engine, capsule = all[3].engine;
   Obstacle moved = sphere, meshMoved = mesh;
   moved.position += glm::vec3(-0.04f, 0.0f, 0.0f);
   meshMoved.position += glm::vec3(0.0f, 0.04f, 0.0f);
+  // A mesh with the octahedron's bounds, pose and scale: only its voxels tell it apart.
+  Obstacle sameBounds = meshMoved;
+  sameBounds.vertices = cubeMesh.mesh.positions;
+  sameBounds.indices = cubeMesh.indices;
   // Frame by frame: none; a sphere appears; it moves; it becomes a box; a capsule joins it; a mesh replaces
-  // the box; the mesh moves; none.
-  const std::vector<std::vector<Obstacle>> plan = {
-      {}, {sphere}, {moved}, {box}, {box, capsule}, {mesh, capsule}, {meshMoved, capsule}, {}};
+  // the box; the mesh moves, and rests; a cube takes its place; none.
+  const std::vector<std::vector<Obstacle>> plan = {{},
+                                                   {sphere},
+                                                   {moved},
+                                                   {box},
+                                                   {box, capsule},
+                                                   {mesh, capsule},
+                                                   {meshMoved, capsule},
+                                                   {meshMoved, capsule},
+                                                   {meshMoved, capsule},
+                                                   {sameBounds, capsule},
+                                                   {}};
+  const uint64_t kRestingAgain = 8;  // the third frame of the same mesh and capsule at the same places
+  uint64_t passesBefore = 0;
   int sixwaysUploads = 0;  // after the first frame (the test's own downloads go through the engine too)
   for (uint64_t frame = 0; frame < plan.size(); ++frame) {
     SCOPED_TRACE("frame " + std::to_string(frame));
@@ -248,6 +277,10 @@ TEST(EngineObstacles, ChangeMidRunWithoutSubmissionsOrWaits) {
     engine.submitAndWait();
     if (frame > 0) sixwaysUploads += uploads.calls - uploadsBefore;
     ASSERT_EQ(simulation.obstacleCount(), plan[frame].size());
+    // Given again where they rest, the obstacles cost the lattice nothing: no cell is marked again.
+    const uint64_t passes = runtime::Access::volumes(simulation).simulation().flagPasses();
+    if (frame == kRestingAgain) EXPECT_EQ(passes, passesBefore);
+    passesBefore = passes;
     // Every obstacle at rest at the frame's end is where the lattice's solid cells are (the moving sphere
     // arrives exactly then). Flags hold the last step's.
     const size_t wrong = disagreements(solidCells(simulation), expectedCells(plan[frame]));
@@ -288,6 +321,35 @@ TEST(EngineObstacles, ChangeMidRunWithoutSubmissionsOrWaits) {
         << e.what();
   }
   EXPECT_EQ(simulation.obstacleCount(), 0u) << "a refused set changed the obstacles";
+  EXPECT_EQ(own.validationMessages(), 0u);
+}
+
+// A new placement turns the instance under the engine's obstacles: given again at the same world places, they
+// take the new scene-space pose (a capsule lying along world x lies along the scene's z after a quarter
+// turn).
+TEST(EngineObstacles, ANewPlacementTurnsThem) {
+  TempDir dir;
+  const std::filesystem::path scene = sceneWithoutObstacles(dir.path());
+  Device own({.validate = true});
+  BorrowingEngine engine(own);
+  SmokeSimulation simulation(engine.device, scene);
+  const Obstacle capsule = shapes(octahedron(dir.path()))[3].engine;
+  uint64_t frame = 0;
+  const auto step = [&] {
+    simulation.setObstacles({capsule}, 0.1);
+    simulation.record(engine.begin(), frame++, 0.1);
+    engine.submitAndWait();
+  };
+  step();
+  EXPECT_EQ(disagreements(solidCells(simulation), expectedCells({capsule})), 0u);
+  const glm::mat4 turn = glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(0, 1, 0));
+  simulation.setPlacement(turn);
+  step();
+  Obstacle inScene = capsule;
+  inScene.position = glm::vec3(glm::inverse(turn) * glm::vec4(capsule.position, 1.0f));
+  inScene.axis = glm::vec3(glm::inverse(turn) * glm::vec4(capsule.axis, 0.0f));
+  EXPECT_GT(std::abs(inScene.axis.z), 0.99f);
+  EXPECT_EQ(disagreements(solidCells(simulation), expectedCells({inScene})), 0u);
   EXPECT_EQ(own.validationMessages(), 0u);
 }
 
