@@ -84,6 +84,16 @@ SixwayResult sixwayCreateSimulation(SixwayDevice device, const char* scenePath, 
  * (NULL: the working directory). */
 SixwayResult sixwayCreateSimulationFromText(SixwayDevice device, const char* json, size_t length,
                                             const char* directory, SixwaySimulation* simulation);
+/* SmokeSimulation(device, SmokeDomain): a domain without a scene file; sixwaySmokeDomainDefaults fills one.
+ */
+typedef struct SixwaySmokeDomain {
+  int32_t cells[3];
+  float cellSize, origin[3], frameSeconds, viscosity, buoyancy, extinction, albedo, phaseG, dissipation;
+  int32_t lightmapSize;
+} SixwaySmokeDomain;
+void sixwaySmokeDomainDefaults(SixwaySmokeDomain* domain);
+SixwayResult sixwayCreateSimulationFromDomain(SixwayDevice device, const SixwaySmokeDomain* domain,
+                                              SixwaySimulation* simulation);
 SixwayResult sixwaySimulationAdvance(SixwaySimulation simulation);
 SixwayResult sixwaySimulationRecord(SixwaySimulation simulation, VkCommandBuffer commands, uint64_t frame);
 /* SmokeSimulation::record for `seconds` of frame time; `steps` (may be NULL) receives the lattice steps

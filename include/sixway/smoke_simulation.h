@@ -70,6 +70,23 @@ struct Obstacle {
   bool shadows = true;
 };
 
+// A smoke domain made without a scene file (docs/embedding.md, "Without a scene file"): the lattice and the
+// smoke's look; everything else as a scene file leaves it by default (docs/scene-format.md): no inlets, no
+// obstacles and no lights (the engine's emitters, obstacles and lights), its camera looking at the domain.
+struct SmokeDomain {
+  glm::ivec3 cells{32, 48, 32};            // lattice cells along x, y (up), z (grid.size)
+  float cellSize = 0.04f;                  // m (grid.cell_size)
+  glm::vec3 origin{-0.64f, 0.0f, -0.64f};  // the lattice's corner in the scene (the placement's space), m
+  float frameSeconds = 1.0f / 30.0f;       // simulated by record(commands, frame) (time.frame_dt)
+  float viscosity = 1.5e-5f;               // m²/s (fluid.viscosity)
+  float buoyancy = 2.0f;                   // lift per unit temperature (fluid.buoyancy.temperature)
+  float extinction = 20.0f;                // 1/m per unit density (smoke.extinction)
+  float albedo = 0.9f;                     // smoke.albedo
+  float phaseG = 0.2f;                     // smoke.phase_g
+  float dissipation = 0.0f;                // 1/s (smoke.dissipation)
+  int lightmapSize = 64;  // texels square, 16 to 4096, a multiple of 16 (render.lightmap_size)
+};
+
 // A scene file's text held by the engine (docs/scene-format.md): no file is read but the meshes it names,
 // relative to `directory`. `name` stands for the file in errors.
 struct SceneText {
@@ -84,6 +101,8 @@ class SmokeSimulation {
   SmokeSimulation(Device& device, const std::filesystem::path& scene);
   // The same from the scene's text (read during construction).
   SmokeSimulation(Device& device, const SceneText& scene);
+  // A domain without a scene file; an Error names the scene-file key of a value out of range.
+  SmokeSimulation(Device& device, const SmokeDomain& domain);
   ~SmokeSimulation();
   SmokeSimulation(const SmokeSimulation&) = delete;
   SmokeSimulation& operator=(const SmokeSimulation&) = delete;

@@ -183,6 +183,45 @@ SixwayResult sixwayCreateSimulationFromText(SixwayDevice device, const char* jso
   });
 }
 
+void sixwaySmokeDomainDefaults(SixwaySmokeDomain* domain) {
+  if (!domain) return;
+  const sixway::SmokeDomain d;
+  *domain = {{d.cells.x, d.cells.y, d.cells.z},
+             d.cellSize,
+             {d.origin.x, d.origin.y, d.origin.z},
+             d.frameSeconds,
+             d.viscosity,
+             d.buoyancy,
+             d.extinction,
+             d.albedo,
+             d.phaseG,
+             d.dissipation,
+             d.lightmapSize};
+}
+
+SixwayResult sixwayCreateSimulationFromDomain(SixwayDevice device, const SixwaySmokeDomain* domain,
+                                              SixwaySimulation* simulation) {
+  if (!device || !domain || !simulation)
+    return nullArgument("sixwayCreateSimulationFromDomain", !device   ? "device"
+                                                            : !domain ? "domain"
+                                                                      : "simulation");
+  *simulation = nullptr;
+  return guarded([&] {
+    const sixway::SmokeDomain d{glm::make_vec3(domain->cells),
+                                domain->cellSize,
+                                glm::make_vec3(domain->origin),
+                                domain->frameSeconds,
+                                domain->viscosity,
+                                domain->buoyancy,
+                                domain->extinction,
+                                domain->albedo,
+                                domain->phaseG,
+                                domain->dissipation,
+                                domain->lightmapSize};
+    *simulation = new SixwaySimulation_T{sixway::SmokeSimulation(device->device, d)};
+  });
+}
+
 SixwayResult sixwaySimulationAdvance(SixwaySimulation simulation) {
   if (!simulation) return nullArgument("sixwaySimulationAdvance", "simulation");
   return guarded([&] { simulation->simulation.advance(); });

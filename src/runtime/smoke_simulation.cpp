@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 
@@ -50,6 +51,37 @@ SmokeSimulation::SmokeSimulation(Device& device, const SceneText& scene)
     : impl_(std::make_unique<Impl>(
           runtime::Access::context(device), runtime::Access::pipelineCache(device),
           simulated(scene::parseSceneText(scene.json, scene.name, scene.directory), scene.name))) {}
+
+namespace {
+
+// The domain as the scene file it stands for, read by the scene parser: the same defaults and checks.
+std::string domainScene(const SmokeDomain& d) {
+  const auto vec = [](glm::vec3 v) { return nlohmann::json::array({v.x, v.y, v.z}); };
+  const glm::vec3 size = glm::vec3(d.cells) * d.cellSize;
+  const glm::vec3 centre = d.origin + 0.5f * size;
+  nlohmann::json scene = {
+      {"name", "smoke domain"},
+      {"grid",
+       {{"size", {d.cells.x, d.cells.y, d.cells.z}}, {"cell_size", d.cellSize}, {"origin", vec(d.origin)}}},
+      {"time", {{"frame_dt", d.frameSeconds}}},
+      {"fluid", {{"viscosity", d.viscosity}, {"buoyancy", {{"temperature", d.buoyancy}}}}},
+      {"smoke",
+       {{"extinction", d.extinction},
+        {"albedo", d.albedo},
+        {"phase_g", d.phaseG},
+        {"dissipation", d.dissipation}}},
+      // In front of the domain, far enough back for a 40° view to hold its height.
+      {"camera",
+       {{"position", vec(centre + glm::vec3(0.0f, 0.0f, 0.5f * size.z + 1.5f * size.y))},
+        {"target", vec(centre)}}},
+      {"render", {{"lightmap_size", d.lightmapSize}}}};
+  return scene.dump();
+}
+
+}  // namespace
+
+SmokeSimulation::SmokeSimulation(Device& device, const SmokeDomain& domain)
+    : SmokeSimulation(device, SceneText{domainScene(domain), ".", "smoke domain"}) {}
 
 SmokeSimulation::~SmokeSimulation() = default;
 

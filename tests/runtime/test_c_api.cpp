@@ -45,6 +45,18 @@ TEST(CApi, ErrorsAndMisuseComeBackAsCodesWithTheirMessages) {
   EXPECT_NE(std::string(sixwayLastError()).find("no/such/scene.json"), std::string::npos)
       << sixwayLastError();
 
+  SixwaySmokeDomain domain;
+  sixwaySmokeDomainDefaults(&domain);
+  EXPECT_EQ(domain.cells[1], 48);
+  domain.lightmapSize = 40;
+  EXPECT_EQ(sixwayCreateSimulationFromDomain(device, &domain, &simulation), SIXWAY_ERROR);
+  EXPECT_NE(std::string(sixwayLastError()).find("render.lightmap_size"), std::string::npos)
+      << sixwayLastError();
+  domain.lightmapSize = 32;
+  ASSERT_EQ(sixwayCreateSimulationFromDomain(device, &domain, &simulation), SIXWAY_SUCCESS)
+      << sixwayLastError();
+  sixwayDestroySimulation(simulation);
+
   ASSERT_EQ(sixwayCreateSimulation(device, kScene.c_str(), &simulation), SIXWAY_SUCCESS) << sixwayLastError();
   SixwayRenderer renderer = nullptr;
   EXPECT_EQ(sixwayCreateRenderer(device, simulation, "no/such/weights.safetensors", nullptr, &renderer),

@@ -9,6 +9,7 @@
 #include <sixway/smoke_renderer.h>
 #include <sixway/smoke_simulation.h>
 
+#include <algorithm>
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
@@ -137,6 +138,51 @@ TEST(FromMemory, TheCApiTakesTextAndBytes) {
   sixwayDestroyRenderer(renderer);
   sixwayDestroySimulation(simulation);
   sixwayDestroyDevice(device);
+}
+
+// A domain without a scene file is the scene file its fields name (written here by hand): the same smoke and
+// image, fed by the engine's emitter and lit by its light; a value out of range is an Error naming its key.
+TEST(FromMemory, ADomainIsTheSceneFileItsFieldsName) {
+  Device device({.validate = true});
+  const SmokeDomain domain{.cells = {16, 24, 20},
+                           .cellSize = 0.05f,
+                           .origin = {-0.4f, 0.0f, -0.5f},
+                           .frameSeconds = 0.05f,
+                           .viscosity = 2e-5f,
+                           .buoyancy = 3.0f,
+                           .extinction = 30.0f,
+                           .albedo = 0.8f,
+                           .phaseG = 0.3f,
+                           .dissipation = 0.1f,
+                           .lightmapSize = 32};
+  const std::string json = R"({"grid": {"size": [16, 24, 20], "cell_size": 0.05, "origin": [-0.4, 0.0, -0.5]},
+      "time": {"frame_dt": 0.05},
+      "fluid": {"viscosity": 2e-5, "buoyancy": {"temperature": 3.0}},
+      "smoke": {"extinction": 30.0, "albedo": 0.8, "phase_g": 0.3, "dissipation": 0.1},
+      "camera": {"position": [0, 0.6, 2], "target": [0, 0.6, 0]},
+      "render": {"lightmap_size": 32}})";
+  BorrowingEngine engine(device);
+  const auto frames = [&](SmokeSimulation& simulation) {
+    EngineTargets targets(engine.context, 64, 64);
+    SmokeRenderer renderer(engine.device, simulation, {.weights = kWeights}, targets.target());
+    renderer.setCamera(sceneCamera());
+    renderer.setLights({{.direction = {0.3f, 1.0f, 0.2f}, .intensity = 3.0f}});
+    simulation.setEmitters({{.position = {0.0f, 0.15f, 0.0f}, .radius = 0.1f, .temperatureRate = 2.0f}});
+    const float background[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+    recordFrames(engine, targets, simulation, renderer, background);
+    return targets.colorPixels();
+  };
+  SmokeSimulation fromDomain(engine.device, domain), fromText(engine.device, SceneText{.json = json});
+  const std::vector<float> image = frames(fromDomain);
+  EXPECT_EQ(maxDifference(image, frames(fromText)), 0.0);
+  float brightest = 0.0f;  // over the black background
+  for (size_t i = 0; i < image.size(); i += 4)
+    brightest = std::max({brightest, image[i], image[i + 1], image[i + 2]});
+  EXPECT_GT(brightest, 0.01f) << "no smoke";
+  const std::string error = errorOf([&] { SmokeSimulation(device, SmokeDomain{.cells = {16, 0, 16}}); });
+  EXPECT_NE(error.find("smoke domain"), std::string::npos) << error;
+  EXPECT_NE(error.find("grid.size"), std::string::npos) << error;
+  EXPECT_EQ(device.validationMessages(), 0u);
 }
 
 }  // namespace
