@@ -103,6 +103,12 @@ void checkOptions(const BakeOptions& o) {
   if (o.scene.empty() && o.vdb.empty()) throw io::InputError("bake", "give --scene S or --vdb F...");
   if (o.cameraPosition.empty() != o.cameraTarget.empty())
     throw io::InputError("--camera-position", "--camera-position and --camera-target go together");
+  // A tile covers the smoke's billboard: a camera's field of view changes nothing but the framing camera's
+  // distance from VDB files.
+  if (o.fov && (!o.cameraPosition.empty() || !o.scene.empty()))
+    throw io::InputError("--fov", "sets the framing camera of --vdb files only; with " +
+                                      std::string(o.scene.empty() ? "--camera-position" : "--scene") +
+                                      " the tile covers the smoke's billboard whatever the field of view");
   StagedDirectory::requireWritable(o.out, o.force, isBakeOutput, kBakeFolders);
   if (!o.report.empty()) io::requireWritableFile(o.report, o.force);
 }
@@ -229,7 +235,9 @@ void addBakeCommand(CLI::App& app) {
       ->expected(3);
   bake->add_option("--camera-target", o->cameraTarget, "Point the camera looks at, X Y Z")->expected(3);
   bake->add_option("--camera-up", o->cameraUp, "Camera up X Y Z (default 0 1 0)")->expected(3);
-  bake->add_option("--fov", o->fov, "Vertical field of view in degrees (default: the scene's, or 40)")
+  bake->add_option("--fov", o->fov,
+                   "Vertical field of view in degrees of the framing camera for --vdb files (default 40; a "
+                   "given camera's changes nothing: the tile covers the smoke's billboard)")
       ->check(CLI::Range(1.0f, 170.0f));
   bake->add_option("--extinction", o->extinction, "σ_t per unit density, 1/m (default: the scene's, or 20)")
       ->check(positiveNumber());
