@@ -108,10 +108,10 @@ struct EngineTargets {
   gpu::Image color, depth;
 };
 
-// The engine's path for sixway's one-time work (EngineDevice::submitAndWait): its own pool, command buffer
-// and fence; counts the calls.
-struct EngineUploads {
-  explicit EngineUploads(const gpu::Context& context) : context(context) {
+// One primary command buffer of the engine's, with its pool and fence: recorded, submitted and waited for
+// (the engine's own wait, which sixway does not count).
+struct EngineCommands {
+  explicit EngineCommands(const gpu::Context& context) : context(context) {
     VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
     poolInfo.queueFamilyIndex = context.queueFamily();
@@ -122,58 +122,59 @@ struct EngineUploads {
     VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     SIXWAY_VK(vkCreateFence(context.device(), &fenceInfo, nullptr, &fence));
   }
-  ~EngineUploads() {
+  ~EngineCommands() {
     vkDestroyFence(context.device(), fence, nullptr);
     vkDestroyCommandPool(context.device(), pool, nullptr);
   }
-  // As EngineDevice::submitAndWait.
-  std::function<void(const std::function<void(VkCommandBuffer)>&)> submit() {
-    return [this](const std::function<void(VkCommandBuffer)>& record) {
-      ++calls;
-      SIXWAY_VK(vkResetCommandBuffer(commands, 0));
-      VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-      SIXWAY_VK(vkBeginCommandBuffer(commands, &begin));
-      record(commands);
-      SIXWAY_VK(vkEndCommandBuffer(commands));
-      VkSubmitInfo info{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-      info.commandBufferCount = 1;
-      info.pCommandBuffers = &commands;
-      SIXWAY_VK(vkResetFences(context.device(), 1, &fence));
-      SIXWAY_VK(vkQueueSubmit(context.queue(), 1, &info, fence));
-      SIXWAY_VK(vkWaitForFences(context.device(), 1, &fence, VK_TRUE, UINT64_MAX));
-    };
+  EngineCommands(const EngineCommands&) = delete;
+  EngineCommands& operator=(const EngineCommands&) = delete;
+  VkCommandBuffer begin() {
+    SIXWAY_VK(vkResetCommandBuffer(commands, 0));
+    VkCommandBufferBeginInfo info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    SIXWAY_VK(vkBeginCommandBuffer(commands, &info));
+    return commands;
+  }
+  // Ends, submits and waits.
+  void submitAndWait() {
+    SIXWAY_VK(vkEndCommandBuffer(commands));
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &commands;
+    SIXWAY_VK(vkResetFences(context.device(), 1, &fence));
+    SIXWAY_VK(vkQueueSubmit(context.queue(), 1, &submit, fence));
+    SIXWAY_VK(vkWaitForFences(context.device(), 1, &fence, VK_TRUE, UINT64_MAX));
   }
 
   const gpu::Context& context;
   VkCommandPool pool = VK_NULL_HANDLE;
   VkCommandBuffer commands = VK_NULL_HANDLE;
   VkFence fence = VK_NULL_HANDLE;
+};
+
+// The engine's path for sixway's one-time work (EngineDevice::submitAndWait), counting the calls.
+struct EngineUploads {
+  explicit EngineUploads(const gpu::Context& context) : commands(context) {}
+  std::function<void(const std::function<void(VkCommandBuffer)>&)> submit() {
+    return [this](const std::function<void(VkCommandBuffer)>& record) {
+      ++calls;
+      record(commands.begin());
+      commands.submitAndWait();
+    };
+  }
+  EngineCommands commands;
   int calls = 0;
 };
 
-// An "engine" on sixway's own device: the device borrowed through the public API, a command buffer and a
-// fence, one frame at a time.
+// An "engine" on sixway's own device: the device borrowed through the public API and one command buffer, one
+// frame at a time.
 struct BorrowingEngine {
   // `submit`: EngineDevice::submitAndWait (unset: sixway submits its one-time work itself).
   explicit BorrowingEngine(const Device& own,
                            std::function<void(const std::function<void(VkCommandBuffer)>&)> submit = {})
       : context(runtime::Access::context(own)),
         features(gpu::DeviceFeatures::toEnable(gpu::DeviceFeatures::supportedBy(context.physicalDevice()))),
-        device(engineDevice(context, features, std::move(submit))) {
-    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-    poolInfo.queueFamilyIndex = context.queueFamily();
-    SIXWAY_VK(vkCreateCommandPool(context.device(), &poolInfo, nullptr, &pool));
-    VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, pool,
-                                          VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
-    SIXWAY_VK(vkAllocateCommandBuffers(context.device(), &allocInfo, &commands));
-    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    SIXWAY_VK(vkCreateFence(context.device(), &fenceInfo, nullptr, &fence));
-  }
-  ~BorrowingEngine() {
-    vkDestroyFence(context.device(), fence, nullptr);
-    vkDestroyCommandPool(context.device(), pool, nullptr);
-  }
+        device(engineDevice(context, features, std::move(submit))),
+        frame(context) {}
   static Device engineDevice(const gpu::Context& context, gpu::DeviceFeatures& features,
                              std::function<void(const std::function<void(VkCommandBuffer)>&)> submit) {
     const std::vector<const char*> extensions = gpu::requiredDeviceExtensions();
@@ -187,29 +188,13 @@ struct BorrowingEngine {
                                2,
                                std::move(submit)});
   }
-  VkCommandBuffer begin() {
-    SIXWAY_VK(vkResetCommandBuffer(commands, 0));
-    VkCommandBufferBeginInfo info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    SIXWAY_VK(vkBeginCommandBuffer(commands, &info));
-    return commands;
-  }
-  // Ends, submits and waits (the engine's own wait, which sixway does not count).
-  void submitAndWait() {
-    SIXWAY_VK(vkEndCommandBuffer(commands));
-    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &commands;
-    SIXWAY_VK(vkResetFences(context.device(), 1, &fence));
-    SIXWAY_VK(vkQueueSubmit(context.queue(), 1, &submit, fence));
-    SIXWAY_VK(vkWaitForFences(context.device(), 1, &fence, VK_TRUE, UINT64_MAX));
-  }
+  VkCommandBuffer begin() { return frame.begin(); }
+  void submitAndWait() { frame.submitAndWait(); }
 
   const gpu::Context& context;
   gpu::DeviceFeatures features;
   Device device;
-  VkCommandPool pool = VK_NULL_HANDLE;
-  VkCommandBuffer commands = VK_NULL_HANDLE;
-  VkFence fence = VK_NULL_HANDLE;
+  EngineCommands frame;
 };
 
 // `frames` frames of `simulation` and `renderer` into `targets`, cleared to `background` first (the depth

@@ -12,6 +12,7 @@
 #include "gpu/check.h"
 #include "gpu/context.h"
 #include "gpu/device_features.h"
+#include "runtime/engine_harness.h"
 #include "runtime/internal.h"
 
 namespace {
@@ -134,45 +135,17 @@ TEST(CApi, ErrorsAndMisuseComeBackAsCodesWithTheirMessages) {
 
 // The engine's upload path through C: its callback records sixway's one-time work into a command buffer of
 // its own, submits and waits.
-struct Uploads {
-  const sixway::gpu::Context* context;
-  VkCommandPool pool = VK_NULL_HANDLE;
-  VkCommandBuffer commands = VK_NULL_HANDLE;
-  VkFence fence = VK_NULL_HANDLE;
-  int calls = 0;
-};
-
 void submitAndWait(void* user, void (*record)(void*, VkCommandBuffer), void* recordContext) {
-  auto* uploads = static_cast<Uploads*>(user);
+  auto* uploads = static_cast<sixway::test::EngineUploads*>(user);
   ++uploads->calls;
-  VkDevice device = uploads->context->device();
-  SIXWAY_VK(vkResetCommandBuffer(uploads->commands, 0));
-  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-  SIXWAY_VK(vkBeginCommandBuffer(uploads->commands, &begin));
-  record(recordContext, uploads->commands);
-  SIXWAY_VK(vkEndCommandBuffer(uploads->commands));
-  VkSubmitInfo info{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-  info.commandBufferCount = 1;
-  info.pCommandBuffers = &uploads->commands;
-  SIXWAY_VK(vkResetFences(device, 1, &uploads->fence));
-  SIXWAY_VK(vkQueueSubmit(uploads->context->queue(), 1, &info, uploads->fence));
-  SIXWAY_VK(vkWaitForFences(device, 1, &uploads->fence, VK_TRUE, UINT64_MAX));
+  record(recordContext, uploads->commands.begin());
+  uploads->commands.submitAndWait();
 }
 
 TEST(CApi, AnEngineDeviceTakesTheEnginesSubmitCallback) {
   sixway::Device own({.validate = true});
   const sixway::gpu::Context& context = sixway::runtime::Access::context(own);
-  Uploads uploads{&context};
-  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-  poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-  poolInfo.queueFamilyIndex = context.queueFamily();
-  SIXWAY_VK(vkCreateCommandPool(context.device(), &poolInfo, nullptr, &uploads.pool));
-  VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, uploads.pool,
-                                        VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
-  SIXWAY_VK(vkAllocateCommandBuffers(context.device(), &allocInfo, &uploads.commands));
-  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  SIXWAY_VK(vkCreateFence(context.device(), &fenceInfo, nullptr, &uploads.fence));
-
+  sixway::test::EngineUploads uploads(context);
   sixway::gpu::DeviceFeatures features = sixway::gpu::DeviceFeatures::toEnable(
       sixway::gpu::DeviceFeatures::supportedBy(context.physicalDevice()));
   const std::vector<const char*> extensions = sixway::gpu::requiredDeviceExtensions();
@@ -194,8 +167,6 @@ TEST(CApi, AnEngineDeviceTakesTheEnginesSubmitCallback) {
   EXPECT_GT(uploads.calls, 0) << "the simulation's uploads did not go through the engine";
   sixwayDestroySimulation(simulation);
   sixwayDestroyDevice(device);
-  vkDestroyFence(context.device(), uploads.fence, nullptr);
-  vkDestroyCommandPool(context.device(), uploads.pool, nullptr);
   EXPECT_EQ(own.validationMessages(), 0u);
 }
 

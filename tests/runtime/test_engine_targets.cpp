@@ -314,7 +314,7 @@ void recordInsideRendering(VkCommandBuffer commands, VkCommandBuffer secondary, 
 TEST_F(EngineTargetsTest, InsideTheEnginesOwnRenderingTheSameSmoke) {
   VkCommandBuffer secondary = VK_NULL_HANDLE;
   const VkCommandBufferAllocateInfo allocate{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr,
-                                             engine.pool, VK_COMMAND_BUFFER_LEVEL_SECONDARY, 1};
+                                             engine.frame.pool, VK_COMMAND_BUFFER_LEVEL_SECONDARY, 1};
   SIXWAY_VK(vkAllocateCommandBuffers(engine.context.device(), &allocate, &secondary));
   const RenderingFormats formats{{VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R8G8B8A8_UNORM},
                                  VK_FORMAT_D32_SFLOAT};
