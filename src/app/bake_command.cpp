@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -47,6 +48,25 @@ bool isBakeOutput(const std::string& name) {
   for (const std::string& preset : reference::packingPresetNames())
     if (std::ranges::count(reference::packingPreset(preset).textures, match[1].str()) > 0) return true;
   return false;
+}
+
+// --voxels: a cell count (2..1024, CLI11's range message) or "native" (scene::kNativeVoxels).
+CLI::Validator voxelCount() {
+  return CLI::Validator(
+      [](std::string& value) -> std::string {
+        if (value == "native") {
+          value = std::to_string(scene::kNativeVoxels);
+          return "";
+        }
+        int count = 0;
+        const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), count);
+        if (error != std::errc() || end != value.data() + value.size())
+          return "must be a cell count or native (got " + value + ")";
+        if (count < 2 || count > scene::kMaxVdbVoxels)
+          return "Value " + value + " not in range 2 to " + std::to_string(scene::kMaxVdbVoxels);
+        return "";
+      },
+      "");
 }
 
 // Host and device memory after a baked frame, for long-run checks (docs/robustness.md, "Long runs"): the
@@ -249,12 +269,16 @@ void addBakeCommand(CLI::App& app) {
                    "Emission intensity (VDB: with a built-in black-body-like ramp)")
       ->check(nonNegativeNumber());
   bake->add_option("--voxels", o->voxels,
-                   "VDB: cells along the longest axis of the resampled lattice (default 128, or the scene's "
-                   "vdb.voxels)")
-      ->check(CLI::Range(2, 1024));
+                   "VDB: cells along the longest axis of the files' active box (default 128, or the scene's "
+                   "vdb.voxels), or native: the files' own voxels; one empty cell is added on each side")
+      ->transform(voxelCount())
+      ->type_name("N|native");
   bake->add_option("--step", o->step, "Longest march step in cells (default 0.5)")
       ->check(CLI::Range(0.01f, 0.5f));
-  bake->add_option("--light-spacing", o->lightSpacing, "Light-grid spacing in cells (default 1)")
+  bake->add_option(
+          "--light-spacing", o->lightSpacing,
+          "Light-grid spacing in cells (default: 0.5 / the optical depth of the densest cell, within "
+          "0.25..1)")
       ->check(CLI::Range(0.1f, 8.0f));
   bake->add_option("--scattering", o->scattering,
                    "multiple (default: exact single scattering + path-traced higher orders) | single");

@@ -75,9 +75,10 @@ BakeSource openScene(const gpu::Context& context, const gpu::PipelineCache& cach
 }
 
 BakeSource openVdbFiles(const gpu::Context& context, const BakeOptions& o, const scene::Smoke& smoke) {
-  auto vdb = withinDeviceLimits("--voxels " + std::to_string(o.voxels.value_or(128)), "--voxels", [&] {
-    return std::make_unique<reference::VdbSequence>(context, o.vdb, o.voxels.value_or(128),
-                                                    smoke.emission.intensity > 0.0f);
+  const int voxels = o.voxels.value_or(128);
+  const std::string given = voxels == scene::kNativeVoxels ? "native" : std::to_string(voxels);
+  auto vdb = withinDeviceLimits("--voxels " + given, "--voxels", [&] {
+    return std::make_unique<reference::VdbSequence>(context, o.vdb, voxels, smoke.emission.intensity > 0.0f);
   });
   nlohmann::json files = nlohmann::json::array();
   for (const fs::path& f : o.vdb) files.push_back(fs::absolute(f).string());
@@ -88,6 +89,8 @@ BakeSource openVdbFiles(const gpu::Context& context, const BakeOptions& o, const
                                   {{"cells", {lattice.size.x, lattice.size.y, lattice.size.z}},
                                    {"origin", {lattice.origin.x, lattice.origin.y, lattice.origin.z}},
                                    {"cell_size", lattice.cellSize}}}};
+  if (vdb->source().temperatureGrid)
+    source.provenance["source"]["temperature_grid"] = *vdb->source().temperatureGrid;
   source.sequence = std::move(vdb);
   return source;
 }
@@ -174,6 +177,7 @@ reference::FlipbookBake bakeJob(const BakeOptions& o, const scene::Scene* scene,
   job.settings.height = tile.height;
   if (o.step) job.settings.stepCells = *o.step;
   if (o.lightSpacing) job.settings.lightSpacingCells = *o.lightSpacing;
+  job.lightSpacingFromSmoke = !o.lightSpacing;
   setScattering(job, o, scene);
   job.provenance = source.provenance;
   return job;

@@ -267,6 +267,11 @@ class JsonReader {
   }
 
   bool has(std::string_view key) { return find(key) != nullptr; }
+  // For keys that take a number or a name ("voxels": 64 or "native").
+  bool isString(std::string_view key) {
+    const nlohmann::json* value = find(key);
+    return value && value->is_string();
+  }
 
   // An error if `key` is present: for keys that other settings make meaningless.
   void forbid(std::string_view key, std::string_view why);

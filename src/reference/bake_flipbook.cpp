@@ -16,8 +16,10 @@ nlohmann::json vec(glm::vec3 v) {
   return {v.x, v.y, v.z};
 }
 
-nlohmann::json describe(const FlipbookBake& job, const render::ImagePlane& billboard,
-                        const nlohmann::json& frames) {
+// `settings`: the ones baked with; `cellOpticalDepth`: what chose their light-grid spacing (with
+// job.lightSpacingFromSmoke).
+nlohmann::json describe(const FlipbookBake& job, const BakeSettings& settings, float cellOpticalDepth,
+                        const render::ImagePlane& billboard, const nlohmann::json& frames) {
   nlohmann::json scattering = {{"mode", scatteringName(job.scattering)}};
   if (job.scattering == Scattering::Multiple) {
     const MultipleScattering& m = job.multiple;
@@ -40,9 +42,19 @@ nlohmann::json describe(const FlipbookBake& job, const render::ImagePlane& billb
                  {"albedo", job.smoke.albedo},
                  {"phase_g", job.smoke.phaseG},
                  {"emission_intensity", job.smoke.emission.intensity}};
-  p["bake"] = {{"step_cells", job.settings.stepCells},
-               {"light_grid_spacing_cells", job.settings.lightSpacingCells},
+  if (job.smoke.emission.intensity > 0) {
+    nlohmann::json ramp = nlohmann::json::array();  // [temperature, r, g, b], linear, interpolated linearly
+    for (const auto& key : job.smoke.emission.ramp)
+      ramp.push_back({key.temperature, key.color.r, key.color.g, key.color.b});
+    p["optics"]["emission_ramp"] = ramp;
+  }
+  p["bake"] = {{"step_cells", settings.stepCells},
+               {"light_grid_spacing_cells", settings.lightSpacingCells},
                {"scattering", scattering}};
+  if (job.lightSpacingFromSmoke)
+    p["bake"]["light_grid_spacing_rule"] = {
+        {"rule", "0.5 / the densest cell's optical depth, within [0.25, 1]"},
+        {"densest_cell_optical_depth", cellOpticalDepth}};
   p["frames"] = frames;
   return p;
 }
@@ -65,6 +77,13 @@ FlipbookBakeResult bakeFlipbook(const gpu::Context& context, const gpu::Pipeline
   result.billboard = render::billboardBounds(job.camera, sequence.bounds(), float(width) / float(height));
 
   ScatteredLightmaps baker(context, cache);
+  // One spacing for the whole flipbook, so that the light grids neither move nor grow from frame to frame.
+  BakeSettings settings = job.settings;
+  float cellOpticalDepth = 0;
+  if (job.lightSpacingFromSmoke) {
+    cellOpticalDepth = job.smoke.extinction * sequence.densityBound() * sequence.cellSize();
+    settings.lightSpacingCells = lightSpacingFor(cellOpticalDepth);
+  }
   std::filesystem::create_directories(job.out / "frames");
 
   const auto& names = render::sixWayChannelNames();
@@ -77,7 +96,7 @@ FlipbookBakeResult bakeFlipbook(const gpu::Context& context, const gpu::Pipeline
     io::Image tile(width, height, {names.begin(), names.end()});
     double gpuMs = 0;
     if (volume) {
-      tile = baker.bake(*volume, job.smoke, job.camera, result.billboard, job.settings, job.scattering,
+      tile = baker.bake(*volume, job.smoke, job.camera, result.billboard, settings, job.scattering,
                         job.multiple);
       gpuMs = baker.milliseconds();
     }
@@ -99,9 +118,9 @@ FlipbookBakeResult bakeFlipbook(const gpu::Context& context, const gpu::Pipeline
   }
   result.layout = layout;
   if (job.emissiveMask) result.emissiveMask = unityEmissiveMask(job.smoke);
-  result.sidecar =
-      writeFlipbook(job.out, "flipbook", tiles, layout, job.packing, describe(job, result.billboard, frames),
-                    job.scattering, result.emissiveMask);
+  result.sidecar = writeFlipbook(job.out, "flipbook", tiles, layout, job.packing,
+                                 describe(job, settings, cellOpticalDepth, result.billboard, frames),
+                                 job.scattering, result.emissiveMask);
   return result;
 }
 

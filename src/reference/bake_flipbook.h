@@ -34,6 +34,8 @@ struct FlipbookBake {
   render::Camera camera;  // fixed for the whole sequence
   scene::Smoke smoke;     // optics
   BakeSettings settings;  // tile size and quadrature
+  // settings.lightSpacingCells chosen by lightSpacingFor from the sequence's densest cell, or as given.
+  bool lightSpacingFromSmoke = true;
   Scattering scattering = Scattering::Multiple;
   MultipleScattering multiple;  // with Scattering::Multiple; the same seed every frame (coherent noise)
   nlohmann::json provenance;    // added to the sidecar (where the volumes came from, the command)

@@ -28,6 +28,14 @@ void checkSettings(const BakeSettings& s) {
     throw io::InputError("bake", "the transmittance cut-off must be in [0, 1)");
 }
 
+}  // namespace
+
+float lightSpacingFor(float cellOpticalDepth) {
+  return cellOpticalDepth > 0.5f ? std::max(0.25f, 0.5f / cellOpticalDepth) : 1.0f;
+}
+
+namespace {
+
 // Light grids for the six lights, their columns spaced `spacing` apart; u, v are the other two camera axes.
 std::array<render::LightGrid, 6> sixLightGrids(const render::Camera& camera, const render::VolumeGrid& volume,
                                                float spacing, float maxStep) {

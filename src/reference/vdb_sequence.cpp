@@ -29,12 +29,15 @@ std::vector<std::string> gridNames(const scene::VdbSource& source) {
   return names;
 }
 
-// Cubic cells over [lo, hi], `cells` along the longest axis; the box grows at its max side to whole cells.
-render::VolumeGrid cubicLattice(glm::vec3 lo, glm::vec3 hi, int longestAxisCells) {
-  const glm::vec3 extent = hi - lo;
-  const float cell = std::max({extent.x, extent.y, extent.z}) / float(longestAxisCells);
-  const glm::ivec3 cells = glm::max(glm::ivec3(glm::ceil(extent / cell - 1e-4f)), glm::ivec3(1));
+// Cubic cells of size `cell` over [lo, hi]; the box grows at its max side to whole cells.
+render::VolumeGrid cubicLattice(glm::vec3 lo, glm::vec3 hi, float cell) {
+  const glm::ivec3 cells = glm::max(glm::ivec3(glm::ceil((hi - lo) / cell - 1e-4f)), glm::ivec3(1));
   return {cells, lo, cell};
+}
+
+float longestSide(glm::vec3 lo, glm::vec3 hi) {
+  const glm::vec3 extent = hi - lo;
+  return std::max({extent.x, extent.y, extent.z});
 }
 
 // A lattice of the file's space placed in the scene: the same cells, turned, scaled and moved.
@@ -43,6 +46,16 @@ render::VolumeGrid inScene(const render::VolumeGrid& file, const scene::VdbSourc
   const glm::vec3 a = toScene(box.min, source.up), b = toScene(box.max, source.up);
   return {glm::abs(glm::ivec3(toScene(glm::vec3(file.size), source.up))),
           source.translate + source.scale * glm::min(a, b), source.scale * file.cellSize};
+}
+
+// Native voxels can make more cells than a count may ask for.
+render::VolumeGrid checkedCells(const render::VolumeGrid& lattice, const std::string& file) {
+  const int longest = std::max({lattice.size.x, lattice.size.y, lattice.size.z});
+  if (longest > scene::kMaxVdbVoxels)
+    throw io::InputError(file, "native voxels make " + std::to_string(longest) +
+                                   " cells along the lattice's longest axis, more than " +
+                                   std::to_string(scene::kMaxVdbVoxels) + "; give a cell count");
+  return lattice;
 }
 
 // How far a grid's world box reaches from the scene's origin once scaled and moved (the up turn keeps it), in
@@ -70,11 +83,30 @@ void requireWithinScene(const std::filesystem::path& file, const io::VdbGridInfo
                            " m; check the file's voxel size and vdb.scale, or give vdb.box_min/box_max");
 }
 
+// For "voxels": "native": the size of every grid's voxels, which must be cubic and the same in every file.
+void requireOneVoxelSize(const std::filesystem::path& file, const io::VdbGridInfo& grid,
+                         std::optional<float>& voxel) {
+  const glm::vec3 size = grid.voxelSize;
+  const auto same = [](float a, float b) { return std::abs(a - b) <= 1e-5f * std::max(a, b); };
+  if (!same(size.x, size.y) || !same(size.y, size.z))
+    throw io::InputError(file.string(), "grid '" + grid.name + "' has non-cubic voxels (" + io::show(size) +
+                                            "): native voxels need cubic ones; give a cell count");
+  if (voxel && !same(*voxel, size.x))
+    throw io::InputError(file.string(), "grid '" + grid.name + "' has voxels of " + io::show(size.x) +
+                                            ", other grids of " + io::show(*voxel) +
+                                            ": native voxels need one size; give a cell count");
+  voxel = size.x;
+}
+
 // The playback lattice: over the scene's box when it gives one, else over the union of the world boxes of
-// the grids read (sized in the file's own space, so that turning a file moves its cells exactly).
+// the grids read (sized in the file's own space, so that turning a file moves its cells exactly) and one
+// empty cell beyond it on every side, so that the smoke fades to zero over the cell beyond the last active
+// voxel centre as OpenVDB's trilinear sampler (and Blender's Cycles) read a grid's inactive background.
 render::VolumeGrid playbackLattice(const scene::VdbSource& source, std::vector<std::string>& notes) {
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
   bool anyTemperature = false;
+  const bool native = source.voxels == scene::kNativeVoxels;
+  std::optional<float> voxel;
   for (const auto& file : source.files) {
     const std::vector<io::VdbGridInfo> grids = io::readVdbInfo(file).grids;
     // A file without the density grid would play as an empty frame: more likely a wrong file or grid name
@@ -90,6 +122,7 @@ render::VolumeGrid playbackLattice(const scene::VdbSource& source, std::vector<s
       if (!(density || temperature) || !usable(grid)) continue;
       anyTemperature = anyTemperature || temperature;
       if (!source.box) requireWithinScene(file, grid, source);
+      if (native) requireOneVoxelSize(file, grid, voxel);
       if (grid.voxelSize.x != grid.voxelSize.y || grid.voxelSize.y != grid.voxelSize.z) {
         const std::string note = file.filename().string() + ": grid '" + grid.name +
                                  "' has non-uniform voxels; resampled onto cubic cells";
@@ -106,8 +139,16 @@ render::VolumeGrid playbackLattice(const scene::VdbSource& source, std::vector<s
   if (source.temperatureGrid && !anyTemperature)
     throw io::InputError(first, "no file of the vdb sequence has a non-empty float grid '" +
                                     *source.temperatureGrid + "' (vdb.temperature_grid)");
-  if (source.box) return cubicLattice(source.box->first, source.box->second, source.voxels);
-  return inScene(cubicLattice(lo, hi, source.voxels), source);
+  if (source.box) {
+    const auto [boxMin, boxMax] = *source.box;
+    // A native voxel measured in the scene: the files' voxel once scaled.
+    const float cell = native ? *voxel * source.scale : longestSide(boxMin, boxMax) / float(source.voxels);
+    const render::VolumeGrid lattice = cubicLattice(boxMin, boxMax, cell);
+    return native ? checkedCells(lattice, first) : lattice;
+  }
+  const float cell = native ? *voxel : longestSide(lo, hi) / float(source.voxels);
+  const render::VolumeGrid lattice = cubicLattice(lo - cell, hi + cell, cell);
+  return inScene(native ? checkedCells(lattice, first) : lattice, source);
 }
 
 // The grid read on the file's own axes, turned onto the scene's: scene cell (i, j, k) is file cell
@@ -150,20 +191,39 @@ VdbSequence::VdbSequence(const gpu::Context& context, std::vector<std::filesyste
                          int longestAxisCells, bool withTemperature)
     : VdbSequence(context, fileList(std::move(files), longestAxisCells, withTemperature)) {}
 
-bool VdbSequence::load(int frame) {
-  const int fileIndex = frame / source_.framesPerFile;
-  if (fileIndex == loadedFile_) return !loadedEmpty_;
+io::VdbDenseGrids VdbSequence::read(int fileIndex) {
   // The lattice back in the file's space: the same box, its axes turned back.
   const render::Box box = lattice_.bounds();
   const glm::vec3 a = toFile((box.min - source_.translate) / source_.scale, source_.up);
   const glm::vec3 b = toFile((box.max - source_.translate) / source_.scale, source_.up);
   const glm::ivec3 fileCells = glm::abs(glm::ivec3(toFile(glm::vec3(lattice_.size), source_.up)));
   const std::filesystem::path& path = source_.files[fileIndex];
-  io::VdbDenseGrids read = io::readVdbGrids(path, gridNames(source_),
-                                            io::ExplicitBounds{glm::min(a, b), glm::max(a, b), fileCells});
+  io::VdbDenseGrids grids = io::readVdbGrids(path, gridNames(source_),
+                                             io::ExplicitBounds{glm::min(a, b), glm::max(a, b), fileCells});
   // Each note once: a looping playback (the demo) reads the same files again and again.
-  for (const std::string& note : read.notes)
+  for (const std::string& note : grids.notes)
     if (std::find(notes_.begin(), notes_.end(), note) == notes_.end()) notes_.push_back(note);
+  return grids;
+}
+
+float VdbSequence::densityBound() {
+  if (!densityBound_) {
+    float largest = 0;
+    for (int file = 0; file < int(source_.files.size()); ++file) {
+      const io::VdbDenseGrids grids = read(file);
+      const auto density = grids.grids.find(source_.densityGrid);
+      if (density != grids.grids.end())
+        for (float value : density->second.values) largest = std::max(largest, value);
+    }
+    densityBound_ = largest * source_.densityScale;
+  }
+  return *densityBound_;
+}
+
+bool VdbSequence::load(int frame) {
+  const int fileIndex = frame / source_.framesPerFile;
+  if (fileIndex == loadedFile_) return !loadedEmpty_;
+  const io::VdbDenseGrids read = this->read(fileIndex);
   loadedFile_ = fileIndex;
   const auto density = read.grids.find(source_.densityGrid);
   loadedEmpty_ = density == read.grids.end();

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "io/vdb.h"
 #include "render/volume.h"
 #include "render/volume_sequence.h"
 #include "scene/scene.h"
@@ -35,6 +36,9 @@ class VdbSequence : public render::VolumeSequence {
   render::Volume volume(int index) override;
   render::Box bounds() const override { return lattice_.bounds(); }
   std::string frameName(int index) const override { return file(index).filename().string(); }
+  float cellSize() const override { return lattice_.cellSize; }
+  // The largest density of every file as resampled (each file read once more, on the first call).
+  float densityBound() override;
 
   const render::VolumeGrid& lattice() const { return lattice_; }
   const scene::VdbSource& source() const { return source_; }
@@ -46,6 +50,8 @@ class VdbSequence : public render::VolumeSequence {
  private:
   // Reads the file of `frame` into the buffers unless it is there already; false for an empty frame.
   bool load(int frame);
+  // The grids of file `fileIndex` on the lattice, in the file's axes; its notes kept, each once.
+  io::VdbDenseGrids read(int fileIndex);
 
   scene::VdbSource source_;
   std::vector<std::string> notes_;  // before lattice_: sizing the lattice adds notes
@@ -53,6 +59,7 @@ class VdbSequence : public render::VolumeSequence {
   render::DeviceVolume volume_;
   int loadedFile_ = -1;
   bool loadedEmpty_ = true;
+  std::optional<float> densityBound_;
 };
 
 }  // namespace sixway::reference

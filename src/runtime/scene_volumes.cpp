@@ -17,6 +17,7 @@ SimulatedVolumes::SimulatedVolumes(const gpu::Context& context, const gpu::Pipel
       exportSmoke_(context) {
   simulation_.smoke().recordExport(exportSmoke_, volume_.density(), volume_.temperature());
   exportSmoke_.finish();
+  for (const scene::Inlet& inlet : scene.inlets) densityBound_ = std::max(densityBound_, inlet.density);
 }
 
 render::Volume SimulatedVolumes::volume(int index) {

@@ -29,6 +29,9 @@ class SimulatedVolumes : public render::VolumeSequence {
   std::optional<render::Volume> frame(int index) override;
   render::Box bounds() const override { return volume_.grid().bounds(); }
   std::string frameName(int index) const override;
+  float cellSize() const override { return volume_.grid().cellSize; }
+  // The inlets' largest density: the smoke's transport makes no new maxima (docs/simulation.md, "Smoke").
+  float densityBound() override { return densityBound_; }
 
   // The volume of frame `index` even when it is empty; indices in increasing order.
   render::Volume volume(int index) override;
@@ -51,6 +54,7 @@ class SimulatedVolumes : public render::VolumeSequence {
   sim::Simulation simulation_;
   int frames_;
   int simulated_ = 0;  // frames simulated so far
+  float densityBound_ = 0;
   render::DeviceVolume volume_;
   gpu::Sequence exportSmoke_;  // the simulation's smoke into volume_, on the GPU
   sim::StepTimes frameTimes_;

@@ -94,7 +94,6 @@ const Choices<ToneMap> kToneMaps = {{"clamp", ToneMap::Clamp}, {"aces", ToneMap:
 
 constexpr std::string_view kPlaybackOnly = "the scene plays back vdb files: there is no simulation to set up";
 // The playback lattice's longest axis: the renderers' volumes are at most this many cells a side.
-constexpr int kMaxVdbVoxels = 1024;
 constexpr int kMaxVdbFrames = 100000;
 
 const Choices<VdbUp> kVdbUps = {{"y", VdbUp::Y}, {"z", VdbUp::Z}};
@@ -531,7 +530,9 @@ VdbSource parseVdb(JsonReader& r, const fs::path& baseDir) {
   v.temperatureGrid = r.maybe<std::string>("temperature_grid");
   v.densityScale = r.optional<float>("density_scale", v.densityScale, positive());
   v.framesPerFile = r.optional<int>("frames_per_file", v.framesPerFile, inRange(1, 1000));
-  v.voxels = r.optional<int>("voxels", v.voxels, inRange(8, kMaxVdbVoxels));
+  v.voxels = r.isString("voxels") ? r.pick("voxels", r.required<std::string>("voxels"),
+                                           Choices<int>{{"native", kNativeVoxels}})
+                                  : r.optional<int>("voxels", v.voxels, inRange(8, kMaxVdbVoxels));
   v.scale = r.optional<float>("scale", v.scale, inRange(1e-6, kMaxSceneMetres));
   v.translate = r.optional<glm::vec3>("translate", v.translate, inRange(-kMaxSceneMetres, kMaxSceneMetres));
   v.up = r.choice("up", kVdbUps, v.up);

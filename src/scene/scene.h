@@ -274,6 +274,11 @@ struct RenderSettings {
   float exposureStops = 0;  // the linear frame is scaled by 2^exposureStops before the tone map
 };
 
+// VdbSource::voxels for cells of the files' own voxel size ("voxels": "native").
+inline constexpr int kNativeVoxels = 0;
+// The most cells along a VDB playback lattice's longest axis.
+inline constexpr int kMaxVdbVoxels = 1024;
+
 // Which way is up in a VDB file's world: "y" (Houdini, EmberGen) or "z" (Blender).
 enum class VdbUp { Y, Z };
 
@@ -287,7 +292,8 @@ struct VdbSource {
   std::optional<std::string> temperatureGrid;  // the emission's temperature; none: no emission source
   float densityScale = 1;                      // multiplies the density grid's values
   int framesPerFile = 1;
-  int voxels = 128;  // cells along the longest axis of the playback lattice
+  // Cells along the longest axis of the files' active box, or kNativeVoxels: the files' own voxel size.
+  int voxels = 128;
   // The world box the lattice covers (min, max); none: the box of the files' active voxels.
   std::optional<std::pair<glm::vec3, glm::vec3>> box;
   float scale = 1;

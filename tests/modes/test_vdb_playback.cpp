@@ -226,5 +226,44 @@ TEST_F(VdbPlaybackTest, GridsBeyondTheScenesReachGetOneLine) {
   EXPECT_NO_THROW(reference::VdbSequence(context(), boxed));
 }
 
+// "voxels": "native" plays the file's own grid, cell for cell, inside one empty cell on every side: the
+// smoke fades to zero over the voxel beyond the last active centre, as OpenVDB's trilinear sampler reads a
+// grid's inactive background. The densest value bounds the sequence (the bake's light-grid spacing).
+TEST_F(VdbPlaybackTest, NativeVoxelsAreTheFilesGridInsideAnEmptyBorder) {
+  io::DenseGrid grid{.size = {5, 4, 3}, .origin = {0.3f, -0.2f, 1.0f}, .dx = glm::vec3(0.1f)};
+  for (int k = 0; k < 3; ++k)
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 5; ++i) grid.values.push_back(float(1 + i + 5 * j + 20 * k) / 60.0f);
+  io::writeVdb(dir / "grid.vdb", {{"density", &grid}});
+  scene::VdbSource native = source({dir / "grid.vdb"});
+  native.voxels = scene::kNativeVoxels;
+  reference::VdbSequence sequence(context(), native);
+  const render::VolumeGrid& lattice = sequence.lattice();
+  EXPECT_FLOAT_EQ(lattice.cellSize, 0.1f);
+  EXPECT_EQ(lattice.size, glm::ivec3(7, 6, 5));
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(lattice.origin[a], grid.origin[a] - 0.1f, 1e-5f);
+  const std::vector<float> density = download(sequence.volume(0).density);
+  for (int k = 0; k < 5; ++k)
+    for (int j = 0; j < 6; ++j)
+      for (int i = 0; i < 7; ++i) {
+        const bool inside = i >= 1 && i <= 5 && j >= 1 && j <= 4 && k >= 1 && k <= 3;
+        const float expected = inside ? grid.at(i - 1, j - 1, k - 1) : 0.0f;
+        ASSERT_NEAR(density[(std::size_t(k) * 6 + j) * 7 + i], expected, 1e-6f) << i << " " << j << " " << k;
+      }
+  EXPECT_FLOAT_EQ(sequence.densityBound(), 1.0f);
+
+  // A count resamples, still inside a border: 10 cells along the active box's longest side (0.5 m).
+  scene::VdbSource counted = source({dir / "grid.vdb"});
+  counted.voxels = 10;
+  EXPECT_FLOAT_EQ(reference::VdbSequence(context(), counted).lattice().cellSize, 0.05f);
+  EXPECT_EQ(reference::VdbSequence(context(), counted).lattice().size, glm::ivec3(12, 10, 8));
+
+  // Native cells need one cubic voxel size.
+  scene::VdbSource uneven = source({kVdb / "densityAndHeat.vdb"});
+  uneven.voxels = scene::kNativeVoxels;
+  EXPECT_THAT(inputErrorMessage([&] { reference::VdbSequence(context(), uneven); }),
+              ::testing::HasSubstr("densityAndHeat.vdb: grid 'density' has non-cubic voxels"));
+}
+
 }  // namespace
 }  // namespace sixway::test

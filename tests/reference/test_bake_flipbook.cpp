@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "cpu_reference.h"
 #include "image_stats.h"
@@ -42,7 +43,8 @@ class BakeFlipbookTest : public RenderTest {
   std::vector<std::string> lines;
 };
 
-// densityAndHeat.vdb has voxels of 0.703 × 0.703 × 0.716: the lattice covers its world box with cubic cells.
+// densityAndHeat.vdb has voxels of 0.703 × 0.703 × 0.716: the lattice covers its world box with cubic cells,
+// 24 along the longest side, and one empty cell beyond it on every side.
 TEST_F(BakeFlipbookTest, LatticeCoversTheFilesWorldBoxWithCubicCells) {
   reference::VdbSequence sequence(context(), {kVdb / "densityAndHeat.vdb"}, 24, true);
   const io::VdbFile info = io::readVdbInfo(kVdb / "densityAndHeat.vdb");
@@ -53,12 +55,14 @@ TEST_F(BakeFlipbookTest, LatticeCoversTheFilesWorldBoxWithCubicCells) {
     lo = glm::min(lo, grid.worldMin);
     hi = glm::max(hi, grid.worldMax);
   }
+  EXPECT_NEAR(cell, std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}) / 24, 1e-5f);
   for (int a = 0; a < 3; ++a) {
-    EXPECT_NEAR(box.min[a], lo[a], 1e-4f);
-    EXPECT_GE(box.max[a], hi[a] - 1e-4f);
-    EXPECT_LT(box.max[a], hi[a] + cell);
+    EXPECT_NEAR(box.min[a], lo[a] - cell, 1e-4f);
+    EXPECT_GE(box.max[a], hi[a] + cell - 1e-4f);
+    EXPECT_LT(box.max[a], hi[a] + 2 * cell);
   }
-  EXPECT_EQ(std::max({sequence.lattice().size.x, sequence.lattice().size.y, sequence.lattice().size.z}), 24);
+  EXPECT_EQ(std::max({sequence.lattice().size.x, sequence.lattice().size.y, sequence.lattice().size.z}),
+            24 + 2);
 }
 
 // The bake of one frame is the exact baker applied to the resampled grid: compare with the CPU oracle run on
@@ -159,6 +163,12 @@ TEST_F(BakeFlipbookTest, RealVdbFilesBakeAndTheEmptyFrameIsTransparent) {
   const reference::Flipbook book = reference::readFlipbook(result.sidecar);
   ASSERT_EQ(book.frames.size(), 4u);
   EXPECT_EQ(book.layout.columns, 2);
+  // One light-grid spacing for the flipbook, from its densest cell.
+  const nlohmann::json settings = nlohmann::json::parse(std::ifstream(result.sidecar))["provenance"]["bake"];
+  const float tau = settings["light_grid_spacing_rule"]["densest_cell_optical_depth"];
+  EXPECT_NEAR(tau, 2.0f * sequence.densityBound() * sequence.cellSize(), 1e-5f);
+  EXPECT_GT(sequence.densityBound(), 0.9f);
+  EXPECT_FLOAT_EQ(settings["light_grid_spacing_cells"].get<float>(), reference::lightSpacingFor(tau));
   for (int f = 0; f < 4; ++f) {
     char name[32];
     std::snprintf(name, sizeof(name), "frame_%04d.exr", f);

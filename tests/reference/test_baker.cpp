@@ -66,6 +66,17 @@ TEST_F(BakerTest, MatchesTheCpuReferenceAndConvergesAsTheLightGridRefines) {
 }
 
 // Every light's grid, oblique to the volume's axes with this camera, against the CPU's column integral.
+// The bake's light-grid spacing: 0.5 / τ cells for a densest cell of optical depth τ, within [1/4, 1].
+TEST(LightSpacing, FollowsTheDensestCellsOpticalDepth) {
+  EXPECT_FLOAT_EQ(reference::lightSpacingFor(0.0f), 1.0f);
+  EXPECT_FLOAT_EQ(reference::lightSpacingFor(0.5f), 1.0f);
+  EXPECT_FLOAT_EQ(reference::lightSpacingFor(1.0f), 0.5f);
+  EXPECT_NEAR(reference::lightSpacingFor(1.85f), 0.27f, 0.001f);
+  EXPECT_FLOAT_EQ(reference::lightSpacingFor(2.0f), 0.25f);
+  EXPECT_FLOAT_EQ(reference::lightSpacingFor(60.0f), 0.25f);
+  EXPECT_FLOAT_EQ(reference::lightSpacingFor(std::nanf("")), 1.0f);
+}
+
 TEST_F(BakerTest, LightGridDepthsMatchTheCpuColumnIntegral) {
   const CpuVolume volume = puffs(16);
   const scene::Smoke smoke = puffOptics();

@@ -279,7 +279,9 @@ TEST(EngineObstacles, ChangeMidRunWithoutSubmissionsOrWaits) {
     ASSERT_EQ(simulation.obstacleCount(), plan[frame].size());
     // Given again where they rest, the obstacles cost the lattice nothing: no cell is marked again.
     const uint64_t passes = runtime::Access::volumes(simulation).simulation().flagPasses();
-    if (frame == kRestingAgain) EXPECT_EQ(passes, passesBefore);
+    if (frame == kRestingAgain) {
+      EXPECT_EQ(passes, passesBefore);
+    }
     passesBefore = passes;
     // Every obstacle at rest at the frame's end is where the lattice's solid cells are (the moving sphere
     // arrives exactly then). Flags hold the last step's.

@@ -346,6 +346,12 @@ TEST(SceneTest, VdbSceneReadsFilesAndDefaults) {
   EXPECT_EQ(listed.vdb->up, VdbUp::Y);
   EXPECT_FALSE(listed.vdb->box);
   EXPECT_EQ(sceneFrameCount(listed), 2);
+
+  j["vdb"]["voxels"] = "native";
+  EXPECT_EQ(parseScene(j, "v.json", dir.path()).vdb->voxels, kNativeVoxels);
+  j["vdb"]["voxels"] = "all";
+  EXPECT_THAT(errorOf([&] { parseScene(j, "v.json", dir.path()); }),
+              ::testing::HasSubstr("vdb.voxels: must be one of \"native\" (got \"all\")"));
 }
 
 TEST(SceneParse, VdbSceneRefusesWhatOnlySimulationUses) {
@@ -473,8 +479,9 @@ TEST(SceneParse, MissingRequiredKey) {
 }
 
 TEST(SceneParse, UnknownChoice) {
-  EXPECT_TRUE(rejected(minimalWith(R"({"obstacles": [{"type": "cone"}]})"_json), "obstacles[0].type",
-                       "must be one of \"sphere\", \"cylinder\", \"capsule\", \"box\", \"mesh\" (got \"cone\")"));
+  EXPECT_TRUE(
+      rejected(minimalWith(R"({"obstacles": [{"type": "cone"}]})"_json), "obstacles[0].type",
+               "must be one of \"sphere\", \"cylinder\", \"capsule\", \"box\", \"mesh\" (got \"cone\")"));
 }
 
 TEST(SceneParse, UnknownObstacleBoundary) {

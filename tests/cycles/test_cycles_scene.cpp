@@ -1,0 +1,100 @@
+// sixway's path-traced final image (`sixway render --mode pathtrace` of a scene playing the Mantaflow frame
+// back) against Blender's Cycles rendering the scene (tools/blender/cycles_scene.py): a perspective camera, a
+// directional light, a point light beside the smoke, uniform ambient light, coloured emission. Both sides
+// render twice with independent seeds; the tolerances are on the noise-removed PSNR (cycles_agreement.h).
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "cycles/cycles_agreement.h"
+#include "cycles/cycles_fixture.h"
+
+namespace sixway::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+class CyclesScene : public CyclesFixture {
+ protected:
+  // The scene: the Mantaflow frame (z up) on its own voxels, 64² pixels; `orders` scattering orders, with or
+  // without emission, seed `seed`.
+  fs::path scene(const std::string& name, bool emission, int seed) {
+    nlohmann::json smoke = {{"extinction", 20}, {"albedo", 0.9}, {"phase_g", 0.2}};
+    if (emission)
+      smoke["emission"] = {{"intensity", 2},
+                           {"ramp",
+                            {{{"temperature", 0}, {"color", {0, 0, 0}}},
+                             {{"temperature", 0.5}, {"color", {1, 0.35, 0.05}}},
+                             {{"temperature", 1.5}, {"color", {1, 0.95, 0.8}}}}}};
+    const nlohmann::json json = {
+        {"name", name},
+        {"vdb",
+         {{"files", {vdbFrame().string()}},
+          {"up", "z"},
+          {"voxels", "native"},
+          {"temperature_grid", "temperature"}}},
+        {"smoke", smoke},
+        {"camera", {{"position", {3.0, 1.6, 1.6}}, {"target", {1.0, 1.0, -1.0}}, {"fov_deg", 40}}},
+        {"lights",
+         {{{"type", "directional"},
+           {"direction", {0.4, 1.0, 0.3}},
+           {"color", {1.0, 0.95, 0.85}},
+           {"intensity", 2.5}},
+          {{"type", "point"},
+           {"position", {2.1, 0.8, -0.6}},
+           {"color", {1.0, 0.6, 0.3}},
+           {"intensity", 0.6}}}},
+        {"ambient", {{"color", {0.05, 0.06, 0.08}}}},
+        {"render", {{"width", 64}, {"height", 64}, {"background", {0.02, 0.02, 0.03}}, {"seed", seed}}}};
+    const fs::path path = dir_ / (name + ".json");
+    std::ofstream(path) << json.dump(1);
+    return path;
+  }
+
+  // sixway's path tracer and Cycles, each twice, `orders` orders; reported as `name`.
+  Agreement agreement(const std::string& name, bool emission, int orders) {
+    std::vector<Render> sixway, cycles;
+    for (int seed : {1, 2}) {
+      const std::string run_name = name + "_" + std::to_string(seed);
+      const fs::path path = scene(run_name, emission, seed);
+      const fs::path rendered = dir_ / (run_name + "_sixway");
+      run(std::string(SIXWAY_EXE) + " render --scene '" + path.string() +
+              "' --frames 1 --mode pathtrace --spp " + samples() + " --orders " + std::to_string(orders) +
+              " --exr --validate --out '" + rendered.string() + "'",
+          rendered.string() + ".log");
+      const fs::path traced = dir_ / (run_name + "_cycles");
+      run(blender("cycles_scene.py") + " --scene '" + path.string() + "' --out '" + traced.string() +
+              "' --spp " + samples() + " --orders " + std::to_string(orders) + " --seed " +
+              std::to_string(seed),
+          traced.string() + ".log");
+      if (HasFailure()) return {};
+      sixway.push_back(readRenderedFrame(rendered / "frame_0000.exr"));
+      cycles.push_back(readCyclesImage(traced));
+    }
+    const Agreement a = compareRenders(sixway, cycles, {0, 1, 2});
+    report(name, {{"case", name},
+                  {"samples_per_pixel", samples()},
+                  {"masked_fraction", maskedFraction(cycles)},
+                  {"rgb", a.json()}});
+    EXPECT_GT(maskedFraction(cycles), 0.1);
+    return a;
+  }
+};
+
+// Every order, with emission.
+TEST_F(CyclesScene, FinalImageAgrees) {
+  const Agreement a = agreement("final_image", true, 64);
+  ASSERT_FALSE(HasFailure());
+  EXPECT_GE(a.biasPsnrDb(), 40.0);
+}
+
+// Single scattering, no emission (with no volume bounces Cycles still scatters emission once,
+// docs/blender.md).
+TEST_F(CyclesScene, SingleScatteringFinalImageAgrees) {
+  const Agreement a = agreement("final_image_single", false, 1);
+  ASSERT_FALSE(HasFailure());
+  EXPECT_GE(a.biasPsnrDb(), 50.0);
+}
+
+}  // namespace
+}  // namespace sixway::test
