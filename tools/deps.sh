@@ -13,7 +13,7 @@ SIXWAY_PACKAGES=(
   libimgui-dev xvfb xauth  # sixway-demo: its panel; the demo test runs it in a virtual X server
   python3-torch python3-numpy  # tools/nn: the PyTorch network; the test that regenerates its test vectors
   python3-matplotlib  # tools/train.py: the loss plot
-  blender  # tools/blender: Mantaflow smoke and the Cycles check (tests label "cycles")
+  blender  # tools/blender and the tests labelled "blender": Mantaflow, Cycles, the add-on
 )
 
 missing=()

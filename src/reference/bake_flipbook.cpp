@@ -81,7 +81,8 @@ FlipbookBakeResult bakeFlipbook(const gpu::Context& context, const gpu::Pipeline
   BakeSettings settings = job.settings;
   float cellOpticalDepth = 0;
   if (job.lightSpacingFromSmoke) {
-    cellOpticalDepth = job.smoke.extinction * sequence.densityBound() * sequence.cellSize();
+    cellOpticalDepth =
+        job.smoke.extinction * sequence.densityBound(job.firstFrame, job.frameCount) * sequence.cellSize();
     settings.lightSpacingCells = lightSpacingFor(cellOpticalDepth);
   }
   std::filesystem::create_directories(job.out / "frames");

@@ -29,10 +29,18 @@ std::vector<std::string> gridNames(const scene::VdbSource& source) {
   return names;
 }
 
-// Cubic cells of size `cell` over [lo, hi]; the box grows at its max side to whole cells.
-render::VolumeGrid cubicLattice(glm::vec3 lo, glm::vec3 hi, float cell) {
-  const glm::ivec3 cells = glm::max(glm::ivec3(glm::ceil((hi - lo) / cell - 1e-4f)), glm::ivec3(1));
-  return {cells, lo, cell};
+// Cubic cells of size `cell` over [lo, hi]; the box grows at its max side to whole cells. Native cells (the
+// files' own, which no count bounds) are refused beyond kMaxVdbVoxels a side, before any count is made an
+// int.
+render::VolumeGrid cubicLattice(glm::vec3 lo, glm::vec3 hi, float cell, bool native,
+                                const std::string& file) {
+  const glm::vec3 counts = glm::ceil((hi - lo) / cell - 1e-4f);
+  const float longest = std::max({counts.x, counts.y, counts.z});
+  if (native && !(longest <= float(scene::kMaxVdbVoxels)))
+    throw io::InputError(file, "native voxels make " + io::show(longest) +
+                                   " cells along the lattice's longest axis, more than " +
+                                   std::to_string(scene::kMaxVdbVoxels) + "; give a cell count");
+  return {glm::max(glm::ivec3(counts), glm::ivec3(1)), lo, cell};
 }
 
 float longestSide(glm::vec3 lo, glm::vec3 hi) {
@@ -46,16 +54,6 @@ render::VolumeGrid inScene(const render::VolumeGrid& file, const scene::VdbSourc
   const glm::vec3 a = toScene(box.min, source.up), b = toScene(box.max, source.up);
   return {glm::abs(glm::ivec3(toScene(glm::vec3(file.size), source.up))),
           source.translate + source.scale * glm::min(a, b), source.scale * file.cellSize};
-}
-
-// Native voxels can make more cells than a count may ask for.
-render::VolumeGrid checkedCells(const render::VolumeGrid& lattice, const std::string& file) {
-  const int longest = std::max({lattice.size.x, lattice.size.y, lattice.size.z});
-  if (longest > scene::kMaxVdbVoxels)
-    throw io::InputError(file, "native voxels make " + std::to_string(longest) +
-                                   " cells along the lattice's longest axis, more than " +
-                                   std::to_string(scene::kMaxVdbVoxels) + "; give a cell count");
-  return lattice;
 }
 
 // How far a grid's world box reaches from the scene's origin once scaled and moved (the up turn keeps it), in
@@ -140,15 +138,12 @@ render::VolumeGrid playbackLattice(const scene::VdbSource& source, std::vector<s
     throw io::InputError(first, "no file of the vdb sequence has a non-empty float grid '" +
                                     *source.temperatureGrid + "' (vdb.temperature_grid)");
   if (source.box) {
+    if (native) throw io::InputError(first, "native voxels play the files' own cells: they take no box");
     const auto [boxMin, boxMax] = *source.box;
-    // A native voxel measured in the scene: the files' voxel once scaled.
-    const float cell = native ? *voxel * source.scale : longestSide(boxMin, boxMax) / float(source.voxels);
-    const render::VolumeGrid lattice = cubicLattice(boxMin, boxMax, cell);
-    return native ? checkedCells(lattice, first) : lattice;
+    return cubicLattice(boxMin, boxMax, longestSide(boxMin, boxMax) / float(source.voxels), false, first);
   }
   const float cell = native ? *voxel : longestSide(lo, hi) / float(source.voxels);
-  const render::VolumeGrid lattice = cubicLattice(lo - cell, hi + cell, cell);
-  return inScene(native ? checkedCells(lattice, first) : lattice, source);
+  return inScene(cubicLattice(lo - cell, hi + cell, cell, native, first), source);
 }
 
 // The grid read on the file's own axes, turned onto the scene's: scene cell (i, j, k) is file cell
@@ -191,39 +186,37 @@ VdbSequence::VdbSequence(const gpu::Context& context, std::vector<std::filesyste
                          int longestAxisCells, bool withTemperature)
     : VdbSequence(context, fileList(std::move(files), longestAxisCells, withTemperature)) {}
 
-io::VdbDenseGrids VdbSequence::read(int fileIndex) {
+io::VdbDenseGrids VdbSequence::read(int fileIndex, const std::vector<std::string>& names) {
   // The lattice back in the file's space: the same box, its axes turned back.
   const render::Box box = lattice_.bounds();
   const glm::vec3 a = toFile((box.min - source_.translate) / source_.scale, source_.up);
   const glm::vec3 b = toFile((box.max - source_.translate) / source_.scale, source_.up);
   const glm::ivec3 fileCells = glm::abs(glm::ivec3(toFile(glm::vec3(lattice_.size), source_.up)));
   const std::filesystem::path& path = source_.files[fileIndex];
-  io::VdbDenseGrids grids = io::readVdbGrids(path, gridNames(source_),
-                                             io::ExplicitBounds{glm::min(a, b), glm::max(a, b), fileCells});
+  io::VdbDenseGrids grids =
+      io::readVdbGrids(path, names, io::ExplicitBounds{glm::min(a, b), glm::max(a, b), fileCells});
   // Each note once: a looping playback (the demo) reads the same files again and again.
   for (const std::string& note : grids.notes)
     if (std::find(notes_.begin(), notes_.end(), note) == notes_.end()) notes_.push_back(note);
   return grids;
 }
 
-float VdbSequence::densityBound() {
-  if (!densityBound_) {
-    float largest = 0;
-    for (int file = 0; file < int(source_.files.size()); ++file) {
-      const io::VdbDenseGrids grids = read(file);
-      const auto density = grids.grids.find(source_.densityGrid);
-      if (density != grids.grids.end())
-        for (float value : density->second.values) largest = std::max(largest, value);
-    }
-    densityBound_ = largest * source_.densityScale;
+float VdbSequence::densityBound(int first, int count) {
+  float largest = 0;
+  const int lastFile = std::min((first + count - 1) / source_.framesPerFile, int(source_.files.size()) - 1);
+  for (int file = std::max(first, 0) / source_.framesPerFile; file <= lastFile; ++file) {
+    const io::VdbDenseGrids grids = read(file, {source_.densityGrid});
+    const auto density = grids.grids.find(source_.densityGrid);
+    if (density != grids.grids.end())
+      for (float value : density->second.values) largest = std::max(largest, value);
   }
-  return *densityBound_;
+  return largest * source_.densityScale;
 }
 
 bool VdbSequence::load(int frame) {
   const int fileIndex = frame / source_.framesPerFile;
   if (fileIndex == loadedFile_) return !loadedEmpty_;
-  const io::VdbDenseGrids read = this->read(fileIndex);
+  const io::VdbDenseGrids read = this->read(fileIndex, gridNames(source_));
   loadedFile_ = fileIndex;
   const auto density = read.grids.find(source_.densityGrid);
   loadedEmpty_ = density == read.grids.end();

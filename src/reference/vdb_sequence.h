@@ -37,8 +37,8 @@ class VdbSequence : public render::VolumeSequence {
   render::Box bounds() const override { return lattice_.bounds(); }
   std::string frameName(int index) const override { return file(index).filename().string(); }
   float cellSize() const override { return lattice_.cellSize; }
-  // The largest density of every file as resampled (each file read once more, on the first call).
-  float densityBound() override;
+  // The largest density of the files of those frames as resampled (each read once more).
+  float densityBound(int first, int count) override;
 
   const render::VolumeGrid& lattice() const { return lattice_; }
   const scene::VdbSource& source() const { return source_; }
@@ -50,8 +50,8 @@ class VdbSequence : public render::VolumeSequence {
  private:
   // Reads the file of `frame` into the buffers unless it is there already; false for an empty frame.
   bool load(int frame);
-  // The grids of file `fileIndex` on the lattice, in the file's axes; its notes kept, each once.
-  io::VdbDenseGrids read(int fileIndex);
+  // Grids `names` of file `fileIndex` on the lattice, in the file's axes; its notes kept, each once.
+  io::VdbDenseGrids read(int fileIndex, const std::vector<std::string>& names);
 
   scene::VdbSource source_;
   std::vector<std::string> notes_;  // before lattice_: sizing the lattice adds notes
@@ -59,7 +59,6 @@ class VdbSequence : public render::VolumeSequence {
   render::DeviceVolume volume_;
   int loadedFile_ = -1;
   bool loadedEmpty_ = true;
-  std::optional<float> densityBound_;
 };
 
 }  // namespace sixway::reference

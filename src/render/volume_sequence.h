@@ -24,11 +24,11 @@ class VolumeSequence {
   virtual Box bounds() const = 0;
   // Says what frame `index` is (a file name, a simulated time), for progress lines and the sidecar.
   virtual std::string frameName(int index) const = 0;
-  // The side of the volumes' cells, and the largest density a frame holds (or a bound on it): with the
-  // extinction they give the densest cell's optical depth, which sets the bake's light-grid spacing
-  // (reference::lightSpacingFor). May read every frame once.
+  // The side of the volumes' cells, and the largest density frames [first, first + count) hold (or a bound
+  // on it): with the extinction they give the densest cell's optical depth, which sets the bake's light-grid
+  // spacing (reference::lightSpacingFor). May read those frames once more.
   virtual float cellSize() const = 0;
-  virtual float densityBound() = 0;
+  virtual float densityBound(int first, int count) = 0;
 };
 
 }  // namespace sixway::render

@@ -31,7 +31,7 @@ class SimulatedVolumes : public render::VolumeSequence {
   std::string frameName(int index) const override;
   float cellSize() const override { return volume_.grid().cellSize; }
   // The inlets' largest density: the smoke's transport makes no new maxima (docs/simulation.md, "Smoke").
-  float densityBound() override { return densityBound_; }
+  float densityBound(int, int) override { return densityBound_; }
 
   // The volume of frame `index` even when it is empty; indices in increasing order.
   render::Volume volume(int index) override;

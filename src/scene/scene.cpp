@@ -93,7 +93,7 @@ const Choices<GuideLight> kGuideLights = {{"front", GuideLight::Front},   {"top"
 const Choices<ToneMap> kToneMaps = {{"clamp", ToneMap::Clamp}, {"aces", ToneMap::Aces}};
 
 constexpr std::string_view kPlaybackOnly = "the scene plays back vdb files: there is no simulation to set up";
-// The playback lattice's longest axis: the renderers' volumes are at most this many cells a side.
+// Files (times frames_per_file) a vdb sequence plays.
 constexpr int kMaxVdbFrames = 100000;
 
 const Choices<VdbUp> kVdbUps = {{"y", VdbUp::Y}, {"z", VdbUp::Z}};
@@ -542,6 +542,8 @@ VdbSource parseVdb(JsonReader& r, const fs::path& baseDir) {
     r.fail(boxMin ? "box_max" : "box_min", "box_min and box_max go together");
   if (boxMin) {
     if (!glm::all(glm::lessThan(*boxMin, *boxMax))) r.fail("box_max", "must exceed box_min on every axis");
+    if (v.voxels == kNativeVoxels)
+      r.fail("voxels", "\"native\" plays the files' own cells: it takes no box_min and box_max");
     v.box = std::pair(*boxMin, *boxMax);
   }
   if (v.densityGrid.empty()) r.fail("density_grid", "must name a grid");

@@ -250,7 +250,17 @@ TEST_F(VdbPlaybackTest, NativeVoxelsAreTheFilesGridInsideAnEmptyBorder) {
         const float expected = inside ? grid.at(i - 1, j - 1, k - 1) : 0.0f;
         ASSERT_NEAR(density[(std::size_t(k) * 6 + j) * 7 + i], expected, 1e-6f) << i << " " << j << " " << k;
       }
-  EXPECT_FLOAT_EQ(sequence.densityBound(), 1.0f);
+  EXPECT_FLOAT_EQ(sequence.densityBound(0, 1), 1.0f);
+  // The bound is of the frames asked for.
+  io::DenseGrid denser = grid;
+  for (float& value : denser.values) value *= 2;
+  io::writeVdb(dir / "denser.vdb", {{"density", &denser}});
+  scene::VdbSource two = source({dir / "grid.vdb", dir / "denser.vdb"});
+  two.voxels = scene::kNativeVoxels;
+  reference::VdbSequence pair(context(), two);
+  EXPECT_FLOAT_EQ(pair.densityBound(0, 1), 1.0f);
+  EXPECT_FLOAT_EQ(pair.densityBound(1, 1), 2.0f);
+  EXPECT_FLOAT_EQ(pair.densityBound(0, 2), 2.0f);
 
   // A count resamples, still inside a border: 10 cells along the active box's longest side (0.5 m).
   scene::VdbSource counted = source({dir / "grid.vdb"});

@@ -65,7 +65,6 @@ TEST_F(BakerTest, MatchesTheCpuReferenceAndConvergesAsTheLightGridRefines) {
   }
 }
 
-// Every light's grid, oblique to the volume's axes with this camera, against the CPU's column integral.
 // The bake's light-grid spacing: 0.5 / τ cells for a densest cell of optical depth τ, within [1/4, 1].
 TEST(LightSpacing, FollowsTheDensestCellsOpticalDepth) {
   EXPECT_FLOAT_EQ(reference::lightSpacingFor(0.0f), 1.0f);
@@ -77,6 +76,7 @@ TEST(LightSpacing, FollowsTheDensestCellsOpticalDepth) {
   EXPECT_FLOAT_EQ(reference::lightSpacingFor(std::nanf("")), 1.0f);
 }
 
+// Every light's grid, oblique to the volume's axes with this camera, against the CPU's column integral.
 TEST_F(BakerTest, LightGridDepthsMatchTheCpuColumnIntegral) {
   const CpuVolume volume = puffs(16);
   const scene::Smoke smoke = puffOptics();

@@ -14,6 +14,14 @@ def fail(program, message):
     sys.exit(1)
 
 
+def run(program, main):
+    """main(), with a malformed input (a missing key, a value of the wrong type) as one line."""
+    try:
+        main()
+    except (KeyError, TypeError, ValueError, IndexError, AttributeError) as e:
+        fail(program, f"malformed input: {type(e).__name__}: {e}")
+
+
 def script_arguments():
     return sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
 
@@ -84,9 +92,11 @@ def smoke_material(extinction, albedo, g, emission=None):
     return material, volume, intensity
 
 
-def volume_object(program, path, material, placement=Matrix.Identity(4)):
+def volume_object(program, path, material, placement=Matrix.Identity(4), cell_size=None):
     """The VDB file `path` placed by `placement` (file space to world). Cycles samples voxel i at
-    (i + 1/2) · dx, OpenVDB and sixway at i · dx: the grid is moved back half a voxel in file space."""
+    (i + 1/2) · dx, OpenVDB and sixway at i · dx: the grid is moved back half a voxel in file space. With
+    `cell_size` (sixway's lattice cell, in file units), the file's voxels must be that size: sixway then
+    rendered the file's own grid."""
     data = bpy.data.volumes.new("smoke")
     data.filepath = os.path.abspath(path)
     data.render.precision = "FULL"
@@ -95,6 +105,10 @@ def volume_object(program, path, material, placement=Matrix.Identity(4)):
     density = data.grids.get("density")
     if density is None or not density.load():
         fail(program, f"{path}: Blender found no grid 'density' ({data.grids.error_message or 'no such grid'})")
+    voxel = density.matrix_object.col[0].xyz.length
+    if cell_size is not None and abs(voxel - cell_size) > 1e-4 * voxel:
+        fail(program, f"{path}: sixway resampled it (cells of {cell_size:g}, voxels of {voxel:g}); bake with "
+                      "--voxels native to compare the same grid")
     data.materials.append(material)
     obj = bpy.data.objects.new("smoke", data)
     half_voxel = -0.5 * (density.matrix_object.to_3x3() @ Vector((1, 1, 1)))

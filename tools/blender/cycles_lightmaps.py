@@ -55,14 +55,15 @@ def read_bake(path, frame):
     except (OSError, json.JSONDecodeError) as e:
         cc.fail(PROGRAM, f"{path}: {e}")
     p = sidecar.get("provenance", {})
-    if "vdb" not in p.get("source", {}):
-        cc.fail(PROGRAM, f"{path}: not a bake of VDB files (sixway bake --vdb)")
+    source = p.get("source", {})
+    if "vdb" not in source or "scene" in source:
+        cc.fail(PROGRAM, f"{path}: not a bake of VDB files (sixway bake --vdb; a scene places its files itself)")
     files = p["source"]["vdb"]
     if not 0 <= frame < len(p["frames"]):
         cc.fail(PROGRAM, f"{path}: --frame {frame}: the bake has frames 0..{len(p['frames']) - 1}")
     index = p["frames"][frame]["index"]
     layout = sidecar["layout"]
-    return p, files[index], (layout["tile_width"], layout["tile_height"])
+    return p, files[index], (layout["tile_width"], layout["tile_height"]), source["lattice"]["cell_size"]
 
 
 def bake_camera(camera, billboard, width, height):
@@ -84,7 +85,7 @@ def bake_camera(camera, billboard, width, height):
 
 def main():
     args = arguments()
-    bake, vdb_path, (width, height) = read_bake(args.flipbook, args.frame)
+    bake, vdb_path, (width, height), cell_size = read_bake(args.flipbook, args.frame)
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
     scattering = bake["bake"]["scattering"]
@@ -100,7 +101,7 @@ def main():
                     "luminance": True}
     material, shader, emission_intensity = cc.smoke_material(optics["extinction"], optics["albedo"],
                                                              optics["phase_g"], emission)
-    cc.volume_object(PROGRAM, vdb_path, material)
+    cc.volume_object(PROGRAM, vdb_path, material, cell_size=cell_size)
     directions = {"Right": right, "Left": -right, "Top": up, "Bottom": -up, "Back": forward, "Front": -forward}
     os.makedirs(args.out, exist_ok=True)
     start = time.time()
@@ -127,4 +128,4 @@ def main():
           f"{seconds:.1f} s; wrote {args.out}/cycles_*.exr")
 
 
-main()
+cc.run(PROGRAM, main)

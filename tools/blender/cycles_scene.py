@@ -110,6 +110,8 @@ def main():
             scene_json = json.load(f)
     except (OSError, json.JSONDecodeError) as e:
         cc.fail(PROGRAM, f"{args.scene}: {e}")
+    if not isinstance(scene_json, dict):
+        cc.fail(PROGRAM, f"{args.scene}: not a JSON object")
     check_supported(args.scene, scene_json)
     vdb = scene_json["vdb"]
     path = vdb_file(args.scene, scene_json, args.frame)
@@ -126,8 +128,9 @@ def main():
         if "temperature_grid" not in vdb:
             refuse(args.scene, "smoke.emission", "needs vdb.temperature_grid")
         ramp = [[key["temperature"], *key["color"]] for key in smoke["emission"]["ramp"]]
-        emission = {"intensity": smoke["emission"]["intensity"], "ramp": ramp, "grid": vdb["temperature_grid"],
-                    "luminance": False}
+        # sixway scales the density itself by density_scale: the extinction and the emission alike.
+        emission = {"intensity": smoke["emission"]["intensity"] * vdb.get("density_scale", 1.0), "ramp": ramp,
+                    "grid": vdb["temperature_grid"], "luminance": False}
     extinction = smoke.get("extinction", 20.0) * vdb.get("density_scale", 1.0)
     material, _, _ = cc.smoke_material(extinction, smoke.get("albedo", 0.9), smoke.get("phase_g", 0.2), emission)
     cc.volume_object(PROGRAM, path, material, placement(vdb))
@@ -154,4 +157,4 @@ def main():
     print(f"cycles_scene: {width}x{height}, {args.spp} spp: {seconds:.1f} s; wrote {args.out}/cycles.exr")
 
 
-main()
+cc.run(PROGRAM, main)

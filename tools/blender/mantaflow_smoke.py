@@ -2,7 +2,10 @@
 # (smoke_NNNN.vdb: grids density, temperature, flame, velocity, ... in Blender's z-up file space), for
 # sixway's scene "vdb" section and `sixway bake --vdb` (docs/blender.md).
 #
-#   blender -b --factory-startup --python tools/blender/mantaflow_smoke.py -- CONFIG.json OUT_DIR
+#   blender -b --factory-startup --python tools/blender/mantaflow_smoke.py -- CONFIG.json OUT_DIR [--blend]
+#
+# --blend also keeps the scene as OUT_DIR/scene.blend with its cache in OUT_DIR/cache (Blender's own layout),
+# as a Blender user's smoke domain is (tools/blender/sixway_flipbook.py bakes from it).
 #
 # Config keys (metres, z up; unknown keys are errors):
 #   resolution (64), frames (60)      cells along the domain's longest side; frames baked
@@ -13,6 +16,7 @@
 #       density (1), temperature (1), fuel (1), velocity (none), surface_distance (1.5), frames [first, last]
 #   obstacles[]: shape, position, size, move_to (a straight path over the whole run)
 #   wind: direction, strength (1), flow (0)
+#   camera: position, target, fov_deg (40): the scene camera
 #
 # Flows and effectors are configured before the domain exists (Blender 3.4 breaks the next update when a
 # flow's settings change after the domain is made).
@@ -21,9 +25,9 @@ import math
 import os
 import shutil
 import sys
-import tempfile
 
 import bpy
+from mathutils import Vector
 
 SHAPES = {"sphere", "cube", "cylinder"}
 FLOW_TYPES = {"smoke": "SMOKE", "fire": "FIRE", "both": "BOTH"}
@@ -61,7 +65,19 @@ def add_shape(shape, position, size, name):
     return obj
 
 
+def known_keys(entry, name, keys):
+    """An object of the config with no key beyond `keys`."""
+    if not isinstance(entry, dict):
+        fail(f"{name}: expected an object, got {entry!r}")
+    unknown = sorted(set(entry) - set(keys))
+    if unknown:
+        fail(f"{name}: unknown keys {unknown}")
+    return entry
+
+
 def add_emitter(index, emitter):
+    known_keys(emitter, f"emitters[{index}]", ("shape", "position", "size", "type", "density", "temperature", "fuel",
+                                               "velocity", "surface_distance", "frames"))
     obj = add_shape(emitter.get("shape", "sphere"), vector(emitter.get("position", [0, 0, 0]), "position"),
                     number(emitter, "size", 0.3, 0.01, 100), f"emitter{index}")
     flow = obj.modifiers.new("Fluid", "FLUID")
@@ -91,20 +107,25 @@ def add_emitter(index, emitter):
 
 
 def add_obstacle(index, obstacle):
+    known_keys(obstacle, f"obstacles[{index}]", ("shape", "position", "size", "move_to"))
     start = vector(obstacle.get("position", [0, 0, 0]), f"obstacles[{index}].position")
     obj = add_shape(obstacle.get("shape", "sphere"), start, number(obstacle, "size", 0.5, 0.01, 100),
                     f"obstacle{index}")
     effector = obj.modifiers.new("Fluid", "FLUID")
     effector.fluid_type = "EFFECTOR"
     effector.effector_settings.effector_type = "COLLISION"
-    if "move_to" in obstacle:  # a straight path over the whole run
+    if "move_to" in obstacle:  # a straight path over the whole run, at a constant speed
         obj.keyframe_insert("location", frame=1)
         obj.location = vector(obstacle["move_to"], f"obstacles[{index}].move_to")
         obj.keyframe_insert("location", frame=bpy.context.scene.frame_end)
+        for curve in obj.animation_data.action.fcurves:
+            for key in curve.keyframe_points:
+                key.interpolation = "LINEAR"
     obj.hide_render = True
 
 
 def add_wind(wind):
+    known_keys(wind, "wind", ("direction", "strength", "flow"))
     direction = vector(wind.get("direction", [1, 0, 0]), "wind.direction")
     length = math.sqrt(sum(v * v for v in direction))
     if length == 0:
@@ -113,8 +134,6 @@ def add_wind(wind):
     field = bpy.context.active_object
     # A wind field blows along its local +z.
     field.rotation_mode = "QUATERNION"
-    from mathutils import Vector
-
     field.rotation_quaternion = Vector((0, 0, 1)).rotation_difference(Vector(direction) / length)
     field.field.strength = number(wind, "strength", 1.0, 0, 1000)
     field.field.flow = number(wind, "flow", 0.0, 0, 10)
@@ -156,24 +175,52 @@ def make_domain(config, cache):
     return domain
 
 
-def main():
+def add_camera(camera):
+    """The scene camera (for tools/blender/sixway_flipbook.py): position, target, fov_deg (vertical), z up."""
+    known_keys(camera, "camera", ("position", "target", "fov_deg"))
+    position = Vector(vector(camera.get("position"), "camera.position"))
+    target = Vector(vector(camera.get("target"), "camera.target"))
+    if (target - position).length == 0:
+        fail("camera: target and position coincide")
+    data = bpy.data.cameras.new("camera")
+    data.sensor_fit = "VERTICAL"
+    data.angle_y = math.radians(number(camera, "fov_deg", 40, 1, 170))
+    obj = bpy.data.objects.new("camera", data)
+    obj.location = position
+    obj.rotation_mode = "QUATERNION"
+    obj.rotation_quaternion = (target - position).to_track_quat("-Z", "Y")
+    bpy.context.scene.collection.objects.link(obj)
+    bpy.context.scene.camera = obj
+
+
+def arguments():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    blend = "--blend" in argv
+    argv = [a for a in argv if a != "--blend"]
     if len(argv) != 2:
-        fail("usage: blender -b --factory-startup --python mantaflow_smoke.py -- CONFIG.json OUT_DIR")
-    config_path, out_dir = argv
+        fail("usage: blender -b --factory-startup --python mantaflow_smoke.py -- CONFIG.json OUT_DIR [--blend]")
+    return argv[0], argv[1], blend
+
+
+def main():
+    config_path, out_dir, keep_blend = arguments()
     try:
         with open(config_path) as f:
             config = json.load(f)
     except (OSError, json.JSONDecodeError) as e:
         fail(f"{config_path}: {e}")
+    if not isinstance(config, dict):
+        fail(f"{config_path}: not a JSON object")
     known = {"description", "resolution", "frames", "domain_size", "domain_centre", "density_buoyancy",
              "heat_buoyancy", "vorticity", "time_scale", "dissolve_frames", "burning_rate", "flame_vorticity",
-             "emitters", "obstacles", "wind"}
+             "emitters", "obstacles", "wind", "camera"}
     unknown = sorted(set(config) - known)
     if unknown:
         fail(f"{config_path}: unknown keys {unknown}")
-    if not config.get("emitters"):
-        fail(f"{config_path}: no emitters")
+    if not isinstance(config.get("emitters"), list) or not config["emitters"]:
+        fail(f"{config_path}: emitters: a non-empty list is required")
+    if not isinstance(config.get("obstacles", []), list):
+        fail(f"{config_path}: obstacles: must be a list")
 
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
@@ -185,30 +232,45 @@ def main():
         add_obstacle(i, obstacle)
     if "wind" in config:
         add_wind(config["wind"])
+    if "camera" in config:
+        add_camera(config["camera"])
 
-    cache = tempfile.mkdtemp(prefix="mantaflow_")
+    # Everything is made in OUT_DIR.partial and moved in whole at the end. With --blend the cache stays, as
+    # cache/ beside scene.blend (a path relative to the .blend, so the folder can move).
+    partial = out_dir.rstrip("/") + ".partial"
+    shutil.rmtree(partial, ignore_errors=True)
+    os.makedirs(partial)
     try:
+        if keep_blend:
+            bpy.context.preferences.filepaths.save_version = 0  # no scene.blend1 beside it
+            bpy.ops.wm.save_as_mainfile(filepath=os.path.join(os.path.abspath(partial), "scene.blend"))
+            cache = "//cache"
+        else:
+            cache = os.path.join(os.path.abspath(partial), "cache")
         domain = make_domain(config, cache)
         with bpy.context.temp_override(active_object=domain, object=domain, selected_objects=[domain]):
             result = bpy.ops.fluid.bake_all()
         if result != {"FINISHED"}:
             fail(f"Mantaflow bake ended with {result}")
-        data = os.path.join(cache, "data")
-        written = sorted(f for f in os.listdir(data) if f.startswith("fluid_data_") and f.endswith(".vdb"))
+        data = os.path.join(bpy.path.abspath(cache), "data")
+        written = sorted((f for f in os.listdir(data) if f.startswith("fluid_data_") and f.endswith(".vdb")),
+                         key=lambda name: int(name[len("fluid_data_"):-len(".vdb")]))
         if len(written) != frames:
             fail(f"Mantaflow wrote {len(written)} frames of {frames}")
-        partial = out_dir.rstrip("/") + ".partial"
-        shutil.rmtree(partial, ignore_errors=True)
-        os.makedirs(partial)
         for i, name in enumerate(written):
             shutil.copyfile(os.path.join(data, name), os.path.join(partial, f"smoke_{i:04d}.vdb"))
         shutil.copyfile(config_path, os.path.join(partial, "mantaflow.json"))
+        if keep_blend:
+            bpy.ops.wm.save_mainfile()
+        else:
+            shutil.rmtree(bpy.path.abspath(cache))
         if os.path.isdir(out_dir):
             shutil.rmtree(out_dir)
         os.replace(partial, out_dir)
         print(f"mantaflow_smoke: wrote {frames} frames to {out_dir}")
     finally:
-        shutil.rmtree(cache, ignore_errors=True)
+        shutil.rmtree(partial, ignore_errors=True)
 
 
-main()
+if __name__ == "__main__":
+    main()

@@ -1,5 +1,5 @@
 #pragma once
-// What the tests against Cycles share: the Mantaflow frame they render (tools/blender/mantaflow_smoke.py on
+// What the tests that run Blender share: the Mantaflow frame they render (tools/blender/mantaflow_smoke.py on
 // mantaflow_fire.json), commands run with their output kept in a log, the sample count and the reports.
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 
 namespace sixway::test {
 
-class CyclesFixture : public ::testing::Test {
+class BlenderFixture : public ::testing::Test {
  protected:
   // Makes the Mantaflow sequence.
   void SetUp() override;

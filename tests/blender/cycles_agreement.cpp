@@ -1,4 +1,4 @@
-#include "cycles/cycles_agreement.h"
+#include "blender/cycles_agreement.h"
 
 #include <algorithm>
 #include <cmath>
@@ -26,49 +26,38 @@ float clipped(float v) {
   return std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
 }
 
-// One renderer's values of a channel: the mean of its renders, and their noise variance (the mean's) summed
-// over the mask.
+// One renderer's values of a channel, each render clipped first: their mean, and per value the mean's noise
+// variance estimated from the two renders (0 from one).
 struct Side {
-  std::vector<float> mean;
-  double noise = 0;
+  std::vector<float> mean, noise;
 };
 
-Side sideOf(const std::vector<const std::vector<float>*>& renders, const std::vector<bool>& mask) {
+Side sideOf(const std::vector<const std::vector<float>*>& renders) {
   if (renders.empty() || renders.size() > 2) throw std::invalid_argument("one or two renders per side");
-  Side side{*renders.front(), 0};
-  if (renders.size() == 2)
-    for (std::size_t i = 0; i < mask.size(); ++i) {
-      const float a = (*renders[0])[i], b = (*renders[1])[i];
-      side.mean[i] = 0.5f * (a + b);
-      if (mask[i]) {
-        const double d = double(clipped(a)) - clipped(b);
-        side.noise += d * d / 4;
-      }
-    }
+  const std::size_t n = renders.front()->size();
+  Side side{std::vector<float>(n), std::vector<float>(n, 0.0f)};
+  for (std::size_t i = 0; i < n; ++i) {
+    const float a = clipped((*renders.front())[i]), b = clipped((*renders.back())[i]);
+    side.mean[i] = 0.5f * (a + b);
+    side.noise[i] = (a - b) * (a - b) / 4;
+  }
   return side;
 }
 
 void add(Agreement& group, const std::vector<const std::vector<float>*>& tested,
          const std::vector<const std::vector<float>*>& reference, const std::vector<bool>& mask) {
-  const Side a = sideOf(tested, mask), b = sideOf(reference, mask);
-  double squared = 0, testedSum = 0, referenceSum = 0;
-  std::size_t values = 0;
+  const Side a = sideOf(tested), b = sideOf(reference);
   for (std::size_t i = 0; i < mask.size(); ++i)
     if (mask[i]) {
-      const double t = clipped(a.mean[i]), r = clipped(b.mean[i]);
-      squared += (t - r) * (t - r);
-      testedSum += t;
-      referenceSum += r;
-      ++values;
+      const double d = double(a.mean[i]) - b.mean[i], noise = double(a.noise[i]) + b.noise[i];
+      group.squared += d * d;
+      group.noise += noise;
+      // d² − noise estimates this value's squared bias; its spread gives the estimate's standard error.
+      group.biasSquares += (d * d - noise) * (d * d - noise);
+      group.tested += a.mean[i];
+      group.reference += b.mean[i];
+      ++group.values;
     }
-  const double total = double(group.values + values);
-  if (total == 0) return;
-  // Pooled as sums, then back to means.
-  group.mse = (group.mse * group.values + squared) / total;
-  group.noiseMse = (group.noiseMse * group.values + a.noise + b.noise) / total;
-  group.testedMean = (group.testedMean * group.values + testedSum) / total;
-  group.referenceMean = (group.referenceMean * group.values + referenceSum) / total;
-  group.values += values;
 }
 
 std::vector<bool> maskOf(const std::vector<Render>& reference) {
@@ -156,24 +145,31 @@ Render readCyclesImage(const fs::path& dir) {
 }
 
 double Agreement::psnrDb() const {
-  return psnr(mse);
+  return psnr(squared / double(values));
 }
 
 double Agreement::noiseFloorDb() const {
-  return psnr(noiseMse);
+  return psnr(noise / double(values));
 }
 
 double Agreement::biasPsnrDb() const {
-  return psnr(mse - noiseMse);
+  return psnr((squared - noise) / double(values));
+}
+
+double Agreement::biasPsnrLowerDb() const {
+  const double n = double(values), mean = (squared - noise) / n;
+  const double spread = std::max(0.0, biasSquares / n - mean * mean);
+  return psnr(mean + 2 * std::sqrt(spread / n));
 }
 
 nlohmann::json Agreement::json() const {
   return {{"psnr_db", decibels(psnrDb())},
           {"noise_floor_db", decibels(noiseFloorDb())},
           {"noise_removed_psnr_db", decibels(biasPsnrDb())},
+          {"noise_removed_psnr_lower_bound_db", decibels(biasPsnrLowerDb())},
           {"values", values},
-          {"tested_mean", testedMean},
-          {"reference_mean", referenceMean}};
+          {"tested_mean", tested / double(values)},
+          {"reference_mean", reference / double(values)}};
 }
 
 Agreement compareRenders(const std::vector<Render>& tested, const std::vector<Render>& reference,

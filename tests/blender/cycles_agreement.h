@@ -33,14 +33,20 @@ Render readRenderedFrame(const std::filesystem::path& exr);
 // background that cycles.json names.
 Render readCyclesImage(const std::filesystem::path& dir);
 
+// Sums over the masked values of every channel compared (the renders clipped to [0, 1]).
 struct Agreement {
-  double mse = 0;       // between the two means
-  double noiseMse = 0;  // the two means' noise variance per value, summed
+  double squared = 0;      // (mean of one − mean of the other)²
+  double noise = 0;        // the two means' noise variance, estimated from the renders
+  double biasSquares = 0;  // (difference² − noise)²: the spread of the squared-bias estimate
+  double tested = 0, reference = 0;
   std::size_t values = 0;
-  double testedMean = 0, referenceMean = 0;  // over the masked values
-  double psnrDb() const;                     // of mse
-  double noiseFloorDb() const;               // of noiseMse: the PSNR that noise alone would give
-  double biasPsnrDb() const;  // of mse − noiseMse (+∞ when the difference is within the noise)
+
+  double psnrDb() const;        // of the mean squared difference
+  double noiseFloorDb() const;  // of the noise: the PSNR that noise alone would give
+  double biasPsnrDb() const;    // noise removed (+∞ when the difference is within the noise)
+  // The same at the squared bias's estimate plus two standard errors: what the tolerances hold, so that noise
+  // cannot pass for agreement.
+  double biasPsnrLowerDb() const;
   nlohmann::json json() const;
 };
 

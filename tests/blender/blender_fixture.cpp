@@ -1,4 +1,4 @@
-#include "cycles/cycles_fixture.h"
+#include "blender/blender_fixture.h"
 
 #include <cstdlib>
 #include <fstream>
@@ -9,14 +9,14 @@ namespace sixway::test {
 
 namespace fs = std::filesystem;
 
-void CyclesFixture::SetUp() {
+void BlenderFixture::SetUp() {
   run(blender("mantaflow_smoke.py") + " '" +
-          (fs::path(SIXWAY_CYCLES_TEST_DIR) / "mantaflow_fire.json").string() + "' '" +
+          (fs::path(SIXWAY_BLENDER_TEST_DIR) / "mantaflow_fire.json").string() + "' '" +
           (dir_ / "vdb").string() + "'",
       dir_ / "mantaflow.log");
 }
 
-void CyclesFixture::run(const std::string& command, const fs::path& log) {
+void BlenderFixture::run(const std::string& command, const fs::path& log) {
   const int status = std::system((command + " > '" + log.string() + "' 2>&1").c_str());
   if (status == 0) return;
   std::ifstream in(log);
@@ -25,21 +25,21 @@ void CyclesFixture::run(const std::string& command, const fs::path& log) {
          << text.substr(text.size() > 3000 ? text.size() - 3000 : 0);
 }
 
-std::string CyclesFixture::blender(const std::string& script) {
-  return "blender -b --factory-startup --python '" + (fs::path(SIXWAY_BLENDER_SCRIPTS) / script).string() +
-         "' --";
+std::string BlenderFixture::blender(const std::string& script) {
+  return "blender -b --factory-startup --python-exit-code 1 --python '" +
+         (fs::path(SIXWAY_BLENDER_SCRIPTS) / script).string() + "' --";
 }
 
-fs::path CyclesFixture::vdbFrame() const {
+fs::path BlenderFixture::vdbFrame() const {
   return dir_ / "vdb" / "smoke_0015.vdb";
 }
 
-std::string CyclesFixture::samples() {
+std::string BlenderFixture::samples() {
   const char* given = std::getenv("SIXWAY_CYCLES_SPP");
   return given ? given : "256";
 }
 
-void CyclesFixture::report(const std::string& name, const nlohmann::json& report) {
+void BlenderFixture::report(const std::string& name, const nlohmann::json& report) {
   fs::create_directories(SIXWAY_TEST_ARTIFACT_DIR);
   std::ofstream(fs::path(SIXWAY_TEST_ARTIFACT_DIR) / ("cycles_" + name + ".json")) << report.dump(1);
   std::cout << report.dump(1) << "\n";

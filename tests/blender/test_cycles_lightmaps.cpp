@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "cycles/cycles_agreement.h"
-#include "cycles/cycles_fixture.h"
+#include "blender/blender_fixture.h"
+#include "blender/cycles_agreement.h"
 
 namespace sixway::test {
 namespace {
@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 constexpr int kEmissive = 6;
 const std::vector<int> kLightChannels = {0, 1, 2, 3, 4, 5};
 
-class CyclesLightmaps : public CyclesFixture {
+class CyclesLightmaps : public BlenderFixture {
  protected:
   // One view of the frame, an oblique camera, 48² tiles.
   fs::path bake(const std::string& name, const std::string& options) {
@@ -76,9 +76,9 @@ TEST_F(CyclesLightmaps, SingleScatteringAgrees) {
   ASSERT_FALSE(HasFailure());
   EXPECT_GT(maskedFraction(reference), 0.2);
   const Agreements a = agreement("single", {baked}, reference);
-  EXPECT_GE(a.light.biasPsnrDb(), 50.0);
-  EXPECT_GE(a.alpha.biasPsnrDb(), 50.0);
-  EXPECT_GE(a.emissive.biasPsnrDb(), 50.0);
+  EXPECT_GE(a.light.biasPsnrLowerDb(), 50.0);
+  EXPECT_GE(a.alpha.biasPsnrLowerDb(), 50.0);
+  EXPECT_GE(a.emissive.biasPsnrLowerDb(), 50.0);
 }
 
 // Three times denser (optical depth 5.5 per cell): the light grids at their finest, a quarter cell.
@@ -88,8 +88,8 @@ TEST_F(CyclesLightmaps, DenseSmokeSingleScatteringAgrees) {
   const std::vector<Render> reference = cycles(baked);
   ASSERT_FALSE(HasFailure());
   const Agreements a = agreement("dense", {baked}, reference);
-  EXPECT_GE(a.light.biasPsnrDb(), 50.0);
-  EXPECT_GE(a.alpha.biasPsnrDb(), 50.0);
+  EXPECT_GE(a.light.biasPsnrLowerDb(), 50.0);
+  EXPECT_GE(a.alpha.biasPsnrLowerDb(), 50.0);
 }
 
 // Every order: the path tracer alone (--ms-all-orders) and the default bake (exact single scattering plus
@@ -107,9 +107,9 @@ TEST_F(CyclesLightmaps, MultipleScatteringAgrees) {
   for (const auto& [name, baked] : {std::pair("all_orders", traced), std::pair("default_bake", split)}) {
     SCOPED_TRACE(name);
     const Agreements a = agreement(name, baked, reference);
-    EXPECT_GE(a.light.biasPsnrDb(), 40.0);
-    EXPECT_GE(a.alpha.biasPsnrDb(), 40.0);
-    EXPECT_GE(a.emissive.biasPsnrDb(), 40.0);
+    EXPECT_GE(a.light.biasPsnrLowerDb(), 40.0);
+    EXPECT_GE(a.alpha.biasPsnrLowerDb(), 40.0);
+    EXPECT_GE(a.emissive.biasPsnrLowerDb(), 40.0);
   }
 }
 
