@@ -44,7 +44,11 @@ Side sideOf(const std::vector<const std::vector<float>*>& renders) {
   return side;
 }
 
-void add(Agreement& group, const std::vector<const std::vector<float>*>& tested,
+// Adds one channel; `perTexel` sums each texel's d² − noise over the channels (the estimate of its squared
+// bias), whose spread gives the standard error: a texel's channels share their paths, so they are not
+// independent of one another, but texels are (pixel-centre or box-filtered rays, independent per pixel).
+void add(Agreement& group, std::vector<double>& perTexel,
+         const std::vector<const std::vector<float>*>& tested,
          const std::vector<const std::vector<float>*>& reference, const std::vector<bool>& mask) {
   const Side a = sideOf(tested), b = sideOf(reference);
   for (std::size_t i = 0; i < mask.size(); ++i)
@@ -52,11 +56,18 @@ void add(Agreement& group, const std::vector<const std::vector<float>*>& tested,
       const double d = double(a.mean[i]) - b.mean[i], noise = double(a.noise[i]) + b.noise[i];
       group.squared += d * d;
       group.noise += noise;
-      // d² − noise estimates this value's squared bias; its spread gives the estimate's standard error.
-      group.biasSquares += (d * d - noise) * (d * d - noise);
+      perTexel[i] += d * d - noise;
       group.tested += a.mean[i];
       group.reference += b.mean[i];
       ++group.values;
+    }
+}
+
+void finish(Agreement& group, const std::vector<double>& perTexel, const std::vector<bool>& mask) {
+  for (std::size_t i = 0; i < mask.size(); ++i)
+    if (mask[i]) {
+      group.texelBiasSquares += perTexel[i] * perTexel[i];
+      ++group.texels;
     }
 }
 
@@ -86,6 +97,7 @@ double psnr(double mse) {
 }
 
 nlohmann::json decibels(double db) {
+  if (std::isnan(db)) return "nan";
   return std::isfinite(db) ? nlohmann::json(std::round(db * 100) / 100) : nlohmann::json("inf");
 }
 
@@ -144,22 +156,25 @@ Render readCyclesImage(const fs::path& dir) {
   return out;
 }
 
+// Nothing to compare is no figure (NaN), never a perfect one.
 double Agreement::psnrDb() const {
-  return psnr(squared / double(values));
+  return values ? psnr(squared / double(values)) : std::nan("");
 }
 
 double Agreement::noiseFloorDb() const {
-  return psnr(noise / double(values));
+  return values ? psnr(noise / double(values)) : std::nan("");
 }
 
 double Agreement::biasPsnrDb() const {
-  return psnr((squared - noise) / double(values));
+  return values ? psnr((squared - noise) / double(values)) : std::nan("");
 }
 
 double Agreement::biasPsnrLowerDb() const {
-  const double n = double(values), mean = (squared - noise) / n;
-  const double spread = std::max(0.0, biasSquares / n - mean * mean);
-  return psnr(mean + 2 * std::sqrt(spread / n));
+  if (!values) return std::nan("");
+  // The squared-bias estimate is the sum over texels of their terms, over the values.
+  const double n = double(texels), texelMean = (squared - noise) / n;
+  const double spread = std::max(0.0, texelBiasSquares / n - texelMean * texelMean);
+  return psnr((squared - noise + 2 * std::sqrt(n * spread)) / double(values));
 }
 
 nlohmann::json Agreement::json() const {
@@ -177,12 +192,14 @@ Agreement compareRenders(const std::vector<Render>& tested, const std::vector<Re
   requireAlike(tested, reference);
   const std::vector<bool> mask = maskOf(reference);
   Agreement result;
+  std::vector<double> perTexel(mask.size(), 0.0);
   for (int c : channels) {
     std::vector<const std::vector<float>*> a, b;
     for (const Render& r : tested) a.push_back(&r.channels.at(c));
     for (const Render& r : reference) b.push_back(&r.channels.at(c));
-    add(result, a, b, mask);
+    add(result, perTexel, a, b, mask);
   }
+  finish(result, perTexel, mask);
   return result;
 }
 
@@ -191,8 +208,11 @@ Agreement compareAlpha(const std::vector<Render>& tested, const std::vector<Rend
   std::vector<const std::vector<float>*> a, b;
   for (const Render& r : tested) a.push_back(&r.alpha);
   for (const Render& r : reference) b.push_back(&r.alpha);
+  const std::vector<bool> mask = maskOf(reference);
   Agreement result;
-  add(result, a, b, maskOf(reference));
+  std::vector<double> perTexel(mask.size(), 0.0);
+  add(result, perTexel, a, b, mask);
+  finish(result, perTexel, mask);
   return result;
 }
 

@@ -35,11 +35,11 @@ Render readCyclesImage(const std::filesystem::path& dir);
 
 // Sums over the masked values of every channel compared (the renders clipped to [0, 1]).
 struct Agreement {
-  double squared = 0;      // (mean of one − mean of the other)²
-  double noise = 0;        // the two means' noise variance, estimated from the renders
-  double biasSquares = 0;  // (difference² − noise)²: the spread of the squared-bias estimate
+  double squared = 0;           // (mean of one − mean of the other)²
+  double noise = 0;             // the two means' noise variance, estimated from the renders
+  double texelBiasSquares = 0;  // (a texel's Σ over its channels of difference² − noise)²
   double tested = 0, reference = 0;
-  std::size_t values = 0;
+  std::size_t values = 0, texels = 0;
 
   double psnrDb() const;        // of the mean squared difference
   double noiseFloorDb() const;  // of the noise: the PSNR that noise alone would give

@@ -22,16 +22,22 @@ start=$(date +%s%N)
 ms=$((($(date +%s%N) - start) / 1000000))
 echo "sixway bake: 64 frames, ${tile}² tiles, all orders: $((ms / 1000)).$(printf '%03d' $((ms % 1000))) s wall," \
   "$((ms / 64)) ms a frame" | tee "$out/race.txt"
+cycles() {  # FRAME OUT SPP SEED: Cycles' six maps of a baked frame
+  "${blender[@]}" --flipbook "$out/bake/flipbook.json" --frame "$1" --out "$2" --spp "$3" --seed "$4" > "$2.log" 2>&1 ||
+    { echo "flipbook_race: Cycles failed; see $2.log" >&2; exit 1; }
+}
 for frame in $frames; do
-  ref="$out/reference_$frame"
-  [ -f "$ref/cycles.json" ] || "${blender[@]}" --flipbook "$out/bake/flipbook.json" --frame "$frame" --out "$ref" \
-    --spp "$ref_spp" --seed 9 > "$ref.log" 2>&1
+  ref="$out/reference_${frame}_${tile}px_${ref_spp}spp"
+  [ -f "$ref/cycles.json" ] || cycles "$frame" "$ref" "$ref_spp" 9
   baked="$(printf '%s/bake/frames/frame_%04d.exr' "$out" "$frame")"
-  echo "frame $frame: sixway bake: $("$compare" "$baked" "$ref") (light, emissive, alpha dB against Cycles at $ref_spp spp)" | tee -a "$out/race.txt"
+  agreement=$("$compare" "$baked" "$ref")
+  echo "frame $frame: sixway bake: $agreement (light, emissive, alpha dB against Cycles at $ref_spp spp)" |
+    tee -a "$out/race.txt"
   for spp in $spps; do
     run="$out/cycles_${frame}_$spp"
-    "${blender[@]}" --flipbook "$out/bake/flipbook.json" --frame "$frame" --out "$run" --spp "$spp" --seed 1 > "$run.log" 2>&1
-    seconds=$(python3 -c "import json; print(json.load(open('$run/cycles.json'))['render_seconds'])")
-    echo "frame $frame: Cycles $spp spp, $seconds s: $("$compare" "$run" "$ref")" | tee -a "$out/race.txt"
+    cycles "$frame" "$run" "$spp" 1
+    seconds=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["render_seconds"])' "$run/cycles.json")
+    agreement=$("$compare" "$run" "$ref")
+    echo "frame $frame: Cycles $spp spp, $seconds s: $agreement" | tee -a "$out/race.txt"
   done
 done

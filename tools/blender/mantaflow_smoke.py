@@ -9,7 +9,8 @@
 #
 # Config keys (metres, z up; unknown keys are errors):
 #   resolution (64), frames (60)      cells along the domain's longest side; frames baked
-#   domain_size ([2, 2, 3]), domain_centre (on the ground at the origin)
+#   domain_size ([2, 2, 3]), domain_centre (on the ground at the origin), scale_applied (true; false leaves
+#       the size as the domain object's scale, as a Blender user's scaled cube)
 #   density_buoyancy (1), heat_buoyancy (1), vorticity (0), time_scale (1), dissolve_frames (none)
 #   burning_rate (0.75), flame_vorticity (0.5)
 #   emitters[] (required): shape (sphere | cube | cylinder), position, size, type (smoke | fire | both),
@@ -146,7 +147,8 @@ def make_domain(config, cache):
     domain = bpy.context.active_object
     domain.name = "domain"
     domain.scale = size
-    bpy.ops.object.transform_apply(location=False, rotation=False, scale=True)
+    if config.get("scale_applied", True):
+        bpy.ops.object.transform_apply(location=False, rotation=False, scale=True)
     fluid = domain.modifiers.new("Fluid", "FLUID")
     fluid.fluid_type = "DOMAIN"
     settings = fluid.domain_settings
@@ -213,7 +215,7 @@ def main():
         fail(f"{config_path}: not a JSON object")
     known = {"description", "resolution", "frames", "domain_size", "domain_centre", "density_buoyancy",
              "heat_buoyancy", "vorticity", "time_scale", "dissolve_frames", "burning_rate", "flame_vorticity",
-             "emitters", "obstacles", "wind", "camera"}
+             "emitters", "obstacles", "wind", "camera", "scale_applied"}
     unknown = sorted(set(config) - known)
     if unknown:
         fail(f"{config_path}: unknown keys {unknown}")

@@ -6,7 +6,7 @@
 # cache is OpenVDB and baked: "sixway flipbook".
 # Headless:
 #   blender -b SCENE.blend --python tools/blender/sixway_flipbook.py -- --out DIR [--domain NAME]
-#       [--sixway PATH] [--frames FIRST LAST] [--tile N] [--packing unity|rlt-bbf|o3de]
+#       [--sixway PATH] [--frames FIRST LAST (default: the cache's)] [--tile N] [--packing unity|rlt-bbf|o3de]
 #       [--camera scene|front] [--scattering multiple|single] [--emission X]
 #       [--extinction X] [--albedo X] [--g X]
 #
@@ -46,14 +46,22 @@ def domain_settings(domain):
     raise FlipbookError(f"'{domain.name}' is not a fluid domain")
 
 
-def cache_files(domain, first, last):
-    """The cache's OpenVDB files of frames first..last, each one required."""
+def cache_files(domain, frames):
+    """The cache's OpenVDB files of frames (first, last) (default: the cache's range), each one required."""
     settings = domain_settings(domain)
     if settings.domain_type != "GAS":
         raise FlipbookError(f"'{domain.name}' is a liquid domain; sixway bakes smoke")
     if settings.cache_data_format != "OPENVDB":
         raise FlipbookError(f"'{domain.name}': the cache's data format is {settings.cache_data_format}; "
                             "set it to OpenVDB and bake again")
+    # Both move or refine the grid frame by frame in ways the file space below does not follow.
+    if settings.use_adaptive_domain:
+        raise FlipbookError(f"'{domain.name}' has an adaptive domain; turn it off and bake again")
+    if settings.use_noise:
+        raise FlipbookError(f"'{domain.name}' adds noise; sixway bakes the base grid: turn noise off and bake again")
+    first, last = frames or (settings.cache_frame_start, settings.cache_frame_end)
+    if first > last:
+        raise FlipbookError(f"frames {first}..{last}: the first is after the last")
     data = os.path.join(bpy.path.abspath(settings.cache_directory), "data")
     files = [os.path.join(data, f"fluid_data_{frame:04d}.vdb") for frame in range(first, last + 1)]
     missing = [f for f in files if not os.path.isfile(f)]
@@ -68,9 +76,14 @@ def to_file_space(domain):
     grids in world units from the domain's lower corner, unturned: world = M · (min_local + S⁻¹ · p), M the
     domain's matrix, S its scale, min_local its box's lower corner."""
     matrix = domain.matrix_world
+    if matrix.is_negative:
+        raise FlipbookError(f"'{domain.name}' is mirrored (a negative scale); Mantaflow's grid is not")
     _, _, scale = matrix.decompose()
     lower = Vector(min(corner[a] for corner in domain.bound_box) for a in range(3))
-    inverse = matrix.inverted()
+    try:
+        inverse = matrix.inverted()
+    except ValueError:
+        raise FlipbookError(f"'{domain.name}' has a scale of 0") from None
     to_file = Matrix.Diagonal(scale).to_4x4() @ Matrix.Translation(-lower) @ inverse
 
     def point(p):
@@ -104,18 +117,21 @@ def material_optics(domain):
     material = domain.active_material
     if material and material.use_nodes:
         for node in material.node_tree.nodes:
-            if node.type == "PRINCIPLED_VOLUME":
-                optics["extinction"] = node.inputs["Density"].default_value
-                r, g, b, _ = node.inputs["Color"].default_value
-                optics["albedo"] = min(1.0, 0.2126 * r + 0.7152 * g + 0.0722 * b)
-                optics["g"] = node.inputs["Anisotropy"].default_value
+            if node.type == "PRINCIPLED_VOLUME":  # inputs driven by other nodes are left to sixway's defaults
+                if not node.inputs["Density"].is_linked:
+                    optics["extinction"] = node.inputs["Density"].default_value
+                if not node.inputs["Color"].is_linked:
+                    r, g, b, _ = node.inputs["Color"].default_value
+                    optics["albedo"] = min(1.0, 0.2126 * r + 0.7152 * g + 0.0722 * b)
+                if not node.inputs["Anisotropy"].is_linked:
+                    optics["g"] = node.inputs["Anisotropy"].default_value
                 break
     return optics
 
 
 def find_sixway(given):
     path = given or os.environ.get("SIXWAY") or shutil.which("sixway")
-    if not path or not os.access(path, os.X_OK):
+    if not path or not os.path.isfile(path) or not os.access(path, os.X_OK):
         raise FlipbookError(f"no sixway executable ({given or 'SIXWAY, PATH'}); give its path")
     return path
 
@@ -125,9 +141,7 @@ def bake_command(domain, camera, out, sixway=None, frames=None, tile=128, packin
     """The `sixway bake` command line for the domain's cache."""
     if packing not in PACKINGS:
         raise FlipbookError(f"packing must be one of {', '.join(PACKINGS)} (got {packing})")
-    scene = bpy.context.scene
-    first, last = frames or (scene.frame_start, scene.frame_end)
-    command = [find_sixway(sixway), "bake", "--vdb", *cache_files(domain, first, last), "--voxels", "native",
+    command = [find_sixway(sixway), "bake", "--vdb", *cache_files(domain, frames), "--voxels", "native",
                "--out", out, "--force", "--tile", str(tile), "--packing", packing, "--scattering", scattering]
     command += camera_arguments(domain, camera)
     merged = {**material_optics(domain), **(optics or {})}
@@ -142,7 +156,10 @@ def bake_command(domain, camera, out, sixway=None, frames=None, tile=128, packin
 def bake(domain, camera, out, **options):
     """Runs the bake; raises FlipbookError with sixway's own error line when it fails."""
     command = bake_command(domain, camera, out, **options)
-    done = subprocess.run(command, capture_output=True, text=True)
+    try:
+        done = subprocess.run(command, capture_output=True, text=True)
+    except OSError as e:
+        raise FlipbookError(f"{command[0]}: {e.strerror}") from None
     if done.returncode != 0:
         lines = [line for line in done.stderr.splitlines() if line.strip()]
         raise FlipbookError(lines[-1] if lines else f"sixway bake ended with {done.returncode}")
@@ -256,4 +273,7 @@ def headless():
 
 
 if __name__ == "__main__":
-    headless()
+    if bpy.app.background:
+        headless()
+    else:  # run from Blender's text editor: the add-on, for this session
+        register()
