@@ -156,9 +156,9 @@ def camera_object(position, right, up, forward):
     return data
 
 
-def configure(scene, width, height, spp, seed, step_rate, bounces, filter_width, threads=0):
-    """Cycles on the CPU, no adaptive sampling, denoising or clamping; `bounces` volume bounces (orders − 1);
-    a transparent film over a black world."""
+def configure(scene, width, height, spp, seed, step_rate, bounces, filter_width, threads=0, surface_bounces=0):
+    """Cycles on the CPU, no adaptive sampling, denoising or clamping; `bounces` volume bounces (orders − 1),
+    `surface_bounces` diffuse ones; a transparent film over a black world."""
     scene.render.engine = "CYCLES"
     cycles = scene.cycles
     cycles.device = "CPU"
@@ -169,8 +169,9 @@ def configure(scene, width, height, spp, seed, step_rate, bounces, filter_width,
     cycles.volume_step_rate = step_rate
     cycles.volume_max_steps = 100000
     cycles.volume_bounces = bounces
-    cycles.max_bounces = max(bounces, 1)
-    cycles.diffuse_bounces = cycles.glossy_bounces = cycles.transmission_bounces = 0
+    cycles.max_bounces = max(bounces, surface_bounces, 1)
+    cycles.diffuse_bounces = surface_bounces
+    cycles.glossy_bounces = cycles.transmission_bounces = 0
     cycles.transparent_max_bounces = 64  # a shadow ray through the volume crosses its boundary mesh
     cycles.sample_clamp_direct = cycles.sample_clamp_indirect = 0.0
     cycles.light_sampling_threshold = 0.0

@@ -1,7 +1,9 @@
-# Renders with Blender's Cycles the final image of a sixway scene that plays OpenVDB smoke back, as
-# `sixway render --mode pathtrace` renders it: the same smoke on the files' own voxels ("voxels": "native"),
-# the scene's perspective camera, directional and point lights, uniform ambient light and coloured emission
-# (intensity · density · ramp(temperature)), every order of scattering. Conventions: docs/blender.md,
+# Renders with Blender's Cycles the final image of a sixway scene as `sixway render --mode pathtrace` renders
+# it: the smoke of a scene that plays OpenVDB files back (on the files' own voxels, "voxels": "native"), or of
+# a simulated scene as `sixway sim --vdb-out` exported it (--vdb), with the scene's still obstacles (spheres,
+# boxes: opaque Lambertian, albedo 0.6), perspective camera, directional and point lights, uniform ambient
+# light and coloured emission (intensity · density · ramp(temperature)), every order of scattering (an
+# obstacle's bounce counts as one, as in sixway's path tracer). Conventions: docs/blender.md,
 # "The Cycles check"; here besides them:
 #   - placement: world = translate + scale · U(p), U the scene's up turn; Blender's axes are sixway's;
 #   - the camera: the vertical field of view, rays jittered over the pixel (box filter 1 px), as the path
@@ -11,7 +13,7 @@
 #     the smoke's premultiplied radiance and alpha, to be put over the scene's background (cycles.json).
 #
 #   blender -b --factory-startup --python tools/blender/cycles_scene.py -- \
-#       --scene SCENE.json --out DIR [--frame I] [--spp N] [--seed S] [--orders N]
+#       --scene SCENE.json --out DIR [--vdb EXPORTED.vdb] [--frame I] [--spp N] [--seed S] [--orders N]
 #
 # Writes DIR/cycles.exr (RGBA float, linear, premultiplied) and DIR/cycles.json. What the scene holds that
 # this cannot render the same (camera or light paths, spherical-harmonic ambient, resampled voxels, a given
@@ -34,7 +36,8 @@ PROGRAM = "cycles_scene"
 
 def arguments():
     parser = argparse.ArgumentParser(prog="cycles_scene.py")
-    parser.add_argument("--scene", required=True, help="a sixway scene with a vdb section")
+    parser.add_argument("--scene", required=True, help="a sixway scene")
+    parser.add_argument("--vdb", help="a simulated scene's smoke: the frame `sixway sim --vdb-out` wrote")
     parser.add_argument("--out", required=True, help="output directory")
     parser.add_argument("--frame", type=int, default=0, help="the scene's frame (default 0)")
     parser.add_argument("--spp", type=int, default=256, help="samples per pixel (default 256)")
@@ -72,10 +75,22 @@ def placement(vdb):
     return Matrix.Translation(Vector(vdb.get("translate", [0, 0, 0]))) @ Matrix.Scale(scale, 4) @ turn
 
 
-def check_supported(path, scene):
+SHAPES = ("sphere", "box")
+
+
+def check_supported(path, scene, exported):
+    for i, obstacle in enumerate(scene.get("obstacles", [])):
+        if obstacle.get("type") not in SHAPES:
+            refuse(path, f"obstacles[{i}].type", f"only {' and '.join(SHAPES)} (got {obstacle.get('type')!r})")
+        if "motion" in obstacle:
+            refuse(path, f"obstacles[{i}].motion", "still obstacles only")
     vdb = scene.get("vdb")
     if vdb is None:
-        refuse(path, "vdb", "the scene simulates its smoke; give a scene that plays VDB files back")
+        if not exported:
+            refuse(path, "vdb", "the scene simulates its smoke: give the frame sixway sim --vdb-out wrote (--vdb)")
+        return
+    if exported:
+        refuse(path, "--vdb", "the scene plays its own VDB files back")
     if vdb.get("voxels") != "native":
         refuse(path, "vdb.voxels", 'must be "native": Cycles renders the files\' own voxels')
     for key in ("box_min", "box_max"):
@@ -90,6 +105,38 @@ def check_supported(path, scene):
             refuse(path, f"lights[{i}].path", "still lights only")
     if "sh" in scene.get("ambient", {}):
         refuse(path, "ambient.sh", "a uniform ambient colour only")
+
+
+def obstacle_material():
+    """sixway's obstacles: opaque Lambertian, albedo 0.6 (render::kObstacleAlbedo)."""
+    material = bpy.data.materials.new("obstacle")
+    material.use_nodes = True
+    nodes = material.node_tree.nodes
+    nodes.clear()
+    diffuse = nodes.new("ShaderNodeBsdfDiffuse")
+    diffuse.inputs["Color"].default_value = (0.6, 0.6, 0.6, 1)
+    out = nodes.new("ShaderNodeOutputMaterial")
+    material.node_tree.links.new(diffuse.outputs["BSDF"], out.inputs["Surface"])
+    return material
+
+
+def add_obstacles(obstacles):
+    """Spheres as sixway tessellates them (render/obstacle_meshes.cpp: 64 segments, 32 rings, poles on y,
+    smooth normals) and boxes."""
+    material = obstacle_material()
+    for obstacle in obstacles:
+        centre = Vector(obstacle["center"])
+        if obstacle["type"] == "sphere":
+            bpy.ops.mesh.primitive_uv_sphere_add(segments=64, ring_count=32, radius=obstacle["radius"])
+            obj = bpy.context.active_object
+            bpy.ops.object.shade_smooth()
+            obj.rotation_euler = (-math.pi / 2, 0, 0)  # Blender's poles on z, sixway's on y
+        else:
+            bpy.ops.mesh.primitive_cube_add(size=1)
+            obj = bpy.context.active_object
+            obj.scale = obstacle["size"]
+        obj.location = centre
+        obj.data.materials.append(material)
 
 
 def scene_camera(camera, width, height):
@@ -112,15 +159,18 @@ def main():
         cc.fail(PROGRAM, f"{args.scene}: {e}")
     if not isinstance(scene_json, dict):
         cc.fail(PROGRAM, f"{args.scene}: not a JSON object")
-    check_supported(args.scene, scene_json)
-    vdb = scene_json["vdb"]
-    path = vdb_file(args.scene, scene_json, args.frame)
+    check_supported(args.scene, scene_json, args.vdb)
+    # A simulation's export lies in the scene's world, voxel centres on the cell centres.
+    vdb = scene_json.get("vdb", {"temperature_grid": "temperature"})
+    path = vdb_file(args.scene, scene_json, args.frame) if "vdb" in scene_json else args.vdb
     render_settings = scene_json.get("render", {})
     width, height = render_settings.get("width", 256), render_settings.get("height", 256)
 
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
-    cc.configure(scene, width, height, args.spp, args.seed, args.step_rate, args.orders - 1, 1.0, args.threads)
+    # An obstacle's bounce is an order too (path_trace.comp).
+    cc.configure(scene, width, height, args.spp, args.seed, args.step_rate, args.orders - 1, 1.0, args.threads,
+                 surface_bounces=args.orders - 1)
     scene_camera(scene_json["camera"], width, height)
     smoke = scene_json.get("smoke", {})
     emission = None
@@ -134,6 +184,7 @@ def main():
     extinction = smoke.get("extinction", 20.0) * vdb.get("density_scale", 1.0)
     material, _, _ = cc.smoke_material(extinction, smoke.get("albedo", 0.9), smoke.get("phase_g", 0.2), emission)
     cc.volume_object(PROGRAM, path, material, placement(vdb))
+    add_obstacles(scene_json.get("obstacles", []))
     for light in scene_json.get("lights", []):
         colour = light.get("color", [1, 1, 1])
         intensity = light.get("intensity", math.pi)
