@@ -14,12 +14,13 @@ def fail(program, message):
     sys.exit(1)
 
 
-def run(program, main):
-    """main(), with a malformed input (a missing key, a value of the wrong type) as one line."""
+def run(program, main, source):
+    """main(), with a malformed input (a missing key, a value of the wrong type) as one line naming the file
+    source() gives."""
     try:
         main()
     except (KeyError, TypeError, ValueError, IndexError, AttributeError) as e:
-        fail(program, f"malformed input: {type(e).__name__}: {e}")
+        fail(program, f"{source()}: malformed ({type(e).__name__}: {e})")
 
 
 def script_arguments():

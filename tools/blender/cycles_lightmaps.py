@@ -128,4 +128,4 @@ def main():
           f"{seconds:.1f} s; wrote {args.out}/cycles_*.exr")
 
 
-cc.run(PROGRAM, main)
+cc.run(PROGRAM, main, lambda: arguments().flipbook)

@@ -17,7 +17,7 @@
 #
 # Writes DIR/cycles.exr (RGBA float, linear, premultiplied) and DIR/cycles.json. What the scene holds that
 # this cannot render the same (camera or light paths, spherical-harmonic ambient, resampled voxels, a given
-# box, another density grid) is refused by name.
+# box, another density grid, moving obstacles, obstacles other than spheres and boxes) is refused by name.
 import argparse
 import json
 import math
@@ -208,4 +208,4 @@ def main():
     print(f"cycles_scene: {width}x{height}, {args.spp} spp: {seconds:.1f} s; wrote {args.out}/cycles.exr")
 
 
-cc.run(PROGRAM, main)
+cc.run(PROGRAM, main, lambda: arguments().scene)
