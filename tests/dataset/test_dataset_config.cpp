@@ -390,7 +390,7 @@ TEST(ShippedDatasetConfigs, EveryOneLoadsAndPlans) {
     EXPECT_NO_THROW(dataset::planSequence(config, config.sequenceCount() - 1));
     ++configs;
   }
-  EXPECT_GE(configs, 39);
+  EXPECT_GE(configs, 40);
 }
 
 TEST(DatasetShards, EverySequenceGoesToExactlyOneWorker) {

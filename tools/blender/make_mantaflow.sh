@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
-# Bakes the Mantaflow sequences of tools/datasets/mantaflow/*.json (or the configs given) into
-# data/mantaflow/<name>/smoke_NNNN.vdb, where the played-back dataset family
-# tools/datasets/families/mantaflow_unseen.json reads them (docs/blender.md, "Mantaflow smoke"). A sequence
-# already there is kept unless FORCE=1.
+# Bakes the Mantaflow sequences of tools/datasets/mantaflow/*.json (held out) and
+# tools/datasets/mantaflow_train/*.json (trained on), or the configs given, into
+# data/mantaflow/<name>/smoke_NNNN.vdb, where the played-back dataset families
+# tools/datasets/families/mantaflow_{unseen,train}.json read them (docs/blender.md, "Mantaflow smoke"). A
+# sequence already there is kept unless FORCE=1.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 configs=("$@")
-((${#configs[@]})) || configs=("$root"/tools/datasets/mantaflow/*.json)
+((${#configs[@]})) || configs=("$root"/tools/datasets/mantaflow/*.json "$root"/tools/datasets/mantaflow_train/*.json)
 mkdir -p "$root/data/mantaflow"
 for config in "${configs[@]}"; do
   name="$(basename "$config" .json)"
