@@ -1,6 +1,7 @@
 # `sixway render` as a user runs it: 3 frames of the small scene in reference mode with --exr --video, validation
 # on. Every promised output must exist: PNG and EXR per frame, timings.json with per-stage times, the contact
-# sheet, the MP4 (ffmpeg is one of tools/deps.sh's packages).
+# sheet, the MP4 (ffmpeg is one of tools/deps.sh's packages); timings.json counts the faulty pixels of every
+# frame (eval::imageFaults), none here.
 file(REMOVE_RECURSE ${OUT})
 execute_process(COMMAND ${SIXWAY} render --scene ${SCENE} --frames 3 --out ${OUT} --mode reference --exr --video
                         --validate
@@ -20,6 +21,11 @@ foreach(stage "shade" "guide" "obstacles" "shadow maps" "sim/lbm")
     message(FATAL_ERROR "timings.json: stage \"${stage}\" has no time (${ms})")
   endif()
 endforeach()
+string(JSON faults GET "${timings}" pixel_faults total)
+string(JSON counted LENGTH "${timings}" pixel_faults per_frame)
+if(NOT faults EQUAL 0 OR NOT counted EQUAL 3)
+  message(FATAL_ERROR "timings.json: pixel_faults should count 3 frames, none faulty: ${timings}")
+endif()
 # Nothing is left under a temporary name, and --force into the directory of a longer render leaves none of its
 # frames behind, nor its video.
 file(GLOB partial ${OUT}/.*partial)
