@@ -71,6 +71,11 @@ void addEvalCommand(CLI::App& app) {
       ->check(CLI::IsMember({1, 2, 4, 8}));
   eval->add_flag("--ms-all-orders", s.multipleScattering.traceAllOrders,
                  "Scene: reference-ms/traditional-ms path-trace every order at full resolution (slow)");
+  eval->add_option(
+          "--fit-directions", s.fitDirections,
+          "Scene: also measure reference-fit, the six maps fitted to the smoke lit from N directions "
+          "(a multiple of 6 in 12..96, 36 suits; about N/6 times reference-ms's cost)")
+      ->check(CLI::Range(0, 96));
   eval->add_option("--density-scale", s.densityScale,
                    "Scene: the smoke's extinction (optical density) x this");
   eval->add_flag(

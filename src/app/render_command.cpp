@@ -39,6 +39,7 @@ struct RenderOptions {
   uint32_t samples = 64;
   int orders = 64;
   reference::MultipleScattering multiple;
+  int fitDirections = 36;
 };
 
 // The scene with the command line's display settings.
@@ -68,6 +69,7 @@ modes::ModeOptions modeOptions(const RenderOptions& o) {
   options.pathTraceSamples = o.samples;
   options.pathTraceOrders = o.orders;
   options.multipleScattering = o.multiple;
+  options.fitDirections = o.fitDirections;
   return options;
 }
 
@@ -143,10 +145,10 @@ void addRenderCommand(CLI::App& app) {
   render->add_option("--frames", o->frames, "Frames rendered")->required()->check(CLI::Range(1, 100000));
   render->add_option("--out", o->out, "Output directory")->required()->check(directoryPath());
   render->add_flag("--force", o->force, "Write into an existing output directory");
-  render->add_option(
-      "--mode", o->mode,
-      "neural | reference | reference-ms | traditional | traditional-ms | guide | guide-lit | pathtrace "
-      "(default: neural when the weights exist, else reference)");
+  render->add_option("--mode", o->mode,
+                     "neural | reference | reference-ms | reference-fit | traditional | traditional-ms | "
+                     "guide | guide-lit | "
+                     "pathtrace (default: neural when the weights exist, else reference)");
   render->add_option("--weights", o->weights, kWeightsHelp)->check(filePath());
   render->add_flag("--fp16", o->fp16, "Neural: fp16 feature maps");
   render->add_flag("--no-shadows", o->noShadows, "No obstacle shadows on the smoke");
@@ -156,13 +158,19 @@ void addRenderCommand(CLI::App& app) {
       ->add_option("--orders", o->orders, "Pathtrace: scattering orders (default 64; 1 = single scattering)")
       ->check(CLI::Range(1, 100000));
   render
-      ->add_option("--ms-spp", o->multiple.samples,
-                   "reference-ms/traditional-ms: samples per traced pixel of the orders >= 2 (default 64)")
+      ->add_option(
+          "--ms-spp", o->multiple.samples,
+          "reference-ms/-fit, traditional-ms: samples per traced pixel of the orders >= 2 (default 64)")
       ->check(CLI::Range(1, 1 << 20));
   render
-      ->add_option("--ms-downsample", o->multiple.downsample,
-                   "reference-ms/traditional-ms: orders >= 2 traced at 1/N of the lightmap size (default 1)")
+      ->add_option(
+          "--ms-downsample", o->multiple.downsample,
+          "reference-ms/-fit, traditional-ms: orders >= 2 traced at 1/N of the lightmap size (default 1)")
       ->check(CLI::IsMember({1, 2, 4, 8}));
+  render
+      ->add_option("--fit-directions", o->fitDirections,
+                   "reference-fit: light directions the six maps are fitted to, a multiple of 6 (default 36)")
+      ->check(CLI::Range(12, 96));
   render->add_flag("--exr", o->exr, "Also write each frame as a linear EXR");
   render->add_flag("--video", o->video, "Also write video.mp4 (needs ffmpeg)");
   render->add_option("--fps", o->fps, "Video frame rate (default 30)")->check(CLI::Range(1, 240));

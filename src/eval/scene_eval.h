@@ -25,7 +25,10 @@ struct SceneEvalSettings {
   int frames = 0;
   uint32_t samples = 64;                             // path-tracer ground truth, per pixel
   int orders = 64;                                   // its scattering orders
-  reference::MultipleScattering multipleScattering;  // of reference-ms and traditional-ms
+  reference::MultipleScattering multipleScattering;  // of reference-ms, reference-fit and traditional-ms
+  // > 0: also the reference-fit method, its six maps fitted to the smoke lit from this many directions
+  // (reference/fitted_lightmaps.h; about directions / 6 times reference-ms's cost)
+  int fitDirections = 0;
   float densityScale = 1.0f;
   bool shadows = true, obstacles = true;  // obstacles: drawn, and in the truth
   std::optional<float> cameraOrbitDeg;    // replaces the scene's camera path by an orbit (degrees per frame)

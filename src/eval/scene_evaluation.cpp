@@ -27,10 +27,14 @@ using Clock = std::chrono::steady_clock;
 
 // The methods measured against the path tracer, by their render-mode names (modes/render_mode.h).
 // guide-lit is the guide-only baseline: the guiding map's light as all six lightmaps; reference-ms the
-// six-way ceiling under full transport (multiply-scattered lightmaps); traditional-ms the flipbook users bake
-// in DCC tools.
-const std::vector<std::string> kMethods{"neural",      "reference",      "reference-ms",
-                                        "traditional", "traditional-ms", "guide-lit"};
+// axis-lit maps under full transport; reference-fit (on request) the six-way ceiling; traditional-ms the
+// flipbook users bake in DCC tools.
+std::vector<std::string> methodsOf(const SceneEvalSettings& s) {
+  std::vector<std::string> methods{"neural", "reference", "reference-ms"};
+  if (s.fitDirections > 0) methods.push_back("reference-fit");
+  methods.insert(methods.end(), {"traditional", "traditional-ms", "guide-lit"});
+  return methods;
+}
 
 double millisecondsSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -43,6 +47,7 @@ modes::ModeOptions modeOptions(const SceneEvalSettings& s) {
   options.pathTraceSamples = s.samples;
   options.pathTraceOrders = s.orders;
   options.multipleScattering = s.multipleScattering;
+  if (s.fitDirections > 0) options.fitDirections = s.fitDirections;
   return options;
 }
 
@@ -56,6 +61,7 @@ scene::Scene withoutObstaclesUnlessDrawn(scene::Scene scene, bool drawn) {
 SceneEvaluation::SceneEvaluation(const gpu::Context& context, const gpu::PipelineCache& cache,
                                  const SceneEvalSettings& settings, scene::Scene scene)
     : s_(settings),
+      methodNames_(methodsOf(settings)),
       context_(context),
       cache_(cache),
       scene_(std::move(scene)),
@@ -67,7 +73,7 @@ SceneEvaluation::SceneEvaluation(const gpu::Context& context, const gpu::Pipelin
       renderScene_(withoutObstaclesUnlessDrawn(scene_, settings.obstacles)),
       firstCamera_(render::sceneCamera(scene_.camera, warmup_)) {
   modes::ModeOptions options = modeOptions(s_);
-  for (const std::string& method : kMethods) {
+  for (const std::string& method : methodNames_) {
     options.mode = modes::parseRenderMode(method);
     methods_[method] = std::make_unique<modes::ModeRenderer>(context, cache, renderScene_, options);
   }
@@ -94,7 +100,7 @@ void SceneEvaluation::run() {
       "sixway eval: %s, frames %d-%d of the scene against the path tracer (%u spp, %d scattering orders); "
       "wrote %s\n%s",
       scene_.name.c_str(), warmup_, warmup_ + s_.frames - 1, s_.samples, s_.orders,
-      s_.report.string().c_str(), summaryTable(figures, equalTime_, kMethods).c_str());
+      s_.report.string().c_str(), summaryTable(figures, equalTime_, methodNames_).c_str());
 }
 
 void SceneEvaluation::printHeading() const {
@@ -115,7 +121,7 @@ void SceneEvaluation::evaluateFrame(int i) {
   const std::optional<Mask> detailMask = measureTruthNoise(frame, truth.image);
   const std::optional<Mask> band = obstacleBandOf(frame);
   Rendered rendered;
-  for (const std::string& method : kMethods)
+  for (const std::string& method : methodNames_)
     rendered[method] = renderMethod(method, frame, truth.image, band ? &*band : nullptr,
                                     detailMask ? &*detailMask : nullptr);
   measureLightmaps(frame);
@@ -264,7 +270,7 @@ void SceneEvaluation::printProgress(const Frame& frame) const {
   std::printf(
       "  frame %d/%d (%.0f° from the baked view): lightmaps %.2f dB; images vs path tracer:", frame.i + 1,
       s_.frames, frame.json["view_angle_deg"].get<double>(), orNan(frame.json["lightmap"]["psnr_masked_db"]));
-  for (const std::string& method : kMethods)
+  for (const std::string& method : methodNames_)
     std::printf(" %s %.2f", method.c_str(), orNan(frame.json["image"][method]["psnr_masked_db"]));
   std::printf(" dB; %.0f s elapsed, ETA %.0f s\n", elapsed,
               elapsed / (frame.i + 1) * (s_.frames - frame.i - 1));
@@ -274,7 +280,7 @@ void SceneEvaluation::printProgress(const Frame& frame) const {
 nlohmann::json SceneEvaluation::summary() {
   nlohmann::json summary = {{"lightmap", lightmapTotal_.summary()},
                             {"lightmap_ms", lightmapMsTotal_.summary()}};
-  for (const std::string& method : kMethods) {
+  for (const std::string& method : methodNames_) {
     nlohmann::json image = imageTotal_[method].json();  // pooled over the frames' pixels
     const std::vector<double>& psnrs = framePsnrs_[method];
     const auto finite = std::count_if(psnrs.begin(), psnrs.end(), [](double v) { return std::isfinite(v); });
@@ -290,7 +296,7 @@ nlohmann::json SceneEvaluation::summary() {
   summary["detail"] = nullptr;
   if (truthNoise_) {
     summary["detail"] = {{"truth_energy", number(truthDetailEnergy_)}, {"sigma_px", kDetailSigma}};
-    for (const std::string& method : kMethods)
+    for (const std::string& method : methodNames_)
       summary["detail"]["methods"][method] = number(detailEnergy_[method] / truthDetailEnergy_);
   }
   return summary;
@@ -321,7 +327,7 @@ nlohmann::json SceneEvaluation::report(const nlohmann::json& summary) const {
           {"band_radius_px",
            bandObstacles_ ? nlohmann::json(bandRadius(scene_.render.height)) : nlohmann::json(nullptr)},
           {"camera_orbit_deg_per_frame", s_.cameraOrbitDeg ? number(*s_.cameraOrbitDeg) : nullptr},
-          {"methods", kMethods},
+          {"methods", methodNames_},
           {"summary", summary},
           {"equal_time", equalTime_},
           {"strip", strip_.is_null() ? nlohmann::json(nullptr) : strip_},

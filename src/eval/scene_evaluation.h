@@ -77,6 +77,7 @@ class SceneEvaluation {
   nlohmann::json report(const nlohmann::json& summary) const;
 
   const SceneEvalSettings& s_;
+  const std::vector<std::string> methodNames_;  // measured against the truth, in report order
   const gpu::Context& context_;
   const gpu::PipelineCache& cache_;
   scene::Scene scene_;

@@ -4,6 +4,7 @@
 
 #include "gpu/image.h"
 #include "modes/baked_lightmaps.h"
+#include "modes/fitted_lightmap_source.h"
 #include "modes/flipbook_lightmaps.h"
 #include "modes/guide_lit_lightmaps.h"
 #include "render/shadow_maps.h"
@@ -42,6 +43,8 @@ std::unique_ptr<runtime::LightmapSource> modeSource(const gpu::Context& context,
     case RenderMode::ReferenceMs:
       return std::make_unique<BakedLightmaps>(context, cache, scene, reference::Scattering::Multiple,
                                               multiple);
+    case RenderMode::ReferenceFit:
+      return std::make_unique<FittedLightmapSource>(context, cache, scene, multiple, o.fitDirections);
     case RenderMode::Traditional:
       return std::make_unique<FlipbookLightmaps>(context, cache, scene, reference::Scattering::Single,
                                                  multiple);

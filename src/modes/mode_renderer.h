@@ -5,7 +5,9 @@
 //   neural       guiding map → network → six-way shading (runtime::NetworkLightmaps)
 //   reference    the reference baker's lightmaps (exact single scattering) → the same shading
 //   reference-ms multiply-scattered lightmaps (ScatteredLightmaps) → the same shading: the best any six-way
-//                method can do under full transport
+//                method can do with the axis-lit maps under full transport
+//   reference-fit the six maps fitted to the smoke lit from many directions (FittedLightmaps) → the same
+//                shading: the ceiling of six-way lighting
 //   traditional  a flipbook baked from the first frame's view, on a camera-facing billboard (today's games)
 //   traditional-ms  the same flipbook baked with multiple scattering (what DCC tools bake)
 //   guide        the guiding map itself (guide, alpha, shell depth)

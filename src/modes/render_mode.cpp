@@ -5,14 +5,14 @@
 namespace sixway::modes {
 
 RenderMode parseRenderMode(const std::string& name) {
-  for (RenderMode m :
-       {RenderMode::Neural, RenderMode::Reference, RenderMode::ReferenceMs, RenderMode::Traditional,
-        RenderMode::TraditionalMs, RenderMode::Guide, RenderMode::GuideLit, RenderMode::PathTrace})
+  for (RenderMode m : {RenderMode::Neural, RenderMode::Reference, RenderMode::ReferenceMs,
+                       RenderMode::ReferenceFit, RenderMode::Traditional, RenderMode::TraditionalMs,
+                       RenderMode::Guide, RenderMode::GuideLit, RenderMode::PathTrace})
     if (name == renderModeName(m)) return m;
   throw io::InputError("--mode",
                        "unknown mode \"" + name +
-                           "\" (known: neural, reference, reference-ms, traditional, traditional-ms, "
-                           "guide, guide-lit, pathtrace)");
+                           "\" (known: neural, reference, reference-ms, reference-fit, traditional, "
+                           "traditional-ms, guide, guide-lit, pathtrace)");
 }
 
 const char* renderModeName(RenderMode mode) {
@@ -23,6 +23,8 @@ const char* renderModeName(RenderMode mode) {
       return "reference";
     case RenderMode::ReferenceMs:
       return "reference-ms";
+    case RenderMode::ReferenceFit:
+      return "reference-fit";
     case RenderMode::Traditional:
       return "traditional";
     case RenderMode::TraditionalMs:

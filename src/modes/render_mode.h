@@ -13,6 +13,7 @@ enum class RenderMode {
   Neural,
   Reference,
   ReferenceMs,
+  ReferenceFit,
   Traditional,
   TraditionalMs,
   Guide,
@@ -34,6 +35,8 @@ struct ModeOptions {
   uint32_t pathTraceSeedOffset = 0;  // pathtrace: added to its seed (render.seed + frame): other noise
   // reference-ms, traditional-ms: the higher orders' tracing (its seed is the scene's render.seed + frame)
   reference::MultipleScattering multipleScattering;
+  int fitDirections =
+      36;  // reference-fit: light directions the six maps are fitted to (reference/fitted_lightmaps.h)
   // Shadow atlas tiles; unset: one per shadow-casting light of the scene (the demo reserves room for the
   // lights a user may add).
   std::optional<uint32_t> shadowTiles;

@@ -1,7 +1,10 @@
 #include "reference/lightmap_baker.h"
 
 #include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
 #include <string>
+#include <utility>
 
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
@@ -26,6 +29,10 @@ void checkSettings(const BakeSettings& s) {
   if (!(s.lightSpacingCells > 0.0f)) throw io::InputError("bake", "the light grid spacing must be > 0 cells");
   if (!(s.minTransmittance >= 0.0f && s.minTransmittance < 1.0f))
     throw io::InputError("bake", "the transmittance cut-off must be in [0, 1)");
+  if (s.lights)
+    for (const glm::vec3& d : *s.lights)
+      if (!(std::abs(glm::length(d) - 1.0f) < 1e-4f))
+        throw std::invalid_argument("bake: a light direction is not a unit vector");
 }
 
 }  // namespace
@@ -36,15 +43,29 @@ float lightSpacingFor(float cellOpticalDepth) {
 
 namespace {
 
-// Light grids for the six lights, their columns spaced `spacing` apart; u, v are the other two camera axes.
+// Two unit axes across the unit direction `d`, orthogonal to it and to each other.
+std::pair<glm::vec3, glm::vec3> axesAcross(glm::vec3 d) {
+  const glm::vec3 a = glm::abs(d);
+  const glm::vec3 least = a.x <= a.y && a.x <= a.z ? glm::vec3(1, 0, 0)
+                          : a.y <= a.z             ? glm::vec3(0, 1, 0)
+                                                   : glm::vec3(0, 0, 1);
+  const glm::vec3 u = glm::normalize(glm::cross(d, least));
+  return {u, glm::cross(d, u)};
+}
+
+// Light grids for the six lights, their columns spaced `spacing` apart; across the camera's axis lights u, v
+// are the other two camera axes.
 std::array<render::LightGrid, 6> sixLightGrids(const render::Camera& camera, const render::VolumeGrid& volume,
-                                               float spacing, float maxStep) {
-  const auto directions = render::sixWayLightDirections(camera);
+                                               const BakeSettings& settings, float spacing, float maxStep) {
+  const auto directions = settings.lights.value_or(render::sixWayLightDirections(camera));
   std::array<render::LightGrid, 6> grids;
   for (int i = 0; i < render::kSixWayLights; ++i) {
-    const int axis = i / 2;  // 0: right/left, 1: top/bottom, 2: back/front
-    const glm::vec3 u = axis == 0 ? camera.up : camera.right;
-    const glm::vec3 v = axis == 2 ? camera.up : camera.forward;
+    auto [u, v] = axesAcross(directions[i]);
+    if (!settings.lights) {
+      const int axis = i / 2;  // 0: right/left, 1: top/bottom, 2: back/front
+      u = axis == 0 ? camera.up : camera.right;
+      v = axis == 2 ? camera.up : camera.forward;
+    }
     grids[i] = render::lightGridFor(volume, directions[i], u, v, spacing, maxStep);
   }
   return grids;
@@ -107,9 +128,9 @@ io::Image LightmapBaker::bake(const render::Volume& volume, const scene::Smoke& 
   const float maxStep = settings.stepCells * cell;
   // Widen the light grids' spacing until they fit the device.
   const float spacing = render::widenedSpacing(settings.lightSpacingCells * cell, [&](float s) {
-    return fits(sixLightGrids(camera, volume.grid, s, maxStep), *context_);
+    return fits(sixLightGrids(camera, volume.grid, settings, s, maxStep), *context_);
   });
-  grids_ = sixLightGrids(camera, volume.grid, spacing, maxStep);
+  grids_ = sixLightGrids(camera, volume.grid, settings, spacing, maxStep);
   const uint64_t plane = uint64_t(settings.width) * uint64_t(settings.height);
   ensureCapacity(volume.grid, render::kSixWayChannels * plane);
   const glm::ivec3 bricks = (volume.grid.size + kBrickCells - 1) / kBrickCells;

@@ -6,7 +6,9 @@
 // lights, alpha = 1 − T_view and the emission (sixway_march.comp), skipping empty bricks (majorant.comp). The
 // method and its normalisation: docs/reference-rendering.md.
 #include <array>
+#include <glm/vec3.hpp>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "gpu/buffer.h"
@@ -32,6 +34,10 @@ struct BakeSettings {
   float stepCells = 0.5f;          // longest quadrature step of view rays and light columns, in cells
   float lightSpacingCells = 1.0f;  // spacing of the light grids, in cells (widened when a grid would not fit)
   float minTransmittance = 1e-6f;  // a view ray stops once less than this of the background shows through
+  // Unit directions toward the lights of the six light channels, in world space; unset: the camera's six-way
+  // axes (render::sixWayLightDirections). Other directions bake the smoke under lights a six-way material
+  // interpolates between (reference/fitted_lightmaps.h).
+  std::optional<std::array<glm::vec3, 6>> lights;
 };
 
 // The light-grid spacing, in cells, for smoke whose densest cell has the optical depth `cellOpticalDepth`

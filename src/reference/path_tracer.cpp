@@ -93,7 +93,7 @@ void PathTracer::beginSixWay(const render::Volume& volume, const scene::Smoke& s
   render::layout::TraceParams& p = *static_cast<render::layout::TraceParams*>(params_.mapped());
   p = {};
   obstacles_ = nullptr;
-  const auto directions = render::sixWayLightDirections(camera);
+  const auto directions = settings.sixWayLights.value_or(render::sixWayLightDirections(camera));
   for (int i = 0; i < render::kSixWayLights; ++i)
     p.lights[i] = {glm::vec4(directions[i], 0.0f), glm::vec4(glm::vec3(std::numbers::pi_v<float>), float(i))};
   p.image.w = render::kSixWayLights;

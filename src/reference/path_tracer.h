@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <glm/vec3.hpp>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "gpu/buffer.h"
@@ -42,6 +43,9 @@ struct TraceSettings {
   // Radiance arriving from direction w (world) at scattered rays that leave the volume: max(0, L0 + L1·w),
   // as {L0, L1x, L1y, L1z}.
   std::array<glm::vec3, 4> environment{};
+  // Six-way mode: unit directions toward the six channels' lights, in world space; unset: the camera's
+  // six-way axes (as BakeSettings::lights).
+  std::optional<std::array<glm::vec3, 6>> sixWayLights;
 };
 
 class PathTracer {
@@ -57,7 +61,8 @@ class PathTracer {
                   const render::ImagePlane& plane, const std::vector<scene::Light>& lights,
                   const TraceSettings& settings, const render::ObstacleBvh* obstacles = nullptr);
   // Starts six-way lightmaps: the eight channels of sixway.h, each light channel lit by one white
-  // directional light of irradiance π from its camera-relative direction, black world; emissive is the
+  // directional light of irradiance π from its camera-relative direction (or settings.sixWayLights), black
+  // world; emissive is the
   // emission seen directly. Background and environment are not used.
   void beginSixWay(const render::Volume& volume, const scene::Smoke& smoke, const render::Camera& camera,
                    const render::ImagePlane& billboard, const TraceSettings& settings);

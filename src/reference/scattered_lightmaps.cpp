@@ -92,6 +92,7 @@ io::Image ScatteredLightmaps::bake(const render::Volume& volume, const scene::Sm
   TraceSettings trace;
   trace.maxOrders = multiple.maxOrders;
   trace.seed = multiple.seed;
+  trace.sixWayLights = settings.lights;
   if (multiple.traceAllOrders) {
     trace.width = settings.width;
     trace.height = settings.height;

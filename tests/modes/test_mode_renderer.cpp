@@ -5,10 +5,12 @@
 //   only by the path tracer's Monte Carlo noise and the sampling of the lightmaps (bilinear, half floats, the
 //   baker's quadrature). The noise is measured from two independent path-traced images: the test demands that
 //   the reference-vs-path-traced error exceed the noise by less than a stated bias. A diagonal light shows
-//   what the model cannot represent (printed, not bounded).
+//   what the model cannot represent (printed, not bounded); reference-fit represents it better than
+//   reference-ms.
 // - obstacle shadows: a sphere between the light and the smoke darkens exactly the smoke pixels whose shell
 //   points are in its shadow, by a CPU ray test of the shell points (from the frame's own guiding map).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -131,6 +133,41 @@ TEST_F(ModeRendererTest, ReferenceMatchesThePathTracerForAnAxisLight) {
   // bilinear sampling of a 64² bake, half floats and the baker's half-cell quadrature.
   EXPECT_LT(axisBias, 0.002);
   EXPECT_GT(axis.noise, 0.0);
+}
+
+// A light between the six-way axes under full transport: the axis-lit maps (reference-ms) interpolate between
+// two of their lights, the fitted maps (reference-fit) are the six maps nearest the smoke over lights from
+// every direction, so their error beyond the path tracer's noise is smaller there. On an axis the axis-lit
+// maps are exact and the fit trades a little of that (printed).
+TEST_F(ModeRendererTest, ReferenceFitIsNearerThePathTracerThanTheAxisLitMapsBetweenTheAxes) {
+  auto excess = [&](glm::vec3 light) {
+    std::array<double, 2> bias{};
+    auto renderWith = [&](uint32_t seed, modes::RenderMode mode) {
+      modes::ModeOptions options;
+      options.mode = mode;
+      options.pathTraceSamples = 256;
+      options.pathTraceOrders = 64;
+      const scene::Scene scene = scene::parseScene(sceneJson(light, seed), "frame_test.json", ".");
+      return modes::ModeRenderer(context(), pipelineCache(), scene, options)
+          .render(0, 0.0, volume_.view())
+          .image;
+    };
+    const io::Image traced = renderWith(1, modes::RenderMode::PathTrace);
+    const io::Image tracedAgain = renderWith(1000, modes::RenderMode::PathTrace);
+    const double noise = 0.5 * maskedMse(traced, tracedAgain, traced);
+    int i = 0;
+    for (modes::RenderMode mode : {modes::RenderMode::ReferenceMs, modes::RenderMode::ReferenceFit})
+      bias[i++] = std::sqrt(std::max(0.0, maskedMse(renderWith(1, mode), traced, traced) - noise));
+    return bias;
+  };
+  const std::array<double, 2> diagonal = excess(glm::normalize(glm::vec3(1.0f, 1.0f, -1.0f)));
+  const std::array<double, 2> axis = excess({1.0f, 0.0f, 0.0f});
+  std::printf(
+      "  excess over the noise, reference-ms / reference-fit: diagonal light %.4f / %.4f, axis light "
+      "%.4f / %.4f\n",
+      diagonal[0], diagonal[1], axis[0], axis[1]);
+  // Measured: 0.0304 / 0.0239 between the axes (0.79×), 0.0089 / 0.0127 on the axis.
+  EXPECT_LT(diagonal[1], 0.9 * diagonal[0]);
 }
 
 // Glowing smoke at one temperature with no light: every order of the path tracer against reference-ms, whose

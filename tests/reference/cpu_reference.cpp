@@ -173,10 +173,13 @@ double henyeyGreenstein(double cosTheta, double g) {
 }
 
 io::Image bakeSixWay(const CpuVolume& volume, const scene::Smoke& smoke, const render::Camera& camera,
-                     const render::ImagePlane& plane, int width, int height, double stepCells) {
+                     const render::ImagePlane& plane, int width, int height, double stepCells,
+                     const std::array<glm::vec3, 6>* customLights) {
   io::Image image(width, height, {"Right", "Left", "Top", "Bottom", "Back", "Front", "alpha", "emissive"});
-  const std::array<dvec3, 6> lights = {dvec3(camera.right), -dvec3(camera.right),  dvec3(camera.up),
-                                       -dvec3(camera.up),   dvec3(camera.forward), -dvec3(camera.forward)};
+  std::array<dvec3, 6> lights = {dvec3(camera.right), -dvec3(camera.right),  dvec3(camera.up),
+                                 -dvec3(camera.up),   dvec3(camera.forward), -dvec3(camera.forward)};
+  if (customLights)
+    for (int l = 0; l < 6; ++l) lights[l] = glm::normalize(dvec3((*customLights)[l]));
   const double maxStep = stepCells * volume.grid.cellSize;
   const bool emits = smoke.emission.intensity > 0 && !smoke.emission.ramp.empty();
   marchPixels(

@@ -52,9 +52,11 @@ std::vector<double> lightGridDepths(const CpuVolume& volume, double extinction,
                                     const render::LightGrid& grid);
 
 // The eight six-way channels, by a view march with steps of at most stepCells cells and a direct march
-// toward each light from every sample.
+// toward each light from every sample; the lights come from the camera's six-way axes, or from `lights`
+// (unit, world space, toward the light) when given.
 io::Image bakeSixWay(const CpuVolume& volume, const scene::Smoke& smoke, const render::Camera& camera,
-                     const render::ImagePlane& plane, int width, int height, double stepCells);
+                     const render::ImagePlane& plane, int width, int height, double stepCells,
+                     const std::array<glm::vec3, 6>* lights = nullptr);
 
 // Single scattering toward the camera (RGB, black background) of light arriving from every direction with
 // radiance max(0, L0 + L1·w), integrated over `directions` quasi-uniform directions (spherical Fibonacci).

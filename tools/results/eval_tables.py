@@ -197,8 +197,8 @@ frames, "mean of frames" averages the frames' own PSNRs.
 
 Methods: **neural** (guiding map → network → six-way shading), **reference** (the exact single-scattering baker's
 lightmaps, same shading), **reference-ms** (multiply-scattered lightmaps: the exact single scattering plus the
-higher orders path-traced at 64 samples per pixel, same shading: the best the six-way model can do under full
-transport), **traditional** (lightmaps baked from frame 0's view, played back on a camera-facing billboard, as
+higher orders path-traced at 64 samples per pixel, same shading: the axis-lit maps under full transport; with
+`--fit-directions N`, **reference-fit**, the best six maps for the six-way blend, is measured too), **traditional** (lightmaps baked from frame 0's view, played back on a camera-facing billboard, as
 games do), **traditional-ms** (the same flipbook baked with multiple scattering, as DCC tools bake it),
 **guide-lit** (the guiding map's light used as all six lightmaps, its alpha as transparency: the network's input
 without the network).

@@ -17,6 +17,9 @@
 # traces reference-ms's and traditional-ms's orders >= 2 with N samples per texel (their own noise, which adds to
 # their frame-to-frame change, falls as 1/N); reports then go to a directory ending in _msspp<N>.
 # tools/results/ceiling_change.py takes two such directories (N and 4N) to their change without that noise.
+# FIT=N (default 0: none) also measures reference-fit, the six maps fitted to the smoke lit from N directions
+# (`--fit-directions N`, about N/6 times reference-ms's cost), its column first; reports then go to a directory
+# ending in _fit<N>.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 frames="${FRAMES:-8}"
@@ -24,6 +27,7 @@ spp="${SPP:-128}"
 lightmap="${LIGHTMAP:-64}"
 warmup="${WARMUP:-0}"
 ms_spp="${MS_SPP:-64}"
+fit="${FIT:-0}"
 for name in ${SCENES:-}; do
   [ -f "$root/assets/scenes/$name.json" ] || { echo "ms_ceiling.sh: SCENES: no assets/scenes/$name.json" >&2; exit 2; }
 done
@@ -33,6 +37,7 @@ out="$root/out/ms_ceiling/lightmap_$lightmap"
 case "$weights" in ms) ;; ss) out="${out}_ss" ;; *) out="${out}_$(basename "$(dirname "$weights")")" ;; esac
 [ "$warmup" = 0 ] || out="${out}_warm$warmup"
 [ "$ms_spp" = 64 ] || out="${out}_msspp$ms_spp"
+[ "$fit" = 0 ] || out="${out}_fit$fit"
 sixway="${SIXWAY:-$root/build/src/app/sixway}"
 [ -x "$sixway" ] || source "$root/tools/build.sh"
 mkdir -p "$out"
@@ -44,15 +49,17 @@ for scene in "$root"/assets/scenes/*.json; do
   "$python" "$root/tools/results/resized_scene.py" "$scene" "$small" --size 128 --lightmap "$lightmap" --warmup "$warmup"
   echo "ms_ceiling.sh: $name" >&2
   "$sixway" eval --scene "$small" --frames "$frames" --spp "$spp" --orders 64 --ms-spp "$ms_spp" --weights "$weights" \
-    --truth-noise --no-equal-time --no-obstacles --report "$out/$name.report.json" --force >&2
+    --fit-directions "$fit" --truth-noise --no-equal-time --no-obstacles --report "$out/$name.report.json" --force >&2
 done
 "$python" - "$out" <<'PY'
 import glob, json, os, sys
-methods = ["reference-ms", "reference", "neural", "traditional-ms", "traditional"]
+reports = sorted(glob.glob(os.path.join(sys.argv[1], "*.report.json")))
+fitted = any("reference-fit" in json.load(open(p))["methods"] for p in reports)
+methods = ["reference-fit"] * fitted + ["reference-ms", "reference", "neural", "traditional-ms", "traditional"]
 changes = ["neural", "reference-ms", "traditional-ms"]
 print("| scene | " + " | ".join(methods) + " | truth's change | " + " | ".join(f"{m} change" for m in changes) + " |")
 print("|---|" + "---|" * (len(methods) + 1 + len(changes)))
-for path in sorted(glob.glob(os.path.join(sys.argv[1], "*.report.json"))):
+for path in reports:
     summary = json.load(open(path))["summary"]
     image, temporal = summary["image"], summary.get("temporal") or {}
     name = os.path.basename(path).removesuffix(".report.json")
