@@ -170,7 +170,7 @@ void addRenderCommand(CLI::App& app) {
   render
       ->add_option("--fit-directions", o->fitDirections,
                    "reference-fit: light directions the six maps are fitted to, a multiple of 6 (default 36)")
-      ->check(CLI::Range(12, 96));
+      ->check(CLI::Range(1, 96));
   render->add_flag("--exr", o->exr, "Also write each frame as a linear EXR");
   render->add_flag("--video", o->video, "Also write video.mp4 (needs ffmpeg)");
   render->add_option("--fps", o->fps, "Video frame rate (default 30)")->check(CLI::Range(1, 240));

@@ -1,10 +1,11 @@
 #include "reference/six_way_fit.h"
 
-#include <bit>
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace sixway::reference {
 namespace {
