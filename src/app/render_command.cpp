@@ -145,10 +145,10 @@ void addRenderCommand(CLI::App& app) {
   render->add_option("--frames", o->frames, "Frames rendered")->required()->check(CLI::Range(1, 100000));
   render->add_option("--out", o->out, "Output directory")->required()->check(directoryPath());
   render->add_flag("--force", o->force, "Write into an existing output directory");
-  render->add_option("--mode", o->mode,
-                     "neural | reference | reference-ms | reference-fit | traditional | traditional-ms | "
-                     "guide | guide-lit | "
-                     "pathtrace (default: neural when the weights exist, else reference)");
+  render->add_option(
+      "--mode", o->mode,
+      "neural | reference | reference-ms | reference-fit | traditional | traditional-ms | "
+      "guide | guide-lit | pathtrace (default: neural when the weights exist, else reference)");
   render->add_option("--weights", o->weights, kWeightsHelp)->check(filePath());
   render->add_flag("--fp16", o->fp16, "Neural: fp16 feature maps");
   render->add_flag("--no-shadows", o->noShadows, "No obstacle shadows on the smoke");
