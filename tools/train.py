@@ -3,6 +3,7 @@
 
     /usr/bin/python3 tools/train.py --config tools/train_configs/cpu_small.json --out /work/data/train_cpu_small
     /usr/bin/python3 tools/train.py --out DIR --resume              # continues exactly where the checkpoint is
+    /usr/bin/python3 tools/train.py --recipe ms --out DIR           # data and every phase (tools/nn/recipe.py)
     torchrun --nproc_per_node 8 tools/train.py --config C --out DIR  # DistributedDataParallel, one GPU each
 
 DDP starts when WORLD_SIZE > 1 (NCCL on GPUs, gloo on the CPU). Debian's torch 1.13 launcher fails before
@@ -43,6 +44,8 @@ from losses import training_loss  # noqa: E402
 from net2deeper import deeper_state  # noqa: E402
 from net2wider import wider_state  # noqa: E402
 from metrics import SplitMetrics, evaluate_split  # noqa: E402
+from recipe import Recipe, RecipeError, make_data, write_summary  # noqa: E402
+from safetensors_io import read_safetensors, write_safetensors  # noqa: E402
 from sixway_net import (FROM_GUIDE_SUFFIX, OPTIONAL_CONFIG, OUTPUT_CHANNELS, SixwayNet,  # noqa: E402
                         decode_output, export_safetensors, full_config, load_safetensors,
                         output_encodings)
@@ -368,14 +371,28 @@ def truncate_log(path, step):
 def parse_args():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--config", help="training config JSON (tools/train_configs/); optional with --resume")
+    parser.add_argument("--recipe", help="a recipe (tools/train_configs/recipes/NAME.json, or a path): its data "
+                                         "and every phase from scratch; rerun the same command to resume")
     parser.add_argument("--out", required=True, help="output directory")
     parser.add_argument("--data", nargs="+", help="shard directories (override data.dir)")
     parser.add_argument("--seed", type=int, help="overrides train.seed")
     parser.add_argument("--resume", action="store_true", help="continue from OUT/checkpoint.pt")
     parser.add_argument("--force", action="store_true", help="start afresh in an existing OUT")
     parser.add_argument("--stop-at", type=int, help="stop (with a checkpoint) after this step, e.g. to fit a "
-                                                    "time slot; continue later with --resume")
-    return parser.parse_args()
+                                                    "time slot; continue later with --resume (with --recipe: "
+                                                    "steps counted over all phases)")
+    parser.add_argument("--profile", help="with --recipe: the recipe's profile (default: gpu with CUDA, else cpu)")
+    parser.add_argument("--data-root", help="with --recipe: where its datasets go (default: the repository root)")
+    parser.add_argument("--data-shard", help="with --recipe: I/N makes worker I's share of the data and stops "
+                                             "(N machines, one share each; 0/1: all of it)")
+    parser.add_argument("--sixway", default=os.environ.get("SIXWAY", os.path.join(REPO_ROOT, "build/src/app/sixway")),
+                        help="with --recipe: the sixway binary that makes the data (default: SIXWAY or build/)")
+    args = parser.parse_args()
+    if args.recipe and (args.config or args.resume or args.force or args.data or args.seed is not None):
+        parser.error("--recipe takes none of --config, --resume, --force, --data, --seed")
+    if not args.recipe and (args.profile or args.data_root or args.data_shard):
+        parser.error("--profile, --data-root and --data-shard go with --recipe")
+    return args
 
 
 def load_config(args, checkpoint):
@@ -420,7 +437,8 @@ class Trainer:
         self.rank = int(os.environ.get("RANK", "0"))
         local_rank = int(os.environ.get("LOCAL_RANK", "0"))
         self.device = torch.device(f"cuda:{local_rank}" if torch.cuda.is_available() else "cpu")
-        if self.world > 1:
+        self.owns_group = self.world > 1 and not dist.is_initialized()  # a recipe holds one over its phases
+        if self.owns_group:
             dist.init_process_group("nccl" if self.device.type == "cuda" else "gloo")
         if self.device.type == "cuda":
             torch.cuda.set_device(self.device)
@@ -621,13 +639,109 @@ class Trainer:
             finish(self.out, self.net, self.data, self.config, self.seconds(), self.device, self.world)
         if self.world > 1:
             dist.barrier()
+        if self.owns_group:
             dist.destroy_process_group()
 
 
 def main():
     args = parse_args()
+    if args.recipe:
+        run_recipe(args)
+        return
     trainer = Trainer(args)
     trainer.run(min(trainer.train["steps"], args.stop_at or trainer.train["steps"]))
+
+
+def recipe_path(name):
+    """A recipe's file: a path, or NAME of tools/train_configs/recipes/NAME.json."""
+    if os.path.sep in name or name.endswith(".json"):
+        return name
+    return os.path.join(REPO_ROOT, "tools", "train_configs", "recipes", f"{name}.json")
+
+
+def parse_shard(text):
+    try:
+        index, count = (int(part) for part in text.split("/"))
+    except ValueError:
+        raise ConfigError(f"--data-shard '{text}': expected I/N")
+    if not 0 <= index < count:
+        raise ConfigError(f"--data-shard '{text}': needs 0 <= I < N")
+    return index, count
+
+
+def finished_phase_seconds(phase):
+    """The wall seconds of a phase that ended (its export written at its last step) with this config, or None
+    when it has not; a phase that ended with another config is an error."""
+    checkpoint_path = os.path.join(phase.directory, "checkpoint.pt")
+    if not (os.path.exists(os.path.join(phase.directory, EXPORT_NAME)) and os.path.exists(checkpoint_path)):
+        return None
+    checkpoint = torch.load(checkpoint_path, map_location="cpu", weights_only=False)
+    config, saved = merge_config(phase.config, phase.config_path), merge_config(checkpoint["config"], "checkpoint")
+    differs = first_difference(dict(config, data=dict(config["data"], dir=None)),
+                               dict(saved, data=dict(saved["data"], dir=None)))
+    if differs:
+        raise ConfigError(f"{phase.directory}: ended with another '{differs}' than the recipe's phase "
+                          f"'{phase.name}'; remove the directory to train the phase again")
+    return checkpoint["seconds"] if checkpoint["step"] == config["train"]["steps"] else None
+
+
+def run_phase(phase, stop):
+    """Trains one phase up to step `stop` (resuming its checkpoint); returns its wall seconds so far."""
+    seconds = finished_phase_seconds(phase)
+    if seconds is not None:
+        print(f"recipe: phase {phase.name}: done ({seconds:.0f} s)", flush=True)
+        return seconds
+    with atomic_open(phase.config_path) as f:
+        json.dump(phase.config, f, indent=2)
+    resume = os.path.exists(os.path.join(phase.directory, "checkpoint.pt"))
+    args = argparse.Namespace(config=phase.config_path, out=phase.directory, data=None, seed=None, resume=resume,
+                              force=not resume, stop_at=None)
+    print(f"recipe: phase {phase.name}: {'resumed' if resume else 'started'}", flush=True)
+    trainer = Trainer(args)
+    trainer.run(min(trainer.train["steps"], stop))
+    return trainer.seconds()
+
+
+def run_recipe(args):
+    """The recipe's data (made where missing), then its phases in order, then OUT/sixway-unet.safetensors (the
+    last phase's network with the recipe in its metadata) and OUT/recipe.json."""
+    profile = args.profile or ("gpu" if torch.cuda.is_available() else "cpu")
+    out = os.path.abspath(args.out)
+    recipe = Recipe(recipe_path(args.recipe), out, REPO_ROOT, os.path.abspath(args.data_root or REPO_ROOT), profile)
+    if not os.access(args.sixway, os.X_OK):
+        raise ConfigError(f"{args.sixway}: no sixway binary to make the data (tools/build.sh, or pass --sixway)")
+    world, rank = int(os.environ.get("WORLD_SIZE", "1")), int(os.environ.get("RANK", "0"))
+    log = lambda line: print(f"recipe: {line}", flush=True)  # noqa: E731
+    if args.data_shard:
+        make_data(recipe, args.sixway, parse_shard(args.data_shard), out, log)
+        return
+    if world > 1:  # the processes make the data between them, then train each phase together
+        dist.init_process_group("nccl" if torch.cuda.is_available() else "gloo")
+    # Under DDP each process makes its share; the lead records its own.
+    data_seconds = make_data(recipe, args.sixway, (rank, world), out if rank == 0 else None, log)
+    if world > 1:
+        dist.barrier()
+    os.makedirs(os.path.join(out, "phases"), exist_ok=True)
+    stop = args.stop_at if args.stop_at is not None else math.inf
+    phases, offset = [], 0
+    for phase in recipe.phases:
+        steps = phase.config["train"]["steps"]
+        if stop <= offset:
+            break
+        seconds = run_phase(phase, stop - offset)
+        phases.append({"name": phase.name, "steps": steps, "wall_seconds": round(seconds, 1)})
+        offset += steps
+    if rank == 0:
+        summary = write_summary(recipe, out, data_seconds, phases, hardware(torch.device(
+            "cuda" if torch.cuda.is_available() else "cpu"), world))
+        if stop >= offset:
+            tensors, metadata = read_safetensors(os.path.join(recipe.phases[-1].directory, EXPORT_NAME))
+            with atomic_path(os.path.join(out, EXPORT_NAME)) as temporary:
+                write_safetensors(temporary, tensors, dict(metadata, **{"sixway.recipe": json.dumps(summary)}))
+            print(f"recipe: {os.path.join(out, EXPORT_NAME)} after {summary['wall_seconds']:.0f} s "
+                  f"(data {sum(data_seconds.values()):.0f} s)", flush=True)
+    if world > 1:
+        dist.destroy_process_group()
 
 
 def finish(out, net, data, config, seconds, device, world):
@@ -669,5 +783,5 @@ def finish(out, net, data, config, seconds, device, world):
 if __name__ == "__main__":
     try:
         main()
-    except (ConfigError, ValueError) as error:
+    except (ConfigError, RecipeError, ValueError) as error:
         sys.exit(f"train: {error}")
