@@ -734,7 +734,7 @@ def run_recipe(args):
     if rank == 0:
         summary = write_summary(recipe, out, data_seconds, phases, hardware(torch.device(
             "cuda" if torch.cuda.is_available() else "cpu"), world))
-        if stop >= offset:
+        if len(phases) == len(recipe.phases) and stop >= offset:  # every phase ran to its end
             tensors, metadata = read_safetensors(os.path.join(recipe.phases[-1].directory, EXPORT_NAME))
             with atomic_path(os.path.join(out, EXPORT_NAME)) as temporary:
                 write_safetensors(temporary, tensors, dict(metadata, **{"sixway.recipe": json.dumps(summary)}))

@@ -84,6 +84,14 @@ class RecipeRunTest(unittest.TestCase):
         self.assertTrue(same_weights(final, weights(os.path.join(self.straight, "02_shaded", "sixway-unet.safetensors"))))
         self.assertFalse(same_weights(final, weights(os.path.join(self.straight, "01_maps", "sixway-unet.safetensors"))))
 
+    def test_a_recipe_stopped_between_phases_has_no_network_yet(self):
+        out = os.path.join(WORK, "between")
+        run = run_recipe("tiny", out, "--stop-at", "4")
+        self.assertEqual(run.returncode, 0, run.stderr)
+        self.assertTrue(os.path.exists(os.path.join(out, "01_maps", "sixway-unet.safetensors")))
+        self.assertFalse(os.path.exists(os.path.join(out, "02_shaded")))
+        self.assertFalse(os.path.exists(os.path.join(out, "sixway-unet.safetensors")))
+
     def test_the_summary_and_the_metadata_name_the_recipe(self):
         with open(os.path.join(self.straight, "recipe.json")) as f:
             summary = json.load(f)
