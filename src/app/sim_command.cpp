@@ -19,8 +19,10 @@
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "io/error.h"
+#include "io/obj.h"
 #include "io/report.h"
 #include "io/vdb.h"
+#include "render/obstacle_meshes.h"
 #include "runtime/internal.h"
 #include "sim/simulation.h"
 #include "sim/watchdog.h"
@@ -41,21 +43,26 @@ nlohmann::json vec(glm::vec3 v) {
   return {v.x, v.y, v.z};
 }
 
-// The file of frame 7 in --vdb-out: "<scene name>_0007.vdb", whatever the name's length.
-std::string vdbFrameName(const std::string& sceneName, int frame) {
+// The files of frame 7 in --vdb-out: "<scene name>_0007.vdb" (the smoke) and, with obstacles,
+// "<scene name>_0007.obj" (their triangles then), whatever the name's length.
+std::string frameFileName(const std::string& sceneName, int frame, const std::string& extension) {
   std::string number = std::to_string(frame);
   if (number.size() < 4) number.insert(0, 4 - number.size(), '0');
-  return sceneName + "_" + number + ".vdb";
+  return sceneName + "_" + number + extension;
 }
 
-// Whether `fileName` is a frame that `sim --vdb-out` writes for the scene `sceneName`:
-// "<scene name>_NNNN.vdb", four digits or more.
-bool isVdbFrameOf(const std::string& sceneName, const std::string& fileName) {
-  const std::string prefix = sceneName + "_", suffix = ".vdb";
-  if (fileName.size() < prefix.size() + 4 + suffix.size()) return false;
-  if (!fileName.starts_with(prefix) || !fileName.ends_with(suffix)) return false;
-  const std::string number = fileName.substr(prefix.size(), fileName.size() - prefix.size() - suffix.size());
-  return std::all_of(number.begin(), number.end(), [](char c) { return c >= '0' && c <= '9'; });
+// Whether `fileName` is a file that `sim --vdb-out` writes for the scene `sceneName`:
+// "<scene name>_NNNN.vdb" or ".obj", four digits or more.
+bool isFrameFileOf(const std::string& sceneName, const std::string& fileName) {
+  const std::string prefix = sceneName + "_";
+  for (const std::string suffix : {".vdb", ".obj"}) {
+    if (fileName.size() < prefix.size() + 4 + suffix.size()) continue;
+    if (!fileName.starts_with(prefix) || !fileName.ends_with(suffix)) continue;
+    const std::string number =
+        fileName.substr(prefix.size(), fileName.size() - prefix.size() - suffix.size());
+    if (std::all_of(number.begin(), number.end(), [](char c) { return c >= '0' && c <= '9'; })) return true;
+  }
+  return false;
 }
 
 // Outputs are checked before any work: an existing directory or report needs --force, and nothing there may
@@ -111,12 +118,17 @@ void printFrame(const sim::Simulation& simulation, uint32_t steps, int frame, do
   std::fflush(stdout);
 }
 
-void writeVdbFrame(StagedDirectory& out, sim::Simulation& simulation, const std::string& sceneName,
-                   int frame) {
+// The smoke, and the obstacles placed where the simulation has them (render::placedObstacles: the triangles
+// the renderers draw and trace, so that another renderer can draw the same frame).
+void writeFrameFiles(StagedDirectory& out, sim::Simulation& simulation, const scene::Scene& scene,
+                     int frame) {
   auto [density, temperature] = simulation.smokeGrids();
   out.underFinalNames([&] {
-    io::writeVdb(out.stagedPath(vdbFrameName(sceneName, frame)),
+    io::writeVdb(out.stagedPath(frameFileName(scene.name, frame, ".vdb")),
                  {{"density", &density}, {"temperature", &temperature}});
+    if (!scene.obstacles.empty())
+      io::writeObj(out.stagedPath(frameFileName(scene.name, frame, ".obj")),
+                   render::placedObstacles(scene.obstacles, simulation.seconds()));
   });
 }
 
@@ -133,7 +145,7 @@ std::string simulate(const SimOptions& o, const scene::Scene& scene, sim::Simula
       ++totals.frame;
       const double mlups = recordFrame(totals, simulation, n);
       printFrame(simulation, o.steps, totals.frame, mlups, terminal);
-      if (vdbOut) writeVdbFrame(*vdbOut, simulation, scene.name, totals.frame);
+      if (vdbOut) writeFrameFiles(*vdbOut, simulation, scene, totals.frame);
     }
   } catch (const sim::WatchdogError& e) {
     watchdog = e.what();
@@ -187,7 +199,7 @@ void run(const SimOptions& o) {
   // --vdb-out is staged: an earlier run's frames stay whole until this run has succeeded; then those of this
   // scene name that this run did not replace go.
   const StagedDirectory::OutputNames vdbFrames = [&](const std::string& f) {
-    return isVdbFrameOf(scene.name, f);
+    return isFrameFileOf(scene.name, f);
   };
   checkOutputs(o, vdbFrames);
   std::optional<StagedDirectory> vdbOut;
@@ -227,7 +239,8 @@ void addSimCommand(CLI::App& app) {
   command->add_option("--steps", o->steps, "Lattice steps")->required()->check(CLI::Range(1u, 100000000u));
   command
       ->add_option("--vdb-out", o->vdbOut,
-                   "Write density and temperature per frame as OpenVDB into this directory")
+                   "Write density and temperature per frame as OpenVDB (and the obstacles' triangles as "
+                   "OBJ) into this directory")
       ->check(directoryPath());
   command
       ->add_option("--report", o->report,

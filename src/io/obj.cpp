@@ -3,9 +3,11 @@
 #include <tiny_obj_loader.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <optional>
+#include <span>
 #include <sstream>
 
 #include "io/error.h"
@@ -110,6 +112,30 @@ Mesh readObj(const std::filesystem::path& path) {
     mesh.boundsMax = glm::max(mesh.boundsMax, position);
   }
   return mesh;
+}
+
+void writeObj(const std::filesystem::path& path, const std::vector<ObjObject>& objects) {
+  std::string text = "# sixway\n";
+  char line[128];
+  const auto vector = [&](const char* keyword, glm::vec3 v) {
+    std::snprintf(line, sizeof(line), "%s %.9g %.9g %.9g\n", keyword, v.x, v.y, v.z);
+    text += line;
+  };
+  size_t base = 1;
+  for (const ObjObject& object : objects) {
+    text += "o " + object.name + "\n";
+    for (const glm::vec3& p : object.positions) vector("v", p);
+    for (const glm::vec3& n : object.normals) vector("vn", n);
+    for (const glm::uvec3& t : object.triangles) {
+      const size_t a = base + t.x, b = base + t.y, c = base + t.z;
+      std::snprintf(line, sizeof(line), "f %zu//%zu %zu//%zu %zu//%zu\n", a, a, b, b, c, c);
+      text += line;
+    }
+    base += object.positions.size();
+  }
+  AtomicFile file(path);
+  file.writeAll(std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
+  file.commit();
 }
 
 }  // namespace sixway::io

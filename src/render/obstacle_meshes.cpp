@@ -210,6 +210,23 @@ glm::vec3 placementAt(const scene::Obstacle& obstacle, double seconds) {
                     obstacle.shape);
 }
 
+std::vector<io::ObjObject> placedObstacles(const std::vector<scene::Obstacle>& obstacles, double seconds) {
+  std::vector<io::ObjObject> objects;
+  for (uint32_t i = 0; i < obstacles.size(); ++i) {
+    const ObstacleTriangles triangles = triangulate(obstacles[i], i);
+    const glm::vec3 placement = placementAt(obstacles[i], seconds);
+    io::ObjObject& object = objects.emplace_back();
+    object.name = "obstacle_" + std::to_string(i);
+    for (const ObstacleVertex& v : triangles.vertices) {
+      object.positions.push_back(placement + v.position);
+      object.normals.push_back(v.normal);
+    }
+    for (size_t k = 0; k + 2 < triangles.indices.size(); k += 3)
+      object.triangles.emplace_back(triangles.indices[k], triangles.indices[k + 1], triangles.indices[k + 2]);
+  }
+  return objects;
+}
+
 ObstacleMeshes::ObstacleMeshes(const gpu::Context& context, const std::vector<scene::Obstacle>& obstacles,
                                gpu::MemoryKind memory)
     : obstacles_(obstacles), placed_(obstacles.size()) {

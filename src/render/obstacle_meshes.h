@@ -12,6 +12,7 @@
 
 #include "gpu/buffer.h"
 #include "gpu/pipeline.h"
+#include "io/obj.h"
 #include "render/volume.h"
 #include "scene/scene.h"
 
@@ -48,6 +49,10 @@ ObstacleTriangles triangulate(const scene::Obstacle& obstacle, uint32_t index);
 // The placement point of an obstacle at `seconds` (time = frame · frame_dt): its motion's position, else the
 // shape's centre or the mesh's translation.
 glm::vec3 placementAt(const scene::Obstacle& obstacle, double seconds);
+
+// Every obstacle's triangles in world space at `seconds`, as the passes and the path tracer see them, one
+// object each ("obstacle_<index>"): what `sixway sim --vdb-out` writes beside each frame for other renderers.
+std::vector<io::ObjObject> placedObstacles(const std::vector<scene::Obstacle>& obstacles, double seconds);
 
 class ObstacleMeshes {
  public:

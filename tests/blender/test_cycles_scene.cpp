@@ -2,7 +2,9 @@
 // back) against Blender's Cycles rendering the scene (tools/blender/cycles_scene.py): a perspective camera, a
 // directional light, a point light beside the smoke, uniform ambient light, coloured emission. Both sides
 // render twice with independent seeds; the tolerances are on the noise-removed PSNR (cycles_agreement.h).
+#include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -96,13 +98,25 @@ TEST_F(CyclesScene, SingleScatteringFinalImageAgrees) {
   EXPECT_GE(a.biasPsnrLowerDb(), 50.0);
 }
 
-// A simulated scene whose smoke wraps a sphere (small_plume, its key light held still): sixway's path tracer
-// on the simulation's tenth frame against Cycles on that frame as `sixway sim --vdb-out` exports it (10
-// frames of 51 lattice steps, by the scene's step rule), with the sphere as sixway tessellates it, every
-// order.
+// A simulated scene whose smoke wraps obstacles of three kinds (small_plume's sphere, a capsule moving across
+// the plume, the Stanford bunny as an OBJ mesh; the key light held still): sixway's path tracer on the
+// simulation's tenth frame against Cycles on that frame as `sixway sim --vdb-out` exports it (10 frames of 51
+// lattice steps, by the scene's step rule; the smoke as VDB, the obstacles' triangles as OBJ), every order.
 TEST_F(CyclesScene, ObstacleInTheSmokeAgrees) {
   nlohmann::json json = nlohmann::json::parse(std::ifstream(SIXWAY_TEST_DATA_DIR "/scenes/small_plume.json"));
   json["lights"][0].erase("path");
+  json["obstacles"].push_back({{"type", "capsule"},
+                               {"radius", 0.05},
+                               {"height", 0.3},
+                               {"axis", {0.0, 0.0, 1.0}},
+                               {"motion",
+                                {{"keyframes",
+                                  {{{"time", 0.0}, {"position", {-0.3, 0.35, 0.0}}},
+                                   {{"time", 2.0}, {"position", {0.3, 0.35, 0.0}}}}}}}});
+  json["obstacles"].push_back({{"type", "mesh"},
+                               {"file", SIXWAY_ASSETS_DIR "/meshes/stanford-bunny.obj"},
+                               {"scale", 1.2},
+                               {"translate", {-0.15, 0.95, -0.05}}});
   std::vector<Render> sixway, cycles;
   for (int seed : {1, 2}) {
     const std::string name = "obstacle_" + std::to_string(seed);
@@ -119,7 +133,8 @@ TEST_F(CyclesScene, ObstacleInTheSmokeAgrees) {
             exported.string() + "'",
         exported.string() + ".log");
     run(blender("cycles_scene.py") + " --scene '" + path.string() + "' --vdb '" +
-            (exported / "small_plume_0010.vdb").string() + "' --out '" + traced.string() + "' --spp " +
+            (exported / "small_plume_0010.vdb").string() + "' --obstacles '" +
+            (exported / "small_plume_0010.obj").string() + "' --out '" + traced.string() + "' --spp " +
             samples() + " --seed " + std::to_string(seed),
         traced.string() + ".log");
     ASSERT_FALSE(HasFailure());
@@ -133,6 +148,20 @@ TEST_F(CyclesScene, ObstacleInTheSmokeAgrees) {
                                   {"rgb", a.json()}});
   EXPECT_GT(maskedFraction(cycles), 0.1);
   EXPECT_GE(a.biasPsnrLowerDb(), 40.0);
+
+  // Without the triangles the script would draw other obstacles than sixway's: one line, no image.
+  const fs::path bare = dir_ / "bare", log = dir_ / "bare.log";
+  const int status =
+      std::system((blender("cycles_scene.py") + " --scene '" + (dir_ / "obstacle_1.json").string() +
+                   "' --vdb '" + (dir_ / "obstacle_1_vdb" / "small_plume_0010.vdb").string() + "' --out '" +
+                   bare.string() + "' > '" + log.string() + "' 2>&1")
+                      .c_str());
+  EXPECT_NE(status, 0);
+  std::ifstream in(log);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("obstacle_1.json: obstacles: give their triangles (--obstacles"), std::string::npos)
+      << text;
+  EXPECT_FALSE(fs::exists(bare));
 }
 
 }  // namespace

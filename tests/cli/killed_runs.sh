@@ -94,7 +94,7 @@ stop_when KILL "$out/.sim.*.partial" "${sim[@]}" --vdb-out "$out"
 expect_stopped "sim --vdb-out killed" KILL
 run_ok "sim into the killed sim's folder, no --force" "$sixway" sim --scene "$scene" --steps 1 --vdb-out "$out"
 name=$(sed -n 's/^ *"name": *"\([^"]*\)".*/\1/p' "$scene" | head -1)
-expect_listing "sim after a killed sim" "$out" "${name}_0001.vdb"
+expect_listing "sim after a killed sim" "$out" "${name}_0001.obj ${name}_0001.vdb"
 
 bake=("$sixway" bake --scene "$bake_scene" --tile 16 --scattering single)
 out=$dir/bake

@@ -1,5 +1,5 @@
-# `sim --vdb-out DIR --force` over an earlier, longer run of the same scene: the new run's frames replace the
-# earlier ones, and the earlier run's later frames go; other files (a user's, another scene's frames) stay. A
+# `sim --vdb-out DIR --force` over an earlier, longer run of the same scene: the new run's frames (the smoke's
+# VDB and the obstacles' OBJ) replace the earlier ones, and the earlier run's later frames go; other files (a user's, another scene's frames) stay. A
 # directory under a frame's name stops the rerun before any change.
 # Usage: cmake -DSIXWAY=sixway -DSCENE=small_plume.json -DOUT=dir -P sim_vdb_force.cmake
 file(REMOVE_RECURSE ${OUT})
@@ -35,8 +35,8 @@ string(STRIP "${sim_err}" sim_err)
 if(sim_code EQUAL 0 OR NOT sim_err MATCHES "${name}_0009.vdb: is a directory, not a regular file; not replaced$" OR sim_err MATCHES "\n")
   message(FATAL_ERROR "a directory under a frame's name: expected one line naming it, got exit ${sim_code}: ${sim_err}")
 endif()
-expect_files(${vdb} "refused rerun" ${name}_0001.vdb ${name}_0002.vdb ${name}_0003.vdb ${name}_0009.vdb notes.txt
-             other_scene_0003.vdb)
+expect_files(${vdb} "refused rerun" ${name}_0001.obj ${name}_0001.vdb ${name}_0002.obj ${name}_0002.vdb
+             ${name}_0003.obj ${name}_0003.vdb ${name}_0009.vdb notes.txt other_scene_0003.vdb)
 file(REMOVE_RECURSE ${vdb}/${name}_0009.vdb)
 
 # One frame over three: frames 2 and 3 of the earlier run go.
@@ -44,4 +44,4 @@ run_sim(4 --force --validate)
 if(NOT sim_code EQUAL 0 OR sim_err MATCHES "validation:")
   message(FATAL_ERROR "the --force rerun failed (${sim_code}): ${sim_err}")
 endif()
-expect_files(${vdb} "shorter rerun" ${name}_0001.vdb notes.txt other_scene_0003.vdb)
+expect_files(${vdb} "shorter rerun" ${name}_0001.obj ${name}_0001.vdb notes.txt other_scene_0003.vdb)

@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
+#include <string>
 
 #include "support/input_error.h"
 #include "support/temp_dir.h"
@@ -62,6 +64,30 @@ TEST(ObjRead, StanfordBunny) {
   // The scanned bunny is about 16 cm long, feet near y = 0.03.
   EXPECT_NEAR(bunny.boundsMax.x - bunny.boundsMin.x, 0.156, 0.001);
   EXPECT_NEAR(bunny.boundsMin.y, 0.033, 0.001);
+}
+
+// Two objects written with normals read back as one mesh: the second's indices run on after the first's.
+TEST_F(ObjTest, WrittenObjectsReadBack) {
+  const ObjObject triangle{
+      "a", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}}, {{0, 1, 2}}};
+  const ObjObject lifted{
+      "b", {{0, 0, 2}, {0.1f, 0, 2}, {0, 0.1f, 2}}, {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}}, {{0, 2, 1}}};
+  writeObj(file, {triangle, lifted});
+  const Mesh mesh = readObj(file);
+  ASSERT_EQ(mesh.positions.size(), 6u);
+  EXPECT_EQ(mesh.positions[4], glm::vec3(0.1f, 0, 2));
+  ASSERT_EQ(mesh.triangles.size(), 2u);
+  EXPECT_EQ(mesh.triangles[0], glm::uvec3(0, 1, 2));
+  EXPECT_EQ(mesh.triangles[1], glm::uvec3(3, 5, 4));
+  std::ifstream in(file);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_THAT(text, ::testing::HasSubstr("o b\n"));
+  EXPECT_THAT(text, ::testing::HasSubstr("f 4//4 6//6 5//5\n"));
+}
+
+TEST_F(ObjTest, WritingIntoAMissingDirectoryNamesTheFile) {
+  const fs::path missing = dir / "none" / "mesh.obj";
+  EXPECT_THAT(inputErrorMessage([&] { writeObj(missing, {}); }), ::testing::HasSubstr(missing.string()));
 }
 
 TEST_F(ObjTest, CubeQuadsBecomeTwelveTrianglesAndAMissingMaterialFileDoesNotMatter) {

@@ -137,6 +137,29 @@ TEST_F(ObstaclesTest, TriangulationLiesOnTheShapesAndFacesOutward) {
   }
 }
 
+// What `sim --vdb-out` writes for other renderers: each obstacle's triangles moved to where it is at that
+// time (a moving sphere half-way between its keyframes), with the triangulation's normals.
+TEST_F(ObstaclesTest, PlacedObstaclesAreTheTrianglesWhereTheObstaclesAre) {
+  scene::Obstacle moving = sphereAt(glm::vec3(0.0f), 0.25f);
+  moving.motion = scene::Motion{{{0.0f, {-0.5f, 0.0f, 0.0f}}, {2.0f, {0.5f, 0.3f, 0.1f}}}, false};
+  scene::Obstacle box;
+  box.shape = scene::BoxObstacle{glm::vec3(1.0f, 2.0f, 3.0f), glm::vec3(0.4f, 0.6f, 0.2f)};
+  const std::vector<io::ObjObject> placed = render::placedObstacles({moving, box}, 1.0);
+  ASSERT_EQ(placed.size(), 2u);
+  EXPECT_EQ(placed[1].name, "obstacle_1");
+  const glm::vec3 centres[2] = {{0.0f, 0.15f, 0.05f}, {1.0f, 2.0f, 3.0f}};
+  for (uint32_t i = 0; i < 2; ++i) {
+    const render::ObstacleTriangles t = render::triangulate(i == 0 ? moving : box, i);
+    ASSERT_EQ(placed[i].positions.size(), t.vertices.size());
+    ASSERT_EQ(placed[i].triangles.size() * 3, t.indices.size());
+    for (size_t v = 0; v < t.vertices.size(); ++v) {
+      EXPECT_LT(glm::length(placed[i].positions[v] - (centres[i] + t.vertices[v].position)), 1e-6f);
+      EXPECT_EQ(placed[i].normals[v], t.vertices[v].normal);
+    }
+    EXPECT_EQ(placed[i].triangles[1], glm::uvec3(t.indices[3], t.indices[4], t.indices[5]));
+  }
+}
+
 // (1) Depth and coverage of a sphere: coverage exact away from the silhouette; view depth within the
 // tessellation's facet depth along the ray (facetDepth / cos of the incidence) plus 1e-4 m for the depth
 // buffer, where the incidence cosine is at least 0.25.

@@ -1,9 +1,10 @@
 # Renders with Blender's Cycles the final image of a sixway scene as `sixway render --mode pathtrace` renders
 # it: the smoke of a scene that plays OpenVDB files back (on the files' own voxels, "voxels": "native"), or of
-# a simulated scene as `sixway sim --vdb-out` exported it (--vdb), with the scene's still obstacles (spheres,
-# boxes: opaque Lambertian, albedo 0.6), perspective camera, directional and point lights, uniform ambient
-# light and coloured emission (intensity · density · ramp(temperature)), every order of scattering (an
-# obstacle's bounce counts as one, as in sixway's path tracer). Conventions: docs/blender.md,
+# a simulated scene as `sixway sim --vdb-out` exported it (--vdb), with the scene's obstacles (opaque
+# Lambertian, albedo 0.6; any shape, moving or still: the triangles `sim --vdb-out` wrote for that frame,
+# --obstacles), perspective camera, directional and point lights,
+# uniform ambient light and coloured emission (intensity · density · ramp(temperature)), every order of
+# scattering (an obstacle's bounce counts as one, as in sixway's path tracer). Conventions: docs/blender.md,
 # "The Cycles check"; here besides them:
 #   - placement: world = translate + scale · U(p), U the scene's up turn; Blender's axes are sixway's;
 #   - the camera: the vertical field of view, rays jittered over the pixel (box filter 1 px), as the path
@@ -13,11 +14,12 @@
 #     the smoke's premultiplied radiance and alpha, to be put over the scene's background (cycles.json).
 #
 #   blender -b --factory-startup --python tools/blender/cycles_scene.py -- \
-#       --scene SCENE.json --out DIR [--vdb EXPORTED.vdb] [--frame I] [--spp N] [--seed S] [--orders N]
+#       --scene SCENE.json --out DIR [--vdb EXPORTED.vdb [--obstacles EXPORTED.obj]] [--frame I] [--spp N] \
+#       [--seed S] [--orders N]
 #
 # Writes DIR/cycles.exr (RGBA float, linear, premultiplied) and DIR/cycles.json. What the scene holds that
 # this cannot render the same (camera or light paths, spherical-harmonic ambient, resampled voxels, a given
-# box, another density grid, moving obstacles, obstacles other than spheres and boxes) is refused by name.
+# box, another density grid; obstacles without --obstacles) is refused by name.
 import argparse
 import json
 import math
@@ -38,6 +40,8 @@ def arguments():
     parser = argparse.ArgumentParser(prog="cycles_scene.py")
     parser.add_argument("--scene", required=True, help="a sixway scene")
     parser.add_argument("--vdb", help="a simulated scene's smoke: the frame `sixway sim --vdb-out` wrote")
+    parser.add_argument("--obstacles", help="the obstacles' triangles of that frame: the OBJ `sixway sim --vdb-out` "
+                                            "wrote beside it (every shape, moving or still)")
     parser.add_argument("--out", required=True, help="output directory")
     parser.add_argument("--frame", type=int, default=0, help="the scene's frame (default 0)")
     parser.add_argument("--spp", type=int, default=256, help="samples per pixel (default 256)")
@@ -75,15 +79,12 @@ def placement(vdb):
     return Matrix.Translation(Vector(vdb.get("translate", [0, 0, 0]))) @ Matrix.Scale(scale, 4) @ turn
 
 
-SHAPES = ("sphere", "box")
-
-
-def check_supported(path, scene, exported):
-    for i, obstacle in enumerate(scene.get("obstacles", [])):
-        if obstacle.get("type") not in SHAPES:
-            refuse(path, f"obstacles[{i}].type", f"only {' and '.join(SHAPES)} (got {obstacle.get('type')!r})")
-        if "motion" in obstacle:
-            refuse(path, f"obstacles[{i}].motion", "still obstacles only")
+def check_supported(path, scene, exported, triangles):
+    if scene.get("obstacles") and not triangles:
+        refuse(path, "obstacles", "give their triangles (--obstacles: the OBJ `sixway sim --vdb-out` writes beside "
+                                  "each frame of a simulated scene)")
+    if triangles and not exported:
+        refuse(path, "--obstacles", "goes with --vdb (the frame's triangles beside the frame's smoke)")
     vdb = scene.get("vdb")
     if vdb is None:
         if not exported:
@@ -120,22 +121,19 @@ def obstacle_material():
     return material
 
 
-def add_obstacles(obstacles):
-    """Spheres as sixway tessellates them (render/obstacle_meshes.cpp: 64 segments, 32 rings, poles on y,
-    smooth normals) and boxes."""
+def import_obstacles(path):
+    """The OBJ of `sixway sim --vdb-out` (render::placedObstacles, world coordinates) with its axes kept (sixway's
+    are Blender's here) and its vertex normals as custom normals; every object gets the obstacles' material."""
+    if not os.path.isfile(path):
+        cc.fail(PROGRAM, f"{path}: no such file")
+    before = set(bpy.data.objects)
+    bpy.ops.wm.obj_import(filepath=path, forward_axis="Y", up_axis="Z")
+    imported = [obj for obj in bpy.data.objects if obj not in before]
+    if not imported:
+        cc.fail(PROGRAM, f"{path}: no obstacle in the file")
     material = obstacle_material()
-    for obstacle in obstacles:
-        centre = Vector(obstacle["center"])
-        if obstacle["type"] == "sphere":
-            bpy.ops.mesh.primitive_uv_sphere_add(segments=64, ring_count=32, radius=obstacle["radius"])
-            obj = bpy.context.active_object
-            bpy.ops.object.shade_smooth()
-            obj.rotation_euler = (-math.pi / 2, 0, 0)  # Blender's poles on z, sixway's on y
-        else:
-            bpy.ops.mesh.primitive_cube_add(size=1)
-            obj = bpy.context.active_object
-            obj.scale = obstacle["size"]
-        obj.location = centre
+    for obj in imported:
+        obj.data.materials.clear()
         obj.data.materials.append(material)
 
 
@@ -159,7 +157,7 @@ def main():
         cc.fail(PROGRAM, f"{args.scene}: {e}")
     if not isinstance(scene_json, dict):
         cc.fail(PROGRAM, f"{args.scene}: not a JSON object")
-    check_supported(args.scene, scene_json, args.vdb)
+    check_supported(args.scene, scene_json, args.vdb, args.obstacles)
     # A simulation's export lies in the scene's world, voxel centres on the cell centres.
     vdb = scene_json.get("vdb", {"temperature_grid": "temperature"})
     path = vdb_file(args.scene, scene_json, args.frame) if "vdb" in scene_json else args.vdb
@@ -184,7 +182,8 @@ def main():
     extinction = smoke.get("extinction", 20.0) * vdb.get("density_scale", 1.0)
     material, _, _ = cc.smoke_material(extinction, smoke.get("albedo", 0.9), smoke.get("phase_g", 0.2), emission)
     cc.volume_object(PROGRAM, path, material, placement(vdb))
-    add_obstacles(scene_json.get("obstacles", []))
+    if args.obstacles:
+        import_obstacles(args.obstacles)
     for light in scene_json.get("lights", []):
         colour = light.get("color", [1, 1, 1])
         intensity = light.get("intensity", math.pi)
