@@ -268,6 +268,9 @@ void addBakeCommand(CLI::App& app) {
   bake->add_option("--emission", o->emission,
                    "Emission intensity (VDB: with a built-in black-body-like ramp)")
       ->check(nonNegativeNumber());
+  bake->add_option("--density-grid", o->densityGrid,
+                   "VDB: the density grid's name (default density; density_noise: a Blender cache's noise)")
+      ->excludes(sceneOption);
   bake->add_option("--voxels", o->voxels,
                    "VDB: cells along the longest axis of the files' active box (default 128, or the scene's "
                    "vdb.voxels), or native: the files' own voxels; one empty cell is added on each side")

@@ -78,13 +78,15 @@ BakeSource openVdbFiles(const gpu::Context& context, const BakeOptions& o, const
   const int voxels = o.voxels.value_or(128);
   const std::string given = voxels == scene::kNativeVoxels ? "native" : std::to_string(voxels);
   auto vdb = withinDeviceLimits("--voxels " + given, "--voxels", [&] {
-    return std::make_unique<reference::VdbSequence>(context, o.vdb, voxels, smoke.emission.intensity > 0.0f);
+    return std::make_unique<reference::VdbSequence>(context, o.vdb, voxels, smoke.emission.intensity > 0.0f,
+                                                    o.densityGrid.value_or("density"));
   });
   nlohmann::json files = nlohmann::json::array();
   for (const fs::path& f : o.vdb) files.push_back(fs::absolute(f).string());
   const render::VolumeGrid& lattice = vdb->lattice();
   BakeSource source;
   source.provenance["source"] = {{"vdb", files},
+                                 {"density_grid", vdb->source().densityGrid},
                                  {"lattice",
                                   {{"cells", {lattice.size.x, lattice.size.y, lattice.size.z}},
                                    {"origin", {lattice.origin.x, lattice.origin.y, lattice.origin.z}},

@@ -18,6 +18,7 @@ struct BakeOptions {
   std::string scattering = "multiple";
   std::string packing = "unity";
   std::string emissive = "mask";
+  std::optional<std::string> densityGrid;
   int first = 0;
   std::optional<int> frames, columns, voxels, samples, orders, downsample;
   std::optional<uint32_t> seed;

@@ -112,8 +112,9 @@ render::VolumeGrid playbackLattice(const scene::VdbSource& source, std::vector<s
     if (std::ranges::none_of(grids, [&](const io::VdbGridInfo& g) {
           return g.name == source.densityGrid && g.valueType == "float";
         }))
-      throw io::InputError(file.string(), "has no float grid '" + source.densityGrid +
-                                              "' (set vdb.density_grid to the density's name)");
+      throw io::InputError(file.string(),
+                           "has no float grid '" + source.densityGrid +
+                               "' (set vdb.density_grid, or bake's --density-grid, to the density's name)");
     for (const io::VdbGridInfo& grid : grids) {
       const bool density = grid.name == source.densityGrid;
       const bool temperature = source.temperatureGrid && grid.name == *source.temperatureGrid;
@@ -132,8 +133,9 @@ render::VolumeGrid playbackLattice(const scene::VdbSource& source, std::vector<s
   }
   const std::string first = source.files.front().string();
   if (lo.x > hi.x)
-    throw io::InputError(first, "no file of the vdb sequence has a non-empty float grid '" +
-                                    source.densityGrid + "' (set vdb.density_grid to the density's name)");
+    throw io::InputError(first,
+                         "no file of the vdb sequence has a non-empty float grid '" + source.densityGrid +
+                             "' (set vdb.density_grid, or bake's --density-grid, to the density's name)");
   if (source.temperatureGrid && !anyTemperature)
     throw io::InputError(first, "no file of the vdb sequence has a non-empty float grid '" +
                                     *source.temperatureGrid + "' (vdb.temperature_grid)");
@@ -167,8 +169,9 @@ std::optional<std::string> temperatureGridIn(const std::vector<std::filesystem::
 }
 
 scene::VdbSource fileList(std::vector<std::filesystem::path> files, int longestAxisCells,
-                          bool withTemperature) {
+                          bool withTemperature, std::string densityGrid) {
   scene::VdbSource source;
+  source.densityGrid = std::move(densityGrid);
   source.temperatureGrid = withTemperature ? temperatureGridIn(files) : std::nullopt;
   source.files = std::move(files);
   source.voxels = longestAxisCells;
@@ -183,8 +186,9 @@ VdbSequence::VdbSequence(const gpu::Context& context, scene::VdbSource source)
       volume_(context, lattice_, source_.temperatureGrid.has_value()) {}
 
 VdbSequence::VdbSequence(const gpu::Context& context, std::vector<std::filesystem::path> files,
-                         int longestAxisCells, bool withTemperature)
-    : VdbSequence(context, fileList(std::move(files), longestAxisCells, withTemperature)) {}
+                         int longestAxisCells, bool withTemperature, std::string densityGrid)
+    : VdbSequence(context,
+                  fileList(std::move(files), longestAxisCells, withTemperature, std::move(densityGrid))) {}
 
 io::VdbDenseGrids VdbSequence::read(int fileIndex, const std::vector<std::string>& names) {
   // The lattice back in the file's space: the same box, its axes turned back.

@@ -24,10 +24,10 @@ class VdbSequence : public render::VolumeSequence {
   // lattice: source.voxels cells along the longest axis of the union of the grids' world boxes. Throws
   // InputError when no file has a usable density grid, or when the temperature grid is named but in no file.
   VdbSequence(const gpu::Context& context, scene::VdbSource source);
-  // `sixway bake --vdb`: files as given, one frame each; with `withTemperature`, a float grid named
-  // "temperature" (else "heat") becomes the temperature.
+  // `sixway bake --vdb`: files as given, one frame each, their float grid `densityGrid` the density; with
+  // `withTemperature`, a float grid named "temperature" (else "heat") becomes the temperature.
   VdbSequence(const gpu::Context& context, std::vector<std::filesystem::path> files, int longestAxisCells,
-              bool withTemperature);
+              bool withTemperature, std::string densityGrid = "density");
 
   int frameCount() const override { return int(source_.files.size()) * source_.framesPerFile; }
   // Unlike a simulation, frames may be asked for in any order (the demo loops them); a file is read again

@@ -13,6 +13,8 @@
 #       the size as the domain object's scale, as a Blender user's scaled cube)
 #   density_buoyancy (1), heat_buoyancy (1), vorticity (0), time_scale (1), dissolve_frames (none)
 #   burning_rate (0.75), flame_vorticity (0.5)
+#   noise (0: none; 2-4): Blender's noise upres factor, baked into the cache's noise/ folder (OUT_DIR's VDB
+#       files stay the base grid's)
 #   emitters[] (required): shape (sphere | cube | cylinder), position, size, type (smoke | fire | both),
 #       density (1), temperature (1), fuel (1), velocity (none), surface_distance (1.5), frames [first, last]
 #   obstacles[]: shape, position, size, move_to (a straight path over the whole run)
@@ -164,7 +166,13 @@ def make_domain(config, cache):
         settings.dissolve_speed = int(number(config, "dissolve_frames", 100, 1, 10000))
     settings.burning_rate = number(config, "burning_rate", 0.75, 0.01, 4)
     settings.flame_vorticity = number(config, "flame_vorticity", 0.5, 0, 2)
-    settings.use_noise = False
+    noise = int(number(config, "noise", 0, 0, 4))
+    if noise == 1:
+        fail("noise: 0 (none) or an upres factor of 2 to 4")
+    settings.use_noise = noise > 0
+    if noise:
+        settings.noise_scale = noise
+        settings.cache_noise_format = "OPENVDB"
     settings.cache_directory = cache
     settings.cache_type = "ALL"
     settings.cache_data_format = "OPENVDB"
@@ -215,7 +223,7 @@ def main():
         fail(f"{config_path}: not a JSON object")
     known = {"description", "resolution", "frames", "domain_size", "domain_centre", "density_buoyancy",
              "heat_buoyancy", "vorticity", "time_scale", "dissolve_frames", "burning_rate", "flame_vorticity",
-             "emitters", "obstacles", "wind", "camera", "scale_applied"}
+             "emitters", "obstacles", "wind", "camera", "scale_applied", "noise"}
     unknown = sorted(set(config) - known)
     if unknown:
         fail(f"{config_path}: unknown keys {unknown}")

@@ -13,6 +13,8 @@
 # The view is the scene camera's direction (or Blender's front view, −y looking +y, z up) carried into the
 # cache's file space; the tile covers the smoke's billboard, as `sixway bake` frames it. The optics default
 # to the domain's Principled Volume (Density → extinction, Color → albedo, Anisotropy → g), else sixway's.
+# A domain with noise bakes the noise cache's finer density (without emission: that cache has no temperature);
+# an adaptive domain is refused (its files do not say where its grid moved).
 import argparse
 import os
 import shutil
@@ -54,20 +56,24 @@ def cache_files(domain, frames):
     if settings.cache_data_format != "OPENVDB":
         raise FlipbookError(f"'{domain.name}': the cache's data format is {settings.cache_data_format}; "
                             "set it to OpenVDB and bake again")
-    # Both move or refine the grid frame by frame in ways the file space below does not follow.
+    # An adaptive domain's files do not say where its moving grid lies (Blender keeps that in its own config
+    # files): their file space is not the one below.
     if settings.use_adaptive_domain:
         raise FlipbookError(f"'{domain.name}' has an adaptive domain; turn it off and bake again")
-    if settings.use_noise:
-        raise FlipbookError(f"'{domain.name}' adds noise; sixway bakes the base grid: turn noise off and bake again")
+    if settings.use_noise and settings.cache_noise_format != "OPENVDB":
+        raise FlipbookError(f"'{domain.name}': the noise cache's format is {settings.cache_noise_format}; "
+                            "set it to OpenVDB and bake the noise again")
     first, last = frames or (settings.cache_frame_start, settings.cache_frame_end)
     if first > last:
         raise FlipbookError(f"frames {first}..{last}: the first is after the last")
-    data = os.path.join(bpy.path.abspath(settings.cache_directory), "data")
-    files = [os.path.join(data, f"fluid_data_{frame:04d}.vdb") for frame in range(first, last + 1)]
+    # With noise, its finer grid (density_noise, in the same file space at 1/noise_scale the voxel size).
+    folder, name = ("noise", "fluid_noise") if settings.use_noise else ("data", "fluid_data")
+    cache = os.path.join(bpy.path.abspath(settings.cache_directory), folder)
+    files = [os.path.join(cache, f"{name}_{frame:04d}.vdb") for frame in range(first, last + 1)]
     missing = [f for f in files if not os.path.isfile(f)]
     if missing:
         raise FlipbookError(f"{missing[0]}: no such cache file ({len(missing)} of frames {first}..{last} are "
-                            "missing; bake the domain's data first)")
+                            f"missing; bake the domain's {folder} first)")
     return files
 
 
@@ -143,6 +149,11 @@ def bake_command(domain, camera, out, sixway=None, frames=None, tile=128, packin
         raise FlipbookError(f"packing must be one of {', '.join(PACKINGS)} (got {packing})")
     command = [find_sixway(sixway), "bake", "--vdb", *cache_files(domain, frames), "--voxels", "native",
                "--out", out, "--force", "--tile", str(tile), "--packing", packing, "--scattering", scattering]
+    if domain_settings(domain).use_noise:
+        if emission > 0:  # the noise upsamples the density and the flame, not the temperature that glows
+            raise FlipbookError(f"'{domain.name}' adds noise, whose cache holds no temperature to glow: "
+                                "bake with an emission of 0, or turn noise off")
+        command += ["--density-grid", "density_noise"]
     command += camera_arguments(domain, camera)
     merged = {**material_optics(domain), **(optics or {})}
     for key in ("extinction", "albedo", "g"):
