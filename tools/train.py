@@ -29,6 +29,7 @@ import json
 import math
 import os
 import platform
+import signal
 import sys
 import time
 
@@ -781,6 +782,8 @@ def finish(out, net, data, config, seconds, device, world):
 
 
 if __name__ == "__main__":
+    # SIGTERM ends the run as Ctrl-C does: the recipe records the time spent and stops its `sixway dataset`.
+    signal.signal(signal.SIGTERM, lambda number, frame: sys.exit(128 + number))
     try:
         main()
     except (ConfigError, RecipeError, ValueError) as error:

@@ -101,11 +101,10 @@ class Dataset:
 
     def make(self, sixway, shard, log):
         """Runs `prepare` and `sixway dataset` for this worker's sequences (a set already made is kept: the command
-        resumes shard by shard). Returns the seconds it took."""
-        start = time.time()
+        resumes shard by shard)."""
         wanted = self.sequences(shard)
         if not wanted:
-            return 0.0
+            return
         if self.prepare:
             self._run(self.prepare, log)
         command = [sixway, "dataset", "--config", self.config, "--out", self.out]
@@ -116,7 +115,6 @@ class Dataset:
         else:  # skipped sequences: one worker of `count` per sequence made
             for s in wanted:
                 self._run(command + ["--shard", f"{s}/{self.count}"], log)
-        return time.time() - start
 
     def _run(self, command, log):
         log(" ".join(command))
@@ -215,8 +213,8 @@ class Recipe:
 
 def make_data(recipe, sixway, shard, out, log):
     """Makes every dataset's sequences of worker `shard` (index, count), adding each set's seconds to
-    OUT/data_seconds.json (so that the time of an interrupted or split run is counted once; OUT None: not
-    recorded); returns the seconds per set so far."""
+    OUT/data_seconds.json, also when interrupted (SIGTERM, Ctrl-C: the work a rerun redoes counts too; OUT None:
+    not recorded); returns the seconds per set so far."""
     path = os.path.join(out, DATA_SECONDS_NAME) if out else None
     seconds = {}
     if path and os.path.exists(path):
@@ -225,10 +223,14 @@ def make_data(recipe, sixway, shard, out, log):
     if path:
         os.makedirs(out, exist_ok=True)
     for d in recipe.datasets:
-        seconds[d.name] = round(seconds.get(d.name, 0.0) + d.make(sixway, shard, log), 1)
-        if path:
-            with atomic_open(path) as f:
-                json.dump(seconds, f, indent=2)
+        start = time.time()
+        try:
+            d.make(sixway, shard, log)
+        finally:
+            seconds[d.name] = round(seconds.get(d.name, 0.0) + time.time() - start, 1)
+            if path:
+                with atomic_open(path) as f:
+                    json.dump(seconds, f, indent=2)
     return seconds
 
 

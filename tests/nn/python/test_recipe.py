@@ -11,9 +11,11 @@ import copy
 import json
 import os
 import shutil
+import signal
 import socket
 import subprocess
 import sys
+import time
 import unittest
 
 try:
@@ -152,6 +154,22 @@ class RecipeRunTest(unittest.TestCase):
         self.assertIn("2 process(es)", logs[0])
         final = weights(os.path.join(out, "sixway-unet.safetensors"))
         self.assertFalse(same_weights(final, weights(os.path.join(out, "01_maps", "sixway-unet.safetensors"))))
+
+    def test_a_terminated_recipe_counts_its_time_and_stops_making_data(self):
+        data, out = os.path.join(WORK, "terminated_data"), os.path.join(WORK, "terminated")
+        process = subprocess.Popen([sys.executable, TRAIN, "--recipe", "tiny", "--out", out, "--data-root", data,
+                                    "--sixway", SIXWAY], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        for _ in range(600):  # until `sixway dataset` has begun the set
+            if os.path.isdir(os.path.join(data, "data", "tiny")) or process.poll() is not None:
+                break
+            time.sleep(0.1)
+        time.sleep(0.5)
+        process.send_signal(signal.SIGTERM)
+        self.assertEqual(process.wait(timeout=60), 128 + signal.SIGTERM)
+        with open(os.path.join(out, "data_seconds.json")) as f:
+            self.assertGreater(json.load(f)["data/tiny"], 0)
+        running = subprocess.run(["pgrep", "-f", f"dataset .*{data}"], capture_output=True, text=True).stdout
+        self.assertEqual(running.strip(), "", "sixway dataset still runs")
 
     def test_a_data_shard_makes_its_share_only(self):
         data = os.path.join(WORK, "shard_data")
