@@ -207,9 +207,6 @@ class Recipe:
             phases.append(phase)
         return phases
 
-    def dataset_directories(self):
-        return {d.out for phase in self.phases for d in phase.config["data"]["dir"]}
-
 
 def make_data(recipe, sixway, shard, out, log):
     """Makes every dataset's sequences of worker `shard` (index, count), adding each set's seconds to
