@@ -18,25 +18,7 @@ work="$root/.dev/results"
 mkdir -p "$out" "$work"
 exec > >(tee "$out/log.txt") 2>&1
 
-step "set-up"
-for f in .gl/*.deb; do dpkg -x "$f" /; done
-ldconfig
-tar -xJf .dev/bundle.tar.xz -C .dev
-rm -rf build && mv .dev/build build
-# The build's test lists and compiled-in paths name /work/main.
-if [[ $root != /work/main ]]; then
-  [[ -e /work/main ]] && { echo "/work/main exists already; the build's paths would not resolve"; exit 1; }
-  mkdir -p /work && ln -s "$root" /work/main
-fi
-for tool in cmake ctest; do [[ -x /usr/bin/$tool ]] || ln -s "$(command -v $tool)" /usr/bin/$tool; done
-icd=$(ls /usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json /usr/share/vulkan/icd.d/nvidia_icd.json \
-  /etc/vulkan/icd.d/nvidia_icd.json 2>/dev/null | head -1)
-[[ -n $icd ]] || icd=$(find / -xdev -name 'nvidia_icd*.json' 2>/dev/null | head -1)
-echo "ICD manifest: $icd"
-# Our executables get the bundled libraries.
-vk=(env LD_LIBRARY_PATH="$root/.dev/lib" VK_LAYER_PATH="$root/.dev/layers" VK_DRIVER_FILES="$icd"
-  VK_ICD_FILENAMES="$icd")
-sixway=build/src/app/sixway
+source tools/gpu/device_setup.sh
 nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm,clocks.max.mem --format=csv
 "${vk[@]}" $sixway info
 
