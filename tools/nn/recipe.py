@@ -194,6 +194,9 @@ class Recipe:
             _require("init_from" not in entry["config"].get("train", {}), where,
                      "train.init_from is the recipe's (the phase before); remove it")
             config = overridden(config, entry["config"])
+            train = config.get("train", {})
+            _require(all(isinstance(train.get(k), int) and train[k] > 0 for k in ("steps", "batch")), where,
+                     "train.steps and train.batch must be given (whole numbers > 0): a profile scales them")
             directories = config.get("data", {}).get("dir")
             directories = [directories] if isinstance(directories, str) else directories
             _require(isinstance(directories, list) and directories, where, "data.dir must name the recipe's datasets")

@@ -221,6 +221,8 @@ class RecipeFileTest(unittest.TestCase):
              "datasets[0]: skip_sequences must be sequence indices in 0..1"),
             (lambda r: r["phases"][1].update(name="maps"), "phases[1]: 'name' must be a unique word"),
             (lambda r: r["profiles"]["gpu"].update(batch_scale=0), "batch_scale must be an integer in 1..1024"),
+            (lambda r: r["phases"][0]["config"]["train"].pop("batch"),
+             "phases[0]: train.steps and train.batch must be given"),
         ]
         for k, (edit, message) in enumerate(cases):
             path = write_recipe(f"bad{k}.json", edit)
