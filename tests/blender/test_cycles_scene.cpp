@@ -99,7 +99,7 @@ TEST_F(CyclesScene, SingleScatteringFinalImageAgrees) {
 }
 
 // A simulated scene whose smoke wraps obstacles of three kinds (small_plume's sphere, a capsule moving across
-// the plume, the Stanford bunny as an OBJ mesh; the key light held still): sixway's path tracer on the
+// the plume, an icosahedron as a turned OBJ mesh; the key light held still): sixway's path tracer on the
 // simulation's tenth frame against Cycles on that frame as `sixway sim --vdb-out` exports it (10 frames of 51
 // lattice steps, by the scene's step rule; the smoke as VDB, the obstacles' triangles as OBJ), every order.
 TEST_F(CyclesScene, ObstacleInTheSmokeAgrees) {
@@ -114,9 +114,10 @@ TEST_F(CyclesScene, ObstacleInTheSmokeAgrees) {
                                   {{{"time", 0.0}, {"position", {-0.3, 0.35, 0.0}}},
                                    {{"time", 2.0}, {"position", {0.3, 0.35, 0.0}}}}}}}});
   json["obstacles"].push_back({{"type", "mesh"},
-                               {"file", SIXWAY_ASSETS_DIR "/meshes/stanford-bunny.obj"},
-                               {"scale", 1.2},
-                               {"translate", {-0.15, 0.95, -0.05}}});
+                               {"file", SIXWAY_TEST_DATA_DIR "/meshes/icosahedron.obj"},
+                               {"scale", 0.1},
+                               {"rotate_deg", {20.0, 35.0, 0.0}},
+                               {"translate", {-0.2, 0.95, -0.05}}});
   std::vector<Render> sixway, cycles;
   for (int seed : {1, 2}) {
     const std::string name = "obstacle_" + std::to_string(seed);
