@@ -28,6 +28,7 @@ import math
 import os
 import shutil
 import sys
+import tempfile
 
 import bpy
 from mathutils import Vector
@@ -246,7 +247,11 @@ def main():
         add_camera(config["camera"])
 
     # Everything is made in OUT_DIR.partial and moved in whole at the end. With --blend the cache stays, as
-    # cache/ beside scene.blend (a path relative to the .blend, so the folder can move).
+    # cache/ beside scene.blend (a path relative to the .blend, so the folder can move). Mantaflow's noise
+    # writes its wavelet tile (25 MB) into the working directory: a temporary one.
+    out_dir, config_path = os.path.abspath(out_dir), os.path.abspath(config_path)
+    scratch = tempfile.mkdtemp(prefix="mantaflow_")
+    os.chdir(scratch)
     partial = out_dir.rstrip("/") + ".partial"
     shutil.rmtree(partial, ignore_errors=True)
     os.makedirs(partial)
@@ -280,6 +285,7 @@ def main():
         print(f"mantaflow_smoke: wrote {frames} frames to {out_dir}")
     finally:
         shutil.rmtree(partial, ignore_errors=True)
+        shutil.rmtree(scratch, ignore_errors=True)
 
 
 if __name__ == "__main__":
